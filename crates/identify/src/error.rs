@@ -1,0 +1,68 @@
+//! The crate's error type.
+
+/// Everything that can go wrong in `identify`.
+///
+/// Bad input never panics: it is reported through one of these variants, each carrying the
+/// indices or values needed to locate the problem.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum IdentifyError {
+    /// The design has no columns.
+    #[error("the design matrix has no columns (nothing to estimate)")]
+    NoUnknowns,
+    /// Fewer observations than needed: least squares with a residual standard deviation needs
+    /// at least one residual degree of freedom, i.e. `observations > unknowns`.
+    #[error(
+        "{observations} observations for {unknowns} unknowns: need more observations than unknowns"
+    )]
+    TooFewObservations {
+        /// Number of observations (rows of the design).
+        observations: usize,
+        /// Number of unknowns (columns of the design).
+        unknowns: usize,
+    },
+    /// The column-scaled design is numerically rank deficient: after column-pivoted QR only
+    /// `rank` diagonal entries of R exceed `tolerance·|R₀₀|`.
+    #[error(
+        "design is rank deficient: numerical rank {rank} < {unknowns} unknowns at relative tolerance {tolerance:e}"
+    )]
+    RankDeficient {
+        /// Numerical rank found.
+        rank: usize,
+        /// Number of unknowns (columns).
+        unknowns: usize,
+        /// Relative tolerance on the diagonal of R that was applied.
+        tolerance: f64,
+    },
+    /// A non-finite number (NaN or ±∞) in the input.
+    #[error("non-finite value at row {row}{}", match column { Some(c) => format!(", column {c} of the design"), None => " of the observations".to_string() })]
+    NonFinite {
+        /// Row (observation index, 0-based).
+        row: usize,
+        /// Design column (0-based), or `None` when the value is in the observation vector.
+        column: Option<usize>,
+    },
+    /// Lengths of inputs that must agree do not.
+    #[error("dimension mismatch: {what} has {got} entries, expected {expected}")]
+    DimensionMismatch {
+        /// Which input is the wrong size.
+        what: &'static str,
+        /// Its size.
+        got: usize,
+        /// The size it must have.
+        expected: usize,
+    },
+    /// A scalar parameter is out of its domain (e.g. a non-positive radius).
+    #[error("invalid parameter {name} = {value}: {requirement}")]
+    InvalidParameter {
+        /// Name of the parameter, as in the function signature.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What the value must satisfy.
+        requirement: &'static str,
+    },
+}
+
+/// `Result` with [`IdentifyError`].
+pub type Result<T, E = IdentifyError> = std::result::Result<T, E>;

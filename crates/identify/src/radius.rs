@@ -1,0 +1,269 @@
+//! The radius-error model `Δr(ω) = a + C_r·ω²` and the pseudo-second-order error of eq. 19.
+
+use nalgebra::DMatrix;
+
+use crate::error::{IdentifyError, Result};
+use crate::lstsq::{Fit, lstsq};
+
+/// Model fitted to the working-radius error as a function of the spindle rate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RadiusModel {
+    /// `Δr = a + C_r·ω²`: static offset plus the dynamic (imbalance) drift. The paper's model.
+    TwoTerm,
+    /// `Δr = a + b·ω + C_r·ω²`: adds a term linear in ω (the fit the paper's ±0.39e-8 belongs to).
+    ThreeTerm,
+}
+
+impl RadiusModel {
+    /// Number of coefficients.
+    #[must_use]
+    pub const fn unknowns(self) -> usize {
+        match self {
+            Self::TwoTerm => 2,
+            Self::ThreeTerm => 3,
+        }
+    }
+}
+
+/// Result of [`fit_radius_error`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RadiusFit {
+    /// Model fitted.
+    pub model: RadiusModel,
+    /// Dynamic radius-error coefficient C_r (m·s²), the coefficient of ω².
+    pub c_r_m_s2: f64,
+    /// Standard error of C_r from this fit's own covariance (m·s²).
+    pub c_r_sigma_m_s2: f64,
+    /// Static offset a (m).
+    pub offset_m: f64,
+    /// Coefficient b of ω (m·s) for [`RadiusModel::ThreeTerm`], `None` for the two-term model.
+    pub linear_m_s: Option<f64>,
+    /// Standard error of b (m·s), when fitted.
+    pub linear_sigma_m_s: Option<f64>,
+    /// The underlying least-squares fit; coefficients in the order a, (b,) C_r.
+    pub fit: Fit,
+}
+
+impl RadiusFit {
+    /// Radius error predicted by the fitted model at `rate_rad_s` (m).
+    #[must_use]
+    pub fn predict_m(&self, rate_rad_s: f64) -> f64 {
+        self.offset_m
+            + self.linear_m_s.unwrap_or(0.0) * rate_rad_s
+            + self.c_r_m_s2 * rate_rad_s * rate_rad_s
+    }
+}
+
+/// Fits the radius error `Δr(ω)` by least squares ([`lstsq`]).
+///
+/// $$ \Delta r(\omega) = a + C_r\,\omega^2 \quad\text{or}\quad a + b\,\omega + C_r\,\omega^2 $$
+///
+/// `rate_rad_s[i]` is the spindle rate (rad/s) and `radius_error_m[i]` the measured radius error
+/// (m, the sum Δr_xd + Δr_xs of eq. 22) at point i.
+///
+/// # Errors
+/// [`IdentifyError::DimensionMismatch`] when the slices differ in length; the errors of
+/// [`lstsq`] otherwise (too few points, non-finite input, rank deficiency, e.g. repeated rates).
+///
+/// # Example
+/// ```
+/// use approx::assert_relative_eq;
+/// use identify::{fit_radius_error, RadiusModel};
+/// let rate_rad_s = [1.0, 2.0, 3.0];
+/// let err_m: Vec<f64> = rate_rad_s.iter().map(|w| 1e-6 - 2e-8 * w * w).collect();
+/// let fit = fit_radius_error(&rate_rad_s, &err_m, RadiusModel::TwoTerm)?;
+/// assert_relative_eq!(fit.c_r_m_s2, -2e-8, max_relative = 1e-10);
+/// assert_relative_eq!(fit.predict_m(4.0), 1e-6 - 32e-8, max_relative = 1e-10);
+/// # Ok::<(), identify::IdentifyError>(())
+/// ```
+pub fn fit_radius_error(
+    rate_rad_s: &[f64],
+    radius_error_m: &[f64],
+    model: RadiusModel,
+) -> Result<RadiusFit> {
+    if rate_rad_s.len() != radius_error_m.len() {
+        return Err(IdentifyError::DimensionMismatch {
+            what: "radius_error_m",
+            got: radius_error_m.len(),
+            expected: rate_rad_s.len(),
+        });
+    }
+    let m = rate_rad_s.len();
+    let design = match model {
+        RadiusModel::TwoTerm => DMatrix::from_fn(m, 2, |i, j| rate_rad_s[i].powi(2 * j as i32)),
+        RadiusModel::ThreeTerm => DMatrix::from_fn(m, 3, |i, j| rate_rad_s[i].powi(j as i32)),
+    };
+    let fit = lstsq(&design, radius_error_m)?;
+    let last = model.unknowns() - 1;
+    let (linear_m_s, linear_sigma_m_s) = match model {
+        RadiusModel::TwoTerm => (None, None),
+        RadiusModel::ThreeTerm => (Some(fit.coefficients[1]), Some(fit.std_errors[1])),
+    };
+    Ok(RadiusFit {
+        model,
+        c_r_m_s2: fit.coefficients[last],
+        c_r_sigma_m_s2: fit.std_errors[last],
+        offset_m: fit.coefficients[0],
+        linear_m_s,
+        linear_sigma_m_s,
+        fit,
+    })
+}
+
+/// Pseudo-second-order error of eq. 19 and its standard deviation.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PseudoSecondOrder {
+    /// Δk2 = k1·C_r·g/R² (rad/(s·g²)).
+    pub delta_k2_rad_s_g2: f64,
+    /// Standard deviation of Δk2 propagated from σ(C_r): |k1·g/R²|·σ(C_r) (rad/(s·g²)).
+    pub sigma_rad_s_g2: f64,
+}
+
+/// Pseudo-second-order coefficient error caused by the dynamic radius error (eq. 19).
+///
+/// $$ \Delta k_2 = \frac{k_1 C_r g}{R^2}, \qquad
+///    \sigma(\Delta k_2) = \left|\frac{k_1 g}{R^2}\right| \sigma(C_r) $$
+///
+/// k1 in rad/(s·g), C_r and σ(C_r) in m·s², g in m/s², R in m; the result is in rad/(s·g²).
+/// Only σ(C_r) is propagated (k1, g and R are taken as exact).
+///
+/// # Errors
+/// [`IdentifyError::InvalidParameter`] for non-finite inputs, a negative σ(C_r), or a
+/// non-positive g or radius.
+///
+/// # Example
+/// ```
+/// use approx::assert_relative_eq;
+/// let p = identify::pseudo_second_order(0.5, 2e-8, 1e-9, 10.0, 2.0)?;
+/// assert_relative_eq!(p.delta_k2_rad_s_g2, 0.5 * 2e-8 * 10.0 / 4.0, max_relative = 1e-15);
+/// assert_relative_eq!(p.sigma_rad_s_g2, 0.5 * 1e-9 * 10.0 / 4.0, max_relative = 1e-15);
+/// # Ok::<(), identify::IdentifyError>(())
+/// ```
+pub fn pseudo_second_order(
+    k1_rad_s_g: f64,
+    c_r_m_s2: f64,
+    c_r_sigma_m_s2: f64,
+    g_m_s2: f64,
+    radius_m: f64,
+) -> Result<PseudoSecondOrder> {
+    finite("k1_rad_s_g", k1_rad_s_g)?;
+    finite("c_r_m_s2", c_r_m_s2)?;
+    non_negative("c_r_sigma_m_s2", c_r_sigma_m_s2)?;
+    positive("g_m_s2", g_m_s2)?;
+    positive("radius_m", radius_m)?;
+    let factor = k1_rad_s_g * g_m_s2 / (radius_m * radius_m);
+    Ok(PseudoSecondOrder {
+        delta_k2_rad_s_g2: factor * c_r_m_s2,
+        sigma_rad_s_g2: factor.abs() * c_r_sigma_m_s2,
+    })
+}
+
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<()> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(IdentifyError::InvalidParameter {
+            name,
+            value,
+            requirement: "finite",
+        })
+    }
+}
+
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<()> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(IdentifyError::InvalidParameter {
+            name,
+            value,
+            requirement: "finite and > 0",
+        })
+    }
+}
+
+pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<()> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        Err(IdentifyError::InvalidParameter {
+            name,
+            value,
+            requirement: "finite and ≥ 0",
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn two_term_by_hand() {
+        // ω² = 0, 1, 4 with Δr = 1, 2, 4 (µm): the 3-point line of the lstsq test in ω².
+        // Over u = ω²: ū = 5/3, ȳ = 7/3, Sxx = (25 + 4 + 49)/9 = 26/3,
+        // Sxy = (−5/3)(−4/3) + (−2/3)(−1/3) + (7/3)(5/3) = 57/9 = 19/3, slope = 19/26.
+        let fit =
+            fit_radius_error(&[0.0, 1.0, 2.0], &[1.0, 2.0, 4.0], RadiusModel::TwoTerm).unwrap();
+        assert_relative_eq!(fit.c_r_m_s2, 19.0 / 26.0, max_relative = 1e-13);
+        assert_relative_eq!(
+            fit.offset_m,
+            7.0 / 3.0 - 19.0 / 26.0 * 5.0 / 3.0,
+            max_relative = 1e-13
+        );
+        assert!(fit.linear_m_s.is_none());
+        assert_relative_eq!(
+            fit.predict_m(1.0),
+            fit.offset_m + fit.c_r_m_s2,
+            max_relative = 1e-15
+        );
+    }
+
+    #[test]
+    fn three_term_exact_quadratic() {
+        let w = [0.5, 1.0, 1.5, 2.0, 3.0];
+        let e: Vec<f64> = w.iter().map(|w| 2e-6 + 3e-7 * w - 4e-8 * w * w).collect();
+        let fit = fit_radius_error(&w, &e, RadiusModel::ThreeTerm).unwrap();
+        assert_relative_eq!(fit.c_r_m_s2, -4e-8, max_relative = 1e-10);
+        assert_relative_eq!(fit.linear_m_s.unwrap(), 3e-7, max_relative = 1e-10);
+        assert_relative_eq!(fit.offset_m, 2e-6, max_relative = 1e-10);
+    }
+
+    #[test]
+    fn eq19_by_hand_and_errors() {
+        let p = pseudo_second_order(-2.0, 3e-8, 1e-8, 9.0, 3.0).unwrap();
+        assert_relative_eq!(p.delta_k2_rad_s_g2, -6e-8, max_relative = 1e-15);
+        assert_relative_eq!(p.sigma_rad_s_g2, 2e-8, max_relative = 1e-15);
+        assert!(matches!(
+            pseudo_second_order(0.56, 1e-8, 1e-9, 9.8, 0.0),
+            Err(IdentifyError::InvalidParameter {
+                name: "radius_m",
+                ..
+            })
+        ));
+        assert!(matches!(
+            pseudo_second_order(0.56, 1e-8, -1e-9, 9.8, 2.5),
+            Err(IdentifyError::InvalidParameter {
+                name: "c_r_sigma_m_s2",
+                ..
+            })
+        ));
+        assert!(matches!(
+            pseudo_second_order(f64::NAN, 1e-8, 1e-9, 9.8, 2.5),
+            Err(IdentifyError::InvalidParameter {
+                name: "k1_rad_s_g",
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn mismatched_lengths() {
+        assert!(matches!(
+            fit_radius_error(&[1.0, 2.0, 3.0], &[1.0, 2.0], RadiusModel::TwoTerm),
+            Err(IdentifyError::DimensionMismatch { .. })
+        ));
+    }
+}
