@@ -1,1 +1,48 @@
-fn main() {}
+//! `cargo xtask`: the centrifuge-cal command line.
+//!
+//! Each subcommand is a module with a clap-derived argument struct and a `run` method.
+#![allow(clippy::print_stdout, clippy::print_stderr)]
+
+mod paths;
+mod regress;
+mod study;
+
+use clap::{Parser, Subcommand};
+
+/// centrifuge-cal: PIGA calibration on a precision centrifuge, and the spindle imbalance's
+/// pseudo-second-order term.
+#[derive(Debug, Parser)]
+#[command(name = "cargo xtask", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a pre/post-balance study and write results.json, report.md and radius_error.svg.
+    Study(study::Study),
+    /// Run a study and compare it with its expected values; exits non-zero on a difference.
+    Regress(regress::Regress),
+}
+
+fn main() -> std::process::ExitCode {
+    tracing_subscriber::fmt()
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .without_time()
+        .with_max_level(tracing::Level::WARN)
+        .init();
+    let cli = Cli::parse();
+    let outcome = match &cli.command {
+        Command::Study(c) => c.run(),
+        Command::Regress(c) => c.run(),
+    };
+    match outcome {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

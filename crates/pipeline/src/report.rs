@@ -1,0 +1,229 @@
+//! The human-readable report, `report.md`.
+
+use std::fmt::Write as _;
+
+use crate::config::model_name;
+use crate::expected::{CheckOutcome, Expected};
+use crate::results::{ModelFit, PhaseResults, StudyResults};
+
+/// Formats an optional number, or an em dash.
+fn opt(value: Option<f64>, fmt: impl Fn(f64) -> String) -> String {
+    value.map_or_else(|| "—".to_owned(), fmt)
+}
+
+fn sci(x: f64) -> String {
+    format!("{x:.4e}")
+}
+
+/// Renders the report. `expected`, when given, supplies the paper's published values shown
+/// beside ours and `outcomes` the regression checks; neither changes a computed number.
+pub fn render(
+    results: &StudyResults,
+    expected: Option<&Expected>,
+    outcomes: Option<&[CheckOutcome]>,
+) -> String {
+    let mut out = String::new();
+    let published = |path: &str| expected.and_then(|e| e.published(path));
+    let i = &results.inputs;
+    let _ = writeln!(out, "# Study `{}`\n", results.study);
+    let _ = writeln!(
+        out,
+        "Inputs: R = {} m, g = {} m/s², k1 = {} rad/(s·g), lever ratio (probe → PIGA plane) = {:.6}.\n",
+        i.radius_m, i.g_m_s2, i.k1_rad_s_g, i.lever_ratio
+    );
+    if let Some(e) = expected {
+        let _ = writeln!(out, "Published values for comparison: {}.\n", e.source);
+    }
+
+    let _ = writeln!(out, "## Post-balance first harmonic (Table 1)\n");
+    point_table(&mut out, &results.post_balance, "post_balance", &published);
+
+    for (title, key, phase) in [
+        ("Post-balance", "post_balance", &results.post_balance),
+        ("Pre-balance", "pre_balance", &results.pre_balance),
+    ] {
+        let _ = writeln!(out, "## {title} radius-error fit\n");
+        fit_table(&mut out, phase, key, &published);
+        residual_table(&mut out, phase);
+    }
+
+    discrepancy(&mut out, &results.post_balance, &published);
+
+    if let Some(outcomes) = outcomes {
+        let _ = writeln!(out, "## Regression checks\n");
+        let _ = writeln!(
+            out,
+            "| path | expected | tolerance | computed | status | what |"
+        );
+        let _ = writeln!(out, "|---|---|---|---|---|---|");
+        for o in outcomes {
+            let _ = writeln!(
+                out,
+                "| `{}` | {:e} | {:e} | {} | {} | {} |",
+                o.check.path,
+                o.check.value,
+                o.check.tolerance,
+                opt(o.actual, |a| format!("{a:e}")),
+                match (o.check.regress, o.passed) {
+                    (false, _) => "shown",
+                    (true, true) => "pass",
+                    (true, false) => "**FAIL**",
+                },
+                o.check.note
+            );
+        }
+        let checked = outcomes.iter().filter(|o| o.check.regress);
+        let (passed, total) = checked.fold((0, 0), |(p, t), o| (p + usize::from(o.passed), t + 1));
+        let _ = writeln!(out, "\n{passed} of {total} checks pass.");
+    }
+    out
+}
+
+fn point_table(
+    out: &mut String,
+    phase: &PhaseResults,
+    key: &str,
+    published: &dyn Fn(&str) -> Option<f64>,
+) {
+    let _ = writeln!(
+        out,
+        "| rate (deg/s) | d_c1 (µm) | d_s1 (µm) | ΔR1 (µm) | ΔR1 paper | diff | β (deg) | Δr_xd+Δr_xs (µm) | paper | diff |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|");
+    for (n, p) in phase.points.iter().enumerate() {
+        let amp_paper = published(&format!("{key}.points[{n}].amplitude_um"));
+        let r_paper = published(&format!("{key}.points[{n}].radius_error_um"));
+        let f4 = |x: f64| format!("{x:.4}");
+        let diff = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => format!("{:+.1e}", a - b),
+            _ => "—".to_owned(),
+        };
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {} | {:.4} | {} | {} |",
+            p.rate_deg_s,
+            opt(p.dc1_um, f4),
+            opt(p.ds1_um, f4),
+            opt(p.amplitude_um, f4),
+            opt(amp_paper, f4),
+            diff(p.amplitude_um, amp_paper),
+            opt(p.beta_deg, |b| format!("{b:.3}")),
+            p.radius_error_um,
+            opt(r_paper, f4),
+            diff(Some(p.radius_error_um), r_paper),
+        );
+    }
+    let _ = writeln!(out);
+}
+
+fn fit_row(out: &mut String, label: &str, fit: &ModelFit, paper: [Option<f64>; 3]) {
+    let _ = writeln!(
+        out,
+        "| {label}: {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+        model_name(fit.model),
+        sci(fit.c_r_m_s2),
+        opt(fit.c_r_sigma_m_s2, sci),
+        sci(fit.delta_k2_rad_s_g2),
+        opt(fit.delta_k2_sigma_rad_s_g2, sci),
+        opt(fit.residual_sd_um, |s| format!("{s:.2e}")),
+        fit.dof,
+        paper
+            .iter()
+            .map(|v| opt(*v, |x| format!("{x:e}")))
+            .collect::<Vec<_>>()
+            .join(" / "),
+        opt(fit.condition_number, |c| format!("{c:.3e}")),
+    );
+}
+
+fn fit_table(
+    out: &mut String,
+    phase: &PhaseResults,
+    key: &str,
+    published: &dyn Fn(&str) -> Option<f64>,
+) {
+    let _ = writeln!(
+        out,
+        "| model | C_r (m·s²) | σ(C_r) | Δk2 (rad/(s·g²)) | σ(Δk2) | residual SD (µm) | dof | paper C_r / σ / Δk2 | cond |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+    let paper = [
+        published(&format!("{key}.c_r_m_s2")),
+        published(&format!("{key}.c_r_sigma_m_s2")),
+        published(&format!("{key}.delta_k2_rad_s_g2")),
+    ];
+    fit_row(out, "configured", &phase.fit, paper);
+    if let Some(alt) = &phase.alternative {
+        fit_row(out, "alternative", alt, [None; 3]);
+    }
+    let _ = writeln!(out);
+    if phase.fit.dof == 0 {
+        let _ = writeln!(
+            out,
+            "The fit has as many unknowns as points: C_r is determined exactly and has no standard error.\n"
+        );
+    }
+}
+
+fn residual_table(out: &mut String, phase: &PhaseResults) {
+    let _ = writeln!(out, "Residuals (measured − fitted, µm):\n");
+    let _ = writeln!(
+        out,
+        "| rate (deg/s) | radius error (µm) | {} | {} |",
+        model_name(phase.fit.model),
+        phase
+            .alternative
+            .as_ref()
+            .map_or("—", |a| model_name(a.model))
+    );
+    let _ = writeln!(out, "|---|---|---|---|");
+    for (n, p) in phase.points.iter().enumerate() {
+        let alt = phase
+            .alternative
+            .as_ref()
+            .and_then(|a| a.residuals_um.get(n).copied());
+        let _ = writeln!(
+            out,
+            "| {} | {:.4} | {:+.2e} | {} |",
+            p.rate_deg_s,
+            p.radius_error_um,
+            phase.fit.residuals_um[n],
+            opt(alt, |r| format!("{r:+.2e}"))
+        );
+    }
+    let _ = writeln!(out);
+}
+
+fn discrepancy(out: &mut String, phase: &PhaseResults, published: &dyn Fn(&str) -> Option<f64>) {
+    let _ = writeln!(out, "## On the paper's ±0.39e-8 for C_r\n");
+    let fit = &phase.fit;
+    let _ = writeln!(
+        out,
+        "This study fits the model {} and reports that model's own standard error: \
+         C_r = {} ± {} m·s² ({} degrees of freedom).",
+        model_name(fit.model),
+        sci(fit.c_r_m_s2),
+        opt(fit.c_r_sigma_m_s2, sci),
+        fit.dof
+    );
+    if let Some(alt) = &phase.alternative {
+        let _ = writeln!(
+            out,
+            "The same points fitted with {} give C_r = {} ± {} m·s².",
+            model_name(alt.model),
+            sci(alt.c_r_m_s2),
+            opt(alt.c_r_sigma_m_s2, sci)
+        );
+    }
+    if let Some(sigma) = published("post_balance.c_r_sigma_m_s2") {
+        let _ = writeln!(
+            out,
+            "The paper states C_r = {} ± {sigma:e} m·s²: its value matches the two-term fit, while \
+             its ±{sigma:e} matches the standard error of the ω² coefficient of the three-term fit \
+             a + b·ω + c·ω², whose value is different. We report each model with its own standard \
+             error rather than reproducing the paper's pairing.",
+            opt(published("post_balance.c_r_m_s2"), |x| format!("{x:e}"))
+        );
+    }
+    let _ = writeln!(out);
+}

@@ -1,0 +1,90 @@
+//! What a study produces; serialised as `results.json` (schema in `docs/RESULTS.md`).
+
+use identify::RadiusModel;
+use serde::{Deserialize, Serialize};
+
+/// All results of a study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StudyResults {
+    /// Name of the study (from the configuration).
+    pub study: String,
+    /// The scalar inputs the results depend on, echoed for traceability.
+    pub inputs: StudyInputs,
+    /// Results before balancing.
+    pub pre_balance: PhaseResults,
+    /// Results after balancing.
+    pub post_balance: PhaseResults,
+}
+
+/// Scalar inputs of the study.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StudyInputs {
+    /// Working radius `R`, m.
+    pub radius_m: f64,
+    /// Gravity, m/s².
+    pub g_m_s2: f64,
+    /// PIGA scale factor, rad/(s·g).
+    pub k1_rad_s_g: f64,
+    /// Lever ratio from the probe plane to the PIGA plane.
+    pub lever_ratio: f64,
+}
+
+/// One rate point after the geometry of eq. 21–22.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PointResult {
+    /// Rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Rate, rad/s.
+    pub rate_rad_s: f64,
+    /// First-harmonic cosine coefficient, µm (absent when the input was a radius error).
+    pub dc1_um: Option<f64>,
+    /// First-harmonic sine coefficient, µm.
+    pub ds1_um: Option<f64>,
+    /// First-harmonic amplitude `ΔR1` in the probe plane, µm.
+    pub amplitude_um: Option<f64>,
+    /// Azimuth `β` of the composite imbalance, degrees.
+    pub beta_deg: Option<f64>,
+    /// Radius error `Δr_xd + Δr_xs` at the PIGA plane, µm.
+    pub radius_error_um: f64,
+}
+
+/// A fit of the radius error against rate, and the pseudo-second-order term it implies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModelFit {
+    /// The model fitted.
+    pub model: RadiusModel,
+    /// The coefficient `C_r` of ω², m·s².
+    pub c_r_m_s2: f64,
+    /// Standard error of `C_r` from the fit's residuals, m·s² (`None` with no degree of freedom).
+    pub c_r_sigma_m_s2: Option<f64>,
+    /// Constant term `a`, µm.
+    pub offset_um: f64,
+    /// Linear term `b` of the three-term model, µm·s (`None` for the two-term model).
+    pub linear_um_s: Option<f64>,
+    /// Residuals (measured − fitted) at each point, µm.
+    pub residuals_um: Vec<f64>,
+    /// Residual standard deviation, µm (`None` with no degree of freedom).
+    pub residual_sd_um: Option<f64>,
+    /// Degrees of freedom of the fit.
+    pub dof: usize,
+    /// Condition number of the design the solver factorised (`None` for the exact
+    /// two-point form, which uses no solver).
+    pub condition_number: Option<f64>,
+    /// `Δk2 = k1·C_r·g/R²` (eq. 19), rad/(s·g²).
+    pub delta_k2_rad_s_g2: f64,
+    /// Standard deviation of `Δk2` propagated from that of `C_r`, rad/(s·g²).
+    pub delta_k2_sigma_rad_s_g2: Option<f64>,
+}
+
+/// Results of one phase.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PhaseResults {
+    /// Per-rate geometry.
+    pub points: Vec<PointResult>,
+    /// The fit of the configured model.
+    #[serde(flatten)]
+    pub fit: ModelFit,
+    /// The other radius-error model fitted to the same points, for comparison
+    /// (absent when the points cannot support it).
+    pub alternative: Option<ModelFit>,
+}

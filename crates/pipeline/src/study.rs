@@ -1,0 +1,183 @@
+//! Orchestration: per-point geometry (eq. 21–22), the radius-error fit and Δk2 (eq. 19).
+
+use std::path::Path;
+
+use harmonics::FirstHarmonic;
+use identify::RadiusModel;
+
+use crate::config::{LoadedStudy, PhaseConfig, Points, StudyConfig};
+use crate::error::{PipelineError, Result};
+use crate::results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
+use crate::units::{deg_s_to_rad_s, m_to_um, um_to_m};
+
+/// Runs a loaded study: both phases, each with its per-point geometry, its radius-error fit
+/// and the pseudo-second-order error `Δk2` it implies.
+///
+/// The computation reads only the configuration; published values are never consulted.
+pub fn run(study: &LoadedStudy) -> Result<StudyResults> {
+    let config = &study.config;
+    let path = study.path.as_path();
+    let lever_ratio = config
+        .lever
+        .lever_ratio()
+        .map_err(|source| PipelineError::Harmonics {
+            path: path.to_owned(),
+            field: "lever".to_owned(),
+            source,
+        })?;
+    Ok(StudyResults {
+        study: config.name.clone(),
+        inputs: StudyInputs {
+            radius_m: config.radius_m,
+            g_m_s2: config.g_m_s2,
+            k1_rad_s_g: config.k1_rad_s_g,
+            lever_ratio,
+        },
+        pre_balance: run_phase(config, &config.pre_balance, "pre_balance", path)?,
+        post_balance: run_phase(config, &config.post_balance, "post_balance", path)?,
+    })
+}
+
+fn run_phase(
+    config: &StudyConfig,
+    phase: &PhaseConfig,
+    section: &str,
+    path: &Path,
+) -> Result<PhaseResults> {
+    let points = phase_points(config, phase, section, path)?;
+    if let Points::RadiusChange { .. } = phase.points {
+        return Ok(PhaseResults {
+            fit: exact_two_point(config, &points),
+            points,
+            alternative: None,
+        });
+    }
+    let fit = fit_model(config, &points, config.radius_model, section, path)?;
+    let other = match config.radius_model {
+        RadiusModel::TwoTerm => RadiusModel::ThreeTerm,
+        RadiusModel::ThreeTerm => RadiusModel::TwoTerm,
+    };
+    // The alternative is shown only where it has a residual degree of freedom.
+    let alternative = if points.len() > other.unknowns() {
+        Some(fit_model(config, &points, other, section, path)?)
+    } else {
+        None
+    };
+    Ok(PhaseResults {
+        points,
+        fit,
+        alternative,
+    })
+}
+
+/// `a + C_r·ω²` through two points: `C_r = Δr / (ω₂² − ω₁²)`, exact, with no standard error.
+fn exact_two_point(config: &StudyConfig, points: &[PointResult]) -> ModelFit {
+    let [p1, p2] = [&points[0], &points[1]];
+    let (w1, w2) = (p1.rate_rad_s, p2.rate_rad_s);
+    let c_r_m_s2 = um_to_m(p2.radius_error_um - p1.radius_error_um) / (w2 * w2 - w1 * w1);
+    ModelFit {
+        model: RadiusModel::TwoTerm,
+        c_r_m_s2,
+        c_r_sigma_m_s2: None,
+        offset_um: p1.radius_error_um - m_to_um(c_r_m_s2 * w1 * w1),
+        linear_um_s: None,
+        residuals_um: vec![0.0; 2],
+        residual_sd_um: None,
+        dof: 0,
+        condition_number: None,
+        delta_k2_rad_s_g2: config.k1_rad_s_g * c_r_m_s2 * config.g_m_s2
+            / (config.radius_m * config.radius_m),
+        delta_k2_sigma_rad_s_g2: None,
+    }
+}
+
+/// Per-point geometry: each input form gives the radius error at the PIGA plane.
+fn phase_points(
+    config: &StudyConfig,
+    phase: &PhaseConfig,
+    section: &str,
+    path: &Path,
+) -> Result<Vec<PointResult>> {
+    let radius_point = |rate_deg_s: f64, radius_error_um: f64| PointResult {
+        rate_deg_s,
+        rate_rad_s: deg_s_to_rad_s(rate_deg_s),
+        dc1_um: None,
+        ds1_um: None,
+        amplitude_um: None,
+        beta_deg: None,
+        radius_error_um,
+    };
+    match &phase.points {
+        Points::FirstHarmonic(points) => points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let drift = FirstHarmonic::new(p.dc1_um, p.ds1_um)
+                    .and_then(|h| config.lever.project(h))
+                    .map_err(|source| PipelineError::Harmonics {
+                        path: path.to_owned(),
+                        field: format!("{section}.points[{i}]"),
+                        source,
+                    })?;
+                Ok(PointResult {
+                    dc1_um: Some(p.dc1_um),
+                    ds1_um: Some(p.ds1_um),
+                    amplitude_um: Some(drift.probe_amplitude),
+                    beta_deg: Some(drift.beta_rad.to_degrees()),
+                    ..radius_point(p.rate_deg_s, drift.radius_error)
+                })
+            })
+            .collect(),
+        Points::RadiusError(points) => Ok(points
+            .iter()
+            .map(|p| radius_point(p.rate_deg_s, p.radius_error_um))
+            .collect()),
+        Points::RadiusChange {
+            from_rate_deg_s,
+            to_rate_deg_s,
+            change_um,
+        } => Ok(vec![
+            radius_point(*from_rate_deg_s, 0.0),
+            radius_point(*to_rate_deg_s, *change_um),
+        ]),
+    }
+}
+
+fn fit_model(
+    config: &StudyConfig,
+    points: &[PointResult],
+    model: RadiusModel,
+    section: &str,
+    path: &Path,
+) -> Result<ModelFit> {
+    let identify_error = |source| PipelineError::Identify {
+        path: path.to_owned(),
+        field: format!("{section}.points"),
+        source,
+    };
+    let rates: Vec<f64> = points.iter().map(|p| p.rate_rad_s).collect();
+    let radius_errors_m: Vec<f64> = points.iter().map(|p| um_to_m(p.radius_error_um)).collect();
+    let fit =
+        identify::fit_radius_error(&rates, &radius_errors_m, model).map_err(identify_error)?;
+    let k2 = identify::pseudo_second_order(
+        config.k1_rad_s_g,
+        fit.c_r_m_s2,
+        fit.c_r_sigma_m_s2,
+        config.g_m_s2,
+        config.radius_m,
+    )
+    .map_err(identify_error)?;
+    Ok(ModelFit {
+        model,
+        c_r_m_s2: fit.c_r_m_s2,
+        c_r_sigma_m_s2: Some(fit.c_r_sigma_m_s2),
+        offset_um: m_to_um(fit.offset_m),
+        linear_um_s: fit.linear_m_s.map(m_to_um),
+        residuals_um: fit.fit.residuals.iter().map(|r| m_to_um(*r)).collect(),
+        residual_sd_um: Some(m_to_um(fit.fit.residual_sd)),
+        dof: fit.fit.dof,
+        condition_number: Some(fit.fit.condition_number),
+        delta_k2_rad_s_g2: k2.delta_k2_rad_s_g2,
+        delta_k2_sigma_rad_s_g2: Some(k2.sigma_rad_s_g2),
+    })
+}

@@ -1,0 +1,156 @@
+//! Bad configurations give typed errors naming the file and the field or line.
+
+use std::path::{Path, PathBuf};
+
+use pipeline::{PipelineError, StudyConfig};
+
+use super::paper_text;
+
+fn parse(text: &str) -> Result<pipeline::LoadedStudy, PipelineError> {
+    StudyConfig::parse(text, Path::new("bad.ron"))
+}
+
+#[test]
+fn unreadable_file_names_the_file() {
+    let missing = PathBuf::from("/nonexistent/study.ron");
+    match StudyConfig::load(&missing) {
+        Err(PipelineError::Io { path, .. }) => assert_eq!(path, missing),
+        other => panic!("expected Io, got {other:?}"),
+    }
+}
+
+#[test]
+fn unknown_field_names_the_line() {
+    let text = paper_text().replace("radius_m: 2.5,", "radius_m: 2.5,\n    radius_mm: 2500.0,");
+    match parse(&text) {
+        Err(PipelineError::Parse {
+            path,
+            line,
+            message,
+            ..
+        }) => {
+            assert_eq!(path, Path::new("bad.ron"));
+            assert!(line > 1, "line {line}");
+            assert!(message.contains("radius_mm"), "{message}");
+        }
+        other => panic!("expected Parse, got {other:?}"),
+    }
+}
+
+#[test]
+fn missing_field_is_named() {
+    let text = paper_text().replace("k1_rad_s_g: 0.56,", "");
+    match parse(&text) {
+        Err(PipelineError::Parse { message, .. }) => {
+            assert!(message.contains("k1_rad_s_g"), "{message}")
+        }
+        other => panic!("expected Parse, got {other:?}"),
+    }
+}
+
+#[test]
+fn malformed_ron_names_the_line() {
+    let text = paper_text().replace("g_m_s2: 9.8,", "g_m_s2: 9.8.1,");
+    match parse(&text) {
+        Err(PipelineError::Parse { line, .. }) => {
+            let want = paper_text()
+                .lines()
+                .position(|l| l.contains("g_m_s2"))
+                .unwrap()
+                + 1;
+            assert_eq!(line, want);
+        }
+        other => panic!("expected Parse, got {other:?}"),
+    }
+}
+
+#[test]
+fn negative_radius_is_refused() {
+    let text = paper_text().replace("radius_m: 2.5,", "radius_m: -2.5,");
+    match parse(&text) {
+        Err(PipelineError::InvalidField { field, value, .. }) => {
+            assert_eq!(field, "radius_m");
+            assert_eq!(value, -2.5);
+        }
+        other => panic!("expected InvalidField, got {other:?}"),
+    }
+}
+
+#[test]
+fn non_finite_number_is_refused_with_its_field() {
+    let text = paper_text().replace("dc1_um: -3.1877", "dc1_um: NaN");
+    match parse(&text) {
+        Err(PipelineError::InvalidField { field, .. }) => {
+            assert_eq!(field, "post_balance.points[2].dc1_um");
+        }
+        other => panic!("expected InvalidField, got {other:?}"),
+    }
+    let text = paper_text().replace("change_um: 19.4640", "change_um: inf");
+    match parse(&text) {
+        Err(PipelineError::InvalidField { field, .. }) => {
+            assert_eq!(field, "pre_balance.points.change_um");
+        }
+        other => panic!("expected InvalidField, got {other:?}"),
+    }
+}
+
+#[test]
+fn duplicate_rates_are_refused() {
+    let text = paper_text().replace("rate_deg_s: 60.0,", "rate_deg_s: 10.0,");
+    match parse(&text) {
+        Err(PipelineError::DuplicateRate {
+            field,
+            first,
+            rate_deg_s,
+            ..
+        }) => {
+            assert_eq!(field, "post_balance.points[1].rate_deg_s");
+            assert_eq!(first, "post_balance.points[0].rate_deg_s");
+            assert_eq!(rate_deg_s, 10.0);
+        }
+        other => panic!("expected DuplicateRate, got {other:?}"),
+    }
+}
+
+#[test]
+fn fewer_points_than_unknowns_is_refused() {
+    let text = r#"(
+        name: "few", radius_m: 2.5, g_m_s2: 9.8, k1_rad_s_g: 0.56, radius_model: three_term,
+        lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0),
+        pre_balance: (points: radius_error([(rate_deg_s: 10.0, radius_error_um: 0.0),
+                                            (rate_deg_s: 20.0, radius_error_um: 0.1),
+                                            (rate_deg_s: 30.0, radius_error_um: 0.3),
+                                            (rate_deg_s: 40.0, radius_error_um: 0.6)])),
+        post_balance: (points: radius_error([(rate_deg_s: 10.0, radius_error_um: 1.0),
+                                             (rate_deg_s: 200.0, radius_error_um: 0.9)])),
+    )"#;
+    match parse(text) {
+        Err(PipelineError::TooFewPoints {
+            field, got, need, ..
+        }) => {
+            assert_eq!(field, "post_balance.points");
+            assert_eq!((got, need), (2, 4));
+        }
+        other => panic!("expected TooFewPoints, got {other:?}"),
+    }
+}
+
+#[test]
+fn zero_or_negative_rate_is_refused() {
+    let text = paper_text().replace("rate_deg_s: 60.0,", "rate_deg_s: -60.0,");
+    match parse(&text) {
+        Err(PipelineError::InvalidField { field, .. }) => {
+            assert_eq!(field, "post_balance.points[1].rate_deg_s");
+        }
+        other => panic!("expected InvalidField, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_lever_geometry_is_refused() {
+    let text = paper_text().replace("pivot_to_probe_mm: 700.0", "pivot_to_probe_mm: 0.0");
+    match parse(&text) {
+        Err(PipelineError::Harmonics { field, .. }) => assert_eq!(field, "lever"),
+        other => panic!("expected Harmonics, got {other:?}"),
+    }
+}

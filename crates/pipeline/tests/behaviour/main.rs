@@ -1,0 +1,17 @@
+//! Behaviour of the study: the paper's numbers from its inputs, and typed errors on bad
+//! configuration.
+
+mod bad_config;
+mod paper;
+
+use std::path::{Path, PathBuf};
+
+/// The workspace root.
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The paper's study configuration text.
+fn paper_text() -> String {
+    std::fs::read_to_string(root().join("fixtures/studies/paper-2025.ron")).unwrap()
+}

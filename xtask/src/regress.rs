@@ -1,0 +1,66 @@
+//! `cargo xtask regress`: the study against its expected values.
+
+use std::path::PathBuf;
+
+use anyhow::{Context as _, bail};
+use clap::Args;
+use pipeline::{Expected, StudyConfig};
+
+use crate::paths;
+
+/// Arguments of `cargo xtask regress`.
+#[derive(Debug, Args)]
+pub(crate) struct Regress {
+    /// Study configuration. Default: the paper's study.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Expected values. Default: fixtures/expected/<config file name>.
+    #[arg(long)]
+    expected: Option<PathBuf>,
+}
+
+impl Regress {
+    pub(crate) fn run(&self) -> anyhow::Result<()> {
+        let config = self.config.clone().unwrap_or_else(paths::paper_study);
+        let expected_path = match &self.expected {
+            Some(p) => p.clone(),
+            None => paths::expected_for(&config).with_context(|| {
+                format!(
+                    "no expected values for {} in fixtures/expected/",
+                    config.display()
+                )
+            })?,
+        };
+        let results = pipeline::run(&StudyConfig::load(&config)?)?;
+        let outcomes = Expected::load(&expected_path)?.compare(&results)?;
+        let mut failed = 0;
+        for o in &outcomes {
+            let status = match (o.check.regress, o.passed) {
+                (false, _) => "shown",
+                (true, true) => "ok",
+                (true, false) => "FAIL",
+            };
+            failed += usize::from(!o.passed);
+            let actual = o
+                .actual
+                .map_or_else(|| "missing".to_owned(), |a| format!("{a:e}"));
+            println!(
+                "{status:>5}  {:<48} expected {:e} ± {:e}, got {actual}",
+                o.check.path, o.check.value, o.check.tolerance
+            );
+        }
+        if failed > 0 {
+            bail!(
+                "{failed} of {} checks in {} failed",
+                outcomes.len(),
+                expected_path.display()
+            );
+        }
+        println!(
+            "{} checks pass ({})",
+            outcomes.len(),
+            expected_path.display()
+        );
+        Ok(())
+    }
+}

@@ -1,0 +1,113 @@
+//! `cargo xtask study`: the pre/post-balance study.
+
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use clap::Args;
+use pipeline::{Expected, StudyConfig, StudyResults};
+
+use crate::paths;
+
+/// Arguments of `cargo xtask study`.
+#[derive(Debug, Args)]
+pub(crate) struct Study {
+    /// Study configuration (RON). Default: the paper's study, fixtures/studies/paper-2025.ron.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Output directory. Default: target/study.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Values to show beside the computed ones in the report. Default:
+    /// fixtures/expected/<config file name> when it exists.
+    #[arg(long)]
+    expected: Option<PathBuf>,
+    /// Do not compare with expected values.
+    #[arg(long, conflicts_with = "expected")]
+    no_compare: bool,
+}
+
+impl Study {
+    pub(crate) fn run(&self) -> anyhow::Result<()> {
+        let config = self.config.clone().unwrap_or_else(paths::paper_study);
+        let out = self.out.clone().unwrap_or_else(paths::study_out);
+        let study = StudyConfig::load(&config)?;
+        let results = pipeline::run(&study)?;
+        let expected_path = if self.no_compare {
+            None
+        } else {
+            self.expected
+                .clone()
+                .or_else(|| paths::expected_for(&config))
+        };
+        let expected = expected_path.as_deref().map(Expected::load).transpose()?;
+        let outcomes = expected.as_ref().map(|e| e.compare(&results)).transpose()?;
+        let files = pipeline::write_outputs(&out, &results, expected.as_ref(), outcomes.as_deref())
+            .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
+        print_summary(&results);
+        if let Some(outcomes) = &outcomes {
+            let failed = outcomes.iter().filter(|o| !o.passed).count();
+            println!(
+                "regression: {} of {} checks against {} pass",
+                outcomes.len() - failed,
+                outcomes.len(),
+                expected_path
+                    .as_deref()
+                    .unwrap_or(config.as_path())
+                    .display()
+            );
+        }
+        println!(
+            "wrote {}, {}, {}",
+            files.results_json.display(),
+            files.report_md.display(),
+            files.radius_error_svg.display()
+        );
+        Ok(())
+    }
+}
+
+/// Prints the summary table.
+pub(crate) fn print_summary(results: &StudyResults) {
+    println!("study {}", results.study);
+    println!();
+    println!(
+        "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12}",
+        "rate deg/s", "d_c1 µm", "d_s1 µm", "ΔR1 µm", "β deg", "Δr µm"
+    );
+    let f =
+        |x: Option<f64>, prec: usize| x.map_or_else(|| "—".to_owned(), |v| format!("{v:.prec$}"));
+    for p in &results.post_balance.points {
+        println!(
+            "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12.4}",
+            p.rate_deg_s,
+            f(p.dc1_um, 4),
+            f(p.ds1_um, 4),
+            f(p.amplitude_um, 4),
+            f(p.beta_deg, 3),
+            p.radius_error_um
+        );
+    }
+    println!();
+    println!(
+        "{:<13} {:<18} {:>12} {:>11} {:>14} {:>11}",
+        "phase", "model", "C_r m·s²", "σ(C_r)", "Δk2 rad/s/g²", "σ(Δk2)"
+    );
+    let e = |x: Option<f64>| x.map_or_else(|| "—".to_owned(), |v| format!("{v:.3e}"));
+    for (name, phase) in [
+        ("post-balance", &results.post_balance),
+        ("pre-balance", &results.pre_balance),
+    ] {
+        for fit in std::iter::once(&phase.fit).chain(phase.alternative.as_ref()) {
+            println!(
+                "{:<13} {:<18} {:>12.4e} {:>11} {:>14.3e} {:>11}",
+                name,
+                format!("{:?}", fit.model),
+                fit.c_r_m_s2,
+                e(fit.c_r_sigma_m_s2),
+                fit.delta_k2_rad_s_g2,
+                e(fit.delta_k2_sigma_rad_s_g2)
+            );
+        }
+    }
+    println!();
+}
