@@ -1,0 +1,88 @@
+//! The crate's error type.
+
+/// Everything that can go wrong when building or evaluating the kinematic chain.
+///
+/// Every variant names the offending input so that a scenario file can be fixed without
+/// guessing.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// An input that must be a finite number is NaN or infinite.
+    #[error("{field} must be finite, got {value}")]
+    NonFinite {
+        /// Name of the input (as in the parameter structs, with its unit suffix).
+        field: &'static str,
+        /// The value that was given.
+        value: f64,
+    },
+    /// An input that must be strictly positive is zero or negative.
+    #[error("{field} must be > 0, got {value}")]
+    NotPositive {
+        /// Name of the input.
+        field: &'static str,
+        /// The value that was given.
+        value: f64,
+    },
+    /// An input lies outside its admissible closed interval.
+    #[error("{field} must lie in [{min}, {max}], got {value}")]
+    OutOfRange {
+        /// Name of the input.
+        field: &'static str,
+        /// The value that was given.
+        value: f64,
+        /// Smallest admissible value.
+        min: f64,
+        /// Largest admissible value.
+        max: f64,
+    },
+    /// A uniform rule with `points` nodes per revolution is not exact for harmonics up to
+    /// `highest_harmonic`; at least `need` nodes are required.
+    #[error(
+        "{points} quadrature points per revolution cannot average harmonics up to {highest_harmonic} exactly; need at least {need}"
+    )]
+    TooFewQuadraturePoints {
+        /// Number of nodes that was asked for.
+        points: usize,
+        /// Highest harmonic of the spindle angle present in the averaged quantity.
+        highest_harmonic: usize,
+        /// Smallest admissible number of nodes (`2 * highest_harmonic + 1`).
+        need: usize,
+    },
+}
+
+/// `Result` with this crate's [`Error`].
+pub type Result<T> = core::result::Result<T, Error>;
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(field: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NonFinite { field, value })
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn positive(field: &'static str, value: f64) -> Result<f64> {
+    finite(field, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::NotPositive { field, value })
+    }
+}
+
+/// Checks that `value` is finite and lies in `[min, max]`.
+pub(crate) fn in_range(field: &'static str, value: f64, min: f64, max: f64) -> Result<f64> {
+    finite(field, value)?;
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::OutOfRange {
+            field,
+            value,
+            min,
+            max,
+        })
+    }
+}
