@@ -1,0 +1,32 @@
+//! The crate's error type.
+
+/// Everything that can go wrong when evaluating the PIGA model.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The centrifuge, site, error motion or quadrature was rejected by `kinematics`.
+    #[error(transparent)]
+    Kinematics(#[from] kinematics::Error),
+    /// A PIGA coefficient is NaN or infinite.
+    #[error("{field} must be finite, got {value}")]
+    NonFinite {
+        /// Name of the coefficient (with its unit suffix).
+        field: &'static str,
+        /// The value that was given.
+        value: f64,
+    },
+    /// A rate in the list is NaN or infinite.
+    #[error("rate #{index} must be finite, got {value} rad/s")]
+    NonFiniteRate {
+        /// Position of the rate in the list (from 0).
+        index: usize,
+        /// The value that was given.
+        value: f64,
+    },
+    /// The list of rates is empty.
+    #[error("no rate points given")]
+    NoRates,
+}
+
+/// `Result` with this crate's [`Error`].
+pub type Result<T> = core::result::Result<T, Error>;

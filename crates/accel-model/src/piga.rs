@@ -1,0 +1,226 @@
+//! The PIGA input/output model (eq. 15) and its mean over whole revolutions.
+
+use kinematics::{Centrifuge, Chain, INPUT_HIGHEST_HARMONIC, RevolutionQuadrature};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+
+/// Highest harmonic of the spindle angle in the instantaneous PIGA output: the output is a
+/// cubic polynomial in `a_x`, whose highest harmonic is
+/// [`kinematics::INPUT_HIGHEST_HARMONIC`], so 3 × 1.
+pub const OUTPUT_HIGHEST_HARMONIC: usize = 3 * INPUT_HIGHEST_HARMONIC;
+
+/// Coefficients of the PIGA model, eq. 15:
+///
+/// $$ \dot\lambda = k_0 + k_1 a_x + k_2 a_x^2 + k_3 a_x^3 - \omega_I \;(+\;\epsilon) $$
+///
+/// with `a_x` in g along the input axis and `ω_I` the angular rate about it. The random error ε
+/// is not part of this crate (a simulator adds it).
+///
+/// ```
+/// use approx::assert_relative_eq;
+/// use accel_model::PigaCoefficients;
+/// let piga = PigaCoefficients { k0_rad_s: 1e-5, k1_rad_s_g: 0.56, k2_rad_s_g2: 2e-6, k3_rad_s_g3: 1e-7 };
+/// let out = piga.output_rad_s(2.0, 3e-6);
+/// assert_relative_eq!(out, 1e-5 + 0.56 * 2.0 + 2e-6 * 4.0 + 1e-7 * 8.0 - 3e-6, max_relative = 1e-15);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PigaCoefficients {
+    /// Bias k0, rad/s.
+    pub k0_rad_s: f64,
+    /// Scale factor k1, rad/(s·g).
+    pub k1_rad_s_g: f64,
+    /// Second-order coefficient k2, rad/(s·g²).
+    pub k2_rad_s_g2: f64,
+    /// Third-order coefficient k3, rad/(s·g³).
+    pub k3_rad_s_g3: f64,
+}
+
+impl PigaCoefficients {
+    /// Checks that every coefficient is finite.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] naming the first bad coefficient.
+    pub fn validate(&self) -> Result<()> {
+        for (field, value) in [
+            ("k0_rad_s", self.k0_rad_s),
+            ("k1_rad_s_g", self.k1_rad_s_g),
+            ("k2_rad_s_g2", self.k2_rad_s_g2),
+            ("k3_rad_s_g3", self.k3_rad_s_g3),
+        ] {
+            if !value.is_finite() {
+                return Err(Error::NonFinite { field, value });
+            }
+        }
+        Ok(())
+    }
+
+    /// Eq. 15 without the random error: the output rate `λ̇`, rad/s.
+    #[must_use]
+    pub fn output_rad_s(&self, a_x_g: f64, omega_i_rad_s: f64) -> f64 {
+        let a = a_x_g;
+        self.k0_rad_s + a * (self.k1_rad_s_g + a * (self.k2_rad_s_g2 + a * self.k3_rad_s_g3))
+            - omega_i_rad_s
+    }
+
+    /// The output at time `t_s` from the chain's exact instantaneous inputs.
+    #[must_use]
+    pub fn instantaneous_output_rad_s(&self, chain: &Chain, t_s: f64) -> f64 {
+        let i = chain.inputs_at(t_s);
+        self.output_rad_s(i.a_x_g(), i.omega_i_rad_s())
+    }
+}
+
+/// One rate point of a calibration: the PIGA output and the exact inputs, each averaged over
+/// whole revolutions. This is what a simulator writes to `piga.csv` (rate, output) and
+/// `truth.json` (all fields).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RatePoint {
+    /// Spindle rate ω, rad/s.
+    pub rate_rad_s: f64,
+    /// Mean PIGA output `⟨λ̇⟩` (eq. 15 averaged over a revolution, no noise), rad/s.
+    pub output_rad_s: f64,
+    /// Mean specific force along the input axis `⟨a_x⟩` (eq. 12), g.
+    pub a_x_g: f64,
+    /// Mean angular rate about the input axis `⟨ω_I⟩` (eq. 13), rad/s.
+    pub omega_i_rad_s: f64,
+}
+
+impl RatePoint {
+    /// Spindle rate in degrees per second.
+    #[must_use]
+    pub fn rate_deg_s(&self) -> f64 {
+        self.rate_rad_s.to_degrees()
+    }
+}
+
+/// The mean output over one revolution of `chain`, by the uniform `points`-node rule, which is
+/// exact because the instantaneous output contains harmonics up to
+/// [`OUTPUT_HIGHEST_HARMONIC`] only. The mean of a product is not the product of means, so the
+/// average is taken of eq. 15 evaluated at each node, not of its inputs.
+///
+/// # Errors
+/// [`Error::Kinematics`] (`TooFewQuadraturePoints`) for `points < 2·OUTPUT_HIGHEST_HARMONIC + 1`;
+/// [`Error::NonFinite`] for a bad coefficient.
+pub fn mean_output_rad_s(chain: &Chain, piga: &PigaCoefficients, points: usize) -> Result<f64> {
+    piga.validate()?;
+    let q = RevolutionQuadrature::new(points, OUTPUT_HIGHEST_HARMONIC)?;
+    Ok(q.mean(chain.rate_rad_s(), |t| {
+        piga.instantaneous_output_rad_s(chain, t)
+    }))
+}
+
+/// Mean output and exact mean inputs at one rate.
+///
+/// # Errors
+/// As [`kinematics::Chain::new`] and [`PigaCoefficients::validate`].
+pub fn rate_point(
+    centrifuge: &Centrifuge,
+    piga: &PigaCoefficients,
+    rate_rad_s: f64,
+) -> Result<RatePoint> {
+    piga.validate()?;
+    let chain = Chain::new(centrifuge, rate_rad_s)?;
+    let q = RevolutionQuadrature::minimal(OUTPUT_HIGHEST_HARMONIC);
+    let [output_rad_s, a_x_g, omega_i_rad_s] = q.mean_array(rate_rad_s, |t| {
+        let i = chain.inputs_at(t);
+        let (a, w) = (i.a_x_g(), i.omega_i_rad_s());
+        [piga.output_rad_s(a, w), a, w]
+    });
+    Ok(RatePoint {
+        rate_rad_s,
+        output_rad_s,
+        a_x_g,
+        omega_i_rad_s,
+    })
+}
+
+/// Mean PIGA output and exact mean inputs for each rate of a calibration, in order.
+///
+/// The centrifuge carries the radius, the site (latitude, Earth rate, g) and the spindle error
+/// motion; see [`rate_point`] for one rate.
+///
+/// ```
+/// use approx::assert_relative_eq;
+/// use accel_model::{rate_points, PigaCoefficients};
+/// use kinematics::{Centrifuge, ErrorMotion, Site, EARTH_RATE_RAD_S};
+/// let centrifuge = Centrifuge {
+///     radius_m: 2.5,
+///     site: Site::new(45.0, EARTH_RATE_RAD_S, 9.8)?,
+///     error_motion: ErrorMotion { c_r_m_s2: 1.6e-6, ..ErrorMotion::ZERO },
+/// };
+/// let piga = PigaCoefficients { k0_rad_s: 0.0, k1_rad_s_g: 0.56, k2_rad_s_g2: 0.0, k3_rad_s_g3: 0.0 };
+/// let rates: Vec<f64> = [10.0_f64, 100.0, 200.0].iter().map(|d| d.to_radians()).collect();
+/// let points = rate_points(&centrifuge, &piga, &rates)?;
+/// assert_eq!(points.len(), 3);
+/// let p = &points[2];
+/// // a linear PIGA: mean output = k1·⟨a_x⟩ − ⟨ω_I⟩
+/// assert_relative_eq!(p.output_rad_s, 0.56 * p.a_x_g - p.omega_i_rad_s, max_relative = 1e-14);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NoRates`] for an empty list, [`Error::NonFiniteRate`] naming a bad rate, otherwise
+/// as [`rate_point`].
+pub fn rate_points(
+    centrifuge: &Centrifuge,
+    piga: &PigaCoefficients,
+    rates_rad_s: &[f64],
+) -> Result<Vec<RatePoint>> {
+    if rates_rad_s.is_empty() {
+        return Err(Error::NoRates);
+    }
+    if let Some((index, &value)) = rates_rad_s.iter().enumerate().find(|(_, w)| !w.is_finite()) {
+        return Err(Error::NonFiniteRate { index, value });
+    }
+    rates_rad_s
+        .iter()
+        .map(|&w| rate_point(centrifuge, piga, w))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    const P: PigaCoefficients = PigaCoefficients {
+        k0_rad_s: 1e-5,
+        k1_rad_s_g: 0.56,
+        k2_rad_s_g2: 2e-6,
+        k3_rad_s_g3: 1e-7,
+    };
+
+    #[test]
+    fn eq15_term_by_term() {
+        for &a in &[-3.0, 0.0, 0.5, 10.0] {
+            let expect =
+                P.k0_rad_s + P.k1_rad_s_g * a + P.k2_rad_s_g2 * a * a + P.k3_rad_s_g3 * a * a * a
+                    - 4e-6;
+            assert_relative_eq!(P.output_rad_s(a, 4e-6), expect, max_relative = 1e-15);
+        }
+        // the −ω_I term: a rate about IA lowers the output one for one
+        assert_relative_eq!(
+            P.output_rad_s(1.0, 0.0) - P.output_rad_s(1.0, 1e-3),
+            1e-3,
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn non_finite_coefficient_is_named() {
+        let bad = PigaCoefficients {
+            k1_rad_s_g: f64::NAN,
+            ..P
+        };
+        assert!(matches!(
+            bad.validate(),
+            Err(Error::NonFinite {
+                field: "k1_rad_s_g",
+                ..
+            })
+        ));
+        assert_eq!(P.validate(), Ok(()));
+    }
+}
