@@ -62,6 +62,14 @@ pub enum IdentifyError {
         /// What the value must satisfy.
         requirement: &'static str,
     },
+    /// An NIST StRD file does not have the expected layout (see [`crate::strd`]).
+    #[error("StRD file{}: expected {expected}", match line { Some(l) => format!(", line {l}"), None => String::new() })]
+    StrdFormat {
+        /// 1-based line at fault, or `None` when something is missing from the whole file.
+        line: Option<usize>,
+        /// What was expected.
+        expected: &'static str,
+    },
 }
 
 /// `Result` with [`IdentifyError`].

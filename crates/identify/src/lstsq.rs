@@ -1,11 +1,13 @@
-//! General linear least squares through column-pivoted Householder QR of the column-scaled
-//! design.
+//! General linear least squares: column-pivoted Householder QR of the column-scaled design,
+//! refined with double-double residuals.
 
 // Index loops mirror the matrix formulas of the algorithms.
 #![allow(clippy::needless_range_loop)]
 
 use nalgebra::DMatrix;
 
+use crate::dd::Dd;
+use crate::design::Design;
 use crate::error::{IdentifyError, Result};
 
 /// Which numerical method produced a [`Fit`].
@@ -13,19 +15,54 @@ use crate::error::{IdentifyError, Result};
 #[serde(rename_all = "snake_case")]
 #[non_exhaustive]
 pub enum SolverPath {
-    /// Column scaling to unit 2-norm, then column-pivoted Householder QR (faer) in double
-    /// precision; no refinement.
+    /// Column scaling by powers of two near the column 2-norms, then column-pivoted
+    /// Householder QR (faer) in double precision; no refinement.
     ScaledColPivQr,
+    /// As [`SolverPath::ScaledColPivQr`], then iterative refinement of the augmented system
+    /// `[I X; Xᵀ 0]·[r; β] = [y; c]` with both block residuals evaluated in double-double
+    /// arithmetic (Björck 1967), for the solution (c = 0) and for each column of `(XᵀX)⁻¹`
+    /// (y = 0, c = −e_k). The double-precision QR factors serve every correction.
+    RefinedScaledColPivQr,
 }
 
-/// Options for [`lstsq_with`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// A condition that limits the accuracy of a [`Fit`] without preventing it.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 #[non_exhaustive]
+pub enum FitWarning {
+    /// Iterative refinement stopped contracting before its corrections fell below double
+    /// precision: the design is too ill-conditioned for refinement from a double-precision
+    /// factorisation (roughly `condition_number·ε ≳ 0.1`), so the trailing digits of the result
+    /// are not established. The result is that of the last iterate.
+    RefinementNotConverged {
+        /// Iterations performed (the largest over the solution and covariance columns).
+        iterations: usize,
+        /// Size of the last correction relative to the solution (∞-norms).
+        relative_correction: f64,
+    },
+}
+
+/// Options for [`lstsq_with`] and [`lstsq_design`].
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LstsqOptions {
     /// Relative rank tolerance τ: the column-scaled design is declared rank deficient when a
     /// diagonal entry of the column-pivoted R satisfies `|R_kk| ≤ τ·|R_00|`.
     /// `None` selects the default `max(m, n)·ε` (ε = `f64::EPSILON`).
     pub rank_tolerance: Option<f64>,
+    /// Refine the solution and covariance with double-double residuals (default `true`).
+    pub refine: bool,
+    /// Upper bound on refinement iterations per right-hand side (default 30).
+    pub max_refinement_iterations: usize,
+}
+
+impl Default for LstsqOptions {
+    fn default() -> Self {
+        Self {
+            rank_tolerance: None,
+            refine: true,
+            max_refinement_iterations: 30,
+        }
+    }
 }
 
 /// Result of a least-squares fit `y ≈ X·β`.
@@ -33,40 +70,55 @@ pub struct LstsqOptions {
 pub struct Fit {
     /// Estimated coefficients β, in the order of the design's columns.
     pub coefficients: Vec<f64>,
-    /// Covariance of β, `s²·(XᵀX)⁻¹`, computed from the QR factor as
-    /// `s²·D⁻¹P·R⁻¹R⁻ᵀ·PᵀD⁻¹` (never by inverting the normal equations).
+    /// Covariance of β, `s²·(XᵀX)⁻¹`, from the QR factors (`(BᵀB)⁻¹ = R⁻¹R⁻ᵀ` for the
+    /// scaled, pivoted design B, refined column by column and mapped back through the scaling
+    /// and pivoting), never by inverting the normal equations.
     pub covariance: DMatrix<f64>,
     /// Standard errors, the square roots of the covariance diagonal.
     pub std_errors: Vec<f64>,
-    /// Residuals `y − X·β`.
+    /// Residuals `y − X·β` of the least-squares solution (carried in double-double by the
+    /// refinement, then rounded).
     pub residuals: Vec<f64>,
     /// Residual standard deviation `s = sqrt(Σr²/dof)`.
     pub residual_sd: f64,
     /// Residual degrees of freedom, observations − unknowns.
     pub dof: usize,
-    /// 2-norm condition number (ratio of extreme singular values) of the **column-scaled**
-    /// design `X·D⁻¹` (each column divided by its 2-norm), which is the matrix actually
-    /// factorised. Column scaling is a reparametrisation, so this is the conditioning that
-    /// limits the solver, not the (often much larger) condition number of the raw design.
+    /// 2-norm condition number (ratio of the extreme singular values, from an SVD of R) of the
+    /// **column-scaled** design `B = X·D⁻¹`, each column divided by the power of two nearest its
+    /// 2-norm. B is the matrix actually factorised; column scaling is a reparametrisation, so
+    /// this, not the often far larger condition number of the raw X, is what limits the solver.
     pub condition_number: f64,
     /// Relative rank tolerance τ that was applied to the diagonal of R (see
     /// [`LstsqOptions::rank_tolerance`]).
     pub rank_tolerance: f64,
-    /// Column norms `D` used for the scaling (1 for an all-zero column, which is then reported
+    /// Column scale factors D (powers of two; 1 for an all-zero column, which is then reported
     /// as rank deficient).
     pub column_scale: Vec<f64>,
     /// Which method was taken.
     pub path: SolverPath,
+    /// Refinement iterations taken (the largest over the solution and the covariance columns).
+    pub refinement_iterations: usize,
+    /// Conditions that limit the accuracy; empty when refinement established every digit.
+    pub warnings: Vec<FitWarning>,
 }
 
-/// Least squares `min ‖y − X·β‖₂` with default [`LstsqOptions`].
+/// Least squares `min ‖y − X·β‖₂` with default [`LstsqOptions`]; the entries of `design` are
+/// taken as exact.
 ///
-/// The design is scaled to unit column norms, factorised by column-pivoted Householder QR, and
-/// the solution and covariance are mapped back through the scaling. The covariance is
-/// `s²·(XᵀX)⁻¹` with `s² = Σr²/(m − n)`.
+/// Method ([`SolverPath::RefinedScaledColPivQr`]): the design is scaled to near-unit column
+/// norms by powers of two (exactly, without rounding), factorised by column-pivoted Householder
+/// QR `X·D⁻¹·P = Q·R`, and the least-squares solution and `(XᵀX)⁻¹` are refined as solutions of
+/// the augmented system with residuals evaluated in double-double arithmetic. The result is the
+/// least-squares solution of the given data correct to about double precision whenever the
+/// refinement converges (roughly `condition_number·ε < 0.1`); otherwise a
+/// [`FitWarning::RefinementNotConverged`] is attached. The covariance is `s²·(XᵀX)⁻¹` with
+/// `s² = Σr²/(m − n)`:
 ///
 /// $$ \hat\beta = D^{-1} P R^{-1} Q^\top y, \qquad
 ///    \operatorname{Cov}\hat\beta = s^2 D^{-1} P R^{-1} R^{-\top} P^\top D^{-1} $$
+///
+/// (before refinement). For designs whose entries are not exact doubles (powers of data) build a
+/// [`Design`] and call [`lstsq_design`].
 ///
 /// # Errors
 /// [`IdentifyError::NoUnknowns`], [`IdentifyError::DimensionMismatch`] (rows ≠ `y.len()`),
@@ -81,9 +133,10 @@ pub struct Fit {
 /// let design = nalgebra::DMatrix::from_fn(4, 2, |i, j| x[i].powi(j as i32));
 /// let y: Vec<f64> = x.iter().map(|x| 1.0 + 2.0 * x).collect();
 /// let fit = identify::lstsq(&design, &y)?;
-/// assert_relative_eq!(fit.coefficients[0], 1.0, max_relative = 1e-14);
-/// assert_relative_eq!(fit.coefficients[1], 2.0, max_relative = 1e-14);
-/// assert!(fit.residual_sd < 1e-14);
+/// assert_relative_eq!(fit.coefficients[0], 1.0, max_relative = 1e-15);
+/// assert_relative_eq!(fit.coefficients[1], 2.0, max_relative = 1e-15);
+/// assert!(fit.residual_sd < 1e-15);
+/// assert!(fit.warnings.is_empty());
 /// # Ok::<(), identify::IdentifyError>(())
 /// ```
 pub fn lstsq(design: &DMatrix<f64>, y: &[f64]) -> Result<Fit> {
@@ -96,7 +149,26 @@ pub fn lstsq(design: &DMatrix<f64>, y: &[f64]) -> Result<Fit> {
 /// As [`lstsq`]; also [`IdentifyError::InvalidParameter`] for a rank tolerance that is not a
 /// finite number in `[0, 1)`.
 pub fn lstsq_with(design: &DMatrix<f64>, y: &[f64], options: &LstsqOptions) -> Result<Fit> {
-    let (m, n) = design.shape();
+    lstsq_design(&Design::from_matrix(design), y, options)
+}
+
+/// Least squares for a [`Design`] held in double-double precision (see [`lstsq`] for the
+/// method).
+///
+/// ```
+/// use approx::assert_relative_eq;
+/// use identify::{lstsq_design, Design, LstsqOptions};
+/// let x: Vec<f64> = (0..12).map(|i| 3.0 + 0.1 * f64::from(i)).collect();
+/// let y: Vec<f64> = x.iter().map(|x| 1.0 - 2.0 * x + 0.5 * x.powi(4)).collect();
+/// let fit = lstsq_design(&Design::powers(&x, &[0, 1, 4]), &y, &LstsqOptions::default())?;
+/// assert_relative_eq!(fit.coefficients[2], 0.5, max_relative = 1e-14);
+/// # Ok::<(), identify::IdentifyError>(())
+/// ```
+///
+/// # Errors
+/// As [`lstsq_with`].
+pub fn lstsq_design(design: &Design, y: &[f64], options: &LstsqOptions) -> Result<Fit> {
+    let (m, n) = (design.nrows(), design.ncols());
     validate(design, y)?;
     let tau = match options.rank_tolerance {
         None => m.max(n) as f64 * f64::EPSILON,
@@ -111,33 +183,82 @@ pub fn lstsq_with(design: &DMatrix<f64>, y: &[f64], options: &LstsqOptions) -> R
     };
 
     let qr = ScaledQr::new(design, tau)?;
-    let beta = qr.solve(y);
-    let residuals: Vec<f64> = (0..m)
-        .map(|i| y[i] - (0..n).map(|j| design[(i, j)] * beta[j]).sum::<f64>())
-        .collect();
+    let max_iterations = if options.refine {
+        options.max_refinement_iterations
+    } else {
+        0
+    };
+    let solution = qr.refine(y, &vec![0.0; n], max_iterations);
+    let z: Vec<f64> = solution.z.iter().map(|v| v.to_f64()).collect();
+    let coefficients = qr.unpermute_unscale(&z);
+    let residuals: Vec<f64> = solution.r.iter().map(|v| v.to_f64()).collect();
     let dof = m - n;
-    let ssr: f64 = residuals.iter().map(|r| r * r).sum();
-    let s2 = ssr / dof as f64;
-    let covariance = qr.unscaled_inverse_gram().scale(s2);
-    let std_errors = (0..n).map(|j| covariance[(j, j)].sqrt()).collect();
+    let ssr = solution.r.iter().fold(Dd::ZERO, |acc, r| acc + *r * *r);
+    let s2 = ssr.div_f64(dof as f64);
 
+    // (BᵀB)⁻¹ column by column: the augmented system with y = 0, c = −e_k gives z = (BᵀB)⁻¹e_k.
+    let mut inverse_gram = Vec::with_capacity(n);
+    let mut iterations = solution.iterations;
+    let mut converged = solution.converged;
+    let mut worst_correction = solution.last_correction;
+    let zeros = vec![0.0; m];
+    for k in 0..n {
+        let mut c = vec![0.0; n];
+        c[k] = -1.0;
+        let col = qr.refine(&zeros, &c, max_iterations);
+        iterations = iterations.max(col.iterations);
+        converged &= col.converged;
+        worst_correction = worst_correction.max(col.last_correction);
+        inverse_gram.push(col.z);
+    }
+    let mut covariance = DMatrix::<f64>::zeros(n, n);
+    let mut std_errors = vec![0.0; n];
+    for a in 0..n {
+        for b in 0..n {
+            // Symmetrise: both refined entries are accurate, their mean is as well.
+            let g = (inverse_gram[a][b] + inverse_gram[b][a]).mul_f64(0.5);
+            let (ca, cb) = (qr.perm[a], qr.perm[b]);
+            // The scale factors are powers of two: dividing by them is exact.
+            let v = (s2 * g)
+                .mul_f64(1.0 / qr.scale[ca])
+                .mul_f64(1.0 / qr.scale[cb]);
+            covariance[(ca, cb)] = v.to_f64();
+            if a == b {
+                std_errors[ca] = v.sqrt().to_f64();
+            }
+        }
+    }
+
+    let mut warnings = Vec::new();
+    if options.refine && !converged {
+        warnings.push(FitWarning::RefinementNotConverged {
+            iterations,
+            relative_correction: worst_correction,
+        });
+    }
     Ok(Fit {
-        coefficients: beta,
+        coefficients,
         covariance,
         std_errors,
         residuals,
-        residual_sd: s2.sqrt(),
+        residual_sd: s2.sqrt().to_f64(),
         dof,
         condition_number: qr.condition_number(),
         rank_tolerance: tau,
         column_scale: qr.scale.clone(),
-        path: SolverPath::ScaledColPivQr,
+        path: if options.refine {
+            SolverPath::RefinedScaledColPivQr
+        } else {
+            SolverPath::ScaledColPivQr
+        },
+        refinement_iterations: iterations,
+        warnings,
     })
 }
 
 /// Checks shapes and finiteness.
-fn validate(design: &DMatrix<f64>, y: &[f64]) -> Result<()> {
-    let (m, n) = design.shape();
+fn validate(design: &Design, y: &[f64]) -> Result<()> {
+    let (m, n) = (design.nrows(), design.ncols());
     if n == 0 {
         return Err(IdentifyError::NoUnknowns);
     }
@@ -156,7 +277,8 @@ fn validate(design: &DMatrix<f64>, y: &[f64]) -> Result<()> {
     }
     for i in 0..m {
         for j in 0..n {
-            if !design[(i, j)].is_finite() {
+            let v = design.entry(i, j);
+            if !(v.hi.is_finite() && v.lo.is_finite()) {
                 return Err(IdentifyError::NonFinite {
                     row: i,
                     column: Some(j),
@@ -173,37 +295,67 @@ fn validate(design: &DMatrix<f64>, y: &[f64]) -> Result<()> {
     Ok(())
 }
 
-/// Column-pivoted QR of the column-scaled design: `X·D⁻¹·P = Q·R`.
+/// Column-pivoted QR of the column-scaled design: `B = X·D⁻¹·P = Q·R`, with D a diagonal of
+/// powers of two (so B is formed without rounding) and P the pivoting permutation.
 #[derive(Debug, Clone)]
-pub(crate) struct ScaledQr {
-    /// Column 2-norms D.
-    pub(crate) scale: Vec<f64>,
-    /// Thin Q, m × n.
-    pub(crate) q: DMatrix<f64>,
+struct ScaledQr {
+    /// Column scale factors D (powers of two near the column 2-norms).
+    scale: Vec<f64>,
+    /// B = X·D⁻¹·P in double-double, column-major, m × n (columns in pivoted order).
+    b_hi: Vec<f64>,
+    b_lo: Vec<f64>,
+    /// Thin Q, m × n, column-major.
+    q: Vec<f64>,
     /// Upper-triangular R, n × n.
-    pub(crate) r: DMatrix<f64>,
+    r: DMatrix<f64>,
     /// `perm[k]` = original column placed at position k.
-    pub(crate) perm: Vec<usize>,
+    perm: Vec<usize>,
+    m: usize,
+    n: usize,
+}
+
+/// Outcome of an iterative refinement.
+#[derive(Debug, Clone)]
+struct Refined {
+    /// Residual vector, double-double.
+    r: Vec<Dd>,
+    /// Solution in pivoted, scaled coordinates, double-double.
+    z: Vec<Dd>,
+    iterations: usize,
+    converged: bool,
+    /// Last correction relative to the solution (∞-norms).
+    last_correction: f64,
 }
 
 impl ScaledQr {
     /// Scales, factorises and checks the rank at relative tolerance `tau`.
-    pub(crate) fn new(design: &DMatrix<f64>, tau: f64) -> Result<Self> {
-        let (m, n) = design.shape();
+    fn new(design: &Design, tau: f64) -> Result<Self> {
+        let (m, n) = (design.nrows(), design.ncols());
         let scale: Vec<f64> = (0..n)
             .map(|j| {
-                let norm = column_norm(design.column(j).iter().copied());
-                if norm > 0.0 { norm } else { 1.0 }
+                let norm = column_norm(design.column_hi(j));
+                if norm > 0.0 { pow2_near(norm) } else { 1.0 }
             })
             .collect();
-        let scaled = faer::Mat::<f64>::from_fn(m, n, |i, j| design[(i, j)] / scale[j]);
+        let scaled = faer::Mat::<f64>::from_fn(m, n, |i, j| design.entry(i, j).hi / scale[j]);
         let qr = scaled.col_piv_qr();
         let (fwd, _) = qr.P().arrays();
         let perm = fwd.to_vec();
         let r_f = qr.thin_R();
         let q_f = qr.compute_thin_Q();
         let r = DMatrix::from_fn(n, n, |i, j| if i <= j { r_f[(i, j)] } else { 0.0 });
-        let q = DMatrix::from_fn(m, n, |i, j| q_f[(i, j)]);
+        let mut q = vec![0.0; m * n];
+        let mut b_hi = vec![0.0; m * n];
+        let mut b_lo = vec![0.0; m * n];
+        for k in 0..n {
+            let s = 1.0 / scale[perm[k]];
+            for i in 0..m {
+                q[k * m + i] = q_f[(i, k)];
+                let e = design.entry(i, perm[k]);
+                b_hi[k * m + i] = e.hi * s;
+                b_lo[k * m + i] = e.lo * s;
+            }
+        }
 
         let r00 = r[(0, 0)].abs();
         let rank = (0..n)
@@ -216,21 +368,120 @@ impl ScaledQr {
                 tolerance: tau,
             });
         }
-        Ok(Self { scale, q, r, perm })
+        Ok(Self {
+            scale,
+            b_hi,
+            b_lo,
+            q,
+            r,
+            perm,
+            m,
+            n,
+        })
     }
 
-    /// Solves `min ‖y − X β‖` in double precision.
-    pub(crate) fn solve(&self, y: &[f64]) -> Vec<f64> {
-        let (m, n) = self.q.shape();
-        let c: Vec<f64> = (0..n)
-            .map(|k| (0..m).map(|i| self.q[(i, k)] * y[i]).sum())
-            .collect();
-        let z = self.back_substitute(&c);
-        self.unpermute_unscale(&z)
+    /// Solves the augmented system `[I B; Bᵀ 0]·[r; z] = [f; g]` in double precision with the
+    /// QR factors: `Rᵀu = g`, `w = Qᵀf − u`, `z = R⁻¹w`, `r = f − Q·w`.
+    fn solve_augmented(&self, f: &[f64], g: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let (m, n) = (self.m, self.n);
+        let u = self.forward_substitute_transposed(g);
+        let mut w = vec![0.0; n];
+        for k in 0..n {
+            let col = &self.q[k * m..(k + 1) * m];
+            w[k] = col.iter().zip(f).map(|(q, f)| q * f).sum::<f64>() - u[k];
+        }
+        let z = self.back_substitute(&w);
+        let mut r = f.to_vec();
+        for k in 0..n {
+            let col = &self.q[k * m..(k + 1) * m];
+            for i in 0..m {
+                r[i] -= col[i] * w[k];
+            }
+        }
+        (r, z)
+    }
+
+    /// Solves the augmented system `[I B; Bᵀ 0]·[r; z] = [y; c]` (least squares
+    /// `min ‖y − Bz‖` when c = 0; `z = −(BᵀB)⁻¹c` when y = 0) and, when `max_iterations > 0`,
+    /// refines it with residuals of both block equations evaluated in double-double
+    /// (Björck 1967), reusing the QR factors for each correction.
+    fn refine(&self, y: &[f64], c: &[f64], max_iterations: usize) -> Refined {
+        let (m, n) = (self.m, self.n);
+        let (r0, z0) = self.solve_augmented(y, c);
+        let mut r: Vec<Dd> = r0.into_iter().map(Dd::from_f64).collect();
+        let mut z: Vec<Dd> = z0.into_iter().map(Dd::from_f64).collect();
+        let y_norm = inf_norm(y.iter().copied());
+        let mut iterations = 0;
+        let mut converged = max_iterations == 0;
+        let mut last_correction = f64::NAN;
+        let mut previous = f64::INFINITY;
+        while iterations < max_iterations {
+            iterations += 1;
+            // f = y − r − B z and g = c − Bᵀ r, in double-double; `terms` bounds |B|·|z|.
+            let mut f: Vec<Dd> = (0..m).map(|i| Dd::from_f64(y[i]) - r[i]).collect();
+            let mut terms = vec![0.0_f64; m];
+            let mut g = vec![Dd::ZERO; n];
+            for k in 0..n {
+                let (hi, lo) = (
+                    &self.b_hi[k * m..(k + 1) * m],
+                    &self.b_lo[k * m..(k + 1) * m],
+                );
+                let zk = -z[k];
+                let mut gk = Dd::from_f64(c[k]);
+                for i in 0..m {
+                    let bik = Dd {
+                        hi: hi[i],
+                        lo: lo[i],
+                    };
+                    f[i] += zk * bik;
+                    terms[i] += (hi[i] * zk.hi).abs();
+                    gk = gk - r[i] * bik;
+                }
+                g[k] = gk;
+            }
+            let f: Vec<f64> = f.iter().map(|v| v.to_f64()).collect();
+            let g: Vec<f64> = g.iter().map(|v| v.to_f64()).collect();
+            let (dr, dz) = self.solve_augmented(&f, &g);
+            for (ri, d) in r.iter_mut().zip(&dr) {
+                *ri += Dd::from_f64(*d);
+            }
+            for (zi, d) in z.iter_mut().zip(&dz) {
+                *zi += Dd::from_f64(*d);
+            }
+            let target = f64::EPSILON / 16.0;
+            let dz_rel = relative(
+                inf_norm(dz.iter().copied()),
+                inf_norm(z.iter().map(|v| v.hi)),
+            );
+            // A residual is known at best to the double-double evaluation noise of y − B·z.
+            let r_norm = inf_norm(r.iter().map(|v| v.hi));
+            let noise = 64.0
+                * f64::EPSILON
+                * f64::EPSILON
+                * (y_norm + inf_norm(terms.into_iter()) + r_norm);
+            let dr_ratio = relative(inf_norm(dr.iter().copied()), (target * r_norm).max(noise));
+            // size ≤ 1: both corrections below their targets. Under geometric contraction the
+            // error left after a correction is smaller than the correction.
+            let size = (dz_rel / target).max(dr_ratio);
+            last_correction = dz_rel;
+            converged = size <= 1.0;
+            if size <= 1e-2 || size > 0.5 * previous {
+                // Done, or stalled (if not yet converged, the conditioning is beyond repair).
+                break;
+            }
+            previous = size;
+        }
+        Refined {
+            r,
+            z,
+            iterations,
+            converged,
+            last_correction,
+        }
     }
 
     /// Maps a solution `z` of the pivoted, scaled problem to the original coefficients.
-    pub(crate) fn unpermute_unscale(&self, z: &[f64]) -> Vec<f64> {
+    fn unpermute_unscale(&self, z: &[f64]) -> Vec<f64> {
         let mut beta = vec![0.0; z.len()];
         for (k, &col) in self.perm.iter().enumerate() {
             beta[col] = z[k] / self.scale[col];
@@ -239,7 +490,7 @@ impl ScaledQr {
     }
 
     /// Solves `R z = c`.
-    pub(crate) fn back_substitute(&self, c: &[f64]) -> Vec<f64> {
+    fn back_substitute(&self, c: &[f64]) -> Vec<f64> {
         let n = c.len();
         let mut z = c.to_vec();
         for k in (0..n).rev() {
@@ -252,33 +503,23 @@ impl ScaledQr {
         z
     }
 
-    /// `(XᵀX)⁻¹ = D⁻¹ P R⁻¹ R⁻ᵀ Pᵀ D⁻¹`, from the triangular inverse of R.
-    pub(crate) fn unscaled_inverse_gram(&self) -> DMatrix<f64> {
-        let n = self.r.ncols();
-        // R⁻¹ column by column.
-        let mut rinv = DMatrix::<f64>::zeros(n, n);
-        for j in 0..n {
-            let mut e = vec![0.0; n];
-            e[j] = 1.0;
-            let col = self.back_substitute(&e);
-            for i in 0..n {
-                rinv[(i, j)] = col[i];
+    /// Solves `Rᵀ u = g`.
+    fn forward_substitute_transposed(&self, g: &[f64]) -> Vec<f64> {
+        let n = g.len();
+        let mut u = g.to_vec();
+        for k in 0..n {
+            let mut s = u[k];
+            for j in 0..k {
+                s -= self.r[(j, k)] * u[j];
             }
+            u[k] = s / self.r[(k, k)];
         }
-        let g = &rinv * rinv.transpose();
-        let mut out = DMatrix::<f64>::zeros(n, n);
-        for a in 0..n {
-            for b in 0..n {
-                let (ca, cb) = (self.perm[a], self.perm[b]);
-                out[(ca, cb)] = g[(a, b)] / (self.scale[ca] * self.scale[cb]);
-            }
-        }
-        out
+        u
     }
 
     /// 2-norm condition number of the scaled design (= that of R).
-    pub(crate) fn condition_number(&self) -> f64 {
-        let n = self.r.ncols();
+    fn condition_number(&self) -> f64 {
+        let n = self.n;
         let r = faer::Mat::<f64>::from_fn(n, n, |i, j| self.r[(i, j)]);
         match r.singular_values() {
             Ok(sv) => {
@@ -291,13 +532,33 @@ impl ScaledQr {
     }
 }
 
+fn inf_norm(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(0.0_f64, |a, v| a.max(v.abs()))
+}
+
+/// `num/den`, with 0/0 = 0.
+fn relative(num: f64, den: f64) -> f64 {
+    if num == 0.0 { 0.0 } else { num / den }
+}
+
+/// The power of two nearest (in ratio, within √2) to a positive finite `x`.
+fn pow2_near(x: f64) -> f64 {
+    let e = x.log2().round();
+    // Clamp so that both the scale and its reciprocal stay finite and normal.
+    2f64.powi(e.clamp(-1000.0, 1000.0) as i32)
+}
+
 /// Overflow-safe 2-norm.
-fn column_norm(values: impl Iterator<Item = f64> + Clone) -> f64 {
-    let max = values.clone().fold(0.0_f64, |a, v| a.max(v.abs()));
+fn column_norm(values: &[f64]) -> f64 {
+    let max = inf_norm(values.iter().copied());
     if max == 0.0 {
         return 0.0;
     }
-    max * values.map(|v| (v / max) * (v / max)).sum::<f64>().sqrt()
+    max * values
+        .iter()
+        .map(|v| (v / max) * (v / max))
+        .sum::<f64>()
+        .sqrt()
 }
 
 #[cfg(test)]
@@ -343,7 +604,7 @@ mod tests {
         assert_relative_eq!(fit.coefficients[0], -3.0, max_relative = 1e-14);
         assert_relative_eq!(fit.coefficients[1], 0.25, max_relative = 1e-14);
         assert!(fit.residual_sd < 1e-14);
-        assert_eq!(fit.path, SolverPath::ScaledColPivQr);
+        assert_eq!(fit.path, SolverPath::RefinedScaledColPivQr);
     }
 
     #[test]
@@ -404,7 +665,8 @@ mod tests {
                 &d,
                 &[1.0, 2.0, 3.0],
                 &LstsqOptions {
-                    rank_tolerance: Some(f64::NAN)
+                    rank_tolerance: Some(f64::NAN),
+                    ..LstsqOptions::default()
                 }
             ),
             Err(IdentifyError::InvalidParameter {

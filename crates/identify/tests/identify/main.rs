@@ -1,3 +1,5 @@
 //! Behaviour tests of the `identify` crate.
 
+mod nist;
 mod paper;
+mod solver;
