@@ -12,7 +12,7 @@
 //!
 //! ```
 //! use identify::strd;
-//! assert_eq!(strd::lre(1.000_000_1, 1.0), 7.000_000_043_429_451);
+//! approx::assert_abs_diff_eq!(strd::lre(1.000_000_1, 1.0), 7.0, epsilon = 1e-6);
 //! assert_eq!(strd::lre(2.0, 2.0), strd::MAX_LRE);
 //! ```
 
