@@ -56,7 +56,11 @@ pub fn radius_error_svg(phase: &PhaseResults, title: &str) -> Result<String> {
             .y_desc("radius error (µm)")
             .draw()
             .map_err(plot_error)?;
-        let fit_label = format!("fit a + C_r·ω², C_r = {:.4e} m·s²", phase.fit.c_r_m_s2);
+        let fit_label = format!(
+            "fit {}, C_r = {:.4e} m·s²",
+            model_name(phase.fit.model),
+            phase.fit.c_r_m_s2
+        );
         chart
             .draw_series(LineSeries::new(
                 samples.iter().map(|&x| (x, model_um(&phase.fit, x))),
