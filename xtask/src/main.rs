@@ -3,6 +3,7 @@
 //! Each subcommand is a module with a clap-derived argument struct and a `run` method.
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
+mod accuracy;
 mod paths;
 mod regress;
 mod study;
@@ -24,6 +25,8 @@ enum Command {
     Study(study::Study),
     /// Run a study and compare it with its expected values; exits non-zero on a difference.
     Regress(regress::Regress),
+    /// Score the least-squares solver on the NIST StRD linear-regression datasets (LRE).
+    Accuracy(accuracy::Accuracy),
 }
 
 fn main() -> std::process::ExitCode {
@@ -37,6 +40,7 @@ fn main() -> std::process::ExitCode {
     let outcome = match &cli.command {
         Command::Study(c) => c.run(),
         Command::Regress(c) => c.run(),
+        Command::Accuracy(c) => c.run(),
     };
     match outcome {
         Ok(()) => std::process::ExitCode::SUCCESS,

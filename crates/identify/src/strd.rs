@@ -380,7 +380,13 @@ impl Dataset {
     /// # Errors
     /// Those of [`lstsq_design`].
     pub fn check(&self, options: &LstsqOptions) -> Result<Accuracy> {
-        let fit = lstsq_design(&self.design(), &self.y, options)?;
+        Ok(self.score(lstsq_design(&self.design(), &self.y, options)?))
+    }
+
+    /// Scores a fit of this dataset (coefficients in the order of [`Dataset::certified`])
+    /// against the certified values.
+    #[must_use]
+    pub fn score(&self, fit: Fit) -> Accuracy {
         let min_lre_coef = self
             .certified
             .iter()
@@ -394,13 +400,13 @@ impl Dataset {
             .map(|(c, s)| lre(*s, c.std_dev))
             .fold(MAX_LRE, f64::min);
         let lre_residual_sd = lre(fit.residual_sd, self.certified_residual_sd);
-        Ok(Accuracy {
+        Accuracy {
             name: self.name.clone(),
             min_lre_coef,
             min_lre_se,
             lre_residual_sd,
             fit,
-        })
+        }
     }
 }
 
