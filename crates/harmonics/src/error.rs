@@ -1,6 +1,10 @@
 //! The crate's error type.
 
 /// Errors of the harmonic analysis.
+///
+/// Errors about the samples name the sample's index (0-based, into the slices given);
+/// errors about a revolution name the revolution's index (0-based, among the complete
+/// revolutions of the recording).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum HarmonicsError {
@@ -19,6 +23,147 @@ pub enum HarmonicsError {
         field: &'static str,
         /// The value given.
         value: f64,
+    },
+    /// A fit setting is out of its domain.
+    #[error("invalid fit setting: `{field}` = {value} ({reason})")]
+    InvalidSetting {
+        /// Name of the offending setting.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// What the value must satisfy.
+        reason: &'static str,
+    },
+    /// The Fourier order is outside `1..=MAX_ORDER`.
+    #[error("Fourier order {order} is not supported (1 to {max})")]
+    InvalidOrder {
+        /// The order asked for.
+        order: usize,
+        /// The largest supported order.
+        max: usize,
+    },
+    /// Two sample columns have different lengths.
+    #[error("column `{column}` has {len} samples, but `time` has {expected}")]
+    LengthMismatch {
+        /// The column whose length differs.
+        column: &'static str,
+        /// Its length.
+        len: usize,
+        /// The length of the time column.
+        expected: usize,
+    },
+    /// A sample is NaN or infinite.
+    #[error("sample {index}: `{column}` is not finite ({value})")]
+    NonFinite {
+        /// Index of the sample.
+        index: usize,
+        /// The column holding the value.
+        column: &'static str,
+        /// The value.
+        value: f64,
+    },
+    /// The time stamps do not increase strictly.
+    #[error(
+        "sample {index}: time {time_s} s does not increase (previous sample at {previous_s} s)"
+    )]
+    TimeNotIncreasing {
+        /// Index of the sample.
+        index: usize,
+        /// Time of the previous sample, s.
+        previous_s: f64,
+        /// Time of this sample, s.
+        time_s: f64,
+    },
+    /// Two consecutive samples are further apart than the allowed number of sample intervals.
+    #[error(
+        "sample {index}: gap of {interval_s} s since the previous sample, more than {max_intervals} \
+         nominal sample intervals of {nominal_interval_s} s"
+    )]
+    SampleGap {
+        /// Index of the sample after the gap.
+        index: usize,
+        /// Time since the previous sample, s.
+        interval_s: f64,
+        /// The recording's nominal (median) sample interval, s.
+        nominal_interval_s: f64,
+        /// The allowed gap in nominal intervals.
+        max_intervals: f64,
+    },
+    /// The encoder angle goes backwards (after unwrapping: steps are taken in (−π, π]).
+    #[error(
+        "sample {index}: encoder angle steps back by {step_rad} rad (the spindle turns one way)"
+    )]
+    AngleNotIncreasing {
+        /// Index of the sample.
+        index: usize,
+        /// The (negative) unwrapped step, rad.
+        step_rad: f64,
+    },
+    /// The spindle rate is not finite and positive.
+    #[error("spindle rate {rate_rad_s} rad/s must be finite and > 0")]
+    InvalidRate {
+        /// The rate given, rad/s.
+        rate_rad_s: f64,
+    },
+    /// The recording does not hold one complete revolution.
+    #[error("less than one complete revolution: {samples} samples cover {turns} turns")]
+    NoCompleteRevolution {
+        /// Number of samples in the recording.
+        samples: usize,
+        /// Turns covered by the samples.
+        turns: f64,
+    },
+    /// Fewer complete revolutions than asked for.
+    #[error("{requested} revolutions requested, the recording has {available} complete ones")]
+    TooFewRevolutions {
+        /// Revolutions asked for.
+        requested: usize,
+        /// Complete revolutions in the recording.
+        available: usize,
+    },
+    /// A revolution has too few samples for the number of fitted parameters.
+    #[error(
+        "revolution {revolution} (from sample {first_sample}): {got} samples, the fit needs at least {need}"
+    )]
+    TooFewSamples {
+        /// Index of the revolution.
+        revolution: usize,
+        /// Index of its first sample.
+        first_sample: usize,
+        /// Samples in the revolution.
+        got: usize,
+        /// Samples needed.
+        need: usize,
+    },
+    /// The angular sampling of a revolution cannot resolve the fitted order (aliasing).
+    #[error(
+        "revolution {revolution}: angular gap of {max_gap_rad} rad after sample {after_sample} \
+         aliases order {order} (must be below π/{order} = {limit_rad} rad)"
+    )]
+    Aliasing {
+        /// Index of the revolution.
+        revolution: usize,
+        /// Index of the sample before the largest gap.
+        after_sample: usize,
+        /// The fitted order.
+        order: usize,
+        /// The largest angular gap between consecutive samples (wrapping round the revolution).
+        max_gap_rad: f64,
+        /// The largest gap that resolves the order, `π/order`.
+        limit_rad: f64,
+    },
+    /// The normal equations of a revolution are too badly conditioned to be solved reliably.
+    #[error(
+        "revolution {revolution}: normal equations ill-conditioned (1-norm condition {condition:e} \
+         after scaling, limit {limit:e})"
+    )]
+    IllConditioned {
+        /// Index of the revolution.
+        revolution: usize,
+        /// Estimated 1-norm condition number of the scaled normal matrix.
+        condition: f64,
+        /// The largest condition accepted.
+        limit: f64,
     },
 }
 

@@ -59,6 +59,19 @@ impl ProbeDirection {
             Self::AlongO1X1 => 1.0,
         }
     }
+
+    /// Azimuth `β` of the composite imbalance from the first harmonic (eq. 21):
+    /// against O1X1, `β = atan2(d_s1, −d_c1)`; along O1X1, `β = atan2(−d_s1, d_c1)`.
+    ///
+    /// ```
+    /// # use harmonics::{FirstHarmonic, ProbeDirection};
+    /// let h = FirstHarmonic::new(-3.0, 0.0).unwrap();
+    /// approx::assert_relative_eq!(ProbeDirection::AgainstO1X1.beta_rad(h), 0.0);
+    /// ```
+    pub fn beta_rad(self, h: FirstHarmonic) -> f64 {
+        let sign = self.sign();
+        (-sign * h.s1).atan2(sign * h.c1)
+    }
 }
 
 /// Heights along the spindle axis that carry the probe's first harmonic to the PIGA plane
@@ -127,8 +140,7 @@ impl LeverGeometry {
     /// Azimuth `β` of the composite imbalance from the first harmonic (eq. 21):
     /// against O1X1, `β = atan2(d_s1, −d_c1)`; along O1X1, `β = atan2(−d_s1, d_c1)`.
     pub fn beta_rad(&self, h: FirstHarmonic) -> f64 {
-        let sign = self.probe_direction.sign();
-        (-sign * h.s1).atan2(sign * h.c1)
+        self.probe_direction.beta_rad(h)
     }
 
     /// Carries a probe first harmonic to the PIGA plane (eq. 21–22).

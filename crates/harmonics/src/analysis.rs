@@ -1,0 +1,358 @@
+//! Per-revolution Fourier fit of a probe recording and its statistics across revolutions
+//! (eq. 20–21).
+
+use std::f64::consts::PI;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{HarmonicsError, Result};
+use crate::geometry::FirstHarmonic;
+use crate::kernel::{AngleMap, Centring, MAX_ORDER, accumulate};
+use crate::signal::{
+    IncompleteRevolution, ProbeSignal, Segmentation, SpindleAngle, exact_max_gap, segment,
+};
+use crate::solve::{parameter_count, solve};
+
+/// The paper's Fourier order (eq. 20 is fitted up to `i = 4`).
+pub const DEFAULT_ORDER: usize = 4;
+
+/// Settings of the harmonic fit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FitConfig {
+    /// Highest Fourier order `N` fitted (1 to [`MAX_ORDER`]; the paper uses 4).
+    pub order: usize,
+    /// Also fit a linear drift in time within each revolution.
+    pub drift: bool,
+    /// Use only the first this many complete revolutions (all when `None`).
+    pub revolutions: Option<usize>,
+    /// Largest interval between samples, in mean sample intervals, before the recording is
+    /// refused as having a gap.
+    pub max_gap_intervals: f64,
+}
+
+impl Default for FitConfig {
+    fn default() -> Self {
+        Self {
+            order: DEFAULT_ORDER,
+            drift: false,
+            revolutions: None,
+            max_gap_intervals: 3.0,
+        }
+    }
+}
+
+impl FitConfig {
+    /// Checks the settings.
+    pub fn validate(&self) -> Result<()> {
+        if !(1..=MAX_ORDER).contains(&self.order) {
+            return Err(HarmonicsError::InvalidOrder {
+                order: self.order,
+                max: MAX_ORDER,
+            });
+        }
+        if self.revolutions == Some(0) {
+            return Err(HarmonicsError::InvalidSetting {
+                field: "revolutions",
+                value: 0.0,
+                reason: "must be at least 1",
+            });
+        }
+        crate::signal::check_setting_gap(self.max_gap_intervals)
+    }
+
+    /// Fewest samples a revolution needs: more than the `2N + 1` (or `2N + 2` with drift)
+    /// parameters, and at least `2N + 2` so that order `N` is resolved.
+    pub const fn min_samples(&self) -> usize {
+        let p = parameter_count(self.order, self.drift);
+        let resolve = 2 * self.order + 2;
+        if p + 1 > resolve { p + 1 } else { resolve }
+    }
+}
+
+/// Fourier coefficients of the gap (eq. 20),
+/// `Δd(θ) = l0 + Σₖ (c[k−1] cos kθ + s[k−1] sin kθ)` (+ drift), in the gap's unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Coefficients {
+    /// Constant term `l0` (with drift: its value at the revolution's middle time).
+    pub l0: f64,
+    /// Cosine coefficients `d_ck`; index 0 is order 1.
+    pub c: Vec<f64>,
+    /// Sine coefficients `d_sk`; index 0 is order 1.
+    pub s: Vec<f64>,
+    /// Linear drift, gap unit per second (when fitted).
+    pub drift_per_s: Option<f64>,
+}
+
+impl Coefficients {
+    /// The Fourier order.
+    pub fn order(&self) -> usize {
+        self.c.len()
+    }
+
+    /// The periodic part `l0 + Σ (c cos kθ + s sin kθ)` at angle `θ` (drift left out).
+    ///
+    /// ```
+    /// # use harmonics::Coefficients;
+    /// let k = Coefficients { l0: 1.0, c: vec![2.0, 0.5], s: vec![-1.0, 0.0], drift_per_s: None };
+    /// approx::assert_relative_eq!(k.evaluate(0.0), 3.5, max_relative = 1e-15);
+    /// approx::assert_relative_eq!(k.evaluate(std::f64::consts::FRAC_PI_2), -0.5, epsilon = 1e-15);
+    /// ```
+    pub fn evaluate(&self, theta_rad: f64) -> f64 {
+        let mut v = self.l0;
+        for (k, (c, s)) in self.c.iter().zip(&self.s).enumerate() {
+            let (sin, cos) = ((k + 1) as f64 * theta_rad).sin_cos();
+            v += c * cos + s * sin;
+        }
+        v
+    }
+
+    /// The first harmonic `(d_c1, d_s1)` (eq. 21).
+    pub fn first_harmonic(&self) -> Result<FirstHarmonic> {
+        FirstHarmonic::new(self.c[0], self.s[0])
+    }
+
+    fn map(&self, f: impl Fn(f64) -> f64) -> Self {
+        Self {
+            l0: f(self.l0),
+            c: self.c.iter().map(|&v| f(v)).collect(),
+            s: self.s.iter().map(|&v| f(v)).collect(),
+            drift_per_s: self.drift_per_s.map(&f),
+        }
+    }
+
+    fn zip(&self, other: &Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        Self {
+            l0: f(self.l0, other.l0),
+            c: self
+                .c
+                .iter()
+                .zip(&other.c)
+                .map(|(&a, &b)| f(a, b))
+                .collect(),
+            s: self
+                .s
+                .iter()
+                .zip(&other.s)
+                .map(|(&a, &b)| f(a, b))
+                .collect(),
+            drift_per_s: self
+                .drift_per_s
+                .zip(other.drift_per_s)
+                .map(|(a, b)| f(a, b)),
+        }
+    }
+}
+
+/// The fit of one revolution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RevolutionFit {
+    /// Index of its first sample.
+    pub first_sample: usize,
+    /// Number of samples.
+    pub samples: usize,
+    /// The fitted coefficients.
+    pub coefficients: Coefficients,
+    /// Root mean square of the residuals, gap unit (floor about `√ε` times the signal's
+    /// RMS about its first sample, as the residual sum comes from the normal equations).
+    pub residual_rms: f64,
+    /// 1-norm condition number of the scaled normal matrix.
+    pub condition: f64,
+}
+
+/// The harmonic analysis of a recording: per-revolution fits and their statistics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HarmonicAnalysis {
+    /// Fourier order `N`.
+    pub order: usize,
+    /// Whether a drift term was fitted.
+    pub drift: bool,
+    /// The fit of each revolution used.
+    pub revolutions: Vec<RevolutionFit>,
+    /// Mean of each coefficient across revolutions.
+    pub mean: Coefficients,
+    /// Sample standard deviation across revolutions (`None` with a single revolution).
+    pub std: Option<Coefficients>,
+    /// Standard error of the mean, `std/√revolutions` (`None` with a single revolution).
+    pub std_error: Option<Coefficients>,
+    /// The trailing incomplete revolution, dropped.
+    pub incomplete: Option<IncompleteRevolution>,
+    /// Complete revolutions in the recording (at least the number used).
+    pub revolutions_available: usize,
+    /// Nominal (median) sample interval, s.
+    pub nominal_interval_s: f64,
+}
+
+impl HarmonicAnalysis {
+    /// Number of revolutions averaged.
+    pub fn revolutions_used(&self) -> usize {
+        self.revolutions.len()
+    }
+
+    /// The mean first harmonic (eq. 21).
+    pub fn first_harmonic(&self) -> Result<FirstHarmonic> {
+        self.mean.first_harmonic()
+    }
+}
+
+/// Fits eq. 20 to every complete revolution of a recording and averages the coefficients.
+///
+/// One streaming pass per revolution accumulates the normal equations (no design matrix);
+/// see the crate documentation for the method and its checks.
+///
+/// ```
+/// use harmonics::{analyze, FitConfig, ProbeSignal, SpindleAngle};
+/// let rate_rad_s = 10f64.to_radians();
+/// let time_s: Vec<f64> = (0..36_000 * 2).map(|i| i as f64 * 1e-3).collect();
+/// let gap: Vec<f64> = time_s.iter()
+///     .map(|t| 50.0 - 3.2 * (rate_rad_s * t).cos() - 1.1 * (rate_rad_s * t).sin()
+///              + 0.2 * (4.0 * rate_rad_s * t).cos())
+///     .collect();
+/// let signal = ProbeSignal { time_s: &time_s, gap: &gap,
+///     angle: SpindleAngle::Rate { rate_rad_s, start_angle_rad: 0.0 } };
+/// let fit = analyze(&signal, &FitConfig::default())?;
+/// assert_eq!(fit.revolutions_used(), 2);
+/// approx::assert_relative_eq!(fit.mean.c[0], -3.2, epsilon = 1e-9);
+/// approx::assert_relative_eq!(fit.mean.s[0], -1.1, epsilon = 1e-9);
+/// approx::assert_relative_eq!(fit.mean.c[3], 0.2, epsilon = 1e-9);
+/// approx::assert_relative_eq!(fit.first_harmonic()?.amplitude(), 3.2f64.hypot(1.1), epsilon = 1e-9);
+/// # Ok::<(), harmonics::HarmonicsError>(())
+/// ```
+pub fn analyze(signal: &ProbeSignal<'_>, config: &FitConfig) -> Result<HarmonicAnalysis> {
+    config.validate()?;
+    let seg = segment(signal, config.max_gap_intervals)?;
+    analyze_segmented(signal, config, &seg)
+}
+
+/// [`analyze`] on a recording already cut by [`segment`] (with the same signal).
+pub fn analyze_segmented(
+    signal: &ProbeSignal<'_>,
+    config: &FitConfig,
+    seg: &Segmentation,
+) -> Result<HarmonicAnalysis> {
+    config.validate()?;
+    let available = seg.revolutions.len();
+    let used = match config.revolutions {
+        Some(k) if k > available => {
+            return Err(HarmonicsError::TooFewRevolutions {
+                requested: k,
+                available,
+            });
+        }
+        Some(k) => k,
+        None => available,
+    };
+    let order = config.order;
+    let need = config.min_samples();
+    let limit_rad = PI / order as f64;
+    let (x, map): (&[f64], AngleMap) = match signal.angle {
+        SpindleAngle::Encoder(a) => (
+            a,
+            AngleMap {
+                shift: 0.0,
+                scale: 1.0,
+                offset: 0.0,
+            },
+        ),
+        SpindleAngle::Rate {
+            rate_rad_s,
+            start_angle_rad,
+        } => (
+            signal.time_s,
+            AngleMap {
+                shift: signal.time_s[0],
+                scale: rate_rad_s,
+                offset: start_angle_rad,
+            },
+        ),
+    };
+
+    let mut fits = Vec::with_capacity(used);
+    for (r, range) in seg.revolutions.iter().take(used).enumerate() {
+        let got = range.len();
+        if got < need {
+            return Err(HarmonicsError::TooFewSamples {
+                revolution: r,
+                first_sample: range.start,
+                got,
+                need,
+            });
+        }
+        let (mut gap, mut at) = seg.max_gaps[r];
+        if gap >= limit_rad && at == usize::MAX {
+            // Only a bound was known: find the revolution's own largest gap.
+            (gap, at) = exact_max_gap(signal, range.clone());
+        }
+        if gap >= limit_rad {
+            return Err(HarmonicsError::Aliasing {
+                revolution: r,
+                after_sample: at,
+                order,
+                max_gap_rad: gap,
+                limit_rad,
+            });
+        }
+        let t = &signal.time_s[range.clone()];
+        let (t_first, t_last) = (t[0], t[t.len() - 1]);
+        let centre = Centring {
+            y_ref: signal.gap[range.start],
+            t_mid: 0.5 * (t_first + t_last),
+            t_inv_half: 2.0 / (t_last - t_first),
+        };
+        let sums = accumulate(
+            order,
+            config.drift,
+            &x[range.clone()],
+            &signal.gap[range.clone()],
+            t,
+            map,
+            centre,
+        );
+        let sol = solve(&sums, order, config.drift, r)?;
+        let coefficients = Coefficients {
+            l0: sol.x[0] + centre.y_ref,
+            c: sol.x[1..=order].to_vec(),
+            s: sol.x[order + 1..=2 * order].to_vec(),
+            drift_per_s: config
+                .drift
+                .then(|| sol.x[2 * order + 1] * centre.t_inv_half),
+        };
+        fits.push(RevolutionFit {
+            first_sample: range.start,
+            samples: got,
+            coefficients,
+            residual_rms: (sol.rss / got as f64).sqrt(),
+            condition: sol.condition,
+        });
+    }
+
+    let k = fits.len() as f64;
+    let first = &fits[0].coefficients;
+    let sum = fits[1..].iter().fold(first.clone(), |acc, f| {
+        acc.zip(&f.coefficients, |a, b| a + b)
+    });
+    let mean = sum.map(|v| v / k);
+    let (std, std_error) = if fits.len() > 1 {
+        let zero = mean.map(|_| 0.0);
+        let ss = fits.iter().fold(zero, |acc, f| {
+            let d = f.coefficients.zip(&mean, |a, m| a - m);
+            acc.zip(&d, |a, d| a + d * d)
+        });
+        let std = ss.map(|v| (v / (k - 1.0)).sqrt());
+        let se = std.map(|v| v / k.sqrt());
+        (Some(std), Some(se))
+    } else {
+        (None, None)
+    };
+    Ok(HarmonicAnalysis {
+        order,
+        drift: config.drift,
+        revolutions: fits,
+        mean,
+        std,
+        std_error,
+        incomplete: seg.incomplete.clone(),
+        revolutions_available: available,
+        nominal_interval_s: seg.time_axis.nominal_interval_s,
+    })
+}

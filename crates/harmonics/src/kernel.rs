@@ -1,0 +1,383 @@
+//! The streaming pass over one revolution: the sums of the normal equations.
+//!
+//! For the basis `1, cos kθ, sin kθ (k = 1…N)` every entry of the normal matrix is a sum of
+//! `cos mθ` or `sin mθ` with `m ≤ 2N` (product-to-sum identities), so one pass accumulates
+//! `Σ cos mθ, Σ sin mθ (m ≤ 2N)`, the data products `Σ y cos kθ, Σ y sin kθ (k ≤ N)`, `Σ y`,
+//! `Σ y²` and, with a drift term, the products with the normalised time `τ`. The angle of each
+//! sample comes from the data, so `cos θ, sin θ` are computed per sample (see `sincos`) and the
+//! higher orders follow by the Chebyshev recurrence over the order at that sample,
+//! `cos kθ = 2 cos θ·cos (k−1)θ − cos (k−2)θ` (likewise for `sin kθ`). No design matrix is
+//! formed.
+//!
+//! Samples are processed `LANES` at a time in independent accumulators, which the compiler
+//! turns into SIMD; `pulp` dispatches at run time to the widest instruction set the CPU has
+//! (the workspace forbids `unsafe`, so no intrinsics here).
+
+// Lane loops index several arrays at once; that is what vectorises.
+#![allow(clippy::needless_range_loop)]
+
+use crate::sincos::sin_cos;
+
+/// Largest supported Fourier order.
+pub const MAX_ORDER: usize = 8;
+/// Length of the `Σ cos mθ` / `Σ sin mθ` arrays, `m = 0…2·MAX_ORDER`.
+pub(crate) const MOMENTS: usize = 2 * MAX_ORDER + 1;
+/// Samples per accumulation step.
+const LANES: usize = 8;
+
+/// How a sample's angle follows from its source value `x`: `θ = (x − shift)·scale + offset`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AngleMap {
+    pub(crate) shift: f64,
+    pub(crate) scale: f64,
+    pub(crate) offset: f64,
+}
+
+/// Centring of the data: `y − y_ref` and `τ = (t − t_mid)·t_inv_half ∈ [−1, 1]`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Centring {
+    pub(crate) y_ref: f64,
+    pub(crate) t_mid: f64,
+    pub(crate) t_inv_half: f64,
+}
+
+/// Sums over one revolution (centred data `y`, normalised time `τ`).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Sums {
+    /// Number of samples.
+    pub(crate) n: f64,
+    /// `Σ cos mθ`, `m = 0…2N` (`[0]` is `n`).
+    pub(crate) cos: [f64; MOMENTS],
+    /// `Σ sin mθ`, `m = 0…2N` (`[0]` is 0).
+    pub(crate) sin: [f64; MOMENTS],
+    /// `Σ y cos kθ`, `k = 0…N` (`[0]` is `Σ y`).
+    pub(crate) y_cos: [f64; MAX_ORDER + 1],
+    /// `Σ y sin kθ`, `k = 0…N` (`[0]` is 0).
+    pub(crate) y_sin: [f64; MAX_ORDER + 1],
+    /// `Σ y²`.
+    pub(crate) yy: f64,
+    /// `Σ τ cos kθ`, `k = 0…N` (`[0]` is `Σ τ`); zero without drift.
+    pub(crate) tau_cos: [f64; MAX_ORDER + 1],
+    /// `Σ τ sin kθ`, `k = 0…N`; zero without drift.
+    pub(crate) tau_sin: [f64; MAX_ORDER + 1],
+    /// `Σ τ²`.
+    pub(crate) tau_tau: f64,
+    /// `Σ τ y`.
+    pub(crate) tau_y: f64,
+}
+
+/// Per-lane accumulators.
+struct Acc<const W: usize> {
+    cos: [[f64; W]; MOMENTS],
+    sin: [[f64; W]; MOMENTS],
+    y_cos: [[f64; W]; MAX_ORDER + 1],
+    y_sin: [[f64; W]; MAX_ORDER + 1],
+    yy: [f64; W],
+    tau_cos: [[f64; W]; MAX_ORDER + 1],
+    tau_sin: [[f64; W]; MAX_ORDER + 1],
+    tau_tau: [f64; W],
+    tau_y: [f64; W],
+}
+
+impl<const W: usize> Acc<W> {
+    const ZERO: Self = Self {
+        cos: [[0.0; W]; MOMENTS],
+        sin: [[0.0; W]; MOMENTS],
+        y_cos: [[0.0; W]; MAX_ORDER + 1],
+        y_sin: [[0.0; W]; MAX_ORDER + 1],
+        yy: [0.0; W],
+        tau_cos: [[0.0; W]; MAX_ORDER + 1],
+        tau_sin: [[0.0; W]; MAX_ORDER + 1],
+        tau_tau: [0.0; W],
+        tau_y: [0.0; W],
+    };
+
+    /// Adds `W` samples.
+    #[inline(always)]
+    fn add<const N: usize, const DRIFT: bool>(
+        &mut self,
+        x: &[f64; W],
+        y: &[f64; W],
+        t: &[f64; W],
+        map: AngleMap,
+        centre: Centring,
+    ) {
+        let mut c1 = [0.0; W];
+        let mut s1 = [0.0; W];
+        let mut yv = [0.0; W];
+        let mut tau = [0.0; W];
+        for l in 0..W {
+            let theta = (x[l] - map.shift) * map.scale + map.offset;
+            (s1[l], c1[l]) = sin_cos(theta);
+            yv[l] = y[l] - centre.y_ref;
+            if DRIFT {
+                tau[l] = (t[l] - centre.t_mid) * centre.t_inv_half;
+            }
+        }
+        for l in 0..W {
+            self.yy[l] = yv[l].mul_add(yv[l], self.yy[l]);
+            self.y_cos[0][l] += yv[l];
+            self.cos[1][l] += c1[l];
+            self.sin[1][l] += s1[l];
+            self.y_cos[1][l] = yv[l].mul_add(c1[l], self.y_cos[1][l]);
+            self.y_sin[1][l] = yv[l].mul_add(s1[l], self.y_sin[1][l]);
+            if DRIFT {
+                self.tau_cos[0][l] += tau[l];
+                self.tau_tau[l] = tau[l].mul_add(tau[l], self.tau_tau[l]);
+                self.tau_y[l] = tau[l].mul_add(yv[l], self.tau_y[l]);
+                self.tau_cos[1][l] = tau[l].mul_add(c1[l], self.tau_cos[1][l]);
+                self.tau_sin[1][l] = tau[l].mul_add(s1[l], self.tau_sin[1][l]);
+            }
+        }
+        let mut c_prev = [1.0; W];
+        let mut s_prev = [0.0; W];
+        let mut c_k = c1;
+        let mut s_k = s1;
+        let mut two_c1 = [0.0; W];
+        for l in 0..W {
+            two_c1[l] = 2.0 * c1[l];
+        }
+        // Orders 2…N: moments, data products (and drift products).
+        for k in 2..=N {
+            for l in 0..W {
+                let c_next = two_c1[l].mul_add(c_k[l], -c_prev[l]);
+                let s_next = two_c1[l].mul_add(s_k[l], -s_prev[l]);
+                (c_prev[l], s_prev[l], c_k[l], s_k[l]) = (c_k[l], s_k[l], c_next, s_next);
+                self.cos[k][l] += c_next;
+                self.sin[k][l] += s_next;
+                self.y_cos[k][l] = yv[l].mul_add(c_next, self.y_cos[k][l]);
+                self.y_sin[k][l] = yv[l].mul_add(s_next, self.y_sin[k][l]);
+                if DRIFT {
+                    self.tau_cos[k][l] = tau[l].mul_add(c_next, self.tau_cos[k][l]);
+                    self.tau_sin[k][l] = tau[l].mul_add(s_next, self.tau_sin[k][l]);
+                }
+            }
+        }
+        // Orders N+1…2N: moments only.
+        for k in N + 1..=2 * N {
+            for l in 0..W {
+                let c_next = two_c1[l].mul_add(c_k[l], -c_prev[l]);
+                let s_next = two_c1[l].mul_add(s_k[l], -s_prev[l]);
+                (c_prev[l], s_prev[l], c_k[l], s_k[l]) = (c_k[l], s_k[l], c_next, s_next);
+                self.cos[k][l] += c_next;
+                self.sin[k][l] += s_next;
+            }
+        }
+    }
+
+    /// Adds the lanes into `sums`.
+    fn reduce_into(&self, sums: &mut Sums) {
+        let add = |dst: &mut [f64], src: &[[f64; W]]| {
+            for (d, s) in dst.iter_mut().zip(src) {
+                *d += s.iter().sum::<f64>();
+            }
+        };
+        add(&mut sums.cos, &self.cos);
+        add(&mut sums.sin, &self.sin);
+        add(&mut sums.y_cos, &self.y_cos);
+        add(&mut sums.y_sin, &self.y_sin);
+        add(&mut sums.tau_cos, &self.tau_cos);
+        add(&mut sums.tau_sin, &self.tau_sin);
+        sums.yy += self.yy.iter().sum::<f64>();
+        sums.tau_tau += self.tau_tau.iter().sum::<f64>();
+        sums.tau_y += self.tau_y.iter().sum::<f64>();
+    }
+}
+
+/// The pass for a fixed order and drift flag.
+#[inline(always)]
+fn pass<const N: usize, const DRIFT: bool>(
+    x: &[f64],
+    y: &[f64],
+    t: &[f64],
+    map: AngleMap,
+    centre: Centring,
+) -> Sums {
+    debug_assert_eq!(x.len(), y.len());
+    debug_assert!(!DRIFT || t.len() == y.len());
+    let n = y.len();
+    let body = n - n % LANES;
+    let mut wide = Acc::<LANES>::ZERO;
+    for i in (0..body).step_by(LANES) {
+        let xs: &[f64; LANES] = x[i..i + LANES].try_into().expect("lane width");
+        let ys: &[f64; LANES] = y[i..i + LANES].try_into().expect("lane width");
+        let ts: &[f64; LANES] = if DRIFT {
+            t[i..i + LANES].try_into().expect("lane width")
+        } else {
+            xs
+        };
+        wide.add::<N, DRIFT>(xs, ys, ts, map, centre);
+    }
+    let mut narrow = Acc::<1>::ZERO;
+    for i in body..n {
+        let ts = if DRIFT { [t[i]] } else { [0.0] };
+        narrow.add::<N, DRIFT>(&[x[i]], &[y[i]], &ts, map, centre);
+    }
+    let mut sums = Sums {
+        n: n as f64,
+        cos: [0.0; MOMENTS],
+        sin: [0.0; MOMENTS],
+        y_cos: [0.0; MAX_ORDER + 1],
+        y_sin: [0.0; MAX_ORDER + 1],
+        yy: 0.0,
+        tau_cos: [0.0; MAX_ORDER + 1],
+        tau_sin: [0.0; MAX_ORDER + 1],
+        tau_tau: 0.0,
+        tau_y: 0.0,
+    };
+    wide.reduce_into(&mut sums);
+    narrow.reduce_into(&mut sums);
+    sums.cos[0] = sums.n;
+    sums
+}
+
+/// Accumulates the sums of one revolution, dispatching on the order, the drift flag and
+/// the CPU's instruction set.
+///
+/// `x` is the angle source of each sample (encoder angle or time), `y` the gap and `t` the
+/// time (read only with `drift`). `order` must be in `1..=MAX_ORDER` (checked by the caller).
+pub(crate) fn accumulate(
+    order: usize,
+    drift: bool,
+    x: &[f64],
+    y: &[f64],
+    t: &[f64],
+    map: AngleMap,
+    centre: Centring,
+) -> Sums {
+    let arch = pulp::Arch::new();
+    macro_rules! dispatch {
+        ($($n:literal)*) => {
+            match (order, drift) {
+                $(
+                    ($n, false) => arch.dispatch(Pass::<$n, false> { x, y, t, map, centre }),
+                    ($n, true) => arch.dispatch(Pass::<$n, true> { x, y, t, map, centre }),
+                )*
+                _ => unreachable!("order {order} checked by the caller"),
+            }
+        };
+    }
+    dispatch!(1 2 3 4 5 6 7 8)
+}
+
+/// The pass as a `pulp` operation: `with_simd` is inlined into the function that `pulp`
+/// compiles with the CPU's features, and `pass` (inlined into it) is vectorised for them.
+struct Pass<'a, const N: usize, const DRIFT: bool> {
+    x: &'a [f64],
+    y: &'a [f64],
+    t: &'a [f64],
+    map: AngleMap,
+    centre: Centring,
+}
+
+impl<const N: usize, const DRIFT: bool> pulp::WithSimd for Pass<'_, N, DRIFT> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Sums {
+        pass::<N, DRIFT>(self.x, self.y, self.t, self.map, self.centre)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Direct evaluation with libm, for comparison.
+    fn direct(order: usize, x: &[f64], y: &[f64], t: &[f64], map: AngleMap, c: Centring) -> Sums {
+        let mut s = Sums {
+            n: x.len() as f64,
+            cos: [0.0; MOMENTS],
+            sin: [0.0; MOMENTS],
+            y_cos: [0.0; MAX_ORDER + 1],
+            y_sin: [0.0; MAX_ORDER + 1],
+            yy: 0.0,
+            tau_cos: [0.0; MAX_ORDER + 1],
+            tau_sin: [0.0; MAX_ORDER + 1],
+            tau_tau: 0.0,
+            tau_y: 0.0,
+        };
+        for i in 0..x.len() {
+            let theta = (x[i] - map.shift) * map.scale + map.offset;
+            let yv = y[i] - c.y_ref;
+            let tau = (t[i] - c.t_mid) * c.t_inv_half;
+            s.yy += yv * yv;
+            s.tau_tau += tau * tau;
+            s.tau_y += tau * yv;
+            for m in 0..=2 * order {
+                let (sm, cm) = (m as f64 * theta).sin_cos();
+                s.cos[m] += cm;
+                s.sin[m] += sm;
+                if m <= order {
+                    s.y_cos[m] += yv * cm;
+                    s.y_sin[m] += yv * sm;
+                    s.tau_cos[m] += tau * cm;
+                    s.tau_sin[m] += tau * sm;
+                }
+            }
+        }
+        s
+    }
+
+    #[test]
+    fn recurrence_matches_direct_sums_for_every_order() {
+        let n = 1003; // not a multiple of the lane width
+        let x: Vec<f64> = (0..n)
+            .map(|i| 0.3 + 0.0071 * i as f64 + 1e-3 * (i as f64).sin())
+            .collect();
+        let y: Vec<f64> = (0..n).map(|i| 5.0 + (0.37 * i as f64).cos()).collect();
+        let t: Vec<f64> = (0..n).map(|i| 0.001 * i as f64).collect();
+        let map = AngleMap {
+            shift: 0.1,
+            scale: 1.3,
+            offset: -0.2,
+        };
+        let centre = Centring {
+            y_ref: 5.0,
+            t_mid: 0.5,
+            t_inv_half: 2.0,
+        };
+        for order in 1..=MAX_ORDER {
+            let got = accumulate(order, true, &x, &y, &t, map, centre);
+            let want = direct(order, &x, &y, &t, map, centre);
+            let close = |a: &[f64], b: &[f64]| {
+                a.iter()
+                    .zip(b)
+                    .all(|(a, b)| (a - b).abs() <= 1e-10 * n as f64)
+            };
+            assert!(
+                close(&got.cos[..=2 * order], &want.cos[..=2 * order]),
+                "order {order}"
+            );
+            assert!(
+                close(&got.sin[..=2 * order], &want.sin[..=2 * order]),
+                "order {order}"
+            );
+            assert!(
+                close(&got.y_cos[..=order], &want.y_cos[..=order]),
+                "order {order}"
+            );
+            assert!(
+                close(&got.y_sin[..=order], &want.y_sin[..=order]),
+                "order {order}"
+            );
+            assert!(
+                close(&got.tau_cos[..=order], &want.tau_cos[..=order]),
+                "order {order}"
+            );
+            assert!(
+                close(&got.tau_sin[..=order], &want.tau_sin[..=order]),
+                "order {order}"
+            );
+            assert!(close(
+                &[got.yy, got.tau_tau, got.tau_y],
+                &[want.yy, want.tau_tau, want.tau_y]
+            ));
+            // Without drift the drift sums stay zero and the others are unchanged.
+            let plain = accumulate(order, false, &x, &y, &t, map, centre);
+            assert_eq!(plain.cos, got.cos);
+            assert_eq!(plain.y_sin, got.y_sin);
+            assert_eq!(plain.tau_y, 0.0);
+        }
+    }
+}

@@ -1,0 +1,514 @@
+//! Checking a probe recording's samples and cutting it into revolutions.
+
+// Lane loops index several arrays at once; that is what vectorises.
+#![allow(clippy::needless_range_loop)]
+
+use std::f64::consts::TAU;
+use std::ops::Range;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{HarmonicsError, Result};
+
+/// Where each sample's spindle angle comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpindleAngle<'a> {
+    /// The spindle encoder's angle of each sample, rad, zero at the O1X1 reference. It may
+    /// wrap (at 2π or anywhere): consecutive steps are unwrapped into `(−π, π]` and must not
+    /// be negative.
+    Encoder(&'a [f64]),
+    /// A constant rate: `θ = ω·(t − t₀) + θ₀`, with `t₀` the first sample's time.
+    Rate {
+        /// Spindle rate `ω`, rad/s.
+        rate_rad_s: f64,
+        /// Angle `θ₀` of the first sample from O1X1, rad.
+        start_angle_rad: f64,
+    },
+}
+
+/// A probe recording held in memory: one sample per index of equal-length slices.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProbeSignal<'a> {
+    /// Sample times, s, strictly increasing.
+    pub time_s: &'a [f64],
+    /// Probe gap of each sample, in the recording's length unit (µm in the paper).
+    pub gap: &'a [f64],
+    /// Source of each sample's spindle angle.
+    pub angle: SpindleAngle<'a>,
+}
+
+/// The sampling of a recording's time axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeAxis {
+    /// Nominal sample interval, s: the median of up to 1025 intervals spread evenly over
+    /// the recording.
+    pub nominal_interval_s: f64,
+    /// Largest sample interval, s.
+    pub max_interval_s: f64,
+}
+
+/// The trailing revolution that the recording does not complete, dropped from the fit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct IncompleteRevolution {
+    /// Its samples.
+    pub samples: Range<usize>,
+    /// The fraction of a turn its samples cover.
+    pub turns: f64,
+}
+
+/// A recording cut into complete revolutions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Segmentation {
+    /// Sample ranges of the complete revolutions, in order. Revolution `r` covers the angles
+    /// `[θ_first + 2πr, θ_first + 2π(r+1))` from the first sample's angle.
+    pub revolutions: Vec<Range<usize>>,
+    /// The trailing incomplete revolution, if any (dropped).
+    pub incomplete: Option<IncompleteRevolution>,
+    /// The recording's time axis.
+    pub time_axis: TimeAxis,
+    /// Largest angular gap of each revolution (wrapping round it), rad, with the index of
+    /// the sample before it; the index is `usize::MAX` when only a bound is known.
+    pub(crate) max_gaps: Vec<(f64, usize)>,
+}
+
+/// Checks a time axis: every value finite, strictly increasing, and no interval longer than
+/// `max_gap_intervals` times the nominal (median) interval. Errors name the sample index.
+///
+/// ```
+/// # use harmonics::{check_time_axis, HarmonicsError};
+/// let t = [0.0, 0.001, 0.002, 0.010, 0.011];
+/// assert!(matches!(check_time_axis(&t, 3.0),
+///                  Err(HarmonicsError::SampleGap { index: 3, .. })));
+/// let axis = check_time_axis(&t[..3], 3.0)?;
+/// approx::assert_relative_eq!(axis.nominal_interval_s, 0.001, max_relative = 1e-12);
+/// # Ok::<(), HarmonicsError>(())
+/// ```
+pub fn check_time_axis(time_s: &[f64], max_gap_intervals: f64) -> Result<TimeAxis> {
+    check_setting_gap(max_gap_intervals)?;
+    let n = time_s.len();
+    if n < 2 {
+        if let Some(&t) = time_s.first().filter(|t| !t.is_finite()) {
+            return Err(HarmonicsError::NonFinite {
+                index: 0,
+                column: "time",
+                value: t,
+            });
+        }
+        return Err(HarmonicsError::NoCompleteRevolution {
+            samples: n,
+            turns: 0.0,
+        });
+    }
+    let nominal = nominal_interval(time_s);
+    if nominal.is_finite() && nominal > 0.0 {
+        // Fast path: one vectorisable pass; the slow scan below only runs to name the culprit.
+        let (ok, max_interval_s) = pulp::Arch::new().dispatch(IntervalsWithin {
+            t: time_s,
+            limit: nominal * max_gap_intervals,
+        });
+        if ok {
+            return Ok(TimeAxis {
+                nominal_interval_s: nominal,
+                max_interval_s,
+            });
+        }
+    }
+    for i in 0..n {
+        let t = time_s[i];
+        if !t.is_finite() {
+            return Err(HarmonicsError::NonFinite {
+                index: i,
+                column: "time",
+                value: t,
+            });
+        }
+        if i > 0 && t <= time_s[i - 1] {
+            return Err(HarmonicsError::TimeNotIncreasing {
+                index: i,
+                previous_s: time_s[i - 1],
+                time_s: t,
+            });
+        }
+    }
+    for i in 1..n {
+        let interval_s = time_s[i] - time_s[i - 1];
+        if interval_s > nominal * max_gap_intervals {
+            return Err(HarmonicsError::SampleGap {
+                index: i,
+                interval_s,
+                nominal_interval_s: nominal,
+                max_intervals: max_gap_intervals,
+            });
+        }
+    }
+    unreachable!("the fast path refused a valid time axis")
+}
+
+/// The nominal sample interval: the median of up to 1025 intervals spread evenly over the
+/// recording (robust to a few gaps, and cheap). NaN or non-positive for a bad time axis.
+fn nominal_interval(t: &[f64]) -> f64 {
+    let m = t.len() - 1;
+    let k = m.min(1025);
+    let mut v: Vec<f64> = (0..k)
+        .map(|j| {
+            let i = j * m / k;
+            t[i + 1] - t[i]
+        })
+        .collect();
+    let mid = k / 2;
+    *v.select_nth_unstable_by(mid, f64::total_cmp).1
+}
+
+/// Whether every interval is in `(0, limit]` (false for any NaN), and the largest interval.
+struct IntervalsWithin<'a> {
+    t: &'a [f64],
+    limit: f64,
+}
+
+impl pulp::WithSimd for IntervalsWithin<'_> {
+    type Output = (bool, f64);
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> (bool, f64) {
+        intervals_within(self.t, self.limit)
+    }
+}
+
+#[inline(always)]
+fn intervals_within(t: &[f64], limit: f64) -> (bool, f64) {
+    const W: usize = 8;
+    let mut ok = [true; W];
+    let mut max = [0.0_f64; W];
+    let (a, b) = (&t[..t.len() - 1], &t[1..]);
+    let body = a.len() - a.len() % W;
+    for i in (0..body).step_by(W) {
+        for l in 0..W {
+            let d = b[i + l] - a[i + l];
+            ok[l] &= d > 0.0 && d <= limit;
+            max[l] = if d > max[l] { d } else { max[l] };
+        }
+    }
+    let mut all = ok.iter().all(|&o| o);
+    let mut m = max.iter().copied().fold(0.0, f64::max);
+    for i in body..a.len() {
+        let d = b[i] - a[i];
+        all &= d > 0.0 && d <= limit;
+        m = m.max(d);
+    }
+    (all, m)
+}
+
+/// Index of the first non-finite value, if any.
+fn first_non_finite(x: &[f64]) -> Option<usize> {
+    pulp::Arch::new().dispatch(FirstNonFinite(x))
+}
+
+struct FirstNonFinite<'a>(&'a [f64]);
+
+impl pulp::WithSimd for FirstNonFinite<'_> {
+    type Output = Option<usize>;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Option<usize> {
+        first_non_finite_impl(self.0)
+    }
+}
+
+#[inline(always)]
+fn first_non_finite_impl(x: &[f64]) -> Option<usize> {
+    const W: usize = 64;
+    for (c, chunk) in x.chunks(W).enumerate() {
+        if !chunk.iter().fold(true, |ok, v| ok & v.is_finite()) {
+            let j = chunk
+                .iter()
+                .position(|v| !v.is_finite())
+                .expect("found above");
+            return Some(c * W + j);
+        }
+    }
+    None
+}
+
+pub(crate) fn check_setting_gap(max_gap_intervals: f64) -> Result<()> {
+    if !(max_gap_intervals.is_finite() && max_gap_intervals >= 1.0) {
+        return Err(HarmonicsError::InvalidSetting {
+            field: "max_gap_intervals",
+            value: max_gap_intervals,
+            reason: "must be finite and at least 1",
+        });
+    }
+    Ok(())
+}
+
+/// Checks the samples and cuts the recording into complete revolutions.
+///
+/// Checks, in this order, naming the sample: equal lengths, finite values, strictly
+/// increasing time, no gap above `max_gap_intervals` nominal intervals, an encoder angle that
+/// does not step back (or a finite positive rate). The trailing revolution is complete when
+/// the angle left to close it is at most `max_gap_intervals` nominal angular steps; otherwise
+/// it is returned as [`Segmentation::incomplete`]. Fails with
+/// [`HarmonicsError::NoCompleteRevolution`] when no revolution is complete.
+pub fn segment(signal: &ProbeSignal<'_>, max_gap_intervals: f64) -> Result<Segmentation> {
+    check_setting_gap(max_gap_intervals)?;
+    let n = signal.time_s.len();
+    if signal.gap.len() != n {
+        return Err(HarmonicsError::LengthMismatch {
+            column: "gap",
+            len: signal.gap.len(),
+            expected: n,
+        });
+    }
+    if let SpindleAngle::Encoder(a) = signal.angle {
+        if a.len() != n {
+            return Err(HarmonicsError::LengthMismatch {
+                column: "angle",
+                len: a.len(),
+                expected: n,
+            });
+        }
+    }
+    let time_axis = check_time_axis(signal.time_s, max_gap_intervals)?;
+    if let Some(index) = first_non_finite(signal.gap) {
+        return Err(HarmonicsError::NonFinite {
+            index,
+            column: "gap",
+            value: signal.gap[index],
+        });
+    }
+    match signal.angle {
+        SpindleAngle::Rate {
+            rate_rad_s,
+            start_angle_rad,
+        } => {
+            if !(rate_rad_s.is_finite() && rate_rad_s > 0.0) {
+                return Err(HarmonicsError::InvalidRate { rate_rad_s });
+            }
+            if !start_angle_rad.is_finite() {
+                return Err(HarmonicsError::InvalidSetting {
+                    field: "start_angle_rad",
+                    value: start_angle_rad,
+                    reason: "must be finite",
+                });
+            }
+            Ok(segment_rate(
+                signal.time_s,
+                rate_rad_s,
+                time_axis,
+                max_gap_intervals,
+            ))
+        }
+        SpindleAngle::Encoder(a) => {
+            if let Some(index) = first_non_finite(a) {
+                return Err(HarmonicsError::NonFinite {
+                    index,
+                    column: "angle",
+                    value: a[index],
+                });
+            }
+            segment_encoder(a, time_axis, max_gap_intervals)
+        }
+    }
+    .and_then(|s| {
+        if s.revolutions.is_empty() {
+            let turns = s.incomplete.as_ref().map_or(0.0, |i| i.turns);
+            Err(HarmonicsError::NoCompleteRevolution { samples: n, turns })
+        } else {
+            Ok(s)
+        }
+    })
+}
+
+fn segment_rate(
+    t: &[f64],
+    omega: f64,
+    time_axis: TimeAxis,
+    max_gap_intervals: f64,
+) -> Segmentation {
+    let n = t.len();
+    let t0 = t[0];
+    let turn = |ti: f64| omega * (ti - t0) / TAU;
+    let candidates = turn(t[n - 1]).floor() as usize + 1;
+    let mut starts = Vec::with_capacity(candidates + 1);
+    for r in 0..candidates {
+        starts.push(t.partition_point(|&ti| turn(ti) < r as f64));
+    }
+    starts.push(n);
+    let nominal_step = omega * time_axis.nominal_interval_s;
+    // Every step inside the recording is at most ω·(largest interval); a revolution's closing
+    // gap is checked on its own.
+    let step_bound = omega * time_axis.max_interval_s;
+    let mut revolutions = Vec::with_capacity(candidates);
+    let mut max_gaps = Vec::with_capacity(candidates);
+    let mut incomplete = None;
+    for r in 0..candidates {
+        let range = starts[r]..starts[r + 1];
+        if range.is_empty() {
+            continue;
+        }
+        let span = omega * (t[range.end - 1] - t[range.start]);
+        let closing = TAU - span;
+        let last = r + 1 == candidates;
+        if last && closing > max_gap_intervals * nominal_step {
+            incomplete = Some(IncompleteRevolution {
+                turns: span / TAU,
+                samples: range,
+            });
+            continue;
+        }
+        let (gap, at) = if closing > step_bound {
+            (closing, range.end - 1)
+        } else {
+            (step_bound, usize::MAX)
+        };
+        max_gaps.push((gap, at));
+        revolutions.push(range);
+    }
+    Segmentation {
+        revolutions,
+        incomplete,
+        time_axis,
+        max_gaps,
+    }
+}
+
+/// Wrapped step `d − 2π·round(d/2π) ∈ [−π, π]` between consecutive encoder readings.
+#[inline(always)]
+fn encoder_step(prev: f64, next: f64) -> f64 {
+    let d = next - prev;
+    d - (d / TAU).round_ties_even() * TAU
+}
+
+/// Angle of a reading from the first one, wrapped into `[0, 2π)` (up to rounding).
+#[inline(always)]
+fn phase(a: f64, start: f64) -> f64 {
+    let x = a - start;
+    x - (x / TAU).floor() * TAU
+}
+
+/// The vectorised encoder pass: whether no step is negative, the largest step, and the
+/// samples at which the angle passes the first sample's angle again (revolution starts).
+struct EncoderScan<'a>(&'a [f64]);
+
+impl pulp::WithSimd for EncoderScan<'_> {
+    type Output = (bool, f64, Vec<usize>);
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Self::Output {
+        const W: usize = 8;
+        const CHUNK: usize = 64;
+        let a = self.0;
+        let start = a[0];
+        let mut ok = true;
+        let mut max_step = [0.0_f64; W];
+        let mut starts = Vec::new();
+        // Pairs (i−1, i) for i in 1..n, in chunks of CHUNK pairs.
+        let pairs = a.len() - 1;
+        let mut base = 0;
+        while base < pairs {
+            let len = CHUNK.min(pairs - base);
+            let mut chunk_ok = true;
+            let mut crossing = false;
+            if len == CHUNK {
+                for g in (0..CHUNK).step_by(W) {
+                    for l in 0..W {
+                        let i = base + g + l;
+                        let step = encoder_step(a[i], a[i + 1]);
+                        chunk_ok &= step >= 0.0;
+                        max_step[l] = if step > max_step[l] {
+                            step
+                        } else {
+                            max_step[l]
+                        };
+                        crossing |= phase(a[i + 1], start) < phase(a[i], start);
+                    }
+                }
+            } else {
+                for i in base..base + len {
+                    let step = encoder_step(a[i], a[i + 1]);
+                    chunk_ok &= step >= 0.0;
+                    max_step[0] = max_step[0].max(step);
+                    crossing |= phase(a[i + 1], start) < phase(a[i], start);
+                }
+            }
+            ok &= chunk_ok;
+            if crossing {
+                for i in base..base + len {
+                    if phase(a[i + 1], start) < phase(a[i], start) {
+                        starts.push(i + 1);
+                    }
+                }
+            }
+            base += len;
+        }
+        (ok, max_step.iter().copied().fold(0.0, f64::max), starts)
+    }
+}
+
+fn segment_encoder(a: &[f64], time_axis: TimeAxis, max_gap_intervals: f64) -> Result<Segmentation> {
+    let n = a.len();
+    let start = a[0];
+    let (ok, max_step, crossings) = pulp::Arch::new().dispatch(EncoderScan(a));
+    if !ok {
+        let i = (1..n)
+            .find(|&i| encoder_step(a[i - 1], a[i]) < 0.0)
+            .expect("the scan found one");
+        return Err(HarmonicsError::AngleNotIncreasing {
+            index: i,
+            step_rad: encoder_step(a[i - 1], a[i]),
+        });
+    }
+    let mut bounds = Vec::with_capacity(crossings.len() + 2);
+    bounds.push(0);
+    bounds.extend(crossings);
+    bounds.push(n);
+    let turns_total = (bounds.len() - 2) as f64;
+    let nominal_step = ((TAU * turns_total + phase(a[n - 1], start)) / (n - 1) as f64).max(0.0);
+    let mut revolutions = Vec::with_capacity(bounds.len());
+    let mut max_gaps = Vec::with_capacity(bounds.len());
+    let mut incomplete = None;
+    for (r, w) in bounds.windows(2).enumerate() {
+        let range = w[0]..w[1];
+        let span = phase(a[range.end - 1], start) - phase(a[range.start], start);
+        let closing = TAU - span;
+        let last = r + 2 == bounds.len();
+        if last && closing > max_gap_intervals * nominal_step {
+            incomplete = Some(IncompleteRevolution {
+                turns: span / TAU,
+                samples: range,
+            });
+            continue;
+        }
+        let (gap, at) = if closing > max_step {
+            (closing, range.end - 1)
+        } else {
+            (max_step, usize::MAX)
+        };
+        max_gaps.push((gap, at));
+        revolutions.push(range);
+    }
+    Ok(Segmentation {
+        revolutions,
+        incomplete,
+        time_axis,
+        max_gaps,
+    })
+}
+
+/// The largest angular gap of a revolution, wrapping round it, with the sample before it.
+pub(crate) fn exact_max_gap(signal: &ProbeSignal<'_>, range: Range<usize>) -> (f64, usize) {
+    let step = |i: usize| match signal.angle {
+        SpindleAngle::Rate { rate_rad_s, .. } => {
+            rate_rad_s * (signal.time_s[i + 1] - signal.time_s[i])
+        }
+        SpindleAngle::Encoder(a) => encoder_step(a[i], a[i + 1]),
+    };
+    let span: f64 = (range.start..range.end - 1).map(step).sum();
+    let mut best = (TAU - span, range.end - 1);
+    for i in range.start..range.end - 1 {
+        let g = step(i);
+        if g > best.0 {
+            best = (g, i);
+        }
+    }
+    best
+}
