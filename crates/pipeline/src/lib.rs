@@ -38,6 +38,7 @@ mod error;
 mod expected;
 mod output;
 mod plot;
+mod recording;
 mod report;
 mod results;
 mod study;
@@ -48,6 +49,9 @@ pub use error::{PipelineError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
 pub use output::{WrittenFiles, results_json, write_outputs};
 pub use plot::radius_error_svg;
+pub use recording::{
+    AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, load_recording, parse_recording,
+};
 pub use report::render as render_report;
 pub use results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
 pub use study::run;

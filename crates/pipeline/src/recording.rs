@@ -1,0 +1,959 @@
+//! Probe recordings: delimited text files of time, probe gap and, optionally, the spindle
+//! encoder's angle, one sample per row (the raw data behind eq. 20).
+//!
+//! The file is read into memory once and parsed in a single pass without an allocation per
+//! row: fields are parsed in place by a fast decimal parser (exact for up to 19 significant
+//! digits and exponents within ±22, the standard library's parser otherwise). Errors name the
+//! file and the 1-based line.
+//!
+//! ```
+//! use pipeline::{parse_recording, RecordingFormat};
+//! let text = "# probe at 10 deg/s\ntime_s,gap_um,angle_deg\n0.000,12.5,359.9\n0.001,12.6,0.1\n";
+//! let rec = parse_recording(text.as_bytes(), "probe.csv".as_ref(), &RecordingFormat::default())?;
+//! assert_eq!(rec.time_s, [0.0, 0.001]);
+//! approx::assert_relative_eq!(rec.angle_rad.as_ref().unwrap()[1], 0.1f64.to_radians());
+//! # Ok::<(), pipeline::RecordingError>(())
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
+use serde::{Deserialize, Serialize};
+
+/// Length unit of the gap column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LengthUnit {
+    /// Micrometres (the paper's unit).
+    #[default]
+    Um,
+    /// Millimetres.
+    Mm,
+    /// Metres.
+    M,
+}
+
+impl LengthUnit {
+    /// Micrometres per unit.
+    pub const fn um_per_unit(self) -> f64 {
+        match self {
+            Self::Um => 1.0,
+            Self::Mm => 1e3,
+            Self::M => 1e6,
+        }
+    }
+
+    /// The unit's symbol (`um`, `mm`, `m`).
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Um => "um",
+            Self::Mm => "mm",
+            Self::M => "m",
+        }
+    }
+}
+
+/// Angle unit of the encoder column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AngleUnit {
+    /// Degrees.
+    #[default]
+    Deg,
+    /// Radians.
+    Rad,
+}
+
+impl AngleUnit {
+    /// Radians per unit.
+    pub const fn rad_per_unit(self) -> f64 {
+        match self {
+            Self::Deg => std::f64::consts::PI / 180.0,
+            Self::Rad => 1.0,
+        }
+    }
+}
+
+/// Layout of a probe-recording file; every field has a default, so a study configuration
+/// names only what differs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RecordingFormat {
+    /// Header name of the time column, seconds (default `time_s`).
+    pub time_column: String,
+    /// Header name of the gap column (default `gap_um`).
+    pub gap_column: String,
+    /// Header name of the encoder-angle column (default `angle_deg`), used when the header
+    /// has it; zero at the O1X1 reference, may wrap.
+    pub angle_column: String,
+    /// Unit of the gap column (default µm).
+    pub gap_unit: LengthUnit,
+    /// Unit of the angle column (default degrees).
+    pub angle_unit: AngleUnit,
+    /// Field delimiter, one ASCII character (default `,`). With `' '` or `'\t'`, runs of
+    /// blanks separate fields.
+    pub delimiter: char,
+    /// Largest interval between samples, in nominal (median) sample intervals, before the
+    /// file is refused as having a gap (default 3).
+    pub max_gap_intervals: f64,
+}
+
+impl Default for RecordingFormat {
+    fn default() -> Self {
+        Self {
+            time_column: "time_s".into(),
+            gap_column: "gap_um".into(),
+            angle_column: "angle_deg".into(),
+            gap_unit: LengthUnit::Um,
+            angle_unit: AngleUnit::Deg,
+            delimiter: ',',
+            max_gap_intervals: 3.0,
+        }
+    }
+}
+
+/// A probe recording in memory.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recording {
+    /// The file it was read from.
+    pub path: PathBuf,
+    /// Sample times, s (strictly increasing, no gap above the format's limit).
+    pub time_s: Vec<f64>,
+    /// Probe gap of each sample, in [`Recording::gap_unit`].
+    pub gap: Vec<f64>,
+    /// Unit of [`Recording::gap`].
+    pub gap_unit: LengthUnit,
+    /// Encoder angle of each sample, rad, when the file has the angle column.
+    pub angle_rad: Option<Vec<f64>>,
+}
+
+impl Recording {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    /// Whether there are no samples (never true for a loaded recording).
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+
+    /// The samples as a [`ProbeSignal`]: angles from the encoder column when present, else
+    /// `θ = ω·(t − t₀) + θ₀` from the given rate and first-sample angle.
+    pub fn signal(&self, rate_rad_s: f64, start_angle_rad: f64) -> ProbeSignal<'_> {
+        let angle = match &self.angle_rad {
+            Some(a) => SpindleAngle::Encoder(a),
+            None => SpindleAngle::Rate {
+                rate_rad_s,
+                start_angle_rad,
+            },
+        };
+        ProbeSignal {
+            time_s: &self.time_s,
+            gap: &self.gap,
+            angle,
+        }
+    }
+}
+
+/// Errors of reading a probe recording; each names the file and, where it applies, the
+/// 1-based line.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RecordingError {
+    /// The file could not be read.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// The format itself is unusable.
+    #[error("recording format: `{field}` {reason}")]
+    InvalidFormat {
+        /// The offending field of [`RecordingFormat`].
+        field: &'static str,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// The file has no header line (it is empty, blank or only comments).
+    #[error("{}: empty file (no header line)", path.display())]
+    Empty {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file has a header but no data rows.
+    #[error("{}:{line}: header but no data rows", path.display())]
+    NoSamples {
+        /// The file.
+        path: PathBuf,
+        /// Line of the header.
+        line: usize,
+    },
+    /// A required column is not in the header.
+    #[error("{}:{line}: no column `{column}` in the header (columns: {})", path.display(), header.join(", "))]
+    MissingColumn {
+        /// The file.
+        path: PathBuf,
+        /// Line of the header.
+        line: usize,
+        /// The column looked for.
+        column: String,
+        /// The header's columns.
+        header: Vec<String>,
+    },
+    /// A row ends before a required column.
+    #[error("{}:{line}: row has no field for column `{column}`", path.display())]
+    MissingField {
+        /// The file.
+        path: PathBuf,
+        /// The line.
+        line: usize,
+        /// The column.
+        column: String,
+    },
+    /// A field is not a number.
+    #[error("{}:{line}: column `{column}`: cannot parse {text:?} as a number", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// The line.
+        line: usize,
+        /// The column.
+        column: String,
+        /// The field's text.
+        text: String,
+    },
+    /// A field is NaN or infinite.
+    #[error("{}:{line}: column `{column}` is not finite ({value})", path.display())]
+    NonFinite {
+        /// The file.
+        path: PathBuf,
+        /// The line.
+        line: usize,
+        /// The column.
+        column: String,
+        /// The value.
+        value: f64,
+    },
+    /// The time does not increase.
+    #[error("{}:{line}: time {time_s} s does not increase (previous row at {previous_s} s)", path.display())]
+    TimeNotIncreasing {
+        /// The file.
+        path: PathBuf,
+        /// The line.
+        line: usize,
+        /// Time of the previous row, s.
+        previous_s: f64,
+        /// Time of this row, s.
+        time_s: f64,
+    },
+    /// Samples are missing: the interval before this line is too long.
+    #[error(
+        "{}:{line}: gap of {interval_s} s before this sample, more than {max_intervals} nominal \
+         sample intervals of {nominal_interval_s} s",
+        path.display()
+    )]
+    SampleGap {
+        /// The file.
+        path: PathBuf,
+        /// The line after the gap.
+        line: usize,
+        /// The interval, s.
+        interval_s: f64,
+        /// The nominal (median) sample interval, s.
+        nominal_interval_s: f64,
+        /// The allowed gap in nominal intervals.
+        max_intervals: f64,
+    },
+    /// Another check of the samples failed.
+    #[error("{}: {source}", path.display())]
+    Samples {
+        /// The file.
+        path: PathBuf,
+        /// The check's error.
+        source: HarmonicsError,
+    },
+}
+
+/// Reads a probe recording from a file.
+pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording, RecordingError> {
+    let bytes = std::fs::read(path).map_err(|source| RecordingError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    parse_recording(&bytes, path, format)
+}
+
+/// Parses a probe recording held in memory; `path` names it in errors.
+pub fn parse_recording(
+    text: &[u8],
+    path: &Path,
+    format: &RecordingFormat,
+) -> Result<Recording, RecordingError> {
+    let delimiter = delimiter_byte(format)?;
+    let mut lines = Lines {
+        text,
+        pos: 0,
+        line: 0,
+    };
+
+    // Header.
+    let Some((header_line, header)) = lines.next_content() else {
+        return Err(RecordingError::Empty {
+            path: path.to_owned(),
+        });
+    };
+    let names: Vec<String> = split_fields(header, delimiter)
+        .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
+        .collect();
+    let find = |name: &str| names.iter().position(|n| n == name);
+    let missing = |column: &str| RecordingError::MissingColumn {
+        path: path.to_owned(),
+        line: header_line,
+        column: column.to_owned(),
+        header: names.clone(),
+    };
+    let time_col = find(&format.time_column).ok_or_else(|| missing(&format.time_column))?;
+    let gap_col = find(&format.gap_column).ok_or_else(|| missing(&format.gap_column))?;
+    let angle_col = find(&format.angle_column);
+    // Fields of a row that are stored: (field index, destination).
+    let mut wanted = [
+        (time_col, 0_usize),
+        (gap_col, 1),
+        (angle_col.unwrap_or(usize::MAX), 2),
+    ];
+    wanted.sort_unstable();
+    let last_needed = wanted
+        .iter()
+        .filter(|w| w.0 != usize::MAX)
+        .map(|w| w.0)
+        .max()
+        .unwrap_or(0);
+    let column_name = |dest: usize| match dest {
+        0 => format.time_column.clone(),
+        1 => format.gap_column.clone(),
+        _ => format.angle_column.clone(),
+    };
+
+    // Rows: one pass, values pushed into three columns reserved from the text's size.
+    let estimate = text.len() / 16;
+    let mut time_s = Vec::with_capacity(estimate);
+    let mut gap = Vec::with_capacity(estimate);
+    let mut angle = if angle_col.is_some() {
+        Vec::with_capacity(estimate)
+    } else {
+        Vec::new()
+    };
+    let angle_scale = format.angle_unit.rad_per_unit();
+    let mut values = [0.0_f64; 3];
+    while let Some((line, row)) = lines.next_content() {
+        let mut fields = split_fields(row, delimiter);
+        let mut next_wanted = 0;
+        for index in 0..=last_needed {
+            let Some(field) = fields.next() else {
+                let dest = wanted[next_wanted].1;
+                return Err(RecordingError::MissingField {
+                    path: path.to_owned(),
+                    line,
+                    column: column_name(dest),
+                });
+            };
+            if wanted[next_wanted].0 != index {
+                continue;
+            }
+            let dest = wanted[next_wanted].1;
+            next_wanted += 1;
+            let value = parse_f64(field).ok_or_else(|| RecordingError::Parse {
+                path: path.to_owned(),
+                line,
+                column: column_name(dest),
+                text: String::from_utf8_lossy(field.trim_ascii()).into_owned(),
+            })?;
+            if !value.is_finite() {
+                return Err(RecordingError::NonFinite {
+                    path: path.to_owned(),
+                    line,
+                    column: column_name(dest),
+                    value,
+                });
+            }
+            values[dest] = value;
+        }
+        if let Some(&previous_s) = time_s.last() {
+            if values[0] <= previous_s {
+                return Err(RecordingError::TimeNotIncreasing {
+                    path: path.to_owned(),
+                    line,
+                    previous_s,
+                    time_s: values[0],
+                });
+            }
+        }
+        time_s.push(values[0]);
+        gap.push(values[1]);
+        if angle_col.is_some() {
+            angle.push(values[2] * angle_scale);
+        }
+    }
+    if time_s.is_empty() {
+        return Err(RecordingError::NoSamples {
+            path: path.to_owned(),
+            line: header_line,
+        });
+    }
+    if time_s.len() > 1 {
+        harmonics::check_time_axis(&time_s, format.max_gap_intervals).map_err(|e| {
+            let line_of = |row: usize| line_of_row(text, row);
+            match e {
+                HarmonicsError::SampleGap {
+                    index,
+                    interval_s,
+                    nominal_interval_s,
+                    max_intervals,
+                } => RecordingError::SampleGap {
+                    path: path.to_owned(),
+                    line: line_of(index),
+                    interval_s,
+                    nominal_interval_s,
+                    max_intervals,
+                },
+                HarmonicsError::TimeNotIncreasing {
+                    index,
+                    previous_s,
+                    time_s,
+                } => RecordingError::TimeNotIncreasing {
+                    path: path.to_owned(),
+                    line: line_of(index),
+                    previous_s,
+                    time_s,
+                },
+                source => RecordingError::Samples {
+                    path: path.to_owned(),
+                    source,
+                },
+            }
+        })?;
+    }
+    Ok(Recording {
+        path: path.to_owned(),
+        time_s,
+        gap,
+        gap_unit: format.gap_unit,
+        angle_rad: angle_col.map(|_| angle),
+    })
+}
+
+fn delimiter_byte(format: &RecordingFormat) -> Result<u8, RecordingError> {
+    let d = format.delimiter;
+    if !d.is_ascii()
+        || d == '\n'
+        || d == '\r'
+        || d == '#'
+        || d == '"'
+        || d.is_ascii_digit()
+        || "+-.eE".contains(d)
+    {
+        return Err(RecordingError::InvalidFormat {
+            field: "delimiter",
+            reason: "must be one ASCII character that cannot occur in a number, a comment or a line end",
+        });
+    }
+    if !format.max_gap_intervals.is_finite() || format.max_gap_intervals < 1.0 {
+        return Err(RecordingError::InvalidFormat {
+            field: "max_gap_intervals",
+            reason: "must be finite and at least 1",
+        });
+    }
+    Ok(d as u8)
+}
+
+/// Lines of a text with their 1-based numbers; `next_content` skips blank lines and
+/// `#` comments.
+struct Lines<'a> {
+    text: &'a [u8],
+    pos: usize,
+    line: usize,
+}
+
+impl<'a> Lines<'a> {
+    fn next_line(&mut self) -> Option<(usize, &'a [u8])> {
+        if self.pos >= self.text.len() {
+            return None;
+        }
+        let rest = &self.text[self.pos..];
+        let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        self.pos += end + 1;
+        self.line += 1;
+        let mut line = &rest[..end];
+        if let [head @ .., b'\r'] = line {
+            line = head;
+        }
+        Some((self.line, line))
+    }
+
+    fn next_content(&mut self) -> Option<(usize, &'a [u8])> {
+        while let Some((n, line)) = self.next_line() {
+            let t = line.trim_ascii_start();
+            if t.is_empty() || t[0] == b'#' {
+                continue;
+            }
+            return Some((n, line));
+        }
+        None
+    }
+}
+
+/// Line number of data row `row` (0-based): the `row + 1`-th content line after the header.
+fn line_of_row(text: &[u8], row: usize) -> usize {
+    let mut lines = Lines {
+        text,
+        pos: 0,
+        line: 0,
+    };
+    lines.next_content(); // header
+    for _ in 0..row {
+        lines.next_content();
+    }
+    lines.next_content().map_or(lines.line, |(n, _)| n)
+}
+
+/// Fields of a line. A blank delimiter (space or tab) treats any run of blanks as one.
+fn split_fields(line: &[u8], delimiter: u8) -> impl Iterator<Item = &[u8]> {
+    let blank = delimiter == b' ' || delimiter == b'\t';
+    let mut rest = Some(if blank { line.trim_ascii() } else { line });
+    std::iter::from_fn(move || {
+        let r = rest?;
+        if blank {
+            match r.iter().position(|&b| b == b' ' || b == b'\t') {
+                Some(i) => {
+                    rest = Some(r[i..].trim_ascii_start());
+                    Some(&r[..i])
+                }
+                None => {
+                    rest = None;
+                    Some(r)
+                }
+            }
+        } else {
+            match r.iter().position(|&b| b == delimiter) {
+                Some(i) => {
+                    rest = Some(&r[i + 1..]);
+                    Some(&r[..i])
+                }
+                None => {
+                    rest = None;
+                    Some(r)
+                }
+            }
+        }
+    })
+}
+
+fn trim_quotes(field: &[u8]) -> &[u8] {
+    let f = field.trim_ascii();
+    match f {
+        [b'"', inner @ .., b'"'] => inner,
+        _ => f,
+    }
+}
+
+/// Exact powers of ten representable in `f64`.
+const POW10: [f64; 23] = {
+    let mut p = [1.0; 23];
+    let mut i = 1;
+    while i < 23 {
+        p[i] = p[i - 1] * 10.0;
+        i += 1;
+    }
+    p
+};
+
+/// Parses a decimal number (surrounding blanks allowed). Fast path: up to 19 significant
+/// digits with a decimal exponent within ±22 are exact (Clinger's fast path: an exactly
+/// representable mantissa times or over an exact power of ten is correctly rounded);
+/// everything else (more digits, large exponents, `nan`, `inf`) goes to the standard
+/// library's parser. `None` if the field is not a number.
+fn parse_f64(field: &[u8]) -> Option<f64> {
+    let f = field.trim_ascii();
+    fast_f64(f).or_else(|| std::str::from_utf8(f).ok()?.parse().ok())
+}
+
+#[inline]
+fn fast_f64(s: &[u8]) -> Option<f64> {
+    let mut i = 0;
+    let negative = match s.first() {
+        Some(b'-') => {
+            i = 1;
+            true
+        }
+        Some(b'+') => {
+            i = 1;
+            false
+        }
+        _ => false,
+    };
+    let mut mantissa: u64 = 0;
+    let mut digits = 0_u32;
+    let mut exponent: i32 = 0;
+    let mut any = false;
+    while i < s.len() && s[i].is_ascii_digit() {
+        // Leading zeros do not count as significant digits.
+        if mantissa != 0 || s[i] != b'0' {
+            digits += 1;
+        }
+        mantissa = mantissa
+            .wrapping_mul(10)
+            .wrapping_add(u64::from(s[i] - b'0'));
+        i += 1;
+        any = true;
+    }
+    if i < s.len() && s[i] == b'.' {
+        i += 1;
+        while i < s.len() && s[i].is_ascii_digit() {
+            if mantissa != 0 || s[i] != b'0' {
+                digits += 1;
+            }
+            mantissa = mantissa
+                .wrapping_mul(10)
+                .wrapping_add(u64::from(s[i] - b'0'));
+            exponent -= 1;
+            i += 1;
+            any = true;
+        }
+    }
+    if !any || digits > 19 {
+        return None;
+    }
+    if i < s.len() && (s[i] == b'e' || s[i] == b'E') {
+        i += 1;
+        let mut exp_negative = false;
+        if i < s.len() && (s[i] == b'-' || s[i] == b'+') {
+            exp_negative = s[i] == b'-';
+            i += 1;
+        }
+        let start = i;
+        let mut e: i32 = 0;
+        while i < s.len() && s[i].is_ascii_digit() && e < 10_000 {
+            e = e * 10 + i32::from(s[i] - b'0');
+            i += 1;
+        }
+        if i == start {
+            return None;
+        }
+        exponent += if exp_negative { -e } else { e };
+    }
+    if i != s.len() || mantissa > (1 << 53) || !(-22..=22).contains(&exponent) {
+        return None;
+    }
+    let m = mantissa as f64;
+    let v = if exponent < 0 {
+        m / POW10[(-exponent) as usize]
+    } else {
+        m * POW10[exponent as usize]
+    };
+    Some(if negative { -v } else { v })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Recording, RecordingError> {
+        parse_recording(
+            text.as_bytes(),
+            Path::new("rec.csv"),
+            &RecordingFormat::default(),
+        )
+    }
+
+    fn rows(n: usize) -> String {
+        let mut s = String::from("time_s,gap_um\n");
+        for i in 0..n {
+            s += &format!("{},{}\n", i as f64 * 0.001, 10.0 + (i as f64).sin());
+        }
+        s
+    }
+
+    #[test]
+    fn default_columns_comments_blank_lines_and_crlf() {
+        let text = "# a comment\r\n\r\n time_s , gap_um ,angle_deg\r\n0.0,1.5,359.0\r\n# mid comment\r\n0.001,-2e-1,1.0\r\n0.002,3,2";
+        let rec = parse(text).unwrap();
+        assert_eq!(rec.time_s, [0.0, 0.001, 0.002]);
+        assert_eq!(rec.gap, [1.5, -0.2, 3.0]);
+        let a = rec.angle_rad.unwrap();
+        approx::assert_relative_eq!(a[0], 359f64.to_radians(), max_relative = 1e-15);
+        approx::assert_relative_eq!(a[2], 2f64.to_radians(), max_relative = 1e-15);
+        assert_eq!(rec.gap_unit, LengthUnit::Um);
+    }
+
+    #[test]
+    fn configured_names_units_delimiter_and_column_order() {
+        let format = RecordingFormat {
+            time_column: "t".into(),
+            gap_column: "d".into(),
+            angle_column: "phi".into(),
+            gap_unit: LengthUnit::Mm,
+            angle_unit: AngleUnit::Rad,
+            delimiter: ';',
+            ..RecordingFormat::default()
+        };
+        let text = "phi;extra;d;t\n0.5;x;0.0125;10\n0.6;y;0.0126;10.001\n";
+        let rec = parse_recording(text.as_bytes(), Path::new("r.txt"), &format).unwrap();
+        assert_eq!(rec.time_s, [10.0, 10.001]);
+        assert_eq!(rec.gap, [0.0125, 0.0126]);
+        assert_eq!(rec.gap_unit.um_per_unit(), 1e3);
+        assert_eq!(rec.angle_rad.unwrap(), [0.5, 0.6]);
+        // Blank-separated, runs of blanks count once.
+        let format = RecordingFormat {
+            delimiter: ' ',
+            ..RecordingFormat::default()
+        };
+        let text = "time_s   gap_um\n 0.0   1.0\n0.001\t 2.0  \n";
+        let rec = parse_recording(text.as_bytes(), Path::new("r.txt"), &format).unwrap();
+        assert_eq!(rec.gap, [1.0, 2.0]);
+        assert!(rec.angle_rad.is_none());
+    }
+
+    #[test]
+    fn ron_format_with_defaults() {
+        let f: RecordingFormat = ron::from_str("(gap_unit: mm, delimiter: ';')").unwrap();
+        assert_eq!(f.gap_unit, LengthUnit::Mm);
+        assert_eq!(f.time_column, "time_s");
+        assert!(ron::from_str::<RecordingFormat>("(gap_units: mm)").is_err());
+    }
+
+    #[test]
+    fn fast_parser_agrees_with_std() {
+        let cases = [
+            "0",
+            "-0",
+            "1",
+            "+1.5",
+            "0.001",
+            "123456.789",
+            "-3.2385",
+            "1e-3",
+            "2.5E+2",
+            "00012.50",
+            "1234567890123456789",
+            "12345678901234567890",
+            "0.1234567890123456789",
+            "1e22",
+            "1e23",
+            "1e-22",
+            "1e-23",
+            "9007199254740993",
+            "4.9e-324",
+            "1.7976931348623157e308",
+            ".5",
+            "5.",
+            "nan",
+            "NaN",
+            "inf",
+            "-inf",
+            "infinity",
+        ];
+        for c in cases {
+            let want: f64 = c.parse().unwrap();
+            let got = parse_f64(c.as_bytes()).unwrap();
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{c}: {got} vs {want}"
+            );
+        }
+        for bad in ["", "-", ".", "e5", "1e", "1.2.3", "12a", "0x10", "1,5"] {
+            assert_eq!(parse_f64(bad.as_bytes()), None, "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn fast_parser_is_exact_on_random_decimals() {
+        // A deterministic walk over mantissas and exponents.
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let digits = (x % 17) as u32 + 1;
+            let m = (x >> 8) % 10u64.pow(digits);
+            let e = (x >> 40) % 30;
+            let s = format!("{m}e-{e}");
+            let want: f64 = s.parse().unwrap();
+            assert_eq!(
+                parse_f64(s.as_bytes()).unwrap().to_bits(),
+                want.to_bits(),
+                "{s}"
+            );
+        }
+    }
+
+    #[test]
+    fn empty_file() {
+        for text in ["", "\n\n", "# only a comment\n  \n"] {
+            assert!(
+                matches!(parse(text), Err(RecordingError::Empty { .. })),
+                "{text:?}"
+            );
+        }
+        assert!(matches!(
+            parse("time_s,gap_um\n# nothing\n"),
+            Err(RecordingError::NoSamples { line: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn missing_columns() {
+        let e = parse("time_s,gap_mm\n0,1\n").unwrap_err();
+        match &e {
+            RecordingError::MissingColumn {
+                line: 1,
+                column,
+                header,
+                ..
+            } => {
+                assert_eq!(column, "gap_um");
+                assert_eq!(header, &["time_s", "gap_mm"]);
+            }
+            e => panic!("{e}"),
+        }
+        assert!(
+            e.to_string().starts_with("rec.csv:1: no column `gap_um`"),
+            "{e}"
+        );
+        assert!(matches!(
+            parse("t,gap_um\n0,1\n"),
+            Err(RecordingError::MissingColumn { .. })
+        ));
+        let e = parse("time_s,gap_um\n0,1\n0.001\n").unwrap_err();
+        assert!(
+            matches!(&e, RecordingError::MissingField { line: 3, column, .. } if column == "gap_um"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn unparsable_numbers() {
+        let e = parse("time_s,gap_um\n0,1\n0.001,1.2.3\n").unwrap_err();
+        assert!(
+            matches!(&e, RecordingError::Parse { line: 3, column, text, .. } if column == "gap_um" && text == "1.2.3"),
+            "{e}"
+        );
+        assert_eq!(
+            e.to_string(),
+            "rec.csv:3: column `gap_um`: cannot parse \"1.2.3\" as a number"
+        );
+        let e = parse("# c\ntime_s,gap_um\n0,1\nzero,1\n").unwrap_err();
+        assert!(
+            matches!(&e, RecordingError::Parse { line: 4, column, .. } if column == "time_s"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn nan_and_infinite_values() {
+        let e = parse("time_s,gap_um\n0,1\n0.001,NaN\n").unwrap_err();
+        assert!(
+            matches!(&e, RecordingError::NonFinite { line: 3, column, .. } if column == "gap_um"),
+            "{e}"
+        );
+        let e = parse("time_s,gap_um,angle_deg\n0,1,0\n0.001,1,inf\n").unwrap_err();
+        assert!(
+            matches!(&e, RecordingError::NonFinite { line: 3, column, .. } if column == "angle_deg"),
+            "{e}"
+        );
+        let e = parse("time_s,gap_um\n-inf,1\n").unwrap_err();
+        assert!(
+            matches!(e, RecordingError::NonFinite { line: 2, .. }),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn time_not_increasing() {
+        let e = parse("time_s,gap_um\n0,1\n0.001,1\n# c\n0.001,1\n").unwrap_err();
+        assert!(
+            matches!(e, RecordingError::TimeNotIncreasing { line: 5, .. }),
+            "{e}"
+        );
+        let e = parse("time_s,gap_um\n0,1\n-0.001,1\n").unwrap_err();
+        assert!(
+            matches!(e, RecordingError::TimeNotIncreasing { line: 3, .. }),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn gap_of_several_sample_intervals() {
+        let mut text = String::from("time_s,gap_um\n# header comment\n");
+        for i in 0..100 {
+            let t = if i < 60 {
+                i as f64 * 0.001
+            } else {
+                (i + 4) as f64 * 0.001
+            };
+            text += &format!("{t},1\n");
+        }
+        let e = parse(&text).unwrap_err();
+        match e {
+            // Row 60 (0-based) is on line 2 + 1 + 60 = 63.
+            RecordingError::SampleGap {
+                line,
+                interval_s,
+                nominal_interval_s,
+                ..
+            } => {
+                assert_eq!(line, 63);
+                approx::assert_relative_eq!(interval_s, 0.005, max_relative = 1e-9);
+                approx::assert_relative_eq!(nominal_interval_s, 0.001, max_relative = 1e-9);
+            }
+            e => panic!("{e}"),
+        }
+        assert!(parse(&rows(100)).is_ok());
+    }
+
+    #[test]
+    fn io_error_names_the_file() {
+        let e = load_recording(
+            Path::new("/nonexistent/rec.csv"),
+            &RecordingFormat::default(),
+        )
+        .unwrap_err();
+        assert!(matches!(e, RecordingError::Io { .. }));
+        assert!(e.to_string().starts_with("/nonexistent/rec.csv: "), "{e}");
+    }
+
+    #[test]
+    fn bad_format() {
+        let format = RecordingFormat {
+            delimiter: '.',
+            ..RecordingFormat::default()
+        };
+        let e = parse_recording(b"time_s.gap_um\n", Path::new("r"), &format).unwrap_err();
+        assert!(matches!(
+            e,
+            RecordingError::InvalidFormat {
+                field: "delimiter",
+                ..
+            }
+        ));
+    }
+
+    #[test]
+    fn signal_uses_the_encoder_when_present() {
+        let rec = parse("time_s,gap_um,angle_deg\n0,1,10\n0.001,1,11\n").unwrap();
+        assert!(matches!(
+            rec.signal(1.0, 0.0).angle,
+            SpindleAngle::Encoder(_)
+        ));
+        let rec = parse("time_s,gap_um\n0,1\n0.001,1\n").unwrap();
+        assert_eq!(
+            rec.signal(2.0, 0.5).angle,
+            SpindleAngle::Rate {
+                rate_rad_s: 2.0,
+                start_angle_rad: 0.5
+            }
+        );
+    }
+}
