@@ -6,6 +6,7 @@
 mod accuracy;
 mod paths;
 mod regress;
+mod simulate;
 mod study;
 
 use clap::{Parser, Subcommand};
@@ -27,6 +28,8 @@ enum Command {
     Regress(regress::Regress),
     /// Score the least-squares solver on the NIST StRD linear-regression datasets (LRE).
     Accuracy(accuracy::Accuracy),
+    /// Simulate a calibration from a scenario: probe recordings, piga.csv and truth.json.
+    Simulate(simulate::Simulate),
 }
 
 fn main() -> std::process::ExitCode {
@@ -41,6 +44,7 @@ fn main() -> std::process::ExitCode {
         Command::Study(c) => c.run(),
         Command::Regress(c) => c.run(),
         Command::Accuracy(c) => c.run(),
+        Command::Simulate(c) => c.run(),
     };
     match outcome {
         Ok(()) => std::process::ExitCode::SUCCESS,

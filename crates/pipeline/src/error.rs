@@ -104,6 +104,34 @@ pub enum PipelineError {
         /// The serialiser's message.
         message: String,
     },
+    /// A list that must not be empty is empty.
+    #[error("{}: field `{field}`: the list is empty", path.display())]
+    EmptyList {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the list.
+        field: String,
+    },
+    /// The kinematic chain (or the error motion it is built from) was refused.
+    #[error("{}: `{field}`: {source}", path.display())]
+    Kinematics {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field concerned.
+        field: String,
+        /// The chain's error.
+        source: kinematics::Error,
+    },
+    /// The PIGA model was refused.
+    #[error("{}: `{field}`: {source}", path.display())]
+    AccelModel {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field concerned.
+        field: String,
+        /// The PIGA model's error.
+        source: accel_model::Error,
+    },
 }
 
 /// Result alias of this crate.

@@ -41,6 +41,7 @@ mod plot;
 mod recording;
 mod report;
 mod results;
+mod simulate;
 mod study;
 mod units;
 
@@ -54,5 +55,11 @@ pub use recording::{
 };
 pub use report::render as render_report;
 pub use results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
+pub use simulate::{
+    CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaRow, PigaSpec,
+    ProbeSpec, ProbeTruth, Scenario, SimulatedRecording, Simulation, SimulationFiles,
+    SleeveHarmonic, SpeedRipple, Truth, TruthRate, piga_csv_text, recording_file_name, simulate,
+    write_simulation,
+};
 pub use study::run;
 pub use units::{deg_s_to_rad_s, m_to_um, um_to_m};

@@ -1,0 +1,419 @@
+//! The simulation itself, in memory: probe recordings, PIGA outputs and the truth.
+
+use std::f64::consts::TAU;
+
+use accel_model::rate_points;
+use harmonics::ProbeDirection;
+use kinematics::{
+    Centrifuge, Chain, ErrorMotion, Point, Spindle, SpindleOffsets, spindle_transform,
+};
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+use rand_distr::{Distribution, Normal};
+use serde::{Deserialize, Serialize};
+
+use super::scenario::{LoadedScenario, ProbeSpec, Scenario, recording_file_name};
+use crate::error::{PipelineError, Result};
+
+/// Metres to micrometres.
+const UM_PER_M: f64 = 1e6;
+
+/// Stream tags that keep the random streams of the probe and the PIGA independent of each
+/// other and of the order of the rates.
+const PROBE_STREAM: u64 = 1;
+const PIGA_STREAM: u64 = 2;
+
+/// Everything a scenario produces, in memory.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Simulation {
+    /// One probe recording per rate, in the scenario's order.
+    pub recordings: Vec<SimulatedRecording>,
+    /// The PIGA calibration table (`piga.csv`), one row per rate.
+    pub piga: Vec<PigaRow>,
+    /// Every parameter and the exact per-rate quantities (`truth.json`).
+    pub truth: Truth,
+}
+
+/// One probe recording: the columns of `probe_<rate>deg_s.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SimulatedRecording {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// File name (`probe_010.0000deg_s.csv`).
+    pub file_name: String,
+    /// Sample times, s (`i / sample_rate_hz`).
+    pub time_s: Vec<f64>,
+    /// Probe gap, µm.
+    pub gap_um: Vec<f64>,
+    /// Encoder angle of the spindle from `O1X1`, deg in `[0, 360)`, when the scenario asks
+    /// for it.
+    pub angle_deg: Option<Vec<f64>>,
+}
+
+impl SimulatedRecording {
+    /// The encoder angle in radians (for `harmonics::SpindleAngle::Encoder`).
+    #[must_use]
+    pub fn angle_rad(&self) -> Option<Vec<f64>> {
+        self.angle_deg
+            .as_ref()
+            .map(|a| a.iter().map(|d| d.to_radians()).collect())
+    }
+}
+
+/// One row of `piga.csv`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PigaRow {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Mean PIGA output over whole revolutions plus the scenario's noise, rad/s.
+    pub output_rad_s: f64,
+}
+
+/// The truth behind a simulation (`truth.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Truth {
+    /// The scenario as given.
+    pub scenario: Scenario,
+    /// The error-motion coefficients it stands for (resolved from a physical imbalance if the
+    /// scenario gives one).
+    pub error_motion: ErrorMotion,
+    /// Lever ratio `(h_probe + h_piga)/h_probe` of the probe geometry.
+    pub lever_ratio: f64,
+    /// `C_r`, m·s² (from `error_motion`).
+    pub c_r_m_s2: f64,
+    /// The pseudo-second-order error the scenario should produce, `Δk2 = k1·C_r·g/R²`
+    /// (eq. 19), rad/(s·g²).
+    pub delta_k2_predicted_rad_s_g2: f64,
+    /// `k2 + Δk2`: the apparent k2 an uncompensated eq. 18 fit should return, rad/(s·g²).
+    pub k2_apparent_predicted_rad_s_g2: f64,
+    /// Per-rate truth, in the scenario's order.
+    pub rates: Vec<TruthRate>,
+}
+
+/// The exact quantities at one rate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TruthRate {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Spindle rate, rad/s.
+    pub rate_rad_s: f64,
+    /// Nominal input `a = Rω²/g`, g.
+    pub a_nominal_g: f64,
+    /// Exact mean specific force along the input axis over a revolution, g (eq. 12).
+    pub a_x_g: f64,
+    /// Exact mean angular rate about the input axis over a revolution, rad/s (eq. 13).
+    pub omega_i_rad_s: f64,
+    /// Mean PIGA output over a revolution without noise, rad/s (eq. 15).
+    pub output_noise_free_rad_s: f64,
+    /// The output written to `piga.csv` (noise included), rad/s.
+    pub output_rad_s: f64,
+    /// Drift and tilt of the spindle at this rate in `O2` (eq. 5).
+    pub offsets: SpindleOffsets,
+    /// Radius error at the PIGA plane, `Δr_x = Δr_xs + C_r ω²`, µm.
+    pub radius_error_um: f64,
+    /// The first harmonic the probe sees (eq. 21), without noise.
+    pub probe_first_harmonic: ProbeTruth,
+    /// The recording's file name.
+    pub recording: String,
+    /// Number of samples in the recording.
+    pub samples: usize,
+}
+
+/// The exact first harmonic of the probe gap at one rate.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ProbeTruth {
+    /// `d_c1`, µm.
+    pub dc1_um: f64,
+    /// `d_s1`, µm.
+    pub ds1_um: f64,
+    /// `ΔR1 = hypot(d_c1, d_s1)`, µm.
+    pub amplitude_um: f64,
+    /// Azimuth β of the drift from `X2`, deg (eq. 7).
+    pub beta_deg: f64,
+}
+
+/// Runs a scenario in memory.
+///
+/// For each rate, the probe recording follows the probe model of `docs/SIMULATION.md`: the
+/// spindle-axis point at the PIGA plane from the exact chain (eq. 5), carried to the probe
+/// plane by the cone of eq. 22, read against (or along) `O1X1`, plus the sleeve harmonics and
+/// white noise. The PIGA row is `accel_model::rate_points` (eq. 15 averaged over whole
+/// revolutions of the exact inputs) plus white noise. Deterministic for a given seed.
+///
+/// ```
+/// use std::path::Path;
+/// let text = r#"(
+///     name: "doc", seed: 1,
+///     centrifuge: (radius_m: 2.5, site: (latitude_deg: 45.0, earth_rate_rad_s: 7.292115e-5, gravity_m_s2: 9.8)),
+///     error_motion: Coefficients((dr_xs_m: 5.6e-6, c_r_m_s2: -4.05e-8)),
+///     probe: (lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0),
+///             sample_rate_hz: 1000.0, noise_um: 0.0, l0_um: 50.0),
+///     piga: (coefficients: (k0_rad_s: 0.0, k1_rad_s_g: 0.56, k2_rad_s_g2: 0.0, k3_rad_s_g3: 0.0)),
+///     rates_deg_s: [100.0, 200.0],
+///     revolutions: 1,
+/// )"#;
+/// let scenario = pipeline::Scenario::parse(text, Path::new("doc.ron"))?;
+/// let sim = pipeline::simulate(&scenario)?;
+/// assert_eq!(sim.recordings.len(), 2);
+/// assert_eq!(sim.recordings[0].time_s.len(), 3600); // one revolution at 100 deg/s, 1 kHz
+/// // noise-free: the gap is l0 − Δr_x·700/1210·cos θ at θ = 0
+/// let dr_x_um = 5.6 - 0.0405 * 100f64.to_radians().powi(2);
+/// approx::assert_relative_eq!(sim.recordings[0].gap_um[0], 50.0 - dr_x_um * 700.0 / 1210.0,
+///                             max_relative = 1e-12);
+/// // Δk2 = k1·C_r·g/R² (eq. 19)
+/// approx::assert_relative_eq!(sim.truth.delta_k2_predicted_rad_s_g2,
+///                             0.56 * -4.05e-8 * 9.8 / 6.25, max_relative = 1e-12);
+/// # Ok::<(), pipeline::PipelineError>(())
+/// ```
+///
+/// # Errors
+/// [`PipelineError::Kinematics`] or [`PipelineError::AccelModel`] if the chain or the PIGA
+/// model refuses an input (a validated scenario does not trigger them).
+pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
+    let s = &loaded.scenario;
+    let centrifuge = Centrifuge {
+        radius_m: s.centrifuge.radius_m,
+        site: s.centrifuge.site,
+        error_motion: loaded.error_motion,
+    };
+    let g = s.centrifuge.site.gravity_m_s2;
+    let radius = s.centrifuge.radius_m;
+    let k = &s.piga.coefficients;
+    let lever_ratio = lever_ratio(&s.probe);
+
+    let rates_rad_s: Vec<f64> = s.rates_deg_s.iter().map(|d| d.to_radians()).collect();
+    let points =
+        rate_points(&centrifuge, k, &rates_rad_s).map_err(|source| PipelineError::AccelModel {
+            path: loaded.path.clone(),
+            field: "piga".to_owned(),
+            source,
+        })?;
+
+    let mut piga_rng = stream(s.seed, PIGA_STREAM, 0);
+    let mut recordings = Vec::with_capacity(points.len());
+    let mut piga = Vec::with_capacity(points.len());
+    let mut rates = Vec::with_capacity(points.len());
+    for (i, (point, &rate_deg_s)) in points.iter().zip(&s.rates_deg_s).enumerate() {
+        let chain = Chain::new(&centrifuge, point.rate_rad_s).map_err(|source| {
+            PipelineError::Kinematics {
+                path: loaded.path.clone(),
+                field: format!("rates_deg_s[{i}]"),
+                source,
+            }
+        })?;
+        let recording = record(s, &chain, rate_deg_s, i);
+        let output_rad_s = point.output_rad_s + gaussian(&mut piga_rng, s.piga.noise_rad_s);
+        piga.push(PigaRow {
+            rate_deg_s,
+            output_rad_s,
+        });
+        let offsets = *chain.offsets();
+        let w = point.rate_rad_s;
+        rates.push(TruthRate {
+            rate_deg_s,
+            rate_rad_s: w,
+            a_nominal_g: radius * w * w / g,
+            a_x_g: point.a_x_g,
+            omega_i_rad_s: point.omega_i_rad_s,
+            output_noise_free_rad_s: point.output_rad_s,
+            output_rad_s,
+            offsets,
+            radius_error_um: offsets.dr_x_m * UM_PER_M,
+            probe_first_harmonic: probe_truth(&s.probe, &offsets, lever_ratio),
+            recording: recording.file_name.clone(),
+            samples: recording.time_s.len(),
+        });
+        recordings.push(recording);
+    }
+
+    let c_r = loaded.error_motion.c_r_m_s2;
+    let delta_k2 = k.k1_rad_s_g * c_r * g / (radius * radius);
+    Ok(Simulation {
+        recordings,
+        piga,
+        truth: Truth {
+            scenario: s.clone(),
+            error_motion: loaded.error_motion,
+            lever_ratio,
+            c_r_m_s2: c_r,
+            delta_k2_predicted_rad_s_g2: delta_k2,
+            k2_apparent_predicted_rad_s_g2: k.k2_rad_s_g2 + delta_k2,
+            rates,
+        },
+    })
+}
+
+/// `(h_probe + h_piga)/h_probe` of a validated probe.
+fn lever_ratio(probe: &ProbeSpec) -> f64 {
+    let l = &probe.lever;
+    (l.pivot_to_probe_mm + l.probe_to_piga_mm) / l.pivot_to_probe_mm
+}
+
+/// `+1` for a probe that measures along `O1X1` (the gap opens as the axis moves to `+X1`),
+/// `−1` against it (the paper's set-up: the gap closes).
+fn direction_sign(probe: &ProbeSpec) -> f64 {
+    match probe.lever.probe_direction {
+        ProbeDirection::AlongO1X1 => 1.0,
+        ProbeDirection::AgainstO1X1 => -1.0,
+    }
+}
+
+/// The exact first harmonic of the gap: the axis point in the probe plane is
+/// `(Δr_x cos θ − Δr_y sin θ, …)/ratio` along `O1X1`, read with the probe's sign.
+fn probe_truth(probe: &ProbeSpec, offsets: &SpindleOffsets, ratio: f64) -> ProbeTruth {
+    let sign = direction_sign(probe);
+    let dc1_um = sign * offsets.dr_x_m * UM_PER_M / ratio;
+    let ds1_um = -sign * offsets.dr_y_m * UM_PER_M / ratio;
+    ProbeTruth {
+        dc1_um,
+        ds1_um,
+        amplitude_um: dc1_um.hypot(ds1_um),
+        beta_deg: offsets.drift_azimuth_rad().to_degrees(),
+    }
+}
+
+/// Number of samples that cover `revolutions` whole turns at `rate_deg_s`: every sample
+/// time `i/f_s` is below the end time `revolutions·360/rate` (an end time that falls on a
+/// sample to within 1e-6 of an interval counts as falling on it).
+pub(crate) fn sample_count(sample_rate_hz: f64, rate_deg_s: f64, revolutions: usize) -> usize {
+    let x = revolutions as f64 * 360.0 / rate_deg_s * sample_rate_hz;
+    let n = if (x - x.round()).abs() < 1e-6 {
+        x.round()
+    } else {
+        x.ceil()
+    };
+    // a validated scenario keeps this well below usize::MAX (MAX_TOTAL_SAMPLES)
+    n as usize
+}
+
+/// The spindle angle `θ(t) = θ₀ + ωt + A·(sin(ωt + φ) − sin φ)`, rad (not wrapped).
+fn spindle_angle_rad(probe: &ProbeSpec, rate_rad_s: f64, t_s: f64) -> f64 {
+    let theta0 = probe.start_angle_deg.to_radians();
+    let wt = rate_rad_s * t_s;
+    let ripple = probe.speed_ripple.map_or(0.0, |r| {
+        let (a, phi) = (r.amplitude_deg.to_radians(), r.phase_deg.to_radians());
+        a * ((wt + phi).sin() - phi.sin())
+    });
+    theta0 + wt + ripple
+}
+
+/// The probe recording at one rate.
+fn record(s: &Scenario, chain: &Chain, rate_deg_s: f64, index: usize) -> SimulatedRecording {
+    let probe = &s.probe;
+    let n = sample_count(probe.sample_rate_hz, rate_deg_s, s.revolutions);
+    let ratio = lever_ratio(probe);
+    let sign = direction_sign(probe);
+    let mut rng = stream(s.seed, PROBE_STREAM, index as u64);
+    let axis_point = Point::<Spindle>::new([0.0, 0.0, 0.0]);
+
+    let mut time_s = Vec::with_capacity(n);
+    let mut gap_um = Vec::with_capacity(n);
+    let mut angle_deg = probe.encoder_angle.then(|| Vec::with_capacity(n));
+    for i in 0..n {
+        let t = i as f64 / probe.sample_rate_hz;
+        let theta = spindle_angle_rad(probe, chain.rate_rad_s(), t);
+        // the spindle-axis point at the PIGA plane (the O2 origin) in the sleeve frame
+        let at_piga = spindle_transform(theta, chain.offsets()).apply(axis_point);
+        // carried down the cone to the probe plane (eq. 22 read backwards)
+        let x_probe_um = at_piga.coords_m[0] * UM_PER_M / ratio;
+        let sleeve: f64 = probe
+            .sleeve_harmonics
+            .iter()
+            .map(|h| {
+                let (sk, ck) = (h.order as f64 * theta).sin_cos();
+                h.c_um * ck + h.s_um * sk
+            })
+            .sum();
+        let gap = probe.l0_um + sign * x_probe_um + sleeve + gaussian(&mut rng, probe.noise_um);
+        time_s.push(t);
+        gap_um.push(gap);
+        if let Some(a) = angle_deg.as_mut() {
+            a.push(theta.rem_euclid(TAU).to_degrees() % 360.0);
+        }
+    }
+    SimulatedRecording {
+        rate_deg_s,
+        file_name: recording_file_name(rate_deg_s),
+        time_s,
+        gap_um,
+        angle_deg,
+    }
+}
+
+/// An independent random stream per (seed, purpose, index).
+fn stream(seed: u64, purpose: u64, index: u64) -> StdRng {
+    // SplitMix64 finaliser over the three numbers: distinct inputs give unrelated seeds.
+    let mut z = seed
+        ^ purpose.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ index.wrapping_mul(0xD1B5_4A32_D192_ED03);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    StdRng::seed_from_u64(z ^ (z >> 31))
+}
+
+/// One draw of N(0, σ²); exactly 0 (and no draw) when σ is 0.
+fn gaussian(rng: &mut StdRng, sigma: f64) -> f64 {
+    if sigma > 0.0 {
+        // σ was validated finite and > 0, so `Normal::new` cannot fail
+        Normal::new(0.0, sigma).map_or(0.0, |d| d.sample(rng))
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn sample_count_covers_whole_revolutions() {
+        // 10 deg/s at 1 kHz: 36 s per revolution, samples 0 … 71999 for two turns
+        assert_eq!(sample_count(1000.0, 10.0, 2), 72_000);
+        // 200.1234 deg/s: 1798.89 samples per turn, the last sample is inside the turn
+        let n = sample_count(1000.0, 200.1234, 1);
+        assert_eq!(n, 1799);
+        assert!(((n - 1) as f64) / 1000.0 < 360.0 / 200.1234);
+    }
+
+    #[test]
+    fn streams_are_distinct_and_repeatable() {
+        use rand::Rng;
+        let a: u64 = stream(7, PROBE_STREAM, 0).random();
+        let b: u64 = stream(7, PROBE_STREAM, 1).random();
+        let c: u64 = stream(7, PIGA_STREAM, 0).random();
+        let a2: u64 = stream(7, PROBE_STREAM, 0).random();
+        assert_eq!(a, a2);
+        assert_ne!(a, b);
+        assert_ne!(a, c);
+    }
+
+    #[test]
+    fn ripple_keeps_the_period_and_the_mean_rate() {
+        let probe = ProbeSpec {
+            lever: harmonics::LeverGeometry {
+                pivot_to_probe_mm: 700.0,
+                probe_to_piga_mm: 510.0,
+                probe_direction: ProbeDirection::AgainstO1X1,
+            },
+            sample_rate_hz: 1000.0,
+            noise_um: 0.0,
+            l0_um: 0.0,
+            sleeve_harmonics: vec![],
+            encoder_angle: true,
+            speed_ripple: Some(super::super::scenario::SpeedRipple {
+                amplitude_deg: 2.0,
+                phase_deg: 40.0,
+            }),
+            start_angle_deg: 15.0,
+        };
+        let w = 1.3;
+        let theta0 = spindle_angle_rad(&probe, w, 0.0);
+        assert_relative_eq!(theta0, 15f64.to_radians(), max_relative = 1e-15);
+        let one_turn = spindle_angle_rad(&probe, w, TAU / w);
+        assert_relative_eq!(one_turn - theta0, TAU, max_relative = 1e-12);
+        // but not uniform within the turn
+        let quarter = spindle_angle_rad(&probe, w, 0.25 * TAU / w) - theta0;
+        assert!((quarter - 0.25 * TAU).abs() > 1e-3);
+    }
+}

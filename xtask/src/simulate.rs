@@ -1,0 +1,64 @@
+//! `cargo xtask simulate`: closed-loop simulation of a calibration from a scenario.
+
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use clap::Args;
+use pipeline::Scenario;
+
+use crate::paths;
+
+/// Arguments of `cargo xtask simulate`.
+#[derive(Debug, Args)]
+pub(crate) struct Simulate {
+    /// Scenario (RON), e.g. fixtures/scenarios/post-balance.ron. See docs/SIMULATION.md.
+    #[arg(long)]
+    config: PathBuf,
+    /// Output directory. Default: target/simulate.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+impl Simulate {
+    pub(crate) fn run(&self) -> anyhow::Result<()> {
+        let out = self
+            .out
+            .clone()
+            .unwrap_or_else(|| paths::workspace_root().join("target/simulate"));
+        let scenario = Scenario::load(&self.config)?;
+        let sim = pipeline::simulate(&scenario)?;
+        let files = pipeline::write_simulation(&out, &sim)
+            .with_context(|| format!("writing the simulation into {}", out.display()))?;
+
+        let t = &sim.truth;
+        println!("scenario {} (seed {})", t.scenario.name, t.scenario.seed);
+        println!(
+            "C_r = {:.6e} m·s², Δk2 = k1·C_r·g/R² = {:.6e} rad/(s·g²), apparent k2 = {:.6e}",
+            t.c_r_m_s2, t.delta_k2_predicted_rad_s_g2, t.k2_apparent_predicted_rad_s_g2
+        );
+        println!();
+        println!(
+            "{:>10} {:>9} {:>10} {:>10} {:>12} {:>18}",
+            "rate deg/s", "samples", "d_c1 µm", "d_s1 µm", "Δr_x µm", "output rad/s"
+        );
+        for r in &t.rates {
+            println!(
+                "{:>10.4} {:>9} {:>10.4} {:>10.4} {:>12.6} {:>18.12}",
+                r.rate_deg_s,
+                r.samples,
+                r.probe_first_harmonic.dc1_um,
+                r.probe_first_harmonic.ds1_um,
+                r.radius_error_um,
+                r.output_rad_s
+            );
+        }
+        println!();
+        println!(
+            "wrote {} recordings, {} and {}",
+            files.recordings.len(),
+            files.piga_csv.display(),
+            files.truth_json.display()
+        );
+        Ok(())
+    }
+}
