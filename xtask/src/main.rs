@@ -4,6 +4,7 @@
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
 mod accuracy;
+mod harmonics;
 mod paths;
 mod regress;
 mod simulate;
@@ -30,6 +31,8 @@ enum Command {
     Accuracy(accuracy::Accuracy),
     /// Simulate a calibration from a scenario: probe recordings, piga.csv and truth.json.
     Simulate(simulate::Simulate),
+    /// Fit eq. 20 per revolution to a probe recording and average the coefficients.
+    Harmonics(harmonics::Harmonics),
 }
 
 fn main() -> std::process::ExitCode {
@@ -45,6 +48,7 @@ fn main() -> std::process::ExitCode {
         Command::Regress(c) => c.run(),
         Command::Accuracy(c) => c.run(),
         Command::Simulate(c) => c.run(),
+        Command::Harmonics(c) => c.run(),
     };
     match outcome {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -51,7 +51,8 @@ pub use expected::{Check, CheckOutcome, Expected};
 pub use output::{WrittenFiles, results_json, write_outputs};
 pub use plot::radius_error_svg;
 pub use recording::{
-    AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, load_recording, parse_recording,
+    AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, SyntheticSpec, analyze_recording,
+    load_recording, parse_recording,
 };
 pub use report::render as render_report;
 pub use results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};

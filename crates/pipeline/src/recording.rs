@@ -162,12 +162,12 @@ impl Recording {
 #[non_exhaustive]
 pub enum RecordingError {
     /// The file could not be read.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {error}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
+        /// The underlying error (its message is part of this one's).
+        error: std::io::Error,
     },
     /// The format itself is unusable.
     #[error("recording format: `{field}` {reason}")]
@@ -267,21 +267,147 @@ pub enum RecordingError {
         /// The allowed gap in nominal intervals.
         max_intervals: f64,
     },
-    /// Another check of the samples failed.
-    #[error("{}: {source}", path.display())]
+    /// Another check of the samples, or the harmonic analysis, failed.
+    #[error("{}{}: {error}", path.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
     Samples {
         /// The file.
         path: PathBuf,
-        /// The check's error.
-        source: HarmonicsError,
+        /// The line of the sample concerned, when the error names one.
+        line: Option<usize>,
+        /// The check's error (its message is part of this one's).
+        error: HarmonicsError,
     },
+}
+
+/// A synthetic probe recording with known coefficients, written in the default
+/// [`RecordingFormat`]: for fixtures, benchmarks and demonstrations (see the
+/// `synth_recording` example).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SyntheticSpec {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Sample rate, Hz.
+    pub sample_rate_hz: f64,
+    /// Turns recorded (a fraction leaves an incomplete last revolution).
+    pub revolutions: f64,
+    /// Write the encoder-angle column.
+    pub encoder: bool,
+    /// Standard deviation of the gap noise, µm.
+    pub noise_um: f64,
+    /// Non-uniform part of the spindle angle, rad (see [`harmonics::SyntheticRecording`]).
+    pub wobble_rad: f64,
+    /// Angle of the first sample from O1X1, deg.
+    pub start_angle_deg: f64,
+    /// Seed of the noise.
+    pub seed: u64,
+    /// The coefficients of eq. 20, µm.
+    pub coefficients: harmonics::Coefficients,
+}
+
+impl Default for SyntheticSpec {
+    fn default() -> Self {
+        Self {
+            rate_deg_s: 120.0,
+            sample_rate_hz: 500.0,
+            revolutions: 2.5,
+            encoder: true,
+            noise_um: 0.02,
+            wobble_rad: 0.05,
+            start_angle_deg: 30.0,
+            seed: 20_250_101,
+            coefficients: harmonics::Coefficients {
+                l0: 50.0,
+                c: vec![-3.0, 0.4, -0.15, 0.05],
+                s: vec![-1.2, 0.25, 0.1, -0.03],
+                drift_per_s: None,
+            },
+        }
+    }
+}
+
+impl SyntheticSpec {
+    /// Number of samples.
+    pub fn samples(&self) -> usize {
+        (self.revolutions * 360.0 / self.rate_deg_s * self.sample_rate_hz).round() as usize
+    }
+
+    /// The generator of the samples.
+    pub fn recording(&self) -> harmonics::SyntheticRecording {
+        harmonics::SyntheticRecording {
+            rate_rad_s: self.rate_deg_s.to_radians(),
+            sample_rate_hz: self.sample_rate_hz,
+            samples: self.samples(),
+            start_time_s: 0.0,
+            start_angle_rad: self.start_angle_deg.to_radians(),
+            coefficients: self.coefficients.clone(),
+            noise_std: self.noise_um,
+            wobble_rad: self.wobble_rad,
+            seed: self.seed,
+        }
+    }
+
+    /// The CSV text: `time_s,gap_um[,angle_deg]`, six decimals.
+    pub fn csv(&self) -> String {
+        use std::fmt::Write as _;
+        let data = self.recording().generate();
+        let mut out = String::with_capacity(data.time_s.len() * 32 + 128);
+        let _ = writeln!(
+            out,
+            "# synthetic probe recording: {} deg/s, {} Hz, {} turns, noise {} um, seed {}",
+            self.rate_deg_s, self.sample_rate_hz, self.revolutions, self.noise_um, self.seed
+        );
+        out += if self.encoder {
+            "time_s,gap_um,angle_deg\n"
+        } else {
+            "time_s,gap_um\n"
+        };
+        for i in 0..data.time_s.len() {
+            let _ = write!(out, "{:.6},{:.6}", data.time_s[i], data.gap[i]);
+            if self.encoder {
+                let _ = write!(out, ",{:.6}", data.angle_rad[i].to_degrees());
+            }
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// Fits eq. 20 per revolution to a loaded recording ([`harmonics::analyze`]), with the angle
+/// from the encoder column when present, else from the rate; an error naming a sample is
+/// given the sample's line in the file.
+pub fn analyze_recording(
+    recording: &Recording,
+    rate_rad_s: f64,
+    start_angle_rad: f64,
+    config: &harmonics::FitConfig,
+) -> Result<harmonics::HarmonicAnalysis, RecordingError> {
+    harmonics::analyze(&recording.signal(rate_rad_s, start_angle_rad), config).map_err(|source| {
+        let index = match &source {
+            HarmonicsError::NonFinite { index, .. }
+            | HarmonicsError::TimeNotIncreasing { index, .. }
+            | HarmonicsError::SampleGap { index, .. }
+            | HarmonicsError::AngleNotIncreasing { index, .. } => Some(*index),
+            HarmonicsError::TooFewSamples { first_sample, .. } => Some(*first_sample),
+            HarmonicsError::Aliasing { after_sample, .. } => Some(*after_sample),
+            _ => None,
+        };
+        let line = index.and_then(|row| {
+            let text = std::fs::read(&recording.path).ok()?;
+            Some(line_of_row(&text, row))
+        });
+        RecordingError::Samples {
+            path: recording.path.clone(),
+            line,
+            error: source,
+        }
+    })
 }
 
 /// Reads a probe recording from a file.
 pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording, RecordingError> {
-    let bytes = std::fs::read(path).map_err(|source| RecordingError::Io {
+    let bytes = std::fs::read(path).map_err(|error| RecordingError::Io {
         path: path.to_owned(),
-        source,
+        error,
     })?;
     parse_recording(&bytes, path, format)
 }
@@ -429,9 +555,10 @@ pub fn parse_recording(
                     previous_s,
                     time_s,
                 },
-                source => RecordingError::Samples {
+                error => RecordingError::Samples {
                     path: path.to_owned(),
-                    source,
+                    line: None,
+                    error,
                 },
             }
         })?;
@@ -938,6 +1065,101 @@ mod tests {
                 ..
             }
         ));
+    }
+
+    #[test]
+    fn fixture_is_the_generator_output_and_gives_its_coefficients() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../fixtures/recordings/probe_120deg_s.csv");
+        let spec = SyntheticSpec::default();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(
+            text,
+            spec.csv(),
+            "regenerate with the synth_recording example"
+        );
+        assert!(text.len() < 300_000);
+        let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
+        let fit = analyze_recording(
+            &rec,
+            120f64.to_radians(),
+            0.0,
+            &harmonics::FitConfig::default(),
+        )
+        .unwrap();
+        assert_eq!(fit.revolutions_used(), 2);
+        assert!(fit.incomplete.is_some());
+        let n = fit.revolutions.iter().map(|r| r.samples).sum::<usize>() as f64;
+        let bound = 6.0 * spec.noise_um * (2.0 / n).sqrt();
+        for k in 0..4 {
+            approx::assert_abs_diff_eq!(fit.mean.c[k], spec.coefficients.c[k], epsilon = bound);
+            approx::assert_abs_diff_eq!(fit.mean.s[k], spec.coefficients.s[k], epsilon = bound);
+        }
+    }
+
+    #[test]
+    fn analysis_errors_name_the_line() {
+        let dir = std::env::temp_dir().join(format!("recording-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // Half a revolution: no complete revolution.
+        let spec = SyntheticSpec {
+            revolutions: 0.5,
+            ..SyntheticSpec::default()
+        };
+        let path = dir.join("half.csv");
+        std::fs::write(&path, spec.csv()).unwrap();
+        let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
+        let e = analyze_recording(
+            &rec,
+            120f64.to_radians(),
+            0.0,
+            &harmonics::FitConfig::default(),
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                RecordingError::Samples {
+                    error: HarmonicsError::NoCompleteRevolution { .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        // An encoder stepping back at row 100, line 103 (after the comment and the header).
+        let mut text = SyntheticSpec::default().csv();
+        let lines: Vec<&str> = text.lines().collect();
+        let fields: Vec<&str> = lines[102].split(',').collect();
+        let back = format!(
+            "{},{},{}",
+            fields[0],
+            fields[1],
+            fields[2].parse::<f64>().unwrap() - 1.0
+        );
+        text = text.replacen(lines[102], &back, 1);
+        let path = dir.join("back.csv");
+        std::fs::write(&path, &text).unwrap();
+        let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
+        let e = analyze_recording(
+            &rec,
+            120f64.to_radians(),
+            0.0,
+            &harmonics::FitConfig::default(),
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                RecordingError::Samples {
+                    line: Some(103),
+                    error: HarmonicsError::AngleNotIncreasing { index: 100, .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains("back.csv:103: sample 100"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
