@@ -1,0 +1,241 @@
+//! `xtask harmonics`: output on the fixture, and a non-zero exit naming the line on each bad
+//! input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn fixture() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/recordings/probe_120deg_s.csv")
+}
+
+fn xtask(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .arg("harmonics")
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+/// A temporary file with the given text, removed on drop.
+struct Temp(PathBuf);
+
+impl Temp {
+    fn new(name: &str, text: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("xtask-harmonics-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        Self(path)
+    }
+
+    fn path(&self) -> &str {
+        self.0.to_str().unwrap()
+    }
+}
+
+impl Drop for Temp {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
+/// Uniform rows `time_s,gap_um` at 1 kHz covering `turns` at 120 deg/s.
+fn rows(turns: f64) -> String {
+    let n = (turns * 3000.0) as usize;
+    let mut s = String::from("time_s,gap_um\n");
+    for i in 0..n {
+        let t = i as f64 * 0.001;
+        s += &format!("{t:.6},{:.6}\n", 50.0 + (120f64.to_radians() * t).cos());
+    }
+    s
+}
+
+fn fails_with(args: &[&str], expected: &str) {
+    let out = xtask(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} succeeded");
+    assert!(
+        stderr.contains(expected),
+        "{args:?}: stderr {stderr:?} lacks {expected:?}"
+    );
+}
+
+#[test]
+fn json_on_the_fixture() {
+    let out = xtask(&[fixture().to_str().unwrap(), "--rate-deg-s", "120", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["order"], 4);
+    assert_eq!(v["revolutions_used"], 2);
+    assert_eq!(v["mean"]["c"].as_array().unwrap().len(), 4);
+    assert_eq!(v["std"]["s"].as_array().unwrap().len(), 4);
+    let c1 = v["mean"]["c"][0].as_f64().unwrap();
+    let s1 = v["mean"]["s"][0].as_f64().unwrap();
+    assert!(
+        (c1 + 3.0).abs() < 0.01 && (s1 + 1.2).abs() < 0.01,
+        "{c1} {s1}"
+    );
+    let amplitude = v["first_harmonic"]["amplitude"].as_f64().unwrap();
+    assert!((amplitude - c1.hypot(s1)).abs() < 1e-12);
+    let beta_deg = v["first_harmonic"]["beta_deg"].as_f64().unwrap();
+    assert!((beta_deg - s1.atan2(-c1).to_degrees()).abs() < 1e-9);
+    assert!(v["mean"]["l0"].as_f64().is_some());
+}
+
+#[test]
+fn table_on_the_fixture() {
+    let out = xtask(&[
+        fixture().to_str().unwrap(),
+        "--rate-deg-s",
+        "120",
+        "--order",
+        "6",
+        "--revolutions",
+        "1",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("revolutions used: 1 of 2"), "{text}");
+    assert!(text.contains("\ns6 "), "{text}");
+    assert!(text.contains("first harmonic: amplitude"), "{text}");
+}
+
+#[test]
+fn empty_file() {
+    let f = Temp::new("empty.csv", "");
+    fails_with(&[f.path(), "--rate-deg-s", "120"], "empty file");
+}
+
+#[test]
+fn missing_column() {
+    let f = Temp::new("nocol.csv", "time_s,gap_mm\n0,1\n");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "nocol.csv:1: no column `gap_um`",
+    );
+}
+
+#[test]
+fn unparsable_number() {
+    let f = Temp::new("parse.csv", "time_s,gap_um\n0,1\n0.001,x1\n");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "parse.csv:3: column `gap_um`: cannot parse \"x1\"",
+    );
+}
+
+#[test]
+fn nan_and_infinite() {
+    let f = Temp::new("nan.csv", "time_s,gap_um\n0,1\n0.001,nan\n");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "nan.csv:3: column `gap_um` is not finite",
+    );
+    let f = Temp::new("inf.csv", "time_s,gap_um\n0,1\ninf,1\n");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "inf.csv:3: column `time_s` is not finite",
+    );
+}
+
+#[test]
+fn time_not_increasing() {
+    let f = Temp::new("time.csv", "time_s,gap_um\n0,1\n0.002,1\n0.001,1\n");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "time.csv:4: time 0.001 s does not increase",
+    );
+}
+
+#[test]
+fn gap_in_the_samples() {
+    // Samples 500…505 missing: the row after the gap is data row 500, on line 502.
+    let text: String = rows(1.5)
+        .lines()
+        .enumerate()
+        .filter(|(i, _)| !(501..=506).contains(i))
+        .map(|(_, l)| format!("{l}\n"))
+        .collect();
+    let f = Temp::new("gap.csv", &text);
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "gap.csv:502: gap of 0.007",
+    );
+    assert!(
+        xtask(&[f.path(), "--rate-deg-s", "120", "--max-gap-intervals", "8"])
+            .status
+            .success()
+    );
+}
+
+#[test]
+fn less_than_one_revolution() {
+    let f = Temp::new("short.csv", &rows(0.8));
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "less than one complete revolution",
+    );
+}
+
+#[test]
+fn too_few_samples_in_a_revolution() {
+    // 10 samples per revolution at 12 deg/s… sampled at 1/3 Hz: order 5 needs 12.
+    let mut text = String::from("time_s,gap_um\n");
+    for i in 0..30 {
+        text += &format!("{},{}\n", f64::from(i) * 3.0, 1.0 + f64::from(i).sin());
+    }
+    let f = Temp::new("sparse.csv", &text);
+    fails_with(
+        &[f.path(), "--rate-deg-s", "12", "--order", "5"],
+        "sparse.csv:2: revolution 0 (from sample 0): 10 samples, the fit needs at least 12",
+    );
+    assert!(
+        xtask(&[f.path(), "--rate-deg-s", "12", "--order", "4"])
+            .status
+            .success()
+    );
+}
+
+#[test]
+fn aliasing() {
+    // Encoder angle with a 60° hole in each revolution: order 4 is aliased.
+    let mut text = String::from("time_s,gap_um,angle_deg\n");
+    for i in 0..120 {
+        let (r, j) = (i / 40, i % 40);
+        let angle = f64::from(r) * 360.0 + f64::from(j) * 300.0 / 39.0;
+        text += &format!(
+            "{},{},{}\n",
+            f64::from(i) * 0.01,
+            angle.to_radians().sin(),
+            angle % 360.0
+        );
+    }
+    let f = Temp::new("alias.csv", &text);
+    fails_with(
+        &[f.path(), "--rate-deg-s", "100"],
+        "alias.csv:41: revolution 0: angular gap of",
+    );
+    assert!(
+        xtask(&[f.path(), "--rate-deg-s", "100", "--order", "2"])
+            .status
+            .success()
+    );
+}
+
+#[test]
+fn bad_order() {
+    fails_with(
+        &[
+            fixture().to_str().unwrap(),
+            "--rate-deg-s",
+            "120",
+            "--order",
+            "9",
+        ],
+        "Fourier order 9 is not supported",
+    );
+}

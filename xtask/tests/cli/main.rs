@@ -1,0 +1,3 @@
+//! Command-line behaviour of `cargo xtask` subcommands (one binary, a module per subcommand).
+
+mod harmonics;
