@@ -4,6 +4,7 @@
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
 mod accuracy;
+mod identify;
 mod harmonics;
 mod paths;
 mod regress;
@@ -29,6 +30,8 @@ enum Command {
     Regress(regress::Regress),
     /// Score the least-squares solver on the NIST StRD linear-regression datasets (LRE).
     Accuracy(accuracy::Accuracy),
+    /// Identify k0…k3 (eq. 18) from a PIGA output table, optionally compensating Δk2 (eq. 19).
+    Identify(identify::Identify),
     /// Simulate a calibration from a scenario: probe recordings, piga.csv and truth.json.
     Simulate(simulate::Simulate),
     /// Fit eq. 20 per revolution to a probe recording and average the coefficients.
@@ -47,6 +50,7 @@ fn main() -> std::process::ExitCode {
         Command::Study(c) => c.run(),
         Command::Regress(c) => c.run(),
         Command::Accuracy(c) => c.run(),
+        Command::Identify(c) => c.run(),
         Command::Simulate(c) => c.run(),
         Command::Harmonics(c) => c.run(),
     };

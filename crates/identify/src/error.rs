@@ -62,6 +62,14 @@ pub enum IdentifyError {
         /// What the value must satisfy.
         requirement: &'static str,
     },
+    /// The calibration design of eq. 18 needs at least `need` distinct rates.
+    #[error("{distinct} distinct rates: the eq. 18 calibration needs at least {need}")]
+    TooFewDistinctRates {
+        /// Distinct rates given.
+        distinct: usize,
+        /// Distinct rates needed.
+        need: usize,
+    },
     /// An NIST StRD file does not have the expected layout (see [`crate::strd`]).
     #[error("StRD file{}: expected {expected}", match line { Some(l) => format!(", line {l}"), None => String::new() })]
     StrdFormat {

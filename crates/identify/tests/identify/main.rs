@@ -1,5 +1,6 @@
 //! Behaviour tests of the `identify` crate.
 
+mod calibration;
 mod nist;
 mod paper;
 mod solver;

@@ -1,0 +1,503 @@
+//! Centrifuge calibration of a PIGA (eq. 17–18) and its compensation for the spindle's dynamic
+//! radius error (eq. 19).
+
+use crate::design::Design;
+use crate::error::{IdentifyError, Result};
+use crate::lstsq::{Fit, LstsqOptions, lstsq_design};
+use crate::radius::{PseudoSecondOrder, finite, non_negative, positive, pseudo_second_order};
+
+/// Least number of distinct rates for the six-column design of eq. 18.
+pub const MIN_DISTINCT_RATES: usize = 6;
+
+/// Result of [`identify_calibration`]: the coefficients of the eq. 18 design
+/// `[1, ω, ω², ω³, a², a³]` with `a = R·ω²/g`.
+///
+/// From eq. 17, `λ̇ = (k0 + k1Δφ_ys) − Δφ_ys·ω − C_φ·ω³ + k1(R + Δr_xs + gC_φ)ω²/g
+/// + (k2 + k1C_r·g/R²)·a² + k3·a³`. The coefficient of a² is therefore the **apparent** k2,
+/// `k2 + Δk2`, and the ω and ω³ coefficients are nuisance terms. The ω column also absorbs the
+/// Coriolis term `2R·ω·ω_ie·sin L/g` that eq. 14 drops.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Calibration {
+    /// Working radius R used to form a (m).
+    pub radius_m: f64,
+    /// Gravity g used to form a (m/s²).
+    pub g_m_s2: f64,
+    /// Number of distinct rates in the data.
+    pub distinct_rates: usize,
+    /// Coefficient of 1: `k0 + k1·Δφ_ys` (rad/s).
+    pub bias_rad_s: f64,
+    /// Coefficient of ω: `−Δφ_ys` plus the Coriolis term's `2k1R·ω_ie·sin L/g` (nuisance,
+    /// dimensionless).
+    pub omega_coeff: f64,
+    /// Coefficient of ω²: `k1(R + Δr_xs + g·C_φ)/g` (s).
+    pub omega2_coeff_s: f64,
+    /// Coefficient of ω³: `−C_φ` (nuisance, s²).
+    pub omega3_coeff_s2: f64,
+    /// k1 implied by the ω² coefficient, `c₂·g/R` (rad/(s·g)). Its relative bias is
+    /// `(Δr_xs + g·C_φ)/R`, of order 1e-6 for a balanced spindle.
+    pub k1_implied_rad_s_g: f64,
+    /// Standard error of the implied k1.
+    pub k1_implied_sigma_rad_s_g: f64,
+    /// Coefficient of a²: the apparent second-order coefficient `k2 + Δk2` (rad/(s·g²)).
+    pub k2_apparent_rad_s_g2: f64,
+    /// Standard error of the apparent k2.
+    pub k2_apparent_sigma_rad_s_g2: f64,
+    /// Coefficient of a³: k3 (rad/(s·g³)).
+    pub k3_rad_s_g3: f64,
+    /// Standard error of k3.
+    pub k3_sigma_rad_s_g3: f64,
+    /// The least-squares fit, with coefficients in the column order 1, ω, ω², ω³, a², a³, their
+    /// covariance, the residuals and the condition number of the column-scaled design.
+    pub fit: Fit,
+}
+
+/// Fits the eq. 18 calibration model to PIGA outputs measured at several centrifuge rates.
+///
+/// Columns `1, ω, ω², ω³, a², a³` with `a = R·ω²/g`, the nominal input in g. The paper writes
+/// the last two columns as `R²ω⁴/g²` and an unscaled `ω⁶`, although it names the latter's
+/// coefficient `k3R³/g³`. Using powers of a for both makes the coefficients k2 and k3
+/// themselves, in rad/(s·g²) and rad/(s·g³). The raw columns are also of comparable size: at
+/// 200 °/s on a 2.5 m arm, a ≈ 3.1 while ω⁶ ≈ 1.8e3. The solver scales its columns itself, so
+/// its accuracy does not depend on this choice; a reader or a solver without column scaling does
+/// see the better-conditioned design. The powers are formed in double-double ([`Design`]).
+///
+/// `rate_rad_s[i]` is the centrifuge rate and `output_rad_s[i]` the PIGA output (mean over
+/// whole revolutions) at point i. Repeated rates are allowed.
+///
+/// # Errors
+/// [`IdentifyError::DimensionMismatch`] for slices of different lengths,
+/// [`IdentifyError::InvalidParameter`] for a non-positive R or g,
+/// [`IdentifyError::NonFinite`] for a non-finite rate (`column: Some(1)`, the ω column) or
+/// output (`column: None`),
+/// [`IdentifyError::TooFewDistinctRates`] for fewer than six distinct rates, and the errors of
+/// [`crate::lstsq`]. In particular, exactly six points give
+/// [`IdentifyError::TooFewObservations`]: the standard errors need a residual degree of freedom.
+///
+/// ```
+/// use approx::assert_relative_eq;
+/// let (r, g) = (2.5, 9.8);
+/// let rates: Vec<f64> = (1..=8).map(|i| (25.0 * f64::from(i)).to_radians()).collect();
+/// let out: Vec<f64> = rates.iter().map(|w| {
+///     let a = r * w * w / g;
+///     1e-4 + 2e-6 * w + 0.56 * a + 3e-6 * a * a + 1e-7 * a.powi(3)
+/// }).collect();
+/// let cal = identify::identify_calibration(&rates, &out, r, g)?;
+/// assert_relative_eq!(cal.k1_implied_rad_s_g, 0.56, max_relative = 1e-12);
+/// assert_relative_eq!(cal.k2_apparent_rad_s_g2, 3e-6, max_relative = 1e-7);
+/// # Ok::<(), identify::IdentifyError>(())
+/// ```
+pub fn identify_calibration(
+    rate_rad_s: &[f64],
+    output_rad_s: &[f64],
+    radius_m: f64,
+    g_m_s2: f64,
+) -> Result<Calibration> {
+    positive("radius_m", radius_m)?;
+    positive("g_m_s2", g_m_s2)?;
+    if rate_rad_s.len() != output_rad_s.len() {
+        return Err(IdentifyError::DimensionMismatch {
+            what: "output_rad_s",
+            got: output_rad_s.len(),
+            expected: rate_rad_s.len(),
+        });
+    }
+    if let Some(row) = rate_rad_s.iter().position(|w| !w.is_finite()) {
+        return Err(IdentifyError::NonFinite {
+            row,
+            column: Some(1),
+        });
+    }
+    let distinct_rates = count_distinct(rate_rad_s);
+    if distinct_rates < MIN_DISTINCT_RATES {
+        return Err(IdentifyError::TooFewDistinctRates {
+            distinct: distinct_rates,
+            need: MIN_DISTINCT_RATES,
+        });
+    }
+    let k = radius_m / g_m_s2;
+    let design = Design::powers(rate_rad_s, &[0, 1, 2, 3, 4, 6]).scale_columns(&[
+        1.0,
+        1.0,
+        1.0,
+        1.0,
+        k * k,
+        k * k * k,
+    ])?;
+    let fit = lstsq_design(&design, output_rad_s, &LstsqOptions::default())?;
+    let c = &fit.coefficients;
+    let s = &fit.std_errors;
+    Ok(Calibration {
+        radius_m,
+        g_m_s2,
+        distinct_rates,
+        bias_rad_s: c[0],
+        omega_coeff: c[1],
+        omega2_coeff_s: c[2],
+        omega3_coeff_s2: c[3],
+        k1_implied_rad_s_g: c[2] / k,
+        k1_implied_sigma_rad_s_g: s[2] / k,
+        k2_apparent_rad_s_g2: c[4],
+        k2_apparent_sigma_rad_s_g2: s[4],
+        k3_rad_s_g3: c[5],
+        k3_sigma_rad_s_g3: s[5],
+        fit,
+    })
+}
+
+/// Which k1 the compensation `k1·C_r·ω⁴/g` uses.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum K1Source {
+    /// The k1 implied by the uncompensated fit's ω² coefficient, `c₂·g/R`. Its uncertainty and
+    /// its correlation with the a² coefficient are propagated.
+    Fitted,
+    /// A k1 known from elsewhere (e.g. a tumble test), taken as exact (rad/(s·g)).
+    Given {
+        /// k1 in rad/(s·g).
+        k1_rad_s_g: f64,
+    },
+}
+
+/// The probe's measurement of the dynamic radius error, used to compensate a calibration.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Compensation {
+    /// Dynamic radius-error coefficient C_r (m·s²), from [`crate::fit_radius_error`].
+    pub c_r_m_s2: f64,
+    /// Its standard deviation (m·s²).
+    pub c_r_sigma_m_s2: f64,
+    /// The k1 to use.
+    pub k1: K1Source,
+}
+
+/// Result of [`identify_compensated`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompensatedCalibration {
+    /// The plain eq. 18 fit of the outputs as measured.
+    pub uncompensated: Calibration,
+    /// The eq. 18 fit of the outputs minus `k1·C_r·ω⁴/g`. Its a² coefficient is k2, and its
+    /// standard errors are those of the fit alone.
+    pub compensated: Calibration,
+    /// The compensation applied.
+    pub compensation: Compensation,
+    /// The k1 used in the compensation (rad/(s·g)).
+    pub k1_used_rad_s_g: f64,
+    /// The pseudo-second-order error removed, Δk2 = k1·C_r·g/R², with σ from σ(C_r) (eq. 19).
+    pub delta_k2: PseudoSecondOrder,
+    /// Compensated k2 (rad/(s·g²)), equal to `compensated.k2_apparent_rad_s_g2`.
+    pub k2_rad_s_g2: f64,
+    /// Total standard deviation of the compensated k2: the fit's and σ(C_r)'s contributions, and
+    /// for [`K1Source::Fitted`] also k1's, with its correlation with the a² coefficient.
+    pub k2_sigma_rad_s_g2: f64,
+    /// The part of the k2 variance that comes from σ(C_r), as a standard deviation.
+    pub k2_sigma_from_c_r_rad_s_g2: f64,
+}
+
+/// Compensated identification: removes `k1·C_r·ω⁴/g` (eq. 17's imbalance term) from the
+/// outputs and fits eq. 18 again. The a² coefficient is then k2 instead of `k2 + Δk2`.
+///
+/// Since `k1·C_r·ω⁴/g = (k1·C_r·g/R²)·a²` lies in the a² column, the compensated k2 equals
+/// `k2_apparent − Δk2` exactly, the other coefficients and the residuals are unchanged, and
+///
+/// $$ \sigma^2(k_2) = \sigma^2_{fit}(c_4) + \left(\tfrac{k_1 g}{R^2}\right)^2 \sigma^2(C_r)
+///    \;\Big[ + \left(\tfrac{C_r g^2}{R^3}\right)^2 \sigma^2(c_2)
+///    - 2\,\tfrac{C_r g^2}{R^3}\operatorname{cov}(c_2, c_4) \Big]_{k_1\ \text{fitted}} $$
+///
+/// with c₂ the ω² and c₄ the a² coefficient. C_r comes from the probe, an independent
+/// measurement, so it is uncorrelated with the PIGA fit.
+///
+/// # Errors
+/// Those of [`identify_calibration`]; [`IdentifyError::InvalidParameter`] for a non-finite
+/// C_r or k1 or a negative σ(C_r).
+///
+/// ```
+/// use approx::assert_relative_eq;
+/// use identify::{identify_compensated, Compensation, K1Source};
+/// let (r, g, k1, k2, c_r) = (2.5, 9.8, 0.56, 3e-6, -4e-8);
+/// let rates: Vec<f64> = (1..=8).map(|i| (25.0 * f64::from(i)).to_radians()).collect();
+/// let out: Vec<f64> = rates.iter().map(|w| {
+///     let a = r * w * w / g;
+///     k1 * a + k2 * a * a + k1 * c_r * w.powi(4) / g
+/// }).collect();
+/// let comp = Compensation { c_r_m_s2: c_r, c_r_sigma_m_s2: 1e-9, k1: K1Source::Fitted };
+/// let cal = identify_compensated(&rates, &out, r, g, &comp)?;
+/// assert_relative_eq!(cal.k2_rad_s_g2, k2, max_relative = 1e-6);
+/// assert_relative_eq!(cal.uncompensated.k2_apparent_rad_s_g2, k2 + k1 * c_r * g / (r * r),
+///                     max_relative = 1e-6);
+/// # Ok::<(), identify::IdentifyError>(())
+/// ```
+pub fn identify_compensated(
+    rate_rad_s: &[f64],
+    output_rad_s: &[f64],
+    radius_m: f64,
+    g_m_s2: f64,
+    compensation: &Compensation,
+) -> Result<CompensatedCalibration> {
+    finite("c_r_m_s2", compensation.c_r_m_s2)?;
+    non_negative("c_r_sigma_m_s2", compensation.c_r_sigma_m_s2)?;
+    if let K1Source::Given { k1_rad_s_g } = compensation.k1 {
+        finite("k1_rad_s_g", k1_rad_s_g)?;
+    }
+    let uncompensated = identify_calibration(rate_rad_s, output_rad_s, radius_m, g_m_s2)?;
+    let k1 = match compensation.k1 {
+        K1Source::Fitted => uncompensated.k1_implied_rad_s_g,
+        K1Source::Given { k1_rad_s_g } => k1_rad_s_g,
+    };
+    let c_r = compensation.c_r_m_s2;
+    let corrected: Vec<f64> = rate_rad_s
+        .iter()
+        .zip(output_rad_s)
+        .map(|(w, y)| y - k1 * c_r * w.powi(4) / g_m_s2)
+        .collect();
+    let compensated = identify_calibration(rate_rad_s, &corrected, radius_m, g_m_s2)?;
+    let delta_k2 = pseudo_second_order(k1, c_r, compensation.c_r_sigma_m_s2, g_m_s2, radius_m)?;
+
+    let cov = &compensated.fit.covariance;
+    let mut variance = cov[(4, 4)] + delta_k2.sigma_rad_s_g2.powi(2);
+    if compensation.k1 == K1Source::Fitted {
+        // k2 = c4 − c2·C_r·g²/R³; the derivative with respect to c2 is −C_r·g²/R³.
+        let d = -c_r * g_m_s2 * g_m_s2 / (radius_m * radius_m * radius_m);
+        variance += d * d * cov[(2, 2)] + 2.0 * d * cov[(2, 4)];
+    }
+    Ok(CompensatedCalibration {
+        k2_rad_s_g2: compensated.k2_apparent_rad_s_g2,
+        k2_sigma_rad_s_g2: variance.max(0.0).sqrt(),
+        k2_sigma_from_c_r_rad_s_g2: delta_k2.sigma_rad_s_g2,
+        uncompensated,
+        compensated,
+        compensation: *compensation,
+        k1_used_rad_s_g: k1,
+        delta_k2,
+    })
+}
+
+/// Number of distinct values (exact comparison).
+fn count_distinct(values: &[f64]) -> usize {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted.dedup();
+    sorted.len()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    const R: f64 = 2.5;
+    const G: f64 = 9.8;
+
+    fn rates(n: usize) -> Vec<f64> {
+        (1..=n)
+            .map(|i| (200.0 * i as f64 / n as f64).to_radians())
+            .collect()
+    }
+
+    /// Output of eq. 17 with every term, for given coefficients.
+    fn outputs(rates: &[f64], k: [f64; 6], noise: f64) -> Vec<f64> {
+        rates
+            .iter()
+            .enumerate()
+            .map(|(i, w)| {
+                let a = R * w * w / G;
+                k[0] + k[1] * w
+                    + k[2] * w * w
+                    + k[3] * w.powi(3)
+                    + k[4] * a * a
+                    + k[5] * a.powi(3)
+                    + noise * if i % 2 == 0 { 1.0 } else { -1.0 }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn recovers_every_coefficient() {
+        let w = rates(9);
+        let truth = [1e-4, -2e-6, 0.56 * R / G, 3e-8, 5e-6, -2e-7];
+        let cal = identify_calibration(&w, &outputs(&w, truth, 0.0), R, G).unwrap();
+        assert_relative_eq!(cal.bias_rad_s, truth[0], max_relative = 1e-8);
+        assert_relative_eq!(cal.omega_coeff, truth[1], max_relative = 1e-7);
+        assert_relative_eq!(cal.omega2_coeff_s, truth[2], max_relative = 1e-12);
+        assert_relative_eq!(cal.k1_implied_rad_s_g, 0.56, max_relative = 1e-12);
+        assert_relative_eq!(cal.omega3_coeff_s2, truth[3], max_relative = 1e-6);
+        assert_relative_eq!(cal.k2_apparent_rad_s_g2, truth[4], max_relative = 1e-7);
+        assert_relative_eq!(cal.k3_rad_s_g3, truth[5], max_relative = 1e-6);
+        assert_eq!(cal.distinct_rates, 9);
+        assert_eq!(cal.fit.dof, 3);
+    }
+
+    #[test]
+    fn a_scaling_is_the_unscaled_fit_rescaled() {
+        // The coefficient of a² is (g/R)² times that of ω⁴, and of a³ (g/R)³ times that of ω⁶.
+        let w = rates(8);
+        let y = outputs(&w, [0.0, 1e-6, 0.1428, 0.0, 4e-6, 1e-7], 1e-9);
+        let cal = identify_calibration(&w, &y, R, G).unwrap();
+        let raw = lstsq_design(
+            &Design::powers(&w, &[0, 1, 2, 3, 4, 6]),
+            &y,
+            &LstsqOptions::default(),
+        )
+        .unwrap();
+        assert_relative_eq!(
+            cal.k2_apparent_rad_s_g2,
+            raw.coefficients[4] * (G / R).powi(2),
+            max_relative = 1e-9
+        );
+        assert_relative_eq!(
+            cal.k3_rad_s_g3,
+            raw.coefficients[5] * (G / R).powi(3),
+            max_relative = 1e-9
+        );
+        assert_relative_eq!(
+            cal.k2_apparent_sigma_rad_s_g2,
+            raw.std_errors[4] * (G / R).powi(2),
+            max_relative = 1e-9
+        );
+    }
+
+    #[test]
+    fn compensation_removes_delta_k2_and_propagates_sigma() {
+        let (k1, k2, c_r, sigma) = (0.56, 5e-6, 1.6e-6, 0.1e-6);
+        let w = rates(8);
+        let mut y = outputs(&w, [0.0, 0.0, k1 * R / G, 0.0, k2, 0.0], 1e-12);
+        for (y, w) in y.iter_mut().zip(&w) {
+            *y += k1 * c_r * w.powi(4) / G;
+        }
+        let dk2 = k1 * c_r * G / (R * R);
+        for source in [K1Source::Fitted, K1Source::Given { k1_rad_s_g: k1 }] {
+            let comp = Compensation {
+                c_r_m_s2: c_r,
+                c_r_sigma_m_s2: sigma,
+                k1: source,
+            };
+            let cal = identify_compensated(&w, &y, R, G, &comp).unwrap();
+            // Within a few of the fit's own standard errors (the noise is ±1e-12 rad/s).
+            let fit_sigma = cal.compensated.k2_apparent_sigma_rad_s_g2;
+            assert!((cal.uncompensated.k2_apparent_rad_s_g2 - (k2 + dk2)).abs() < 5.0 * fit_sigma);
+            assert!((cal.k2_rad_s_g2 - k2).abs() < 5.0 * fit_sigma);
+            assert_relative_eq!(cal.delta_k2.delta_k2_rad_s_g2, dk2, max_relative = 1e-6);
+            assert_relative_eq!(
+                cal.k2_sigma_from_c_r_rad_s_g2,
+                k1 * G / (R * R) * sigma,
+                max_relative = 1e-6
+            );
+            // The fit alone is far more precise than C_r here: σ(C_r) dominates.
+            assert!(fit_sigma < 0.01 * cal.k2_sigma_from_c_r_rad_s_g2);
+            assert_relative_eq!(
+                cal.k2_sigma_rad_s_g2,
+                cal.k2_sigma_from_c_r_rad_s_g2,
+                max_relative = 1e-3
+            );
+            // Residuals are unchanged by the compensation.
+            assert_relative_eq!(
+                cal.compensated.fit.residual_sd,
+                cal.uncompensated.fit.residual_sd,
+                max_relative = 1e-6
+            );
+        }
+    }
+
+    #[test]
+    fn fitted_k1_adds_its_own_variance() {
+        // With σ(C_r) = 0, the fitted-k1 variance adds (C_r g²/R³)²·var(c2) − 2(C_r g²/R³)·cov(c2, c4).
+        let w = rates(10);
+        let y = outputs(&w, [1e-5, 0.0, 0.1428, 0.0, 5e-6, 0.0], 1e-6);
+        let c_r = 1e-5;
+        let fitted = identify_compensated(
+            &w,
+            &y,
+            R,
+            G,
+            &Compensation {
+                c_r_m_s2: c_r,
+                c_r_sigma_m_s2: 0.0,
+                k1: K1Source::Fitted,
+            },
+        )
+        .unwrap();
+        let cov = &fitted.compensated.fit.covariance;
+        let d = -c_r * G * G / (R * R * R);
+        let expected = (cov[(4, 4)] + d * d * cov[(2, 2)] + 2.0 * d * cov[(2, 4)]).sqrt();
+        assert_relative_eq!(fitted.k2_sigma_rad_s_g2, expected, max_relative = 1e-12);
+        let given = identify_compensated(
+            &w,
+            &y,
+            R,
+            G,
+            &Compensation {
+                c_r_m_s2: c_r,
+                c_r_sigma_m_s2: 0.0,
+                k1: K1Source::Given { k1_rad_s_g: 0.56 },
+            },
+        )
+        .unwrap();
+        assert_relative_eq!(
+            given.k2_sigma_rad_s_g2,
+            given.compensated.fit.covariance[(4, 4)].sqrt(),
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn typed_errors() {
+        let w = rates(5);
+        let y = outputs(&w, [0.0, 0.0, 0.1, 0.0, 0.0, 0.0], 0.0);
+        assert_eq!(
+            identify_calibration(&w, &y, R, G),
+            Err(IdentifyError::TooFewDistinctRates {
+                distinct: 5,
+                need: 6
+            })
+        );
+        // Ten points but only five distinct rates.
+        let w2: Vec<f64> = w.iter().chain(&w).copied().collect();
+        let y2: Vec<f64> = y.iter().chain(&y).copied().collect();
+        assert_eq!(
+            identify_calibration(&w2, &y2, R, G),
+            Err(IdentifyError::TooFewDistinctRates {
+                distinct: 5,
+                need: 6
+            })
+        );
+        let w = rates(6);
+        let y = outputs(&w, [0.0, 0.0, 0.1, 0.0, 0.0, 0.0], 0.0);
+        assert_eq!(
+            identify_calibration(&w, &y, R, G),
+            Err(IdentifyError::TooFewObservations {
+                observations: 6,
+                unknowns: 6
+            })
+        );
+        assert!(matches!(
+            identify_calibration(&w, &y, -R, G),
+            Err(IdentifyError::InvalidParameter {
+                name: "radius_m",
+                ..
+            })
+        ));
+        assert!(matches!(
+            identify_calibration(&w, &y[..5], R, G),
+            Err(IdentifyError::DimensionMismatch { .. })
+        ));
+        let mut bad = w.clone();
+        bad[2] = f64::NAN;
+        assert_eq!(
+            identify_calibration(&bad, &y, R, G),
+            Err(IdentifyError::NonFinite {
+                row: 2,
+                column: Some(1)
+            })
+        );
+        let comp = Compensation {
+            c_r_m_s2: f64::NAN,
+            c_r_sigma_m_s2: 0.0,
+            k1: K1Source::Fitted,
+        };
+        assert!(matches!(
+            identify_compensated(&w, &y, R, G, &comp),
+            Err(IdentifyError::InvalidParameter {
+                name: "c_r_m_s2",
+                ..
+            })
+        ));
+    }
+}

@@ -1,0 +1,345 @@
+//! `cargo xtask identify`: the eq. 18 calibration of a PIGA from a table of outputs at several
+//! centrifuge rates, optionally compensated for the spindle's dynamic radius error (eq. 19).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use identify::{
+    Calibration, CompensatedCalibration, Compensation, K1Source, identify_calibration,
+    identify_compensated,
+};
+
+/// Identify k0…k3 from a PIGA output table (CSV with header `rate_deg_s,output_rad_s`).
+#[derive(Debug, clap::Args)]
+pub(crate) struct Identify {
+    /// CSV file with header `rate_deg_s,output_rad_s`: one row per rate point (mean output over
+    /// whole revolutions, rad/s).
+    file: PathBuf,
+    /// Working radius R (m), used to form a = R·ω²/g.
+    #[arg(long)]
+    radius_m: f64,
+    /// Gravity g (m/s²). The default is the paper's value.
+    #[arg(long, default_value_t = 9.8)]
+    g: f64,
+    /// k1 (rad/(s·g)) for the compensation. Without it, k1 is implied by the fitted ω²
+    /// coefficient (c₂·g/R).
+    #[arg(long, requires = "c_r_m_s2")]
+    k1: Option<f64>,
+    /// Dynamic radius-error coefficient C_r (m·s²) from the probe analysis: enables the
+    /// compensated identification.
+    #[arg(long, requires = "c_r_sigma_m_s2")]
+    c_r_m_s2: Option<f64>,
+    /// Standard deviation of C_r (m·s²).
+    #[arg(long, requires = "c_r_m_s2")]
+    c_r_sigma_m_s2: Option<f64>,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+impl Identify {
+    pub(crate) fn run(&self) -> anyhow::Result<()> {
+        let (rate_deg_s, output_rad_s) = read_table(&self.file)?;
+        let rate_rad_s: Vec<f64> = rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let context = || format!("identifying {}", self.file.display());
+        let result = match (self.c_r_m_s2, self.c_r_sigma_m_s2) {
+            (Some(c_r_m_s2), Some(c_r_sigma_m_s2)) => {
+                let compensation = Compensation {
+                    c_r_m_s2,
+                    c_r_sigma_m_s2,
+                    k1: self
+                        .k1
+                        .map_or(K1Source::Fitted, |k1_rad_s_g| K1Source::Given {
+                            k1_rad_s_g,
+                        }),
+                };
+                let c = identify_compensated(
+                    &rate_rad_s,
+                    &output_rad_s,
+                    self.radius_m,
+                    self.g,
+                    &compensation,
+                )
+                .with_context(context)?;
+                (c.uncompensated.clone(), Some(c))
+            }
+            _ => (
+                identify_calibration(&rate_rad_s, &output_rad_s, self.radius_m, self.g)
+                    .with_context(context)?,
+                None,
+            ),
+        };
+        if self.json {
+            let value = to_json(&self.file, &result.0, result.1.as_ref());
+            println!("{}", serde_json::to_string_pretty(&value)?);
+        } else {
+            print_report(&self.file, &result.0, result.1.as_ref());
+        }
+        Ok(())
+    }
+}
+
+/// Reads `rate_deg_s,output_rad_s`; every error names the file and the line.
+fn read_table(path: &Path) -> anyhow::Result<(Vec<f64>, Vec<f64>)> {
+    let name = path.display();
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .with_context(|| format!("{name}: cannot open"))?;
+    let headers = reader
+        .headers()
+        .with_context(|| format!("{name}: line 1: cannot read the header"))?
+        .clone();
+    let names: Vec<&str> = headers.iter().collect();
+    if names != ["rate_deg_s", "output_rad_s"] {
+        bail!(
+            "{name}: line 1: header must be `rate_deg_s,output_rad_s`, found `{}`",
+            names.join(",")
+        );
+    }
+    let (mut rates, mut outputs) = (Vec::new(), Vec::new());
+    for record in reader.records() {
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, csv::Position::line);
+            anyhow::anyhow!("{name}: line {line}: {e}")
+        })?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let field = |index: usize, column: &str| -> anyhow::Result<f64> {
+            let text = record.get(index).unwrap_or("");
+            let value: f64 = text.parse().map_err(|_| {
+                anyhow::anyhow!("{name}: line {line}: {column} `{text}` is not a number")
+            })?;
+            if !value.is_finite() {
+                bail!("{name}: line {line}: {column} `{text}` is not finite");
+            }
+            Ok(value)
+        };
+        rates.push(field(0, "rate_deg_s")?);
+        outputs.push(field(1, "output_rad_s")?);
+    }
+    if rates.is_empty() {
+        bail!("{name}: no data rows after the header");
+    }
+    Ok((rates, outputs))
+}
+
+fn print_report(path: &Path, cal: &Calibration, comp: Option<&CompensatedCalibration>) {
+    let fit = &cal.fit;
+    println!(
+        "PIGA calibration from {}: {} points at {} distinct rates; R = {} m, g = {} m/s²",
+        path.display(),
+        fit.residuals.len(),
+        cal.distinct_rates,
+        cal.radius_m,
+        cal.g_m_s2
+    );
+    println!(
+        "design [1, ω, ω², ω³, a², a³], a = R·ω²/g (eq. 18); condition number of the \
+         column-scaled design {:.3e}; residual SD {:.4e} rad/s ({} dof); solver {:?}",
+        fit.condition_number, fit.residual_sd, fit.dof, fit.path
+    );
+    for w in &fit.warnings {
+        println!("warning: {w:?}");
+    }
+    let s = &fit.std_errors;
+    let rows = [
+        ("1: k0 + k1·Δφ_ys", "rad/s", cal.bias_rad_s, s[0]),
+        ("ω (nuisance)", "", cal.omega_coeff, s[1]),
+        ("ω²", "s", cal.omega2_coeff_s, s[2]),
+        ("ω³ (nuisance)", "s²", cal.omega3_coeff_s2, s[3]),
+        (
+            "a²: apparent k2 = k2 + Δk2",
+            "rad/(s·g²)",
+            cal.k2_apparent_rad_s_g2,
+            s[4],
+        ),
+        ("a³: k3", "rad/(s·g³)", cal.k3_rad_s_g3, s[5]),
+        (
+            "k1 implied by ω² (c₂·g/R)",
+            "rad/(s·g)",
+            cal.k1_implied_rad_s_g,
+            cal.k1_implied_sigma_rad_s_g,
+        ),
+    ];
+    println!("{:<30} {:>16} {:>12}  unit", "coefficient", "value", "σ");
+    for (label, unit, value, sigma) in rows {
+        println!("{label:<30} {value:>16.8e} {sigma:>12.3e}  {unit}");
+    }
+    if let Some(c) = comp {
+        let source = match c.compensation.k1 {
+            K1Source::Fitted => "implied by the fit",
+            K1Source::Given { .. } => "given",
+        };
+        println!(
+            "compensation: C_r = {:.5e} ± {:.3e} m·s², k1 = {:.8} rad/(s·g) ({source})",
+            c.compensation.c_r_m_s2, c.compensation.c_r_sigma_m_s2, c.k1_used_rad_s_g
+        );
+        println!(
+            "{:<30} {:>16.8e} {:>12.3e}  rad/(s·g²)",
+            "Δk2 = k1·C_r·g/R² (eq. 19)", c.delta_k2.delta_k2_rad_s_g2, c.delta_k2.sigma_rad_s_g2
+        );
+        println!(
+            "{:<30} {:>16.8e} {:>12.3e}  rad/(s·g²)  (σ from the fit {:.3e}, from C_r {:.3e})",
+            "compensated k2",
+            c.k2_rad_s_g2,
+            c.k2_sigma_rad_s_g2,
+            c.compensated.k2_apparent_sigma_rad_s_g2,
+            c.k2_sigma_from_c_r_rad_s_g2
+        );
+    }
+}
+
+fn to_json(
+    path: &Path,
+    cal: &Calibration,
+    comp: Option<&CompensatedCalibration>,
+) -> serde_json::Value {
+    let fit = &cal.fit;
+    let s = &fit.std_errors;
+    let coefficient = |v: f64, sigma: f64| serde_json::json!({ "value": v, "sigma": sigma });
+    let covariance: Vec<Vec<f64>> = (0..fit.covariance.nrows())
+        .map(|i| fit.covariance.row(i).iter().copied().collect())
+        .collect();
+    let compensated = comp.map(|c| {
+        serde_json::json!({
+            "c_r_m_s2": c.compensation.c_r_m_s2,
+            "c_r_sigma_m_s2": c.compensation.c_r_sigma_m_s2,
+            "k1_source": c.compensation.k1,
+            "k1_used_rad_s_g": c.k1_used_rad_s_g,
+            "delta_k2_rad_s_g2": c.delta_k2.delta_k2_rad_s_g2,
+            "delta_k2_sigma_rad_s_g2": c.delta_k2.sigma_rad_s_g2,
+            "k2_rad_s_g2": c.k2_rad_s_g2,
+            "k2_sigma_rad_s_g2": c.k2_sigma_rad_s_g2,
+            "k2_sigma_fit_rad_s_g2": c.compensated.k2_apparent_sigma_rad_s_g2,
+            "k2_sigma_from_c_r_rad_s_g2": c.k2_sigma_from_c_r_rad_s_g2,
+        })
+    });
+    serde_json::json!({
+        "file": path.display().to_string(),
+        "points": fit.residuals.len(),
+        "distinct_rates": cal.distinct_rates,
+        "radius_m": cal.radius_m,
+        "g_m_s2": cal.g_m_s2,
+        "columns": ["1", "omega", "omega^2", "omega^3", "a^2", "a^3"],
+        "coefficients": {
+            "bias_rad_s": coefficient(cal.bias_rad_s, s[0]),
+            "omega": coefficient(cal.omega_coeff, s[1]),
+            "omega2_s": coefficient(cal.omega2_coeff_s, s[2]),
+            "omega3_s2": coefficient(cal.omega3_coeff_s2, s[3]),
+            "k2_apparent_rad_s_g2": coefficient(cal.k2_apparent_rad_s_g2, s[4]),
+            "k3_rad_s_g3": coefficient(cal.k3_rad_s_g3, s[5]),
+        },
+        "k1_implied_rad_s_g": coefficient(cal.k1_implied_rad_s_g, cal.k1_implied_sigma_rad_s_g),
+        "covariance": covariance,
+        "residuals_rad_s": fit.residuals,
+        "residual_sd_rad_s": fit.residual_sd,
+        "dof": fit.dof,
+        "condition_number": fit.condition_number,
+        "solver_path": fit.path,
+        "warnings": fit.warnings,
+        "compensated": compensated,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file under the system temp directory, removed on drop.
+    struct TempFile(PathBuf);
+
+    impl TempFile {
+        fn new(name: &str, contents: &str) -> Self {
+            let path = std::env::temp_dir()
+                .join(format!("xtask-identify-{}-{name}.csv", std::process::id()));
+            std::fs::write(&path, contents).unwrap();
+            Self(path)
+        }
+    }
+
+    impl Drop for TempFile {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+
+    #[test]
+    fn reads_a_table() {
+        let f = TempFile::new("ok", "rate_deg_s,output_rad_s\n10, 0.5\n20,1.5e-1\n");
+        let (r, o) = read_table(&f.0).unwrap();
+        assert_eq!(r, vec![10.0, 20.0]);
+        assert_eq!(o, vec![0.5, 0.15]);
+    }
+
+    #[test]
+    fn errors_name_file_and_line() {
+        let f = TempFile::new("bad-number", "rate_deg_s,output_rad_s\n10,0.5\n20,abc\n");
+        let e = format!("{:#}", read_table(&f.0).unwrap_err());
+        assert!(
+            e.contains(&f.0.display().to_string()) && e.contains("line 3"),
+            "{e}"
+        );
+        assert!(e.contains("output_rad_s `abc`"), "{e}");
+
+        let f = TempFile::new("header", "rate,output\n10,0.5\n");
+        let e = format!("{:#}", read_table(&f.0).unwrap_err());
+        assert!(
+            e.contains("line 1") && e.contains("rate_deg_s,output_rad_s"),
+            "{e}"
+        );
+
+        let f = TempFile::new("fields", "rate_deg_s,output_rad_s\n10,0.5\n20,0.6,7\n");
+        let e = format!("{:#}", read_table(&f.0).unwrap_err());
+        assert!(
+            e.contains(&f.0.display().to_string()) && e.contains("line 3"),
+            "{e}"
+        );
+
+        let f = TempFile::new("nan", "rate_deg_s,output_rad_s\n10,NaN\n");
+        let e = format!("{:#}", read_table(&f.0).unwrap_err());
+        assert!(e.contains("line 2") && e.contains("not finite"), "{e}");
+
+        let f = TempFile::new("empty", "rate_deg_s,output_rad_s\n");
+        let e = format!("{:#}", read_table(&f.0).unwrap_err());
+        assert!(e.contains("no data rows"), "{e}");
+
+        let missing = std::env::temp_dir().join("xtask-identify-does-not-exist.csv");
+        let e = format!("{:#}", read_table(&missing).unwrap_err());
+        assert!(e.contains("xtask-identify-does-not-exist.csv"), "{e}");
+    }
+
+    #[test]
+    fn identifies_and_compensates_a_synthetic_table() {
+        let (r, g, k1, k2, c_r) = (2.5, 9.8, 0.56, 5e-6, 1.6e-6);
+        let mut text = String::from("rate_deg_s,output_rad_s\n");
+        for d in [10.0, 30.0, 60.0, 80.0, 110.0, 140.0, 160.0, 200.0_f64] {
+            let w = d.to_radians();
+            let a = r * w * w / g;
+            let y = 1e-5 + k1 * a + k2 * a * a + k1 * c_r * w.powi(4) / g;
+            text.push_str(&format!("{d},{y:.17e}\n"));
+        }
+        let f = TempFile::new("synthetic", &text);
+        let args = Identify {
+            file: f.0.clone(),
+            radius_m: r,
+            g,
+            k1: None,
+            c_r_m_s2: Some(c_r),
+            c_r_sigma_m_s2: Some(1e-8),
+            json: true,
+        };
+        let (rates, outputs) = read_table(&args.file).unwrap();
+        let rates: Vec<f64> = rates.iter().map(|d| d.to_radians()).collect();
+        let comp = Compensation {
+            c_r_m_s2: c_r,
+            c_r_sigma_m_s2: 1e-8,
+            k1: K1Source::Fitted,
+        };
+        let c = identify_compensated(&rates, &outputs, r, g, &comp).unwrap();
+        assert!((c.k2_rad_s_g2 - k2).abs() < 1e-3 * k2, "{}", c.k2_rad_s_g2);
+        let json = to_json(&args.file, &c.uncompensated, Some(&c));
+        assert_eq!(json["distinct_rates"], 8);
+        assert!(json["compensated"]["k2_rad_s_g2"].as_f64().is_some());
+        args.run().unwrap();
+    }
+}
