@@ -11,6 +11,7 @@ use identify::RadiusModel;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
+use crate::mechanism::MechanismConfig;
 
 /// A whole study: one centrifuge, one PIGA, a pre- and a post-balance phase.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -33,6 +34,10 @@ pub struct StudyConfig {
     pub pre_balance: PhaseConfig,
     /// The phase measured after balancing.
     pub post_balance: PhaseConfig,
+    /// A PIGA calibration simulated with the measured C_r, identified with and without
+    /// compensation (absent: not run).
+    #[serde(default)]
+    pub mechanism: Option<MechanismConfig>,
 }
 
 const fn default_model() -> RadiusModel {
@@ -110,7 +115,10 @@ impl StudyConfig {
 
     /// Parses and validates RON text; `path` is only used to name the source in errors.
     pub fn parse(text: &str, path: &Path) -> Result<LoadedStudy> {
-        let config: StudyConfig = ron::from_str(text).map_err(|e| PipelineError::Parse {
+        // Optional sections are written without `Some(...)`.
+        let options = ron::Options::default()
+            .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+        let config: StudyConfig = options.from_str(text).map_err(|e| PipelineError::Parse {
             path: path.to_owned(),
             line: e.span.start.line,
             column: e.span.start.col,
@@ -153,6 +161,9 @@ impl StudyConfig {
             ("post_balance", &self.post_balance),
         ] {
             phase.validate(name, self.radius_model, path)?;
+        }
+        if let Some(mechanism) = &self.mechanism {
+            mechanism.validate(path)?;
         }
         Ok(())
     }

@@ -36,6 +36,7 @@
 mod config;
 mod error;
 mod expected;
+mod mechanism;
 mod output;
 mod plot;
 mod recording;
@@ -48,11 +49,12 @@ mod units;
 pub use config::{HarmonicPoint, LoadedStudy, PhaseConfig, Points, RadiusPoint, StudyConfig};
 pub use error::{PipelineError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
+pub use mechanism::{MechanismConfig, MechanismPhase, MechanismResults};
 pub use output::{WrittenFiles, results_json, write_outputs};
 pub use plot::radius_error_svg;
 pub use recording::{
-    AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, SyntheticSpec, analyze_recording,
-    load_recording, parse_recording,
+    AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, SyntheticSpec,
+    analyze_recording, load_recording, parse_recording,
 };
 pub use report::render as render_report;
 pub use results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};

@@ -3,6 +3,8 @@
 use identify::RadiusModel;
 use serde::{Deserialize, Serialize};
 
+use crate::mechanism::MechanismResults;
+
 /// All results of a study.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StudyResults {
@@ -14,6 +16,8 @@ pub struct StudyResults {
     pub pre_balance: PhaseResults,
     /// Results after balancing.
     pub post_balance: PhaseResults,
+    /// The simulated calibration with and without compensation (when configured).
+    pub mechanism: Option<MechanismResults>,
 }
 
 /// Scalar inputs of the study.

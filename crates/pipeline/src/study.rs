@@ -7,6 +7,7 @@ use identify::RadiusModel;
 
 use crate::config::{LoadedStudy, PhaseConfig, Points, StudyConfig};
 use crate::error::{PipelineError, Result};
+use crate::mechanism;
 use crate::results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
 use crate::units::{deg_s_to_rad_s, m_to_um, um_to_m};
 
@@ -25,6 +26,13 @@ pub fn run(study: &LoadedStudy) -> Result<StudyResults> {
             field: "lever".to_owned(),
             source,
         })?;
+    let pre_balance = run_phase(config, &config.pre_balance, "pre_balance", path)?;
+    let post_balance = run_phase(config, &config.post_balance, "post_balance", path)?;
+    let mechanism = config
+        .mechanism
+        .as_ref()
+        .map(|m| mechanism::run(config, m, &pre_balance, &post_balance, path))
+        .transpose()?;
     Ok(StudyResults {
         study: config.name.clone(),
         inputs: StudyInputs {
@@ -33,8 +41,9 @@ pub fn run(study: &LoadedStudy) -> Result<StudyResults> {
             k1_rad_s_g: config.k1_rad_s_g,
             lever_ratio,
         },
-        pre_balance: run_phase(config, &config.pre_balance, "pre_balance", path)?,
-        post_balance: run_phase(config, &config.post_balance, "post_balance", path)?,
+        pre_balance,
+        post_balance,
+        mechanism,
     })
 }
 

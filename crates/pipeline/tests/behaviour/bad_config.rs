@@ -154,3 +154,41 @@ fn bad_lever_geometry_is_refused() {
         other => panic!("expected Harmonics, got {other:?}"),
     }
 }
+
+#[test]
+fn mechanism_needs_seven_distinct_finite_rates() {
+    let text = paper_text().replace(
+        "rates_deg_s: [10.0, 40.0, 60.0, 80.1234, 110.1234, 140.0, 160.1234, 200.1234]",
+        "rates_deg_s: [10.0, 40.0, 60.0, 80.1234, 110.1234, 200.1234]",
+    );
+    match parse(&text) {
+        Err(PipelineError::TooFewPoints {
+            field, got, need, ..
+        }) => {
+            assert_eq!(field, "mechanism.rates_deg_s");
+            assert_eq!((got, need), (6, 7));
+        }
+        other => panic!("expected TooFewPoints, got {other:?}"),
+    }
+    let text = paper_text().replace("140.0, 160.1234", "140.0, 140.0");
+    match parse(&text) {
+        Err(PipelineError::DuplicateRate { field, .. }) => {
+            assert_eq!(field, "mechanism.rates_deg_s[6]");
+        }
+        other => panic!("expected DuplicateRate, got {other:?}"),
+    }
+    let text = paper_text().replace("k2_rad_s_g2: 2.0e-6", "k2_rad_s_g2: NaN");
+    match parse(&text) {
+        Err(PipelineError::InvalidField { field, .. }) => {
+            assert_eq!(field, "mechanism.k2_rad_s_g2")
+        }
+        other => panic!("expected InvalidField, got {other:?}"),
+    }
+    let text = paper_text().replace("latitude_deg: 45.0", "latitude_deg: 95.0");
+    match parse(&text) {
+        Err(PipelineError::InvalidField { field, .. }) => {
+            assert_eq!(field, "mechanism.latitude_deg")
+        }
+        other => panic!("expected InvalidField, got {other:?}"),
+    }
+}
