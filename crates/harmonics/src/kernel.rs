@@ -107,7 +107,7 @@ impl<const W: usize> Acc<W> {
         let mut yv = [0.0; W];
         let mut tau = [0.0; W];
         for l in 0..W {
-            let theta = (x[l] - map.shift) * map.scale + map.offset;
+            let theta = (x[l] - map.shift).mul_add(map.scale, map.offset);
             (s1[l], c1[l]) = sin_cos(theta);
             yv[l] = y[l] - centre.y_ref;
             if DRIFT {
@@ -135,7 +135,7 @@ impl<const W: usize> Acc<W> {
         let mut s_k = s1;
         let mut two_c1 = [0.0; W];
         for l in 0..W {
-            two_c1[l] = 2.0 * c1[l];
+            two_c1[l] = c1[l] + c1[l];
         }
         // Orders 2…N: moments, data products (and drift products).
         for k in 2..=N {

@@ -32,7 +32,8 @@ const fn taylor(n: u32) -> f64 {
 #[inline(always)]
 pub(crate) fn sin_cos(theta: f64) -> (f64, f64) {
     let q = (theta * FRAC_2_PI).round_ties_even();
-    let r = ((theta - q * PIO2_HI) - q * PIO2_MID) - q * PIO2_LO;
+    // q·PIO2_HI and q·PIO2_MID are exact, so the fused steps lose nothing.
+    let r = (-q).mul_add(PIO2_LO, (-q).mul_add(PIO2_MID, (-q).mul_add(PIO2_HI, theta)));
     let z = r * r;
 
     let mut ps = taylor(15);
@@ -42,7 +43,7 @@ pub(crate) fn sin_cos(theta: f64) -> (f64, f64) {
     ps = ps.mul_add(z, taylor(7));
     ps = ps.mul_add(z, taylor(5));
     ps = ps.mul_add(z, taylor(3));
-    let sr = r + r * z * ps;
+    let sr = (r * z).mul_add(ps, r);
 
     let mut pc = taylor(16);
     pc = pc.mul_add(z, taylor(14));
@@ -52,10 +53,10 @@ pub(crate) fn sin_cos(theta: f64) -> (f64, f64) {
     pc = pc.mul_add(z, taylor(6));
     pc = pc.mul_add(z, taylor(4));
     pc = pc.mul_add(z, taylor(2));
-    let cr = 1.0 + z * pc;
+    let cr = z.mul_add(pc, 1.0);
 
     // Quadrant m = q mod 4 ∈ {0, 1, 2, 3}, exactly, in floating point.
-    let m = q - 4.0 * (q * 0.25).floor();
+    let m = (-4.0_f64).mul_add((q * 0.25).floor(), q);
     let odd = m == 1.0 || m == 3.0;
     let (s, c) = if odd { (cr, sr) } else { (sr, cr) };
     let s = if m >= 2.0 { -s } else { s };

@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! cargo run -p pipeline --example synth_recording -- OUT.csv [--rate-deg-s W] [--sample-rate-hz F]
-//!     [--revolutions R] [--encoder] [--noise-um S] [--wobble-rad A] [--seed N]
+//!     [--revolutions R] [--encoder | --no-encoder] [--noise-um S] [--wobble-rad A]
+//!     [--start-angle-deg D] [--seed N]
 //! ```
 //!
 //! Defaults give the repository's fixture `fixtures/recordings/probe_120deg_s.csv`:
@@ -42,6 +43,7 @@ fn run(args: &[String]) -> Result<(), String> {
             "--revolutions" => spec.revolutions = value(i)?,
             "--noise-um" => spec.noise_um = value(i)?,
             "--wobble-rad" => spec.wobble_rad = value(i)?,
+            "--start-angle-deg" => spec.start_angle_deg = value(i)?,
             "--seed" => spec.seed = value(i)? as u64,
             "--encoder" => {
                 spec.encoder = true;

@@ -474,49 +474,34 @@ pub fn parse_recording(
     };
     let angle_scale = format.angle_unit.rad_per_unit();
     let mut values = [0.0_f64; 3];
-    while let Some((line, row)) = lines.next_content() {
-        let mut fields = split_fields(row, delimiter);
-        let mut next_wanted = 0;
-        for index in 0..=last_needed {
-            let Some(field) = fields.next() else {
-                let dest = wanted[next_wanted].1;
-                return Err(RecordingError::MissingField {
-                    path: path.to_owned(),
-                    line,
-                    column: column_name(dest),
-                });
+    let mut dest_of = vec![SKIP; last_needed + 1];
+    for &(field, dest) in wanted.iter().filter(|w| w.0 != usize::MAX) {
+        dest_of[field] = dest as u8;
+    }
+    let mut previous_s = f64::NEG_INFINITY;
+    loop {
+        // Fast path: a plain row parsed in place; else the line is parsed field by field.
+        let line = if let Some(next) = fast_row(text, lines.pos, delimiter, &dest_of, &mut values) {
+            lines.pos = next;
+            lines.line += 1;
+            lines.line
+        } else {
+            let Some((line, row)) = lines.next_content() else {
+                break;
             };
-            if wanted[next_wanted].0 != index {
-                continue;
-            }
-            let dest = wanted[next_wanted].1;
-            next_wanted += 1;
-            let value = parse_f64(field).ok_or_else(|| RecordingError::Parse {
+            parse_row_slowly(row, delimiter, &wanted, last_needed, &mut values)
+                .map_err(|e| e.located(path, line, &column_name))?;
+            line
+        };
+        if values[0] <= previous_s {
+            return Err(RecordingError::TimeNotIncreasing {
                 path: path.to_owned(),
                 line,
-                column: column_name(dest),
-                text: String::from_utf8_lossy(field.trim_ascii()).into_owned(),
-            })?;
-            if !value.is_finite() {
-                return Err(RecordingError::NonFinite {
-                    path: path.to_owned(),
-                    line,
-                    column: column_name(dest),
-                    value,
-                });
-            }
-            values[dest] = value;
+                previous_s,
+                time_s: values[0],
+            });
         }
-        if let Some(&previous_s) = time_s.last() {
-            if values[0] <= previous_s {
-                return Err(RecordingError::TimeNotIncreasing {
-                    path: path.to_owned(),
-                    line,
-                    previous_s,
-                    time_s: values[0],
-                });
-            }
-        }
+        previous_s = values[0];
         time_s.push(values[0]);
         gap.push(values[1]);
         if angle_col.is_some() {
@@ -570,6 +555,77 @@ pub fn parse_recording(
         gap_unit: format.gap_unit,
         angle_rad: angle_col.map(|_| angle),
     })
+}
+
+/// What went wrong in a row, before the file and line are attached.
+enum RowError {
+    MissingField { dest: usize },
+    Parse { dest: usize, text: String },
+    NonFinite { dest: usize, value: f64 },
+}
+
+impl RowError {
+    fn located(
+        self,
+        path: &Path,
+        line: usize,
+        column_name: &dyn Fn(usize) -> String,
+    ) -> RecordingError {
+        let path = path.to_owned();
+        match self {
+            Self::MissingField { dest } => RecordingError::MissingField {
+                path,
+                line,
+                column: column_name(dest),
+            },
+            Self::Parse { dest, text } => RecordingError::Parse {
+                path,
+                line,
+                column: column_name(dest),
+                text,
+            },
+            Self::NonFinite { dest, value } => RecordingError::NonFinite {
+                path,
+                line,
+                column: column_name(dest),
+                value,
+            },
+        }
+    }
+}
+
+/// Parses one row field by field: blanks, quotes-free fields, any number the standard
+/// library reads; finite values only.
+fn parse_row_slowly(
+    row: &[u8],
+    delimiter: u8,
+    wanted: &[(usize, usize); 3],
+    last_needed: usize,
+    values: &mut [f64; 3],
+) -> Result<(), RowError> {
+    let mut fields = split_fields(row, delimiter);
+    let mut next_wanted = 0;
+    for index in 0..=last_needed {
+        let Some(field) = fields.next() else {
+            return Err(RowError::MissingField {
+                dest: wanted[next_wanted].1,
+            });
+        };
+        if wanted[next_wanted].0 != index {
+            continue;
+        }
+        let dest = wanted[next_wanted].1;
+        next_wanted += 1;
+        let value = parse_f64(field).ok_or_else(|| RowError::Parse {
+            dest,
+            text: String::from_utf8_lossy(field.trim_ascii()).into_owned(),
+        })?;
+        if !value.is_finite() {
+            return Err(RowError::NonFinite { dest, value });
+        }
+        values[dest] = value;
+    }
+    Ok(())
 }
 
 fn delimiter_byte(format: &RecordingFormat) -> Result<u8, RecordingError> {
@@ -707,8 +763,15 @@ fn parse_f64(field: &[u8]) -> Option<f64> {
     fast_f64(f).or_else(|| std::str::from_utf8(f).ok()?.parse().ok())
 }
 
-#[inline]
+/// `fast_prefix` over the whole field.
 fn fast_f64(s: &[u8]) -> Option<f64> {
+    fast_prefix(s).and_then(|(v, used)| (used == s.len()).then_some(v))
+}
+
+/// The fast path of [`parse_f64`] on the number at the start of `s`: its value and length,
+/// or `None` when it is not a plain decimal number the fast path computes exactly.
+#[inline(always)]
+fn fast_prefix(s: &[u8]) -> Option<(f64, usize)> {
     let mut i = 0;
     let negative = match s.first() {
         Some(b'-') => {
@@ -721,36 +784,27 @@ fn fast_f64(s: &[u8]) -> Option<f64> {
         }
         _ => false,
     };
+    // Integer and fraction digits; leading zeros count too (a field of more than 19 digits
+    // goes to the standard parser, which is rare and still correct).
+    let int_start = i;
     let mut mantissa: u64 = 0;
-    let mut digits = 0_u32;
+    while let Some(d) = s.get(i).map(|b| b.wrapping_sub(b'0')).filter(|d| *d <= 9) {
+        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
+        i += 1;
+    }
+    let mut digits = i - int_start;
     let mut exponent: i32 = 0;
-    let mut any = false;
-    while i < s.len() && s[i].is_ascii_digit() {
-        // Leading zeros do not count as significant digits.
-        if mantissa != 0 || s[i] != b'0' {
-            digits += 1;
-        }
-        mantissa = mantissa
-            .wrapping_mul(10)
-            .wrapping_add(u64::from(s[i] - b'0'));
+    if s.get(i) == Some(&b'.') {
         i += 1;
-        any = true;
-    }
-    if i < s.len() && s[i] == b'.' {
-        i += 1;
-        while i < s.len() && s[i].is_ascii_digit() {
-            if mantissa != 0 || s[i] != b'0' {
-                digits += 1;
-            }
-            mantissa = mantissa
-                .wrapping_mul(10)
-                .wrapping_add(u64::from(s[i] - b'0'));
-            exponent -= 1;
+        let frac_start = i;
+        while let Some(d) = s.get(i).map(|b| b.wrapping_sub(b'0')).filter(|d| *d <= 9) {
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
             i += 1;
-            any = true;
         }
+        digits += i - frac_start;
+        exponent = -((i - frac_start) as i32);
     }
-    if !any || digits > 19 {
+    if digits == 0 || digits > 19 {
         return None;
     }
     if i < s.len() && (s[i] == b'e' || s[i] == b'E') {
@@ -771,7 +825,7 @@ fn fast_f64(s: &[u8]) -> Option<f64> {
         }
         exponent += if exp_negative { -e } else { e };
     }
-    if i != s.len() || mantissa > (1 << 53) || !(-22..=22).contains(&exponent) {
+    if mantissa > (1 << 53) || !(-22..=22).contains(&exponent) {
         return None;
     }
     let m = mantissa as f64;
@@ -780,7 +834,60 @@ fn fast_f64(s: &[u8]) -> Option<f64> {
     } else {
         m * POW10[exponent as usize]
     };
-    Some(if negative { -v } else { v })
+    Some((if negative { -v } else { v }, i))
+}
+
+/// Sentinel of [`fast_row`]'s field map: a column that is not stored.
+const SKIP: u8 = u8::MAX;
+
+/// Parses a plain row `number,number,…` starting at `pos` straight from the text: stores
+/// the wanted fields (`dest_of[field]` is the destination in `values`, or [`SKIP`]) and
+/// returns where the next line starts. `None` on anything else (comment, blank line, blanks
+/// around fields, quotes, short row, a value the fast path does not take): the caller then
+/// parses the line the slow way, which also reports errors.
+#[inline(always)]
+fn fast_row(
+    text: &[u8],
+    mut pos: usize,
+    delimiter: u8,
+    dest_of: &[u8],
+    values: &mut [f64; 3],
+) -> Option<usize> {
+    let last = dest_of.len() - 1;
+    for (f, &dest) in dest_of.iter().enumerate() {
+        if dest == SKIP {
+            let off = text
+                .get(pos..)?
+                .iter()
+                .position(|&b| b == delimiter || b == b'\n')?;
+            if text[pos + off] != delimiter {
+                return None;
+            }
+            pos += off + 1;
+            continue;
+        }
+        let (v, used) = fast_prefix(text.get(pos..)?)?;
+        values[usize::from(dest)] = v;
+        pos += used;
+        if f < last {
+            if text.get(pos) != Some(&delimiter) {
+                return None;
+            }
+            pos += 1;
+        } else {
+            return match text.get(pos) {
+                None => Some(pos),
+                Some(b'\n') => Some(pos + 1),
+                Some(b'\r') if text.get(pos + 1) == Some(&b'\n') => Some(pos + 2),
+                Some(&b) if b == delimiter => {
+                    let off = text[pos..].iter().position(|&b| b == b'\n');
+                    Some(off.map_or(text.len(), |o| pos + o + 1))
+                }
+                _ => None,
+            };
+        }
+    }
+    None
 }
 
 #[cfg(test)]
