@@ -38,13 +38,14 @@ impl Simulate {
         );
         println!();
         println!(
-            "{:>10} {:>9} {:>10} {:>10} {:>12} {:>18}",
-            "rate deg/s", "samples", "d_c1 µm", "d_s1 µm", "Δr_x µm", "output rad/s"
+            "{:>10} {:>5} {:>9} {:>10} {:>10} {:>12} {:>18}",
+            "rate deg/s", "revs", "samples", "d_c1 µm", "d_s1 µm", "Δr_x µm", "output rad/s"
         );
         for r in &t.rates {
             println!(
-                "{:>10.4} {:>9} {:>10.4} {:>10.4} {:>12.6} {:>18.12}",
+                "{:>10.4} {:>5} {:>9} {:>10.4} {:>10.4} {:>12.6} {:>18.12}",
                 r.rate_deg_s,
+                r.revolutions,
                 r.samples,
                 r.probe_first_harmonic.dc1_um,
                 r.probe_first_harmonic.ds1_um,

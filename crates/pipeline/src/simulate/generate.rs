@@ -19,7 +19,8 @@ use crate::error::{PipelineError, Result};
 const UM_PER_M: f64 = 1e6;
 
 /// Stream tags that keep the random streams of the probe and the PIGA independent of each
-/// other and of the order of the rates.
+/// other; each rate has its own streams, keyed by its value, so that adding, removing or
+/// reordering rates leaves the noise of the others unchanged.
 const PROBE_STREAM: u64 = 1;
 const PIGA_STREAM: u64 = 2;
 
@@ -115,8 +116,15 @@ pub struct TruthRate {
     pub probe_first_harmonic: ProbeTruth,
     /// The recording's file name.
     pub recording: String,
+    /// Whole revolutions in the recording.
+    pub revolutions: usize,
     /// Number of samples in the recording.
     pub samples: usize,
+    /// Standard deviation that the probe noise gives the radius error fitted from this
+    /// recording, µm: `ratio·σ·√(2/N)` for N samples spread evenly over whole revolutions
+    /// (the variance of a least-squares Fourier coefficient). Recordings of fixed
+    /// revolutions have N ∝ 1/ω, so their radius errors are not equally precise.
+    pub radius_error_sigma_um: f64,
 }
 
 /// The exact first harmonic of the probe gap at one rate.
@@ -189,7 +197,6 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             source,
         })?;
 
-    let mut piga_rng = stream(s.seed, PIGA_STREAM, 0);
     let mut recordings = Vec::with_capacity(points.len());
     let mut piga = Vec::with_capacity(points.len());
     let mut rates = Vec::with_capacity(points.len());
@@ -201,8 +208,10 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
                 source,
             }
         })?;
-        let recording = record(s, &chain, rate_deg_s, i);
-        let output_rad_s = point.output_rad_s + gaussian(&mut piga_rng, s.piga.noise_rad_s);
+        let recording = record(s, &chain, rate_deg_s);
+        let mut piga_rng = stream(s.seed, PIGA_STREAM, rate_deg_s.to_bits());
+        let output_rad_s = point.output_rad_s
+            + normal(s.piga.noise_rad_s).map_or(0.0, |d| d.sample(&mut piga_rng));
         piga.push(PigaRow {
             rate_deg_s,
             output_rad_s,
@@ -221,7 +230,11 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             radius_error_um: offsets.dr_x_m * UM_PER_M,
             probe_first_harmonic: probe_truth(&s.probe, &offsets, lever_ratio),
             recording: recording.file_name.clone(),
+            revolutions: s.revolutions_at(rate_deg_s),
             samples: recording.time_s.len(),
+            radius_error_sigma_um: lever_ratio
+                * s.probe.noise_um
+                * (2.0 / recording.time_s.len() as f64).sqrt(),
         });
         recordings.push(recording);
     }
@@ -298,13 +311,29 @@ fn spindle_angle_rad(probe: &ProbeSpec, rate_rad_s: f64, t_s: f64) -> f64 {
 }
 
 /// The probe recording at one rate.
-fn record(s: &Scenario, chain: &Chain, rate_deg_s: f64, index: usize) -> SimulatedRecording {
+fn record(s: &Scenario, chain: &Chain, rate_deg_s: f64) -> SimulatedRecording {
     let probe = &s.probe;
-    let n = sample_count(probe.sample_rate_hz, rate_deg_s, s.revolutions);
+    let n = sample_count(
+        probe.sample_rate_hz,
+        rate_deg_s,
+        s.revolutions_at(rate_deg_s),
+    );
     let ratio = lever_ratio(probe);
     let sign = direction_sign(probe);
-    let mut rng = stream(s.seed, PROBE_STREAM, index as u64);
-    let axis_point = Point::<Spindle>::new([0.0, 0.0, 0.0]);
+    let mut rng = stream(s.seed, PROBE_STREAM, rate_deg_s.to_bits());
+    let noise = normal(probe.noise_um);
+    // The spindle-axis point at the PIGA plane (the O2 origin) in the sleeve frame. Eq. 5
+    // begins with Rot(z₁, θ), so T₂¹(θ) = Rot(z₁, θ)·T₂¹(0) and the point at angle θ is the
+    // chain's point at θ = 0 turned by θ (equal to evaluating the chain at θ; tested).
+    let p0 = axis_point_at_piga(chain.offsets(), 0.0);
+    let harmonics: Vec<(usize, f64, f64)> = probe
+        .sleeve_harmonics
+        .iter()
+        .map(|h| (h.order, h.c_um, h.s_um))
+        .collect();
+    let highest = harmonics.iter().map(|h| h.0).max().unwrap_or(1);
+    let mut cos_k = vec![0.0; highest + 1];
+    let mut sin_k = vec![0.0; highest + 1];
 
     let mut time_s = Vec::with_capacity(n);
     let mut gap_um = Vec::with_capacity(n);
@@ -312,21 +341,23 @@ fn record(s: &Scenario, chain: &Chain, rate_deg_s: f64, index: usize) -> Simulat
     for i in 0..n {
         let t = i as f64 / probe.sample_rate_hz;
         let theta = spindle_angle_rad(probe, chain.rate_rad_s(), t);
-        // the spindle-axis point at the PIGA plane (the O2 origin) in the sleeve frame
-        let at_piga = spindle_transform(theta, chain.offsets()).apply(axis_point);
-        // carried down the cone to the probe plane (eq. 22 read backwards)
-        let x_probe_um = at_piga.coords_m[0] * UM_PER_M / ratio;
-        let sleeve: f64 = probe
-            .sleeve_harmonics
+        let (sin1, cos1) = theta.sin_cos();
+        // X1 component of Rot(z, θ)·p0, carried down the cone to the probe plane
+        // (eq. 22 read backwards)
+        let x_probe_um = (p0[0] * cos1 - p0[1] * sin1) * UM_PER_M / ratio;
+        // cos kθ, sin kθ by the angle-addition recurrence
+        (cos_k[0], sin_k[0]) = (1.0, 0.0);
+        for k in 1..=highest {
+            cos_k[k] = cos_k[k - 1] * cos1 - sin_k[k - 1] * sin1;
+            sin_k[k] = sin_k[k - 1] * cos1 + cos_k[k - 1] * sin1;
+        }
+        let sleeve: f64 = harmonics
             .iter()
-            .map(|h| {
-                let (sk, ck) = (h.order as f64 * theta).sin_cos();
-                h.c_um * ck + h.s_um * sk
-            })
+            .map(|&(k, c, s)| c * cos_k[k] + s * sin_k[k])
             .sum();
-        let gap = probe.l0_um + sign * x_probe_um + sleeve + gaussian(&mut rng, probe.noise_um);
+        let e = noise.as_ref().map_or(0.0, |d| d.sample(&mut rng));
         time_s.push(t);
-        gap_um.push(gap);
+        gap_um.push(probe.l0_um + sign * x_probe_um + sleeve + e);
         if let Some(a) = angle_deg.as_mut() {
             a.push(theta.rem_euclid(TAU).to_degrees() % 360.0);
         }
@@ -340,25 +371,31 @@ fn record(s: &Scenario, chain: &Chain, rate_deg_s: f64, index: usize) -> Simulat
     }
 }
 
-/// An independent random stream per (seed, purpose, index).
-fn stream(seed: u64, purpose: u64, index: u64) -> StdRng {
+/// An independent random stream per (seed, purpose, key).
+fn stream(seed: u64, purpose: u64, key: u64) -> StdRng {
     // SplitMix64 finaliser over the three numbers: distinct inputs give unrelated seeds.
     let mut z = seed
         ^ purpose.wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ index.wrapping_mul(0xD1B5_4A32_D192_ED03);
+        ^ key.wrapping_mul(0xD1B5_4A32_D192_ED03);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     StdRng::seed_from_u64(z ^ (z >> 31))
 }
 
-/// One draw of N(0, σ²); exactly 0 (and no draw) when σ is 0.
-fn gaussian(rng: &mut StdRng, sigma: f64) -> f64 {
-    if sigma > 0.0 {
-        // σ was validated finite and > 0, so `Normal::new` cannot fail
-        Normal::new(0.0, sigma).map_or(0.0, |d| d.sample(rng))
-    } else {
-        0.0
-    }
+/// The spindle-axis point at the PIGA plane (the `O2` origin) in the sleeve frame at spindle
+/// angle θ, from the chain of eq. 5: `T₂¹(θ)·[0 0 0 1]ᵀ`, m.
+fn axis_point_at_piga(offsets: &SpindleOffsets, theta_rad: f64) -> [f64; 3] {
+    spindle_transform(theta_rad, offsets)
+        .apply(Point::<Spindle>::new([0.0, 0.0, 0.0]))
+        .coords_m
+}
+
+/// N(0, σ²), or `None` (no draws at all) when σ is 0.
+fn normal(sigma: f64) -> Option<Normal<f64>> {
+    // σ was validated finite and ≥ 0, so `Normal::new` cannot fail
+    (sigma > 0.0)
+        .then(|| Normal::new(0.0, sigma).ok())
+        .flatten()
 }
 
 #[cfg(test)]
@@ -386,6 +423,32 @@ mod tests {
         assert_eq!(a, a2);
         assert_ne!(a, b);
         assert_ne!(a, c);
+    }
+
+    #[test]
+    fn the_turned_point_is_the_chain_evaluated_at_the_angle() {
+        let offsets = SpindleOffsets {
+            dr_x_m: 5.6e-6,
+            dr_y_m: -2.0e-6,
+            dphi_x_rad: 3e-6,
+            dphi_y_rad: -1e-6,
+        };
+        let p0 = axis_point_at_piga(&offsets, 0.0);
+        for k in 0..50 {
+            let theta = 0.37 * f64::from(k) - 3.0;
+            let (s, c) = theta.sin_cos();
+            let turned = [p0[0] * c - p0[1] * s, p0[0] * s + p0[1] * c, p0[2]];
+            let direct = axis_point_at_piga(&offsets, theta);
+            for (a, b) in turned.iter().zip(&direct) {
+                assert!((a - b).abs() < 1e-20, "{theta}: {a} vs {b}");
+            }
+            // and it is ΔR·(cos(θ+β), sin(θ+β), 0) (eq. 9, corrected)
+            let dr = offsets.drift_magnitude_m();
+            let beta = offsets.drift_azimuth_rad();
+            assert_relative_eq!(direct[0], dr * (theta + beta).cos(), epsilon = 1e-20);
+            assert_relative_eq!(direct[1], dr * (theta + beta).sin(), epsilon = 1e-20);
+            assert_eq!(direct[2], 0.0);
+        }
     }
 
     #[test]

@@ -41,8 +41,14 @@ pub struct Scenario {
     pub piga: PigaSpec,
     /// Spindle rates of the calibration, deg/s (strictly positive, distinct).
     pub rates_deg_s: Vec<f64>,
-    /// Whole revolutions recorded by the probe at each rate.
+    /// Whole revolutions recorded by the probe at each rate (at least; see `min_duration_s`).
     pub revolutions: usize,
+    /// Shortest recording, s: a rate records more whole revolutions than `revolutions` if that
+    /// is needed to last this long (default 0: exactly `revolutions` at every rate). Equal
+    /// durations give every rate the same number of samples, hence first harmonics of equal
+    /// variance, which is what an unweighted `C_r` fit assumes.
+    #[serde(default)]
+    pub min_duration_s: f64,
 }
 
 /// The centrifuge without its error motion (which has its own section).
@@ -283,6 +289,18 @@ impl Scenario {
                 "must lie in 1..=10000",
             ));
         }
+        v.non_negative("min_duration_s", self.min_duration_s)?;
+        if self
+            .rates_deg_s
+            .iter()
+            .any(|&r| self.revolutions_at(r) > MAX_REVOLUTIONS)
+        {
+            return Err(v.invalid(
+                "min_duration_s",
+                self.min_duration_s,
+                "needs more than 10000 revolutions at the fastest rate",
+            ));
+        }
         // The fastest rate has the fewest samples per revolution; they must resolve the
         // highest sleeve harmonic (more than two samples per period of it).
         let fastest = self.rates_deg_s.iter().copied().fold(0.0, f64::max);
@@ -303,16 +321,42 @@ impl Scenario {
         let total: f64 = self
             .rates_deg_s
             .iter()
-            .map(|r| p.sample_rate_hz * 360.0 / r * self.revolutions as f64)
+            .map(|&r| p.sample_rate_hz * 360.0 / r * self.revolutions_at(r) as f64)
             .sum();
         if total > MAX_TOTAL_SAMPLES {
             return Err(v.invalid(
                 "revolutions",
                 self.revolutions as f64,
-                "the recordings would hold more than 2e8 samples; lower revolutions or sample_rate_hz",
+                "the recordings would hold more than 2e8 samples; lower revolutions, min_duration_s or sample_rate_hz",
             ));
         }
         Ok(error_motion)
+    }
+
+    /// Whole revolutions recorded at `rate_deg_s`: `revolutions`, or more if needed to last
+    /// `min_duration_s` (a duration within 1e-9 of a whole number of turns counts as that
+    /// number).
+    ///
+    /// ```
+    /// # let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/scenarios/post-balance.ron")).unwrap();
+    /// let mut s = pipeline::Scenario::parse(&text, std::path::Path::new("post-balance.ron"))?.scenario;
+    /// s.revolutions = 2;
+    /// s.min_duration_s = 72.0;
+    /// assert_eq!(s.revolutions_at(10.0), 2);    // 36 s per turn
+    /// assert_eq!(s.revolutions_at(100.0), 20);  // 3.6 s per turn
+    /// assert_eq!(s.revolutions_at(200.1234), 41);
+    /// # Ok::<(), pipeline::PipelineError>(())
+    /// ```
+    #[must_use]
+    pub fn revolutions_at(&self, rate_deg_s: f64) -> usize {
+        let turns = self.min_duration_s * rate_deg_s / 360.0;
+        let needed = if (turns - turns.round()).abs() < 1e-9 {
+            turns.round()
+        } else {
+            turns.ceil()
+        };
+        // `as` saturates; validation bounds the result
+        self.revolutions.max(needed as usize)
     }
 }
 

@@ -67,8 +67,7 @@ pub fn piga_csv_text(rows: &[PigaRow]) -> String {
     text
 }
 
-/// Writes one recording: header `time_s,gap_um[,angle_deg]`; times with 9 decimals (ns),
-/// gaps with 9 decimals (fm, far below any probe noise), angles with 9 decimals (deg).
+/// Writes one recording file (see [`SimulatedRecording::write_csv`]).
 fn write_recording(path: &Path, r: &SimulatedRecording) -> Result<()> {
     let io = |source| PipelineError::Io {
         path: path.to_owned(),
@@ -76,21 +75,34 @@ fn write_recording(path: &Path, r: &SimulatedRecording) -> Result<()> {
     };
     let file = std::fs::File::create(path).map_err(io)?;
     let mut out = std::io::BufWriter::with_capacity(1 << 16, file);
-    match &r.angle_deg {
-        Some(angle) => {
-            writeln!(out, "time_s,gap_um,angle_deg").map_err(io)?;
-            for ((t, g), a) in r.time_s.iter().zip(&r.gap_um).zip(angle) {
-                writeln!(out, "{t:.9},{g:.9},{a:.9}").map_err(io)?;
-            }
-        }
-        None => {
-            writeln!(out, "time_s,gap_um").map_err(io)?;
-            for (t, g) in r.time_s.iter().zip(&r.gap_um) {
-                writeln!(out, "{t:.9},{g:.9}").map_err(io)?;
-            }
-        }
-    }
+    r.write_csv(&mut out).map_err(io)?;
     out.flush().map_err(io)
+}
+
+impl SimulatedRecording {
+    /// Writes the recording as CSV in the probe-recording format: header
+    /// `time_s,gap_um[,angle_deg]`, then one row per sample; times, gaps and angles with
+    /// nine decimals (ns, fm — far below any probe noise — and 1e-9 deg).
+    ///
+    /// # Errors
+    /// Whatever `out` returns.
+    pub fn write_csv<W: std::io::Write>(&self, out: &mut W) -> std::io::Result<()> {
+        match &self.angle_deg {
+            Some(angle) => {
+                writeln!(out, "time_s,gap_um,angle_deg")?;
+                for ((t, g), a) in self.time_s.iter().zip(&self.gap_um).zip(angle) {
+                    writeln!(out, "{t:.9},{g:.9},{a:.9}")?;
+                }
+            }
+            None => {
+                writeln!(out, "time_s,gap_um")?;
+                for (t, g) in self.time_s.iter().zip(&self.gap_um) {
+                    writeln!(out, "{t:.9},{g:.9}")?;
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
