@@ -175,14 +175,17 @@ pub struct ProbeTruth {
 /// ```
 ///
 /// # Errors
-/// [`PipelineError::Kinematics`] or [`PipelineError::AccelModel`] if the chain or the PIGA
-/// model refuses an input (a validated scenario does not trigger them).
+/// As [`Scenario::check`] if the scenario was altered after loading so that it is no longer
+/// valid; [`PipelineError::Kinematics`] or [`PipelineError::AccelModel`] if the chain or the
+/// PIGA model refuses an input (a valid scenario does not trigger them).
 pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     let s = &loaded.scenario;
+    // `LoadedScenario`'s fields are public: check again rather than trust them (cheap).
+    let error_motion = s.validate(&loaded.path)?;
     let centrifuge = Centrifuge {
         radius_m: s.centrifuge.radius_m,
         site: s.centrifuge.site,
-        error_motion: loaded.error_motion,
+        error_motion,
     };
     let g = s.centrifuge.site.gravity_m_s2;
     let radius = s.centrifuge.radius_m;
@@ -239,14 +242,14 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
         recordings.push(recording);
     }
 
-    let c_r = loaded.error_motion.c_r_m_s2;
+    let c_r = error_motion.c_r_m_s2;
     let delta_k2 = k.k1_rad_s_g * c_r * g / (radius * radius);
     Ok(Simulation {
         recordings,
         piga,
         truth: Truth {
             scenario: s.clone(),
-            error_motion: loaded.error_motion,
+            error_motion,
             lever_ratio,
             c_r_m_s2: c_r,
             delta_k2_predicted_rad_s_g2: delta_k2,

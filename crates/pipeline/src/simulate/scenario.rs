@@ -183,7 +183,8 @@ impl Scenario {
         })
     }
 
-    fn validate(&self, path: &Path) -> Result<ErrorMotion> {
+    /// Checks every field; returns the resolved error motion.
+    pub(crate) fn validate(&self, path: &Path) -> Result<ErrorMotion> {
         let v = Validator { path };
         let c = &self.centrifuge;
         v.positive("centrifuge.radius_m", c.radius_m)?;

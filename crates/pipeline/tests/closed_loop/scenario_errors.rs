@@ -261,6 +261,18 @@ fn scenarios_built_in_code_are_checked_too() {
 }
 
 #[test]
+fn simulate_checks_a_scenario_altered_after_loading() {
+    let mut loaded = post_balance();
+    loaded.scenario.probe.sample_rate_hz = 0.0;
+    match pipeline::simulate(&loaded) {
+        Err(PipelineError::InvalidField { field, .. }) => {
+            assert_eq!(field, "probe.sample_rate_hz");
+        }
+        other => panic!("expected InvalidField, got {other:?}"),
+    }
+}
+
+#[test]
 fn unreadable_file_is_an_io_error() {
     let missing = Path::new("/nonexistent/scenario.ron");
     match Scenario::load(missing) {
