@@ -10,6 +10,7 @@ NumPy in-memory fit throughput (--time-fit). The in-memory throughput of the Rus
 from `cargo bench -p harmonics --bench fit`.
 """
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -41,15 +42,19 @@ def main():
         cx = ["cargo", "xtask", "harmonics", path, "--rate-deg-s", rate, "--json"]
         np_cmd = [sys.executable, "bench/numpy_baseline.py", path, "--rate-deg-s", rate, "--json"]
         rows = [("xtask binary", wall(xt, runs)), ("cargo xtask", wall(cx, runs)), ("numpy", wall(np_cmd, runs))]
-        fit = json.loads(subprocess.run(
-            [sys.executable, "bench/numpy_baseline.py", path, "--rate-deg-s", rate, "--time-fit"],
-            check=True, capture_output=True, text=True, cwd=ROOT).stdout)
+        fits = {}
+        for label, env in [("default threads", {}), ("one thread", {"OPENBLAS_NUM_THREADS": "1"})]:
+            fits[label] = json.loads(subprocess.run(
+                [sys.executable, "bench/numpy_baseline.py", path, "--rate-deg-s", rate, "--time-fit"],
+                check=True, capture_output=True, text=True, cwd=ROOT, env={**os.environ, **env}).stdout)
+        fit = fits["one thread"]
         print(f"{path} ({fit['samples']} samples, order {fit['order']}, runs {runs})")
         base = rows[2][1][0]
         for name, (med, best) in rows:
             print(f"  {name:<14} median {med * 1e3:8.1f} ms  best {best * 1e3:8.1f} ms  numpy/this {base / med:6.1f}x")
-        print(f"  numpy in-memory fit: best {fit['best_s'] * 1e3:.1f} ms, {fit['samples_per_s'] / 1e6:.2f} M samples/s"
-              f" (numpy {fit['numpy']})")
+        for label, f in fits.items():
+            print(f"  numpy in-memory fit ({label}): best {f['best_s'] * 1e3:.1f} ms, "
+                  f"{f['samples_per_s'] / 1e6:.2f} M samples/s (numpy {f['numpy']})")
 
 
 if __name__ == "__main__":

@@ -403,13 +403,47 @@ pub fn analyze_recording(
     })
 }
 
-/// Reads a probe recording from a file.
+/// Bytes read from the file at a time by [`load_recording`].
+const CHUNK_BYTES: usize = 1 << 20;
+
+/// Reads a probe recording from a file, streaming it through one reused buffer of about
+/// a megabyte (whole lines are parsed; a partial last line waits for the next read).
 pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording, RecordingError> {
-    let bytes = std::fs::read(path).map_err(|error| RecordingError::Io {
+    use std::io::Read as _;
+    let io = |error| RecordingError::Io {
         path: path.to_owned(),
         error,
-    })?;
-    parse_recording(&bytes, path, format)
+    };
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let size = file.metadata().map_or(0, |m| m.len() as usize);
+    let mut parser = RowParser::new(path, format, size)?;
+    let mut buf: Vec<u8> = Vec::with_capacity(CHUNK_BYTES + 64 * 1024);
+    let mut eof = false;
+    while !eof {
+        // Top the buffer up to a chunk (more if one line is longer than that).
+        let target = (buf.len() + 1).max(CHUNK_BYTES);
+        while buf.len() < target {
+            let old = buf.len();
+            buf.resize(target, 0);
+            let got = file.read(&mut buf[old..]).map_err(io)?;
+            buf.truncate(old + got);
+            if got == 0 {
+                eof = true;
+                break;
+            }
+        }
+        let complete = if eof {
+            buf.len()
+        } else {
+            match buf.iter().rposition(|&b| b == b'\n') {
+                Some(i) => i + 1,
+                None => continue,
+            }
+        };
+        parser.feed(&buf[..complete])?;
+        buf.drain(..complete);
+    }
+    parser.finish(None)
 }
 
 /// Parses a probe recording held in memory; `path` names it in errors.
@@ -418,143 +452,238 @@ pub fn parse_recording(
     path: &Path,
     format: &RecordingFormat,
 ) -> Result<Recording, RecordingError> {
-    let delimiter = delimiter_byte(format)?;
-    let mut lines = Lines {
-        text,
-        pos: 0,
-        line: 0,
-    };
+    let mut parser = RowParser::new(path, format, text.len())?;
+    parser.feed(text)?;
+    parser.finish(Some(text))
+}
 
-    // Header.
-    let Some((header_line, header)) = lines.next_content() else {
-        return Err(RecordingError::Empty {
-            path: path.to_owned(),
-        });
-    };
-    let names: Vec<String> = split_fields(header, delimiter)
-        .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
-        .collect();
-    let find = |name: &str| names.iter().position(|n| n == name);
-    let missing = |column: &str| RecordingError::MissingColumn {
-        path: path.to_owned(),
-        line: header_line,
-        column: column.to_owned(),
-        header: names.clone(),
-    };
-    let time_col = find(&format.time_column).ok_or_else(|| missing(&format.time_column))?;
-    let gap_col = find(&format.gap_column).ok_or_else(|| missing(&format.gap_column))?;
-    let angle_col = find(&format.angle_column);
-    // Fields of a row that are stored: (field index, destination).
-    let mut wanted = [
-        (time_col, 0_usize),
-        (gap_col, 1),
-        (angle_col.unwrap_or(usize::MAX), 2),
-    ];
-    wanted.sort_unstable();
-    let last_needed = wanted
-        .iter()
-        .filter(|w| w.0 != usize::MAX)
-        .map(|w| w.0)
-        .max()
-        .unwrap_or(0);
-    let column_name = |dest: usize| match dest {
-        0 => format.time_column.clone(),
-        1 => format.gap_column.clone(),
-        _ => format.angle_column.clone(),
-    };
+/// The columns a header names.
+struct Columns {
+    /// `(field index, destination)` of time (0), gap (1) and angle (2, `usize::MAX` field
+    /// when absent), sorted by field.
+    wanted: [(usize, usize); 3],
+    /// Last field index needed.
+    last_needed: usize,
+    /// Destination of each field up to `last_needed` ([`SKIP`] for others).
+    dest_of: Vec<u8>,
+    /// Whether the angle column is present.
+    has_angle: bool,
+}
 
-    // Rows: one pass, values pushed into three columns reserved from the text's size.
-    let estimate = text.len() / 16;
-    let mut time_s = Vec::with_capacity(estimate);
-    let mut gap = Vec::with_capacity(estimate);
-    let mut angle = if angle_col.is_some() {
-        Vec::with_capacity(estimate)
-    } else {
-        Vec::new()
-    };
-    let angle_scale = format.angle_unit.rad_per_unit();
-    let mut values = [0.0_f64; 3];
-    let mut dest_of = vec![SKIP; last_needed + 1];
-    for &(field, dest) in wanted.iter().filter(|w| w.0 != usize::MAX) {
-        dest_of[field] = dest as u8;
+/// The state of a parse fed with whole lines.
+struct RowParser<'a> {
+    path: &'a Path,
+    format: &'a RecordingFormat,
+    delimiter: u8,
+    /// Lines seen so far.
+    line: usize,
+    header_line: usize,
+    columns: Option<Columns>,
+    time_s: Vec<f64>,
+    gap: Vec<f64>,
+    angle: Vec<f64>,
+    previous_s: f64,
+    size_hint: usize,
+}
+
+impl<'a> RowParser<'a> {
+    fn new(
+        path: &'a Path,
+        format: &'a RecordingFormat,
+        size_hint: usize,
+    ) -> Result<Self, RecordingError> {
+        Ok(Self {
+            path,
+            format,
+            delimiter: delimiter_byte(format)?,
+            line: 0,
+            header_line: 0,
+            columns: None,
+            time_s: Vec::new(),
+            gap: Vec::new(),
+            angle: Vec::new(),
+            previous_s: f64::NEG_INFINITY,
+            size_hint,
+        })
     }
-    let mut previous_s = f64::NEG_INFINITY;
-    loop {
-        // Fast path: a plain row parsed in place; else the line is parsed field by field.
-        let line = if let Some(next) = fast_row(text, lines.pos, delimiter, &dest_of, &mut values) {
-            lines.pos = next;
-            lines.line += 1;
-            lines.line
-        } else {
-            let Some((line, row)) = lines.next_content() else {
-                break;
-            };
-            parse_row_slowly(row, delimiter, &wanted, last_needed, &mut values)
-                .map_err(|e| e.located(path, line, &column_name))?;
-            line
+
+    fn column_name(&self, dest: usize) -> String {
+        match dest {
+            0 => self.format.time_column.clone(),
+            1 => self.format.gap_column.clone(),
+            _ => self.format.angle_column.clone(),
+        }
+    }
+
+    fn header(&mut self, line: usize, header: &[u8]) -> Result<Columns, RecordingError> {
+        let format = self.format;
+        let names: Vec<String> = split_fields(header, self.delimiter)
+            .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
+            .collect();
+        let find = |name: &str| names.iter().position(|n| n == name);
+        let missing = |column: &str| RecordingError::MissingColumn {
+            path: self.path.to_owned(),
+            line,
+            column: column.to_owned(),
+            header: names.clone(),
         };
-        if values[0] <= previous_s {
-            return Err(RecordingError::TimeNotIncreasing {
+        let time_col = find(&format.time_column).ok_or_else(|| missing(&format.time_column))?;
+        let gap_col = find(&format.gap_column).ok_or_else(|| missing(&format.gap_column))?;
+        let angle_col = find(&format.angle_column);
+        let mut wanted = [
+            (time_col, 0_usize),
+            (gap_col, 1),
+            (angle_col.unwrap_or(usize::MAX), 2),
+        ];
+        wanted.sort_unstable();
+        let last_needed = wanted
+            .iter()
+            .filter(|w| w.0 != usize::MAX)
+            .map(|w| w.0)
+            .max()
+            .unwrap_or(0);
+        let mut dest_of = vec![SKIP; last_needed + 1];
+        for &(field, dest) in wanted.iter().filter(|w| w.0 != usize::MAX) {
+            dest_of[field] = dest as u8;
+        }
+        // Columns reserved from the text's size (rows are rarely shorter than 16 bytes).
+        let estimate = self.size_hint / 16;
+        self.time_s.reserve(estimate);
+        self.gap.reserve(estimate);
+        if angle_col.is_some() {
+            self.angle.reserve(estimate);
+        }
+        self.header_line = line;
+        Ok(Columns {
+            wanted,
+            last_needed,
+            dest_of,
+            has_angle: angle_col.is_some(),
+        })
+    }
+
+    /// Parses whole lines (the text ends at a line end, or is the file's last piece).
+    fn feed(&mut self, text: &[u8]) -> Result<(), RecordingError> {
+        let mut lines = Lines {
+            text,
+            pos: 0,
+            line: self.line,
+        };
+        let columns = match self.columns.take() {
+            Some(c) => c,
+            None => match lines.next_content() {
+                Some((line, header)) => self.header(line, header)?,
+                None => {
+                    self.line = lines.line;
+                    return Ok(());
+                }
+            },
+        };
+        let result = self.rows(&mut lines, &columns);
+        self.columns = Some(columns);
+        self.line = lines.line;
+        result
+    }
+
+    fn rows(&mut self, lines: &mut Lines<'_>, c: &Columns) -> Result<(), RecordingError> {
+        let text = lines.text;
+        let angle_scale = self.format.angle_unit.rad_per_unit();
+        let mut values = [0.0_f64; 3];
+        loop {
+            // Fast path: a plain row parsed in place; else the line is parsed field by field.
+            let line = if let Some(next) =
+                fast_row(text, lines.pos, self.delimiter, &c.dest_of, &mut values)
+            {
+                lines.pos = next;
+                lines.line += 1;
+                lines.line
+            } else {
+                let Some((line, row)) = lines.next_content() else {
+                    return Ok(());
+                };
+                parse_row_slowly(row, self.delimiter, &c.wanted, c.last_needed, &mut values)
+                    .map_err(|e| e.located(self.path, line, &|d| self.column_name(d)))?;
+                line
+            };
+            if values[0] <= self.previous_s {
+                return Err(RecordingError::TimeNotIncreasing {
+                    path: self.path.to_owned(),
+                    line,
+                    previous_s: self.previous_s,
+                    time_s: values[0],
+                });
+            }
+            self.previous_s = values[0];
+            self.time_s.push(values[0]);
+            self.gap.push(values[1]);
+            if c.has_angle {
+                self.angle.push(values[2] * angle_scale);
+            }
+        }
+    }
+
+    /// Checks the time axis and returns the recording; `text` (or else the file, read again
+    /// only on error) gives the line of a sample named by an error.
+    fn finish(self, text: Option<&[u8]>) -> Result<Recording, RecordingError> {
+        let path = self.path;
+        let Some(columns) = self.columns else {
+            return Err(RecordingError::Empty {
                 path: path.to_owned(),
-                line,
-                previous_s,
-                time_s: values[0],
+            });
+        };
+        if self.time_s.is_empty() {
+            return Err(RecordingError::NoSamples {
+                path: path.to_owned(),
+                line: self.header_line,
             });
         }
-        previous_s = values[0];
-        time_s.push(values[0]);
-        gap.push(values[1]);
-        if angle_col.is_some() {
-            angle.push(values[2] * angle_scale);
+        if self.time_s.len() > 1 {
+            harmonics::check_time_axis(&self.time_s, self.format.max_gap_intervals).map_err(
+                |e| {
+                    let line_of = |row: usize| match text {
+                        Some(t) => line_of_row(t, row),
+                        None => std::fs::read(path).map_or(0, |t| line_of_row(&t, row)),
+                    };
+                    match e {
+                        HarmonicsError::SampleGap {
+                            index,
+                            interval_s,
+                            nominal_interval_s,
+                            max_intervals,
+                        } => RecordingError::SampleGap {
+                            path: path.to_owned(),
+                            line: line_of(index),
+                            interval_s,
+                            nominal_interval_s,
+                            max_intervals,
+                        },
+                        HarmonicsError::TimeNotIncreasing {
+                            index,
+                            previous_s,
+                            time_s,
+                        } => RecordingError::TimeNotIncreasing {
+                            path: path.to_owned(),
+                            line: line_of(index),
+                            previous_s,
+                            time_s,
+                        },
+                        error => RecordingError::Samples {
+                            path: path.to_owned(),
+                            line: None,
+                            error,
+                        },
+                    }
+                },
+            )?;
         }
-    }
-    if time_s.is_empty() {
-        return Err(RecordingError::NoSamples {
+        Ok(Recording {
             path: path.to_owned(),
-            line: header_line,
-        });
+            time_s: self.time_s,
+            gap: self.gap,
+            gap_unit: self.format.gap_unit,
+            angle_rad: columns.has_angle.then_some(self.angle),
+        })
     }
-    if time_s.len() > 1 {
-        harmonics::check_time_axis(&time_s, format.max_gap_intervals).map_err(|e| {
-            let line_of = |row: usize| line_of_row(text, row);
-            match e {
-                HarmonicsError::SampleGap {
-                    index,
-                    interval_s,
-                    nominal_interval_s,
-                    max_intervals,
-                } => RecordingError::SampleGap {
-                    path: path.to_owned(),
-                    line: line_of(index),
-                    interval_s,
-                    nominal_interval_s,
-                    max_intervals,
-                },
-                HarmonicsError::TimeNotIncreasing {
-                    index,
-                    previous_s,
-                    time_s,
-                } => RecordingError::TimeNotIncreasing {
-                    path: path.to_owned(),
-                    line: line_of(index),
-                    previous_s,
-                    time_s,
-                },
-                error => RecordingError::Samples {
-                    path: path.to_owned(),
-                    line: None,
-                    error,
-                },
-            }
-        })?;
-    }
-    Ok(Recording {
-        path: path.to_owned(),
-        time_s,
-        gap,
-        gap_unit: format.gap_unit,
-        angle_rad: angle_col.map(|_| angle),
-    })
 }
 
 /// What went wrong in a row, before the file and line are attached.
@@ -788,6 +917,10 @@ fn fast_prefix(s: &[u8]) -> Option<(f64, usize)> {
     // goes to the standard parser, which is rare and still correct).
     let int_start = i;
     let mut mantissa: u64 = 0;
+    while let Some(four) = four_digits(s, i) {
+        mantissa = mantissa.wrapping_mul(10_000).wrapping_add(u64::from(four));
+        i += 4;
+    }
     while let Some(d) = s.get(i).map(|b| b.wrapping_sub(b'0')).filter(|d| *d <= 9) {
         mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
         i += 1;
@@ -797,6 +930,10 @@ fn fast_prefix(s: &[u8]) -> Option<(f64, usize)> {
     if s.get(i) == Some(&b'.') {
         i += 1;
         let frac_start = i;
+        while let Some(four) = four_digits(s, i) {
+            mantissa = mantissa.wrapping_mul(10_000).wrapping_add(u64::from(four));
+            i += 4;
+        }
         while let Some(d) = s.get(i).map(|b| b.wrapping_sub(b'0')).filter(|d| *d <= 9) {
             mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
             i += 1;
@@ -835,6 +972,24 @@ fn fast_prefix(s: &[u8]) -> Option<(f64, usize)> {
         m * POW10[exponent as usize]
     };
     Some((if negative { -v } else { v }, i))
+}
+
+/// The value of four ASCII digits at `s[i..i + 4]`, if they are all digits (SWAR: one
+/// 32-bit word, two multiplications).
+#[inline(always)]
+fn four_digits(s: &[u8], i: usize) -> Option<u32> {
+    let bytes: [u8; 4] = s.get(i..i + 4)?.try_into().ok()?;
+    let v = u32::from_le_bytes(bytes);
+    // Every byte in '0'..='9': high nibble 3, and adding 6 keeps it below 0x40.
+    if (v & 0xF0F0_F0F0) | ((v.wrapping_add(0x0606_0606) & 0xF0F0_F0F0) >> 4) != 0x3333_3333 {
+        return None;
+    }
+    let v = v - 0x3030_3030;
+    // Byte 0 becomes 10·d0 + d1 and byte 2 becomes 10·d2 + d3 (no byte exceeds 99).
+    let v = v.wrapping_mul(10).wrapping_add(v >> 8);
+    // (a + c·2¹⁶)·(1 + 100·2¹⁶) holds 100·a + c in bits 16…31.
+    let w = u64::from(v & 0x00FF_00FF);
+    Some((((w * (1 + (100 << 16))) >> 16) & 0xFFFF) as u32)
 }
 
 /// Sentinel of [`fast_row`]'s field map: a column that is not stored.
@@ -1145,6 +1300,76 @@ mod tests {
             e => panic!("{e}"),
         }
         assert!(parse(&rows(100)).is_ok());
+    }
+
+    #[test]
+    fn streamed_file_equals_in_memory_parse() {
+        // Over two chunks of comments before the header, then rows with CRLF, comments,
+        // blank lines and rows the fast path declines, crossing several chunk boundaries.
+        let mut text = String::new();
+        while text.len() < CHUNK_BYTES + CHUNK_BYTES / 2 {
+            text += "# a long preamble of comments ............................................\n";
+        }
+        text += "time_s,gap_um,angle_deg\r\n";
+        for i in 0..120_000 {
+            let t = i as f64 * 0.001;
+            match i % 1000 {
+                7 => text += "# comment\n\n",
+                8 => text += &format!(" {t} , {} ,{}\r\n", -1.5e-3 * i as f64, (i % 360) as f64),
+                _ => {
+                    text += &format!(
+                        "{t:.6},{:.6},{:.4}\n",
+                        50.0 + (i as f64).sin(),
+                        (i % 360) as f64
+                    )
+                }
+            }
+        }
+        text += "120.0,1.0,2.0"; // no final line end
+        let dir = std::env::temp_dir().join(format!("recording-stream-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("big.csv");
+        std::fs::write(&path, &text).unwrap();
+        let loaded = load_recording(&path, &RecordingFormat::default()).unwrap();
+        let parsed = parse_recording(text.as_bytes(), &path, &RecordingFormat::default()).unwrap();
+        assert_eq!(loaded, parsed);
+        assert_eq!(loaded.len(), 120_000 - 120 + 1); // every thousandth row is a comment
+        // An error deep in the file names its line when streamed too.
+        let bad = text.replacen("99.999000,", "99.999000x,", 1);
+        std::fs::write(&path, &bad).unwrap();
+        let e = load_recording(&path, &RecordingFormat::default()).unwrap_err();
+        let header_line = text.lines().position(|l| l.starts_with("time_s")).unwrap() + 1;
+        let line = bad
+            .lines()
+            .position(|l| l.starts_with("99.999000x"))
+            .unwrap()
+            + 1;
+        assert!(line > header_line);
+        assert!(
+            matches!(e, RecordingError::Parse { line: l, .. } if l == line),
+            "{e}"
+        );
+        // A gap, found after the parse, is located by reading the file again.
+        let gap: String = text
+            .split_inclusive('\n')
+            .filter(|l| {
+                !["100.000", "100.001", "100.002", "100.003", "100.004"]
+                    .iter()
+                    .any(|p| l.starts_with(p))
+            })
+            .collect();
+        std::fs::write(&path, &gap).unwrap();
+        let e = load_recording(&path, &RecordingFormat::default()).unwrap_err();
+        let line = gap
+            .lines()
+            .position(|l| l.starts_with("100.005000,"))
+            .unwrap()
+            + 1;
+        assert!(
+            matches!(e, RecordingError::SampleGap { line: l, .. } if l == line),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
