@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use clap::Args;
-use pipeline::{Expected, StudyConfig, StudyResults};
+use pipeline::{Expected, Progress, StudyConfig, StudyResults};
 
 use crate::paths;
 
@@ -31,7 +31,28 @@ impl Study {
         let config = self.config.clone().unwrap_or_else(paths::paper_study);
         let out = self.out.clone().unwrap_or_else(paths::study_out);
         let study = StudyConfig::load(&config)?;
-        let results = pipeline::run(&study)?;
+        let bar = indicatif::ProgressBar::hidden();
+        let results = pipeline::run_with_progress(&study, &|event| match event {
+            Progress::Recordings { total } => {
+                bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+                bar.set_length(total as u64);
+                bar.set_style(
+                    indicatif::ProgressStyle::with_template(
+                        "{bar:30} {pos}/{len} recordings analysed {msg}",
+                    )
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+                );
+            }
+            Progress::RecordingDone { path, .. } => {
+                bar.inc(1);
+                bar.set_message(
+                    path.file_name()
+                        .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+                );
+            }
+            _ => {}
+        })?;
+        bar.finish_and_clear();
         let expected_path = if self.no_compare {
             None
         } else {
@@ -62,6 +83,9 @@ impl Study {
             files.report_md.display(),
             files.radius_error_svg.display()
         );
+        for svg in &files.probe_signals_svg {
+            println!("wrote {}", svg.display());
+        }
         Ok(())
     }
 }

@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
 use crate::mechanism::MechanismConfig;
+use crate::probe_analysis::RecordingSet;
 
 /// A whole study: one centrifuge, one PIGA, a pre- and a post-balance phase.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -60,6 +61,8 @@ pub enum Points {
     FirstHarmonic(Vec<HarmonicPoint>),
     /// Radius errors at the PIGA plane per rate.
     RadiusError(Vec<RadiusPoint>),
+    /// Probe recordings, one per rate, fitted per revolution (eq. 20) for their first harmonic.
+    Recordings(RecordingSet),
     /// Only the change of radius error between two rates, as the paper publishes for the
     /// pre-balance phase. It determines `C_r` exactly, with no standard error.
     RadiusChange {
@@ -208,6 +211,26 @@ impl PhaseConfig {
                 }
                 points.iter().map(|p| p.rate_deg_s).collect()
             }
+            Points::Recordings(set) => {
+                if set.files.is_empty() {
+                    return Err(PipelineError::EmptyList {
+                        path: path.to_owned(),
+                        field: format!("{list}.files"),
+                    });
+                }
+                set.fit
+                    .validate()
+                    .map_err(|source| PipelineError::Harmonics {
+                        path: path.to_owned(),
+                        field: format!("{list}.fit"),
+                        source,
+                    })?;
+                finite(format!("{list}.start_angle_deg"), set.start_angle_deg)?;
+                for (i, p) in set.files.iter().enumerate() {
+                    rate(format!("{list}.files[{i}].rate_deg_s"), p.rate_deg_s)?;
+                }
+                set.files.iter().map(|p| p.rate_deg_s).collect()
+            }
             Points::RadiusChange {
                 from_rate_deg_s,
                 to_rate_deg_s,
@@ -227,12 +250,16 @@ impl PhaseConfig {
                 return Ok(());
             }
         };
+        let items = match &self.points {
+            Points::Recordings(_) => format!("{list}.files"),
+            _ => list.clone(),
+        };
         for (i, r) in rates.iter().enumerate() {
             if let Some(j) = rates[..i].iter().position(|q| q == r) {
                 return Err(PipelineError::DuplicateRate {
                     path: path.to_owned(),
-                    field: format!("{list}[{i}].rate_deg_s"),
-                    first: format!("{list}[{j}].rate_deg_s"),
+                    field: format!("{items}[{i}].rate_deg_s"),
+                    first: format!("{items}[{j}].rate_deg_s"),
                     rate_deg_s: *r,
                 });
             }

@@ -132,6 +132,17 @@ pub enum PipelineError {
         /// The PIGA model's error.
         source: accel_model::Error,
     },
+    /// A probe recording named by the configuration could not be read or analysed.
+    #[error("{}: `{field}`: {source}", path.display())]
+    Recording {
+        /// The configuration file.
+        path: PathBuf,
+        /// The field naming the recording.
+        field: String,
+        /// The recording's own error (it names the recording's file and line); boxed, as it
+        /// is large.
+        source: Box<crate::recording::RecordingError>,
+    },
 }
 
 /// Result alias of this crate.

@@ -39,6 +39,7 @@ mod expected;
 mod mechanism;
 mod output;
 mod plot;
+mod probe_analysis;
 mod recording;
 mod report;
 mod results;
@@ -51,7 +52,8 @@ pub use error::{PipelineError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
 pub use mechanism::{MechanismConfig, MechanismPhase, MechanismResults};
 pub use output::{WrittenFiles, results_json, write_outputs};
-pub use plot::radius_error_svg;
+pub use plot::{probe_signals_svg, radius_error_svg};
+pub use probe_analysis::{ProbeTrace, Progress, RecordingPoint, RecordingSet};
 pub use recording::{
     AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, SyntheticSpec,
     analyze_recording, load_recording, parse_recording,
@@ -64,5 +66,5 @@ pub use simulate::{
     SleeveHarmonic, SpeedRipple, Truth, TruthRate, piga_csv_text, recording_file_name, simulate,
     write_simulation,
 };
-pub use study::run;
+pub use study::{run, run_with_progress};
 pub use units::{deg_s_to_rad_s, m_to_um, um_to_m};

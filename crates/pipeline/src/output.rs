@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{PipelineError, Result};
 use crate::expected::{CheckOutcome, Expected};
-use crate::plot::radius_error_svg;
+use crate::plot::{probe_signals_svg as probe_signals_svg_text, radius_error_svg};
 use crate::report::render;
 use crate::results::StudyResults;
 
@@ -17,6 +17,8 @@ pub struct WrittenFiles {
     pub report_md: PathBuf,
     /// `radius_error.svg` (the paper's Fig. 5).
     pub radius_error_svg: PathBuf,
+    /// `probe_signals_<phase>.svg` (the paper's Fig. 4), for each phase given as recordings.
+    pub probe_signals_svg: Vec<PathBuf>,
 }
 
 fn write(path: PathBuf, contents: &str) -> Result<PathBuf> {
@@ -35,7 +37,8 @@ pub fn results_json(results: &StudyResults) -> Result<String> {
     })
 }
 
-/// Writes `results.json`, `report.md` and `radius_error.svg` into `dir` (created if needed).
+/// Writes `results.json`, `report.md`, `radius_error.svg` and, for phases given as
+/// recordings, `probe_signals_<phase>.svg` into `dir` (created if needed).
 pub fn write_outputs(
     dir: &Path,
     results: &StudyResults,
@@ -47,6 +50,16 @@ pub fn write_outputs(
         source,
     })?;
     let title = format!("{}: radius error after balancing", results.study);
+    let mut probe_signals_svg = Vec::new();
+    for (key, phase) in [
+        ("pre_balance", &results.pre_balance),
+        ("post_balance", &results.post_balance),
+    ] {
+        let title = format!("{}: probe signal over one revolution, {key}", results.study);
+        if let Some(svg) = probe_signals_svg_text(phase, &title)? {
+            probe_signals_svg.push(write(dir.join(format!("probe_signals_{key}.svg")), &svg)?);
+        }
+    }
     Ok(WrittenFiles {
         results_json: write(dir.join("results.json"), &results_json(results)?)?,
         report_md: write(dir.join("report.md"), &render(results, expected, outcomes))?,
@@ -54,5 +67,6 @@ pub fn write_outputs(
             dir.join("radius_error.svg"),
             &radius_error_svg(&results.post_balance, &title)?,
         )?,
+        probe_signals_svg,
     })
 }

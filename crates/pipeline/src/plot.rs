@@ -90,3 +90,73 @@ pub fn radius_error_svg(phase: &PhaseResults, title: &str) -> Result<String> {
     }
     Ok(svg)
 }
+
+/// Each recording's probe signal over one revolution with its fitted eq. 20 curve, one panel
+/// per rate: the paper's Fig. 4. `None` when the phase has no recordings.
+pub fn probe_signals_svg(phase: &PhaseResults, title: &str) -> Result<Option<String>> {
+    let traces: Vec<_> = phase
+        .traces
+        .iter()
+        .filter_map(|t| t.fit_um.as_ref().map(|fit| (t, fit)))
+        .collect();
+    if traces.is_empty() {
+        return Ok(None);
+    }
+    let err = |message: String| PipelineError::Plot {
+        what: "probe_signals.svg",
+        message,
+    };
+    let columns = if traces.len() > 1 { 2 } else { 1 };
+    let rows = traces.len().div_ceil(columns);
+    let size = (520 * columns as u32, 60 + 300 * rows as u32);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let root = root
+            .titled(title, ("sans-serif", 20))
+            .map_err(|e| err(e.to_string()))?;
+        let panels = root.split_evenly((rows, columns));
+        for (panel, (trace, fit)) in panels.iter().zip(&traces) {
+            let curve: Vec<(f64, f64)> = (0..=360)
+                .map(|d| {
+                    let deg = f64::from(d);
+                    (deg, fit.evaluate(deg.to_radians()))
+                })
+                .collect();
+            let values = trace.gap_um.iter().chain(curve.iter().map(|(_, y)| y));
+            let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+            let pad = ((hi - lo) * 0.08).max(1e-3);
+            let mut chart = ChartBuilder::on(panel)
+                .caption(format!("{} deg/s", trace.rate_deg_s), ("sans-serif", 15))
+                .margin(10)
+                .x_label_area_size(35)
+                .y_label_area_size(60)
+                .build_cartesian_2d(0.0..360.0, (lo - pad)..(hi + pad))
+                .map_err(|e| err(e.to_string()))?;
+            chart
+                .configure_mesh()
+                .x_desc("spindle angle (deg)")
+                .y_desc("gap (µm)")
+                .x_labels(7)
+                .draw()
+                .map_err(|e| err(e.to_string()))?;
+            chart
+                .draw_series(LineSeries::new(curve, BLUE.stroke_width(1)))
+                .map_err(|e| err(e.to_string()))?;
+            chart
+                .draw_series(
+                    trace
+                        .angle_deg
+                        .iter()
+                        .zip(&trace.gap_um)
+                        .map(|(&x, &y)| Circle::new((x, y), 2, RED.mix(0.6).filled())),
+                )
+                .map_err(|e| err(e.to_string()))?;
+        }
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(Some(svg))
+}

@@ -4,6 +4,7 @@ use identify::RadiusModel;
 use serde::{Deserialize, Serialize};
 
 use crate::mechanism::MechanismResults;
+use crate::probe_analysis::ProbeTrace;
 
 /// All results of a study.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -50,6 +51,16 @@ pub struct PointResult {
     pub beta_deg: Option<f64>,
     /// Radius error `Δr_xd + Δr_xs` at the PIGA plane, µm.
     pub radius_error_um: f64,
+    /// Standard error of `dc1_um` across revolutions (recordings only), µm.
+    pub dc1_sigma_um: Option<f64>,
+    /// Standard error of `ds1_um` across revolutions (recordings only), µm.
+    pub ds1_sigma_um: Option<f64>,
+    /// Standard error of the radius error, `lever ratio × σ(d_c1)` (recordings only), µm.
+    pub radius_error_sigma_um: Option<f64>,
+    /// Complete revolutions averaged (recordings only).
+    pub revolutions: Option<usize>,
+    /// Root-mean-square residual of the per-revolution fits (recordings only), µm.
+    pub residual_rms_um: Option<f64>,
 }
 
 /// A fit of the radius error against rate, and the pseudo-second-order term it implies.
@@ -91,4 +102,7 @@ pub struct PhaseResults {
     /// The other radius-error model fitted to the same points, for comparison
     /// (absent when the points cannot support it).
     pub alternative: Option<ModelFit>,
+    /// One revolution of each recording with its fit, for the Fig. 4 drawing (not serialised).
+    #[serde(skip)]
+    pub traces: Vec<ProbeTrace>,
 }

@@ -8,14 +8,25 @@ use identify::RadiusModel;
 use crate::config::{LoadedStudy, PhaseConfig, Points, StudyConfig};
 use crate::error::{PipelineError, Result};
 use crate::mechanism;
+use crate::probe_analysis::{self, ProbeTrace, Progress};
 use crate::results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
 use crate::units::{deg_s_to_rad_s, m_to_um, um_to_m};
 
 /// Runs a loaded study: both phases, each with its per-point geometry, its radius-error fit
 /// and the pseudo-second-order error `Δk2` it implies.
 ///
-/// The computation reads only the configuration; published values are never consulted.
+/// The computation reads only the configuration (and the recordings it names); published
+/// values are never consulted.
 pub fn run(study: &LoadedStudy) -> Result<StudyResults> {
+    run_with_progress(study, &|_| {})
+}
+
+/// [`run`], reporting progress through `progress` (called from several threads while
+/// recordings are analysed in parallel).
+pub fn run_with_progress(
+    study: &LoadedStudy,
+    progress: &(dyn Fn(Progress<'_>) + Sync),
+) -> Result<StudyResults> {
     let config = &study.config;
     let path = study.path.as_path();
     let lever_ratio = config
@@ -26,8 +37,19 @@ pub fn run(study: &LoadedStudy) -> Result<StudyResults> {
             field: "lever".to_owned(),
             source,
         })?;
-    let pre_balance = run_phase(config, &config.pre_balance, "pre_balance", path)?;
-    let post_balance = run_phase(config, &config.post_balance, "post_balance", path)?;
+    let total = [&config.pre_balance, &config.post_balance]
+        .iter()
+        .map(|phase| match &phase.points {
+            Points::Recordings(set) => set.files.len(),
+            _ => 0,
+        })
+        .sum();
+    if total > 0 {
+        progress(Progress::Recordings { total });
+    }
+    let run = |phase, section| run_phase(config, phase, section, path, lever_ratio, progress);
+    let pre_balance = run(&config.pre_balance, "pre_balance")?;
+    let post_balance = run(&config.post_balance, "post_balance")?;
     let mechanism = config
         .mechanism
         .as_ref()
@@ -52,13 +74,16 @@ fn run_phase(
     phase: &PhaseConfig,
     section: &str,
     path: &Path,
+    lever_ratio: f64,
+    progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<PhaseResults> {
-    let points = phase_points(config, phase, section, path)?;
+    let (points, traces) = phase_points(config, phase, section, path, lever_ratio, progress)?;
     if let Points::RadiusChange { .. } = phase.points {
         return Ok(PhaseResults {
             fit: exact_two_point(config, &points),
             points,
             alternative: None,
+            traces,
         });
     }
     let fit = fit_model(config, &points, config.radius_model, section, path)?;
@@ -76,6 +101,7 @@ fn run_phase(
         points,
         fit,
         alternative,
+        traces,
     })
 }
 
@@ -106,7 +132,9 @@ fn phase_points(
     phase: &PhaseConfig,
     section: &str,
     path: &Path,
-) -> Result<Vec<PointResult>> {
+    lever_ratio: f64,
+    progress: &(dyn Fn(Progress<'_>) + Sync),
+) -> Result<(Vec<PointResult>, Vec<ProbeTrace>)> {
     let radius_point = |rate_deg_s: f64, radius_error_um: f64| PointResult {
         rate_deg_s,
         rate_rad_s: deg_s_to_rad_s(rate_deg_s),
@@ -115,40 +143,73 @@ fn phase_points(
         amplitude_um: None,
         beta_deg: None,
         radius_error_um,
+        dc1_sigma_um: None,
+        ds1_sigma_um: None,
+        radius_error_sigma_um: None,
+        revolutions: None,
+        residual_rms_um: None,
+    };
+    let harmonic_point = |i: usize, rate_deg_s: f64, dc1_um: f64, ds1_um: f64| {
+        let drift = FirstHarmonic::new(dc1_um, ds1_um)
+            .and_then(|h| config.lever.project(h))
+            .map_err(|source| PipelineError::Harmonics {
+                path: path.to_owned(),
+                field: format!("{section}.points[{i}]"),
+                source,
+            })?;
+        Ok(PointResult {
+            dc1_um: Some(dc1_um),
+            ds1_um: Some(ds1_um),
+            amplitude_um: Some(drift.probe_amplitude),
+            beta_deg: Some(drift.beta_rad.to_degrees()),
+            ..radius_point(rate_deg_s, drift.radius_error)
+        })
     };
     match &phase.points {
-        Points::FirstHarmonic(points) => points
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let drift = FirstHarmonic::new(p.dc1_um, p.ds1_um)
-                    .and_then(|h| config.lever.project(h))
-                    .map_err(|source| PipelineError::Harmonics {
-                        path: path.to_owned(),
-                        field: format!("{section}.points[{i}]"),
-                        source,
-                    })?;
-                Ok(PointResult {
-                    dc1_um: Some(p.dc1_um),
-                    ds1_um: Some(p.ds1_um),
-                    amplitude_um: Some(drift.probe_amplitude),
-                    beta_deg: Some(drift.beta_rad.to_degrees()),
-                    ..radius_point(p.rate_deg_s, drift.radius_error)
-                })
-            })
-            .collect(),
-        Points::RadiusError(points) => Ok(points
-            .iter()
-            .map(|p| radius_point(p.rate_deg_s, p.radius_error_um))
-            .collect()),
+        Points::FirstHarmonic(points) => Ok((
+            points
+                .iter()
+                .enumerate()
+                .map(|(i, p)| harmonic_point(i, p.rate_deg_s, p.dc1_um, p.ds1_um))
+                .collect::<Result<_>>()?,
+            Vec::new(),
+        )),
+        Points::Recordings(set) => {
+            let analysed = probe_analysis::analyse(set, section, path, progress)?;
+            let mut points = Vec::with_capacity(analysed.len());
+            let mut traces = Vec::with_capacity(analysed.len());
+            for (i, (file, h)) in set.files.iter().zip(analysed).enumerate() {
+                let point = harmonic_point(i, file.rate_deg_s, h.dc1_um, h.ds1_um)?;
+                points.push(PointResult {
+                    dc1_sigma_um: h.dc1_sigma_um,
+                    ds1_sigma_um: h.ds1_sigma_um,
+                    radius_error_sigma_um: h.dc1_sigma_um.map(|s| s * lever_ratio),
+                    revolutions: Some(h.revolutions),
+                    residual_rms_um: Some(h.residual_rms_um),
+                    ..point
+                });
+                traces.push(h.trace);
+            }
+            Ok((points, traces))
+        }
+        Points::RadiusError(points) => Ok((
+            points
+                .iter()
+                .map(|p| radius_point(p.rate_deg_s, p.radius_error_um))
+                .collect(),
+            Vec::new(),
+        )),
         Points::RadiusChange {
             from_rate_deg_s,
             to_rate_deg_s,
             change_um,
-        } => Ok(vec![
-            radius_point(*from_rate_deg_s, 0.0),
-            radius_point(*to_rate_deg_s, *change_um),
-        ]),
+        } => Ok((
+            vec![
+                radius_point(*from_rate_deg_s, 0.0),
+                radius_point(*to_rate_deg_s, *change_um),
+            ],
+            Vec::new(),
+        )),
     }
 }
 

@@ -3,6 +3,7 @@
 
 mod bad_config;
 mod paper;
+mod recordings;
 
 use std::path::{Path, PathBuf};
 
