@@ -4,8 +4,8 @@
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
 mod accuracy;
-mod identify;
 mod harmonics;
+mod identify;
 mod paths;
 mod regress;
 mod simulate;
