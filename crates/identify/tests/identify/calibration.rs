@@ -84,3 +84,19 @@ fn five_distinct_rates_are_not_enough() {
         })
     );
 }
+
+#[test]
+fn numerically_coincident_rates_make_a_rank_deficient_design() {
+    // Six distinct values, but two rates differ by 1e-13 rad/s: numerically only five.
+    let mut w: Vec<f64> = rates().into_iter().take(5).collect();
+    w.push(w[4] * (1.0 + 1e-13));
+    w.extend(w.clone());
+    let y = outputs(&w, 0.0);
+    match identify_calibration(&w, &y, R, G) {
+        Err(IdentifyError::RankDeficient { rank, unknowns, .. }) => {
+            assert_eq!(unknowns, 6);
+            assert!(rank < 6, "rank {rank}");
+        }
+        other => panic!("expected RankDeficient, got {other:?}"),
+    }
+}
