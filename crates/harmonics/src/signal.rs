@@ -177,25 +177,31 @@ impl pulp::WithSimd for IntervalsWithin<'_> {
 #[inline(always)]
 fn intervals_within(t: &[f64], limit: f64) -> (bool, f64) {
     const W: usize = 8;
-    let mut ok = [true; W];
+    // Per lane: smallest and largest interval (NaN makes the lane fail the final test).
+    let mut min = [f64::INFINITY; W];
     let mut max = [0.0_f64; W];
-    let (a, b) = (&t[..t.len() - 1], &t[1..]);
-    let body = a.len() - a.len() % W;
+    let mut nan = [0.0_f64; W];
+    let pairs = t.len() - 1;
+    let body = pairs - pairs % W;
     for i in (0..body).step_by(W) {
+        let w: &[f64; W + 1] = t[i..i + W + 1].try_into().expect("window");
         for l in 0..W {
-            let d = b[i + l] - a[i + l];
-            ok[l] &= d > 0.0 && d <= limit;
+            let d = w[l + 1] - w[l];
+            min[l] = if d < min[l] { d } else { min[l] };
             max[l] = if d > max[l] { d } else { max[l] };
+            nan[l] += d - d;
         }
     }
-    let mut all = ok.iter().all(|&o| o);
-    let mut m = max.iter().copied().fold(0.0, f64::max);
-    for i in body..a.len() {
-        let d = b[i] - a[i];
-        all &= d > 0.0 && d <= limit;
-        m = m.max(d);
+    let mut lo = min.iter().copied().fold(f64::INFINITY, f64::min);
+    let mut hi = max.iter().copied().fold(0.0, f64::max);
+    let mut bad = nan.iter().sum::<f64>();
+    for i in body..pairs {
+        let d = t[i + 1] - t[i];
+        lo = lo.min(d);
+        hi = hi.max(d);
+        bad += d - d;
     }
-    (all, m)
+    (bad == 0.0 && lo > 0.0 && hi <= limit, hi)
 }
 
 /// Index of the first non-finite value, if any.
@@ -216,17 +222,23 @@ impl pulp::WithSimd for FirstNonFinite<'_> {
 
 #[inline(always)]
 fn first_non_finite_impl(x: &[f64]) -> Option<usize> {
-    const W: usize = 64;
-    for (c, chunk) in x.chunks(W).enumerate() {
-        if !chunk.iter().fold(true, |ok, v| ok & v.is_finite()) {
-            let j = chunk
-                .iter()
-                .position(|v| !v.is_finite())
-                .expect("found above");
-            return Some(c * W + j);
+    // `v − v` is 0 for a finite value and NaN otherwise, so the lane sums stay 0 exactly
+    // when every value is finite: one vectorised pass, then a scan only to name the culprit.
+    const W: usize = 8;
+    let mut acc = [0.0_f64; W];
+    let chunks = x.chunks_exact(W);
+    let tail: f64 = chunks.remainder().iter().map(|v| v - v).sum();
+    for chunk in chunks {
+        let c: &[f64; W] = chunk.try_into().expect("chunk");
+        for l in 0..W {
+            acc[l] += c[l] - c[l];
         }
     }
-    None
+    if acc.iter().sum::<f64>() + tail == 0.0 {
+        None
+    } else {
+        x.iter().position(|v| !v.is_finite())
+    }
 }
 
 pub(crate) fn check_setting_gap(max_gap_intervals: f64) -> Result<()> {
@@ -371,18 +383,21 @@ fn segment_rate(
     }
 }
 
+/// `1/2π`: a multiplication instead of a division in the per-sample passes.
+const INV_TAU: f64 = 1.0 / TAU;
+
 /// Wrapped step `d − 2π·round(d/2π) ∈ [−π, π]` between consecutive encoder readings.
 #[inline(always)]
 fn encoder_step(prev: f64, next: f64) -> f64 {
     let d = next - prev;
-    d - (d / TAU).round_ties_even() * TAU
+    (-(d * INV_TAU).round_ties_even()).mul_add(TAU, d)
 }
 
 /// Angle of a reading from the first one, wrapped into `[0, 2π)` (up to rounding).
 #[inline(always)]
 fn phase(a: f64, start: f64) -> f64 {
     let x = a - start;
-    x - (x / TAU).floor() * TAU
+    (-(x * INV_TAU).floor()).mul_add(TAU, x)
 }
 
 /// The vectorised encoder pass: whether no step is negative, the largest step, and the
@@ -398,49 +413,60 @@ impl pulp::WithSimd for EncoderScan<'_> {
         const CHUNK: usize = 64;
         let a = self.0;
         let start = a[0];
-        let mut ok = true;
+        // Per lane: smallest and largest step, and whether the start angle was passed
+        // (1.0) in the current chunk; all branch-free so that the lanes vectorise.
+        let mut min_step = [f64::INFINITY; W];
         let mut max_step = [0.0_f64; W];
         let mut starts = Vec::new();
-        // Pairs (i−1, i) for i in 1..n, in chunks of CHUNK pairs.
         let pairs = a.len() - 1;
         let mut base = 0;
-        while base < pairs {
-            let len = CHUNK.min(pairs - base);
-            let mut chunk_ok = true;
-            let mut crossing = false;
-            if len == CHUNK {
-                for g in (0..CHUNK).step_by(W) {
-                    for l in 0..W {
-                        let i = base + g + l;
-                        let step = encoder_step(a[i], a[i + 1]);
-                        chunk_ok &= step >= 0.0;
-                        max_step[l] = if step > max_step[l] {
-                            step
-                        } else {
-                            max_step[l]
-                        };
-                        crossing |= phase(a[i + 1], start) < phase(a[i], start);
-                    }
-                }
-            } else {
-                for i in base..base + len {
-                    let step = encoder_step(a[i], a[i + 1]);
-                    chunk_ok &= step >= 0.0;
-                    max_step[0] = max_step[0].max(step);
-                    crossing |= phase(a[i + 1], start) < phase(a[i], start);
+        while base + CHUNK <= pairs {
+            let mut crossed = [0.0_f64; W];
+            for g in (0..CHUNK).step_by(W) {
+                let w: &[f64; W + 1] = a[base + g..base + g + W + 1].try_into().expect("window");
+                for l in 0..W {
+                    let step = encoder_step(w[l], w[l + 1]);
+                    min_step[l] = if step < min_step[l] {
+                        step
+                    } else {
+                        min_step[l]
+                    };
+                    max_step[l] = if step > max_step[l] {
+                        step
+                    } else {
+                        max_step[l]
+                    };
+                    crossed[l] += if phase(w[l], start) + step >= TAU {
+                        1.0
+                    } else {
+                        0.0
+                    };
                 }
             }
-            ok &= chunk_ok;
-            if crossing {
-                for i in base..base + len {
-                    if phase(a[i + 1], start) < phase(a[i], start) {
-                        starts.push(i + 1);
-                    }
-                }
+            if crossed.iter().sum::<f64>() > 0.0 {
+                push_crossings(a, start, base..base + CHUNK, &mut starts);
             }
-            base += len;
+            base += CHUNK;
         }
+        push_crossings(a, start, base..pairs, &mut starts);
+        for i in base..pairs {
+            let step = encoder_step(a[i], a[i + 1]);
+            min_step[0] = min_step[0].min(step);
+            max_step[0] = max_step[0].max(step);
+        }
+        let ok = min_step.iter().all(|&m| m >= 0.0);
         (ok, max_step.iter().copied().fold(0.0, f64::max), starts)
+    }
+}
+
+/// Appends the samples `i + 1` (for `i` in `pairs`) at which the angle passes the first
+/// sample's angle again.
+#[inline(always)]
+fn push_crossings(a: &[f64], start: f64, pairs: Range<usize>, starts: &mut Vec<usize>) {
+    for i in pairs {
+        if phase(a[i], start) + encoder_step(a[i], a[i + 1]) >= TAU {
+            starts.push(i + 1);
+        }
     }
 }
 
@@ -449,6 +475,7 @@ fn segment_encoder(a: &[f64], time_axis: TimeAxis, max_gap_intervals: f64) -> Re
     let start = a[0];
     let (ok, max_step, crossings) = pulp::Arch::new().dispatch(EncoderScan(a));
     if !ok {
+        // Non-finite readings are refused before this pass, so a failure is a step back.
         let i = (1..n)
             .find(|&i| encoder_step(a[i - 1], a[i]) < 0.0)
             .expect("the scan found one");

@@ -33,7 +33,10 @@ const fn taylor(n: u32) -> f64 {
 pub(crate) fn sin_cos(theta: f64) -> (f64, f64) {
     let q = (theta * FRAC_2_PI).round_ties_even();
     // q·PIO2_HI and q·PIO2_MID are exact, so the fused steps lose nothing.
-    let r = (-q).mul_add(PIO2_LO, (-q).mul_add(PIO2_MID, (-q).mul_add(PIO2_HI, theta)));
+    let r = (-q).mul_add(
+        PIO2_LO,
+        (-q).mul_add(PIO2_MID, (-q).mul_add(PIO2_HI, theta)),
+    );
     let z = r * r;
 
     let mut ps = taylor(15);
