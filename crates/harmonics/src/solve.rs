@@ -191,3 +191,52 @@ pub(crate) fn solve(s: &Sums, order: usize, drift: bool, revolution: usize) -> R
     let rss = (s.yy - fitted).max(0.0);
     Ok(Solution { x, rss, condition })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::{AngleMap, Centring, accumulate};
+
+    fn sums_at(angles: &[f64]) -> Sums {
+        let y: Vec<f64> = angles.iter().map(|a| 1.0 + a.cos()).collect();
+        let map = AngleMap {
+            shift: 0.0,
+            scale: 1.0,
+            offset: 0.0,
+        };
+        let centre = Centring {
+            y_ref: 0.0,
+            t_mid: 0.0,
+            t_inv_half: 1.0,
+        };
+        accumulate(2, false, angles, &y, angles, map, centre)
+    }
+
+    #[test]
+    fn degenerate_sampling_is_refused_not_solved() {
+        // Every sample at the same angle: the sine columns vanish.
+        let e = solve(&sums_at(&[0.3; 50]), 2, false, 4).unwrap_err();
+        assert!(
+            matches!(e, HarmonicsError::IllConditioned { revolution: 4, .. }),
+            "{e}"
+        );
+        // Samples crowded into a small arc: nearly collinear columns, a huge condition.
+        let arc: Vec<f64> = (0..50).map(|i| 1e-3 * f64::from(i)).collect();
+        let e = solve(&sums_at(&arc), 2, false, 0).unwrap_err();
+        match e {
+            HarmonicsError::IllConditioned {
+                condition, limit, ..
+            } => assert!(condition > limit),
+            e => panic!("{e}"),
+        }
+    }
+
+    #[test]
+    fn uniform_revolution_is_perfectly_conditioned() {
+        let angles: Vec<f64> = (0..360).map(|i| f64::from(i).to_radians()).collect();
+        let sol = solve(&sums_at(&angles), 2, false, 0).unwrap();
+        assert!((sol.condition - 1.0).abs() < 1e-9, "{}", sol.condition);
+        assert!((sol.x[0] - 1.0).abs() < 1e-12 && (sol.x[1] - 1.0).abs() < 1e-12);
+        assert!(sol.rss < 1e-20);
+    }
+}
