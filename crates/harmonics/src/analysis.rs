@@ -2,6 +2,9 @@
 //! (eq. 20–21).
 
 use std::f64::consts::PI;
+use std::ops::Range;
+
+use rayon::prelude::*;
 
 use serde::{Deserialize, Serialize};
 
@@ -224,6 +227,53 @@ pub fn analyze(signal: &ProbeSignal<'_>, config: &FitConfig) -> Result<HarmonicA
     analyze_segmented(signal, config, &seg)
 }
 
+/// Fewest samples in the revolutions used for which they are fitted in parallel.
+const PARALLEL_SAMPLES: usize = 1 << 16;
+
+/// Fits one revolution (its sampling already checked).
+fn fit_revolution(
+    signal: &ProbeSignal<'_>,
+    x: &[f64],
+    map: AngleMap,
+    config: &FitConfig,
+    r: usize,
+    range: Range<usize>,
+) -> Result<RevolutionFit> {
+    let order = config.order;
+    let t = &signal.time_s[range.clone()];
+    let (t_first, t_last) = (t[0], t[t.len() - 1]);
+    let centre = Centring {
+        y_ref: signal.gap[range.start],
+        t_mid: 0.5 * (t_first + t_last),
+        t_inv_half: 2.0 / (t_last - t_first),
+    };
+    let sums = accumulate(
+        order,
+        config.drift,
+        &x[range.clone()],
+        &signal.gap[range.clone()],
+        t,
+        map,
+        centre,
+    );
+    let sol = solve(&sums, order, config.drift, r)?;
+    let coefficients = Coefficients {
+        l0: sol.x[0] + centre.y_ref,
+        c: sol.x[1..=order].to_vec(),
+        s: sol.x[order + 1..=2 * order].to_vec(),
+        drift_per_s: config
+            .drift
+            .then(|| sol.x[2 * order + 1] * centre.t_inv_half),
+    };
+    Ok(RevolutionFit {
+        first_sample: range.start,
+        samples: range.len(),
+        coefficients,
+        residual_rms: (sol.rss / range.len() as f64).sqrt(),
+        condition: sol.condition,
+    })
+}
+
 /// [`analyze`] on a recording already cut by [`segment`] (with the same signal).
 pub fn analyze_segmented(
     signal: &ProbeSignal<'_>,
@@ -267,8 +317,9 @@ pub fn analyze_segmented(
         ),
     };
 
-    let mut fits = Vec::with_capacity(used);
-    for (r, range) in seg.revolutions.iter().take(used).enumerate() {
+    // Sampling checks first, in order, so that the first offending revolution is named.
+    let revolutions = &seg.revolutions[..used];
+    for (r, range) in revolutions.iter().enumerate() {
         let got = range.len();
         if got < need {
             return Err(HarmonicsError::TooFewSamples {
@@ -292,39 +343,28 @@ pub fn analyze_segmented(
                 limit_rad,
             });
         }
-        let t = &signal.time_s[range.clone()];
-        let (t_first, t_last) = (t[0], t[t.len() - 1]);
-        let centre = Centring {
-            y_ref: signal.gap[range.start],
-            t_mid: 0.5 * (t_first + t_last),
-            t_inv_half: 2.0 / (t_last - t_first),
-        };
-        let sums = accumulate(
-            order,
-            config.drift,
-            &x[range.clone()],
-            &signal.gap[range.clone()],
-            t,
-            map,
-            centre,
-        );
-        let sol = solve(&sums, order, config.drift, r)?;
-        let coefficients = Coefficients {
-            l0: sol.x[0] + centre.y_ref,
-            c: sol.x[1..=order].to_vec(),
-            s: sol.x[order + 1..=2 * order].to_vec(),
-            drift_per_s: config
-                .drift
-                .then(|| sol.x[2 * order + 1] * centre.t_inv_half),
-        };
-        fits.push(RevolutionFit {
-            first_sample: range.start,
-            samples: got,
-            coefficients,
-            residual_rms: (sol.rss / got as f64).sqrt(),
-            condition: sol.condition,
-        });
     }
+    // The revolutions are independent: fit them on all cores when there is enough work
+    // (`RAYON_NUM_THREADS=1` keeps it to one), and report the first failure in order.
+    let fit = |(r, range): (usize, &Range<usize>)| {
+        fit_revolution(signal, x, map, config, r, range.clone())
+    };
+    let total: usize = revolutions.iter().map(|r| r.len()).sum();
+    let fits: Vec<RevolutionFit> = if revolutions.len() > 1 && total >= PARALLEL_SAMPLES {
+        revolutions
+            .par_iter()
+            .enumerate()
+            .map(fit)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .collect::<Result<_>>()?
+    } else {
+        revolutions
+            .iter()
+            .enumerate()
+            .map(fit)
+            .collect::<Result<_>>()?
+    };
 
     let k = fits.len() as f64;
     let first = &fits[0].coefficients;
