@@ -199,7 +199,7 @@ fn residual_table(out: &mut String, phase: &PhaseResults) {
 }
 
 fn discrepancy(out: &mut String, phase: &PhaseResults, published: &dyn Fn(&str) -> Option<f64>) {
-    let _ = writeln!(out, "## On the paper's ±0.39e-8 for C_r\n");
+    let _ = writeln!(out, "## On the paper's stated uncertainty of C_r\n");
     let fit = &phase.fit;
     let _ = writeln!(
         out,

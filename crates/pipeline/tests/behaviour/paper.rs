@@ -58,7 +58,9 @@ fn pre_balance_figures_of_the_notes() {
 fn outputs_are_written_and_json_has_the_documented_keys() {
     let results = paper_results();
     let dir = std::env::temp_dir().join(format!("centrifuge-cal-test-{}", std::process::id()));
-    let files = pipeline::write_outputs(&dir, &results, None, None).unwrap();
+    let expected = Expected::load(&root().join("fixtures/expected/paper-2025.ron")).unwrap();
+    let outcomes = expected.compare(&results).unwrap();
+    let files = pipeline::write_outputs(&dir, &results, Some(&expected), Some(&outcomes)).unwrap();
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&files.results_json).unwrap()).unwrap();
     for key in [
@@ -91,7 +93,18 @@ fn outputs_are_written_and_json_has_the_documented_keys() {
         "not an SVG with points"
     );
     let report = std::fs::read_to_string(&files.report_md).unwrap();
-    assert!(report.contains("0.39e-8"));
+    assert!(report.contains("stated uncertainty of C_r"));
+    // The discrepancy account pairs the paper's σ with the three-term fit's σ, both shown.
+    let account = &report[report.find("stated uncertainty of C_r").unwrap()..];
+    assert!(account.contains("± 3.9e-9"), "the paper's σ is shown");
+    assert!(
+        account.contains("3.9319e-9"),
+        "the three-term σ is computed and shown"
+    );
+    assert!(
+        report.contains("| `post_balance.c_r_m_s2` | -4.05e-8 |"),
+        "checks are listed"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
