@@ -1,3 +1,4 @@
 //! Command-line behaviour of `cargo xtask` subcommands (one binary, a module per subcommand).
 
 mod harmonics;
+mod workflow;

@@ -1,0 +1,132 @@
+//! The commands as a lab engineer chains them: simulate a calibration, identify k2 from its
+//! `piga.csv` with and without compensation; run and regress a study; bad input exits non-zero
+//! naming the file and line.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn xtask(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("xtask-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn ok(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout.clone()).unwrap()
+}
+
+#[test]
+fn simulate_then_identify_with_and_without_compensation() {
+    let dir = temp_dir("simulate");
+    let scenario = root().join("fixtures/scenarios/pre-balance.ron");
+    ok(&xtask(&[
+        "simulate",
+        "--config",
+        scenario.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]));
+    let truth: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("truth.json")).unwrap()).unwrap();
+    let k2_true = truth["scenario"]["piga"]["coefficients"]["k2_rad_s_g2"]
+        .as_f64()
+        .unwrap();
+    let c_r = truth["c_r_m_s2"].as_f64().unwrap();
+    let delta_k2 = truth["delta_k2_predicted_rad_s_g2"].as_f64().unwrap();
+    let piga = dir.join("piga.csv");
+    let c_r_arg = c_r.to_string();
+    let json = ok(&xtask(&[
+        "identify",
+        piga.to_str().unwrap(),
+        "--radius-m",
+        "2.5",
+        "--g",
+        "9.8",
+        "--k1",
+        "0.56",
+        "--c-r-m-s2",
+        &c_r_arg,
+        "--c-r-sigma-m-s2",
+        "1e-9",
+        "--json",
+    ]));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let apparent = v["coefficients"]["k2_apparent_rad_s_g2"]["value"]
+        .as_f64()
+        .unwrap();
+    let compensated = v["compensated"]["k2_rad_s_g2"].as_f64().unwrap();
+    assert!(
+        (apparent - k2_true - delta_k2).abs() < 0.02 * delta_k2.abs(),
+        "apparent k2 {apparent} vs {k2_true} + {delta_k2}"
+    );
+    assert!(
+        (compensated - k2_true).abs() < 0.02 * delta_k2.abs(),
+        "compensated k2 {compensated} vs {k2_true}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn study_writes_its_outputs_and_regress_passes() {
+    let dir = temp_dir("study");
+    let stdout = ok(&xtask(&["study", "--out", dir.to_str().unwrap()]));
+    assert!(
+        stdout.contains("regression:") && stdout.contains("pass"),
+        "{stdout}"
+    );
+    for file in ["results.json", "report.md", "radius_error.svg"] {
+        assert!(dir.join(file).is_file(), "{file} missing");
+    }
+    ok(&xtask(&["regress"]));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn regress_fails_on_a_changed_expectation() {
+    let dir = temp_dir("regress");
+    let text = std::fs::read_to_string(root().join("fixtures/expected/paper-2025.ron"))
+        .unwrap()
+        .replace("value: -4.0526e-8,", "value: -4.0626e-8,");
+    let expected = dir.join("paper-2025.ron");
+    std::fs::write(&expected, text).unwrap();
+    let out = xtask(&["regress", "--expected", expected.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("FAIL  post_balance.c_r_m_s2"), "{stdout}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_bad_study_exits_non_zero_naming_the_file_and_line() {
+    let dir = temp_dir("bad-study");
+    let text = std::fs::read_to_string(root().join("fixtures/studies/paper-2025.ron"))
+        .unwrap()
+        .replace("radius_m: 2.5,", "radius_m: 2.5,\n    radius_mm: 2500.0,");
+    let bad = dir.join("bad.ron");
+    std::fs::write(&bad, text).unwrap();
+    let out = xtask(&["study", "--config", bad.to_str().unwrap(), "--no-compare"]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("bad.ron:7:"), "{stderr}");
+    assert!(stderr.contains("radius_mm"), "{stderr}");
+    let out = xtask(&["study", "--config", "/nonexistent/study.ron"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/study.ron"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
