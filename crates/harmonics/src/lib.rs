@@ -25,6 +25,8 @@
 //!   factored by Cholesky; its condition number is computed and a revolution above
 //!   [`CONDITION_LIMIT`] is refused. This is sound because the basis is nearly orthogonal over a
 //!   resolved revolution; tests compare with QR on the explicit design matrix.
+//! - **Parallel revolutions**: revolutions are independent, so a long recording's are fitted
+//!   on all cores (rayon; `RAYON_NUM_THREADS=1` keeps one); results do not depend on it.
 //! - **Refusals** (typed [`HarmonicsError`]s naming the sample or revolution): non-finite
 //!   values, time not increasing, a gap of more than `max_gap_intervals` mean intervals, an
 //!   encoder stepping back, less than one complete revolution, a revolution with fewer than
