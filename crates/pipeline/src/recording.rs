@@ -403,6 +403,30 @@ pub fn analyze_recording(
     })
 }
 
+/// Pieces of text at least this long are parsed on two threads.
+const PARALLEL_BYTES: usize = 256 * 1024;
+
+impl RecordingError {
+    /// The error with its line moved by `offset` (for a piece parsed apart).
+    fn with_line_offset(mut self, offset: usize) -> Self {
+        match &mut self {
+            Self::MissingField { line, .. }
+            | Self::Parse { line, .. }
+            | Self::NonFinite { line, .. }
+            | Self::TimeNotIncreasing { line, .. }
+            | Self::SampleGap { line, .. } => *line += offset,
+            Self::NoSamples { line, .. } | Self::MissingColumn { line, .. } => *line += offset,
+            Self::Samples { line, .. } => {
+                if let Some(l) = line {
+                    *l += offset;
+                }
+            }
+            Self::Io { .. } | Self::InvalidFormat { .. } | Self::Empty { .. } => {}
+        }
+        self
+    }
+}
+
 /// Bytes read from the file at a time by [`load_recording`].
 const CHUNK_BYTES: usize = 1 << 20;
 
@@ -484,6 +508,8 @@ struct RowParser<'a> {
     angle: Vec<f64>,
     previous_s: f64,
     size_hint: usize,
+    /// Line of the first data row parsed.
+    first_row_line: Option<usize>,
 }
 
 impl<'a> RowParser<'a> {
@@ -504,6 +530,7 @@ impl<'a> RowParser<'a> {
             angle: Vec::new(),
             previous_s: f64::NEG_INFINITY,
             size_hint,
+            first_row_line: None,
         })
     }
 
@@ -579,10 +606,85 @@ impl<'a> RowParser<'a> {
                 }
             },
         };
-        let result = self.rows(&mut lines, &columns);
+        let result = self.rows_maybe_parallel(&mut lines, &columns);
         self.columns = Some(columns);
         self.line = lines.line;
         result
+    }
+
+    /// A parser for a later piece of the same file: same columns, no rows, lines counted
+    /// from 0 (shifted when the pieces are joined).
+    fn fork(&self, size_hint: usize) -> Self {
+        let mut p = Self::new(self.path, self.format, size_hint).expect("format already checked");
+        let estimate = size_hint / 16;
+        p.time_s.reserve(estimate);
+        p.gap.reserve(estimate);
+        p.angle.reserve(if self.angle.capacity() > 0 {
+            estimate
+        } else {
+            0
+        });
+        p
+    }
+
+    /// Parses the rows of `lines`; a large piece is cut at a line end near its middle and
+    /// the halves are parsed on two threads (rayon), then joined in order.
+    fn rows_maybe_parallel(
+        &mut self,
+        lines: &mut Lines<'_>,
+        c: &Columns,
+    ) -> Result<(), RecordingError> {
+        let text = lines.text;
+        let rest = text.len() - lines.pos;
+        let cut = (rest >= PARALLEL_BYTES)
+            .then(|| {
+                let mid = lines.pos + rest / 2;
+                text[mid..]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                    .map(|o| mid + o + 1)
+            })
+            .flatten()
+            .filter(|&cut| cut < text.len());
+        let Some(cut) = cut else {
+            return self.rows(lines, c);
+        };
+        let mut first = Lines {
+            text: &text[..cut],
+            pos: lines.pos,
+            line: lines.line,
+        };
+        let mut later = Lines {
+            text: &text[cut..],
+            pos: 0,
+            line: 0,
+        };
+        let mut second = self.fork(text.len() - cut);
+        let (r1, r2) = rayon::join(|| self.rows(&mut first, c), || second.rows(&mut later, c));
+        r1?;
+        let offset = first.line;
+        lines.pos = text.len();
+        lines.line = offset + later.line;
+        // The first row of the second half must follow the last of the first half.
+        if let (Some(&t), Some(line)) = (second.time_s.first(), second.first_row_line) {
+            if t <= self.previous_s {
+                return Err(RecordingError::TimeNotIncreasing {
+                    path: self.path.to_owned(),
+                    line: offset + line,
+                    previous_s: self.previous_s,
+                    time_s: t,
+                });
+            }
+        }
+        r2.map_err(|e| e.with_line_offset(offset))?;
+        self.time_s.extend_from_slice(&second.time_s);
+        self.gap.extend_from_slice(&second.gap);
+        self.angle.extend_from_slice(&second.angle);
+        self.previous_s = second.previous_s;
+        if self.first_row_line.is_none() {
+            self.first_row_line = second.first_row_line.map(|l| offset + l);
+        }
+        Ok(())
     }
 
     fn rows(&mut self, lines: &mut Lines<'_>, c: &Columns) -> Result<(), RecordingError> {
@@ -612,6 +714,9 @@ impl<'a> RowParser<'a> {
                     previous_s: self.previous_s,
                     time_s: values[0],
                 });
+            }
+            if self.time_s.is_empty() {
+                self.first_row_line = Some(line);
             }
             self.previous_s = values[0];
             self.time_s.push(values[0]);
@@ -1370,6 +1475,71 @@ mod tests {
             "{e}"
         );
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Fixed-width rows, so that editing a value keeps every byte offset.
+    fn fixed_rows(n: usize, time_of: impl Fn(usize) -> f64) -> String {
+        let mut text = String::from("time_s,gap_um\n");
+        for i in 0..n {
+            text += &format!(
+                "{:014.6},{:09.6}\n",
+                time_of(i),
+                50.0 + (i as f64 * 0.01).sin()
+            );
+        }
+        text
+    }
+
+    #[test]
+    fn parallel_halves_join_in_order_and_locate_errors() {
+        let n = 40_000; // 1 MB: parsed in two halves
+        let text = fixed_rows(n, |i| i as f64 * 0.001);
+        assert!(text.len() >= 2 * PARALLEL_BYTES);
+        let rec = parse(&text).unwrap();
+        assert_eq!(rec.len(), n);
+        assert!(rec.time_s.windows(2).all(|w| w[1] > w[0]));
+        assert_eq!(rec.time_s[n - 1], (n - 1) as f64 * 0.001);
+        // Where the halves meet: the row starting after the line end past the middle.
+        let header_end = text.find('\n').unwrap() + 1;
+        let mid = header_end + (text.len() - header_end) / 2;
+        let cut = mid + text[mid..].find('\n').unwrap() + 1;
+        let row_at_cut = text[header_end..cut].matches('\n').count();
+        let line_at_cut = row_at_cut + 2;
+        // A time that steps back exactly at the join, inside the second half, and inside
+        // the first half: each names its own line.
+        for row in [row_at_cut, row_at_cut + 1000, row_at_cut - 1000] {
+            let bad = fixed_rows(n, |i| {
+                if i >= row {
+                    i as f64 * 0.001 - 1.0
+                } else {
+                    i as f64 * 0.001
+                }
+            });
+            let e = parse(&bad).unwrap_err();
+            assert!(
+                matches!(e, RecordingError::TimeNotIncreasing { line, .. } if line == row + 2),
+                "row {row}: {e}"
+            );
+        }
+        // Parse errors and non-finite values in the second half name their line.
+        let lines: Vec<&str> = text.lines().collect();
+        let target = line_at_cut + 500;
+        let broken = text.replacen(lines[target - 1], &lines[target - 1].replace(',', ";"), 1);
+        let e = parse(&broken).unwrap_err();
+        assert!(
+            matches!(e, RecordingError::Parse { line, .. } if line == target),
+            "{e}"
+        );
+        let nan = text.replacen(
+            lines[target - 1],
+            &format!("{},NaN", &lines[target - 1][..14]),
+            1,
+        );
+        let e = parse(&nan).unwrap_err();
+        assert!(
+            matches!(e, RecordingError::NonFinite { line, .. } if line == target),
+            "{e}"
+        );
     }
 
     #[test]
