@@ -54,5 +54,6 @@ pub use design::Design;
 pub use error::{IdentifyError, Result};
 pub use lstsq::{Fit, FitWarning, LstsqOptions, SolverPath, lstsq, lstsq_design, lstsq_with};
 pub use radius::{
-    PseudoSecondOrder, RadiusFit, RadiusModel, fit_radius_error, pseudo_second_order,
+    PseudoSecondOrder, RadiusFit, RadiusModel, fit_radius_error, fit_radius_error_weighted,
+    pseudo_second_order,
 };

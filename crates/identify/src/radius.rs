@@ -41,6 +41,11 @@ pub struct RadiusFit {
     pub linear_m_s: Option<f64>,
     /// Standard error of b (m·s), when fitted.
     pub linear_sigma_m_s: Option<f64>,
+    /// Residuals `measured − fitted` in metres, one per point (for a weighted fit these are
+    /// not `fit.residuals`, which are divided by each point's σ).
+    pub residuals_m: Vec<f64>,
+    /// Whether the rows were weighted by `1/σᵢ` ([`fit_radius_error_weighted`]).
+    pub weighted: bool,
     /// The underlying least-squares fit; coefficients in the order a, (b,) C_r.
     pub fit: Fit,
 }
@@ -82,6 +87,60 @@ pub fn fit_radius_error(
     radius_error_m: &[f64],
     model: RadiusModel,
 ) -> Result<RadiusFit> {
+    fit(rate_rad_s, radius_error_m, None, model)
+}
+
+/// [`fit_radius_error`] by weighted least squares: row i is divided by `sigma_m[i]`, the
+/// standard error of that point's radius error (e.g. from the spread of the per-revolution
+/// first harmonics), so points measured less precisely count less.
+///
+/// `fit.residual_sd` is `s = √(Σ(rᵢ/σᵢ)²/(m − n))`, the square root of the reduced χ² (the
+/// Birge ratio), about 1 when the σᵢ describe the scatter. The standard errors of `C_r` and
+/// `b` are those of the σᵢ taken as known, enlarged by `s` when `s > 1` (scatter beyond the
+/// σᵢ) and never shrunk by `s < 1`, the metrology convention: a small scatter of a few points
+/// is not evidence that the σᵢ are too large. `fit.covariance` and `fit.std_errors` keep the
+/// plain least-squares scaling by `s²`.
+///
+/// # Errors
+/// As [`fit_radius_error`]; [`IdentifyError::DimensionMismatch`] for a `sigma_m` of another
+/// length and [`IdentifyError::InvalidParameter`] for a σ that is not finite and positive.
+///
+/// ```
+/// use approx::assert_relative_eq;
+/// use identify::{fit_radius_error_weighted, RadiusModel};
+/// let rate_rad_s = [1.0, 2.0, 3.0, 4.0];
+/// let err_m: Vec<f64> = rate_rad_s.iter().map(|w| 1e-6 - 2e-8 * w * w).collect();
+/// let sigma_m = [1e-9, 1e-9, 2e-9, 4e-9];
+/// let fit = fit_radius_error_weighted(&rate_rad_s, &err_m, &sigma_m, RadiusModel::TwoTerm)?;
+/// assert_relative_eq!(fit.c_r_m_s2, -2e-8, max_relative = 1e-10);
+/// assert!(fit.weighted);
+/// # Ok::<(), identify::IdentifyError>(())
+/// ```
+pub fn fit_radius_error_weighted(
+    rate_rad_s: &[f64],
+    radius_error_m: &[f64],
+    sigma_m: &[f64],
+    model: RadiusModel,
+) -> Result<RadiusFit> {
+    if sigma_m.len() != rate_rad_s.len() {
+        return Err(IdentifyError::DimensionMismatch {
+            what: "sigma_m",
+            got: sigma_m.len(),
+            expected: rate_rad_s.len(),
+        });
+    }
+    for &sigma in sigma_m {
+        positive("sigma_m", sigma)?;
+    }
+    fit(rate_rad_s, radius_error_m, Some(sigma_m), model)
+}
+
+fn fit(
+    rate_rad_s: &[f64],
+    radius_error_m: &[f64],
+    sigma_m: Option<&[f64]>,
+    model: RadiusModel,
+) -> Result<RadiusFit> {
     if rate_rad_s.len() != radius_error_m.len() {
         return Err(IdentifyError::DimensionMismatch {
             what: "radius_error_m",
@@ -90,25 +149,44 @@ pub fn fit_radius_error(
         });
     }
     let m = rate_rad_s.len();
+    let weight = |i: usize| sigma_m.map_or(1.0, |s| 1.0 / s[i]);
     let design = match model {
-        RadiusModel::TwoTerm => DMatrix::from_fn(m, 2, |i, j| rate_rad_s[i].powi(2 * j as i32)),
-        RadiusModel::ThreeTerm => DMatrix::from_fn(m, 3, |i, j| rate_rad_s[i].powi(j as i32)),
+        RadiusModel::TwoTerm => {
+            DMatrix::from_fn(m, 2, |i, j| rate_rad_s[i].powi(2 * j as i32) * weight(i))
+        }
+        RadiusModel::ThreeTerm => {
+            DMatrix::from_fn(m, 3, |i, j| rate_rad_s[i].powi(j as i32) * weight(i))
+        }
     };
-    let fit = lstsq(&design, radius_error_m)?;
+    let y: Vec<f64> = (0..m).map(|i| radius_error_m[i] * weight(i)).collect();
+    let fit = lstsq(&design, &y)?;
     let last = model.unknowns() - 1;
     let (linear_m_s, linear_sigma_m_s) = match model {
         RadiusModel::TwoTerm => (None, None),
         RadiusModel::ThreeTerm => (Some(fit.coefficients[1]), Some(fit.std_errors[1])),
     };
-    Ok(RadiusFit {
+    // Weighted: σ from the σᵢ taken as known, times the Birge ratio when it exceeds 1.
+    let birge = if sigma_m.is_some() && fit.residual_sd > 0.0 {
+        fit.residual_sd.max(1.0) / fit.residual_sd
+    } else {
+        1.0
+    };
+    let mut radius_fit = RadiusFit {
         model,
         c_r_m_s2: fit.coefficients[last],
-        c_r_sigma_m_s2: fit.std_errors[last],
+        c_r_sigma_m_s2: fit.std_errors[last] * birge,
         offset_m: fit.coefficients[0],
         linear_m_s,
-        linear_sigma_m_s,
+        linear_sigma_m_s: linear_sigma_m_s.map(|s| s * birge),
+        residuals_m: Vec::new(),
+        weighted: sigma_m.is_some(),
         fit,
-    })
+    };
+    radius_fit.residuals_m = match sigma_m {
+        None => radius_fit.fit.residuals.clone(),
+        Some(s) => (0..m).map(|i| radius_fit.fit.residuals[i] * s[i]).collect(),
+    };
+    Ok(radius_fit)
 }
 
 /// Pseudo-second-order error of eq. 19 and its standard deviation.
@@ -264,6 +342,86 @@ mod tests {
         assert!(matches!(
             fit_radius_error(&[1.0, 2.0, 3.0], &[1.0, 2.0], RadiusModel::TwoTerm),
             Err(IdentifyError::DimensionMismatch { .. })
+        ));
+    }
+
+    #[test]
+    fn weighted_fit_with_equal_sigmas_is_the_ordinary_fit() {
+        let w = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
+        let e: Vec<f64> = w
+            .iter()
+            .enumerate()
+            .map(|(i, w)| 2e-6 - 3e-8 * w * w + if i % 2 == 0 { 1e-9 } else { -1e-9 })
+            .collect();
+        let plain = fit_radius_error(&w, &e, RadiusModel::TwoTerm).unwrap();
+        // Equal σᵢ below the scatter (Birge ratio > 1): the weighted fit is the ordinary one.
+        let weighted =
+            fit_radius_error_weighted(&w, &e, &[1e-10; 6], RadiusModel::TwoTerm).unwrap();
+        assert!((plain.c_r_m_s2 - weighted.c_r_m_s2).abs() < 1e-12 * plain.c_r_m_s2.abs());
+        assert!(
+            (plain.c_r_sigma_m_s2 - weighted.c_r_sigma_m_s2).abs() < 1e-9 * plain.c_r_sigma_m_s2
+        );
+        for (a, b) in plain.residuals_m.iter().zip(&weighted.residuals_m) {
+            assert!((a - b).abs() < 1e-20);
+        }
+        assert!(!plain.weighted && weighted.weighted);
+    }
+
+    #[test]
+    fn weighted_sigma_is_never_shrunk_by_a_small_scatter() {
+        let w = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
+        let e: Vec<f64> = w
+            .iter()
+            .enumerate()
+            .map(|(i, w)| 2e-6 - 3e-8 * w * w + if i % 2 == 0 { 1e-9 } else { -1e-9 })
+            .collect();
+        // σᵢ ten times the scatter: the Birge ratio is ≈ 0.1 and σ(C_r) is the known-σ value.
+        let small = fit_radius_error_weighted(&w, &e, &[1e-8; 6], RadiusModel::TwoTerm).unwrap();
+        assert!(small.fit.residual_sd < 1.0);
+        let known = small.fit.std_errors[1] / small.fit.residual_sd;
+        assert!((small.c_r_sigma_m_s2 - known).abs() < 1e-12 * known);
+        // σᵢ a tenth of the scatter: the Birge ratio is ≈ 10 and σ(C_r) grows with it.
+        let large = fit_radius_error_weighted(&w, &e, &[1e-10; 6], RadiusModel::TwoTerm).unwrap();
+        assert!(large.fit.residual_sd > 1.0);
+        assert!((large.c_r_sigma_m_s2 - large.fit.std_errors[1]).abs() < 1e-12 * known);
+    }
+
+    #[test]
+    fn a_point_with_a_huge_sigma_is_all_but_ignored() {
+        let w = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
+        let mut e: Vec<f64> = w.iter().map(|w| 2e-6 - 3e-8 * w * w).collect();
+        e[5] += 1e-6; // an outlier
+        let sigma = [1e-9, 1e-9, 1e-9, 1e-9, 1e-9, 1e-3];
+        let fit = fit_radius_error_weighted(&w, &e, &sigma, RadiusModel::TwoTerm).unwrap();
+        assert!((fit.c_r_m_s2 + 3e-8).abs() < 1e-14, "{}", fit.c_r_m_s2);
+        // Its unweighted residual is still reported in metres.
+        assert!((fit.residuals_m[5] - 1e-6).abs() < 1e-12);
+    }
+
+    #[test]
+    fn weighted_fit_refuses_bad_sigmas() {
+        let w = [1.0, 2.0, 3.0];
+        let e = [1.0, 2.0, 3.0];
+        assert!(matches!(
+            fit_radius_error_weighted(&w, &e, &[1.0, 0.0, 1.0], RadiusModel::TwoTerm),
+            Err(IdentifyError::InvalidParameter {
+                name: "sigma_m",
+                ..
+            })
+        ));
+        assert!(matches!(
+            fit_radius_error_weighted(&w, &e, &[1.0, f64::NAN, 1.0], RadiusModel::TwoTerm),
+            Err(IdentifyError::InvalidParameter {
+                name: "sigma_m",
+                ..
+            })
+        ));
+        assert!(matches!(
+            fit_radius_error_weighted(&w, &e, &[1.0], RadiusModel::TwoTerm),
+            Err(IdentifyError::DimensionMismatch {
+                what: "sigma_m",
+                ..
+            })
         ));
     }
 }

@@ -51,6 +51,22 @@ const fn default_model() -> RadiusModel {
 pub struct PhaseConfig {
     /// What was measured at each rate.
     pub points: Points,
+    /// How the radius-error fit weighs the points (default: unweighted, the paper's).
+    #[serde(default)]
+    pub weighting: Weighting,
+}
+
+/// How the radius-error fit weighs its points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Weighting {
+    /// Ordinary least squares: every point counts the same (the paper's fit).
+    #[default]
+    Unweighted,
+    /// Each point weighted by `1/σ²` of its radius error, σ from the spread of its
+    /// recording's per-revolution first harmonics (recordings with ≥ 2 revolutions only).
+    /// Right when the rates were recorded with different numbers of samples or noise.
+    InverseVariance,
 }
 
 /// What a phase provides at its rate points.
@@ -195,6 +211,15 @@ impl PhaseConfig {
             }
         };
         let list = format!("{section}.points");
+        if self.weighting == Weighting::InverseVariance
+            && !matches!(self.points, Points::Recordings(_))
+        {
+            return Err(PipelineError::Unsupported {
+                path: path.to_owned(),
+                field: format!("{section}.weighting"),
+                reason: "inverse_variance weighting needs points given as recordings",
+            });
+        }
         let rates: Vec<f64> = match &self.points {
             Points::FirstHarmonic(points) => {
                 for (i, p) in points.iter().enumerate() {

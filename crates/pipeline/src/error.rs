@@ -143,6 +143,16 @@ pub enum PipelineError {
         /// is large.
         source: Box<crate::recording::RecordingError>,
     },
+    /// A setting cannot be used with the rest of the configuration or data.
+    #[error("{}: field `{field}`: {reason}", path.display())]
+    Unsupported {
+        /// The configuration file.
+        path: PathBuf,
+        /// The setting.
+        field: String,
+        /// Why it cannot be used.
+        reason: &'static str,
+    },
 }
 
 /// Result alias of this crate.

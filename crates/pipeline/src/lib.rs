@@ -47,7 +47,9 @@ mod simulate;
 mod study;
 mod units;
 
-pub use config::{HarmonicPoint, LoadedStudy, PhaseConfig, Points, RadiusPoint, StudyConfig};
+pub use config::{
+    HarmonicPoint, LoadedStudy, PhaseConfig, Points, RadiusPoint, StudyConfig, Weighting,
+};
 pub use error::{PipelineError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
 pub use mechanism::{MechanismConfig, MechanismPhase, MechanismResults};

@@ -123,8 +123,11 @@ fn point_table(
 fn fit_row(out: &mut String, label: &str, fit: &ModelFit, paper: [Option<f64>; 3]) {
     let _ = writeln!(
         out,
-        "| {label}: {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+        "| {label}: {}{} | {} | {} | {} | {} | {} | {} | {} | {} |",
         model_name(fit.model),
+        fit.reduced_chi.map_or_else(String::new, |chi| format!(
+            ", weighted 1/σ² (√(χ²/dof) = {chi:.2})"
+        )),
         sci(fit.c_r_m_s2),
         opt(fit.c_r_sigma_m_s2, sci),
         sci(fit.delta_k2_rad_s_g2),

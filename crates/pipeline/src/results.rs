@@ -3,6 +3,7 @@
 use identify::RadiusModel;
 use serde::{Deserialize, Serialize};
 
+use crate::config::Weighting;
 use crate::mechanism::MechanismResults;
 use crate::probe_analysis::ProbeTrace;
 
@@ -78,8 +79,14 @@ pub struct ModelFit {
     pub linear_um_s: Option<f64>,
     /// Residuals (measured − fitted) at each point, µm.
     pub residuals_um: Vec<f64>,
-    /// Residual standard deviation, µm (`None` with no degree of freedom).
+    /// Residual standard deviation `√(Σr²/dof)` of the residuals in µm (`None` with no degree
+    /// of freedom).
     pub residual_sd_um: Option<f64>,
+    /// How the points were weighted.
+    pub weighting: Weighting,
+    /// For a weighted fit, `√(χ²/dof)` of the residuals divided by their σ: about 1 when the
+    /// per-point σ describe the scatter (`None` for an unweighted fit).
+    pub reduced_chi: Option<f64>,
     /// Degrees of freedom of the fit.
     pub dof: usize,
     /// Condition number of the design the solver factorised (`None` for the exact

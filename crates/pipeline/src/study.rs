@@ -5,7 +5,7 @@ use std::path::Path;
 use harmonics::FirstHarmonic;
 use identify::RadiusModel;
 
-use crate::config::{LoadedStudy, PhaseConfig, Points, StudyConfig};
+use crate::config::{LoadedStudy, PhaseConfig, Points, StudyConfig, Weighting};
 use crate::error::{PipelineError, Result};
 use crate::mechanism;
 use crate::probe_analysis::{self, ProbeTrace, Progress};
@@ -86,14 +86,28 @@ fn run_phase(
             traces,
         });
     }
-    let fit = fit_model(config, &points, config.radius_model, section, path)?;
+    let fit = fit_model(
+        config,
+        &points,
+        config.radius_model,
+        phase.weighting,
+        section,
+        path,
+    )?;
     let other = match config.radius_model {
         RadiusModel::TwoTerm => RadiusModel::ThreeTerm,
         RadiusModel::ThreeTerm => RadiusModel::TwoTerm,
     };
     // The alternative is shown only where it has a residual degree of freedom.
     let alternative = if points.len() > other.unknowns() {
-        Some(fit_model(config, &points, other, section, path)?)
+        Some(fit_model(
+            config,
+            &points,
+            other,
+            phase.weighting,
+            section,
+            path,
+        )?)
     } else {
         None
     };
@@ -118,6 +132,8 @@ fn exact_two_point(config: &StudyConfig, points: &[PointResult]) -> ModelFit {
         linear_um_s: None,
         residuals_um: vec![0.0; 2],
         residual_sd_um: None,
+        weighting: Weighting::Unweighted,
+        reduced_chi: None,
         dof: 0,
         condition_number: None,
         delta_k2_rad_s_g2: config.k1_rad_s_g * c_r_m_s2 * config.g_m_s2
@@ -217,6 +233,7 @@ fn fit_model(
     config: &StudyConfig,
     points: &[PointResult],
     model: RadiusModel,
+    weighting: Weighting,
     section: &str,
     path: &Path,
 ) -> Result<ModelFit> {
@@ -227,8 +244,24 @@ fn fit_model(
     };
     let rates: Vec<f64> = points.iter().map(|p| p.rate_rad_s).collect();
     let radius_errors_m: Vec<f64> = points.iter().map(|p| um_to_m(p.radius_error_um)).collect();
-    let fit =
-        identify::fit_radius_error(&rates, &radius_errors_m, model).map_err(identify_error)?;
+    let fit = match weighting {
+        Weighting::Unweighted => identify::fit_radius_error(&rates, &radius_errors_m, model),
+        Weighting::InverseVariance => {
+            let sigma_m = points
+                .iter()
+                .map(|p| p.radius_error_sigma_um.map(um_to_m))
+                .collect::<Option<Vec<f64>>>()
+                .ok_or_else(|| PipelineError::Unsupported {
+                    path: path.to_owned(),
+                    field: format!("{section}.weighting"),
+                    reason: "inverse_variance weighting needs at least two revolutions in \
+                             every recording, for the standard error of its first harmonic",
+                })?;
+            identify::fit_radius_error_weighted(&rates, &radius_errors_m, &sigma_m, model)
+        }
+    }
+    .map_err(identify_error)?;
+    let ssr_um2: f64 = fit.residuals_m.iter().map(|r| m_to_um(*r).powi(2)).sum();
     let k2 = identify::pseudo_second_order(
         config.k1_rad_s_g,
         fit.c_r_m_s2,
@@ -243,8 +276,10 @@ fn fit_model(
         c_r_sigma_m_s2: Some(fit.c_r_sigma_m_s2),
         offset_um: m_to_um(fit.offset_m),
         linear_um_s: fit.linear_m_s.map(m_to_um),
-        residuals_um: fit.fit.residuals.iter().map(|r| m_to_um(*r)).collect(),
-        residual_sd_um: Some(m_to_um(fit.fit.residual_sd)),
+        residuals_um: fit.residuals_m.iter().map(|r| m_to_um(*r)).collect(),
+        residual_sd_um: Some((ssr_um2 / fit.fit.dof as f64).sqrt()),
+        weighting,
+        reduced_chi: fit.weighted.then_some(fit.fit.residual_sd),
         dof: fit.fit.dof,
         condition_number: Some(fit.fit.condition_number),
         delta_k2_rad_s_g2: k2.delta_k2_rad_s_g2,

@@ -160,3 +160,32 @@ fn recording_lists_are_validated() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn inverse_variance_weighting_uses_each_recordings_standard_error() {
+    let text = std::fs::read_to_string(study_path()).unwrap().replace(
+        "pre_balance: (\n        points: recordings((",
+        "pre_balance: (\n        weighting: inverse_variance,\n        points: recordings((",
+    );
+    assert!(text.contains("weighting: inverse_variance"));
+    let study = StudyConfig::parse(&text, &study_path()).unwrap();
+    let results = pipeline::run(&study).unwrap();
+    let fit = &results.pre_balance.fit;
+    assert_eq!(fit.weighting, pipeline::Weighting::InverseVariance);
+    let chi = fit.reduced_chi.unwrap();
+    assert!(chi > 0.1 && chi < 5.0, "√(χ²/dof) = {chi}");
+    // The weighted C_r also recovers the scenario's 1.6e-6 (3σ of the probe noise).
+    assert!((fit.c_r_m_s2 - 1.6e-6).abs() < 1.0e-9, "{}", fit.c_r_m_s2);
+    assert!(results.post_balance.fit.reduced_chi.is_none());
+    // Weighting needs recordings: refused on Table 1 coefficients.
+    let text = text.replace(
+        "post_balance: (\n        points: first_harmonic(",
+        "post_balance: (\n        weighting: inverse_variance,\n        points: first_harmonic(",
+    );
+    match StudyConfig::parse(&text, &study_path()) {
+        Err(PipelineError::Unsupported { field, .. }) => {
+            assert_eq!(field, "post_balance.weighting");
+        }
+        other => panic!("expected Unsupported, got {other:?}"),
+    }
+}
