@@ -350,7 +350,9 @@ pub fn analyze_segmented(
         fit_revolution(signal, x, map, config, r, range.clone())
     };
     let total: usize = revolutions.iter().map(|r| r.len()).sum();
-    let fits: Vec<RevolutionFit> = if revolutions.len() > 1 && total >= PARALLEL_SAMPLES {
+    let parallel =
+        revolutions.len() > 1 && total >= PARALLEL_SAMPLES && rayon::current_num_threads() > 1;
+    let fits: Vec<RevolutionFit> = if parallel {
         revolutions
             .par_iter()
             .enumerate()
