@@ -36,8 +36,18 @@ pub fn render(
         let _ = writeln!(out, "Published values for comparison: {}.\n", e.source);
     }
 
-    let _ = writeln!(out, "## Post-balance first harmonic (Table 1)\n");
-    point_table(&mut out, &results.post_balance, "post_balance", &published);
+    for (title, key, phase) in [
+        ("Post-balance", "post_balance", &results.post_balance),
+        ("Pre-balance", "pre_balance", &results.pre_balance),
+    ] {
+        if phase.points.iter().any(|p| p.dc1_um.is_some()) {
+            let _ = writeln!(
+                out,
+                "## {title} first harmonic and radius error (Table 1)\n"
+            );
+            point_table(&mut out, phase, key, &published);
+        }
+    }
 
     for (title, key, phase) in [
         ("Post-balance", "post_balance", &results.post_balance),
@@ -94,6 +104,7 @@ fn point_table(
         "| rate (deg/s) | d_c1 (µm) | d_s1 (µm) | ΔR1 (µm) | ΔR1 paper | diff | β (deg) | Δr_xd+Δr_xs (µm) | paper | diff |"
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|");
+    let recorded = phase.points.iter().any(|p| p.revolutions.is_some());
     for (n, p) in phase.points.iter().enumerate() {
         let amp_paper = published(&format!("{key}.points[{n}].amplitude_um"));
         let r_paper = published(&format!("{key}.points[{n}].radius_error_um"));
@@ -118,6 +129,29 @@ fn point_table(
         );
     }
     let _ = writeln!(out);
+    if recorded {
+        let _ = writeln!(
+            out,
+            "From the recordings (standard errors across revolutions):\n\n\
+             | rate (deg/s) | revolutions | σ(d_c1) (µm) | σ(d_s1) (µm) | σ(Δr) (µm) | fit residual RMS (µm) |\n\
+             |---|---|---|---|---|---|"
+        );
+        let e = |x: Option<f64>| opt(x, |v| format!("{v:.2e}"));
+        for p in &phase.points {
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} | {} | {} |",
+                p.rate_deg_s,
+                p.revolutions
+                    .map_or_else(|| "—".to_owned(), |r| r.to_string()),
+                e(p.dc1_sigma_um),
+                e(p.ds1_sigma_um),
+                e(p.radius_error_sigma_um),
+                e(p.residual_rms_um),
+            );
+        }
+        let _ = writeln!(out);
+    }
 }
 
 fn fit_row(out: &mut String, label: &str, fit: &ModelFit, paper: [Option<f64>; 3]) {
