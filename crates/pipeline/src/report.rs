@@ -41,10 +41,12 @@ pub fn render(
         ("Pre-balance", "pre_balance", &results.pre_balance),
     ] {
         if phase.points.iter().any(|p| p.dc1_um.is_some()) {
-            let _ = writeln!(
-                out,
-                "## {title} first harmonic and radius error (Table 1)\n"
-            );
+            let table1 = if key == "post_balance" {
+                " (Table 1)"
+            } else {
+                ""
+            };
+            let _ = writeln!(out, "## {title} first harmonic and radius error{table1}\n");
             point_table(&mut out, phase, key, &published);
         }
     }
