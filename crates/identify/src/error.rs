@@ -78,6 +78,12 @@ pub enum IdentifyError {
         /// What was expected.
         expected: &'static str,
     },
+    /// Numbers too large for double precision: the result would not be finite.
+    #[error("{what} overflows double precision; rescale the data")]
+    Overflow {
+        /// What overflowed.
+        what: &'static str,
+    },
 }
 
 /// `Result` with [`IdentifyError`].

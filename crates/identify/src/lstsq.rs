@@ -76,6 +76,10 @@ pub struct Fit {
     pub covariance: DMatrix<f64>,
     /// Standard errors, the square roots of the covariance diagonal.
     pub std_errors: Vec<f64>,
+    /// `(XᵀX)⁻¹` itself, the covariance for observations of unit variance (from the same
+    /// refined QR solves as `covariance`). With rows weighted by `1/σᵢ` it is the covariance
+    /// for the σᵢ taken as known.
+    pub unscaled_covariance: DMatrix<f64>,
     /// Residuals `y − X·β` of the least-squares solution (carried in double-double by the
     /// refinement, then rounded).
     pub residuals: Vec<f64>,
@@ -212,6 +216,7 @@ pub fn lstsq_design(design: &Design, y: &[f64], options: &LstsqOptions) -> Resul
         inverse_gram.push(col.z);
     }
     let mut covariance = DMatrix::<f64>::zeros(n, n);
+    let mut unscaled_covariance = DMatrix::<f64>::zeros(n, n);
     let mut std_errors = vec![0.0; n];
     for a in 0..n {
         for b in 0..n {
@@ -219,9 +224,9 @@ pub fn lstsq_design(design: &Design, y: &[f64], options: &LstsqOptions) -> Resul
             let g = (inverse_gram[a][b] + inverse_gram[b][a]).mul_f64(0.5);
             let (ca, cb) = (qr.perm[a], qr.perm[b]);
             // The scale factors are powers of two: dividing by them is exact.
-            let v = (s2 * g)
-                .mul_f64(1.0 / qr.scale[ca])
-                .mul_f64(1.0 / qr.scale[cb]);
+            let u = g.mul_f64(1.0 / qr.scale[ca]).mul_f64(1.0 / qr.scale[cb]);
+            let v = s2 * u;
+            unscaled_covariance[(ca, cb)] = u.to_f64();
             covariance[(ca, cb)] = v.to_f64();
             if a == b {
                 std_errors[ca] = v.sqrt().to_f64();
@@ -236,12 +241,19 @@ pub fn lstsq_design(design: &Design, y: &[f64], options: &LstsqOptions) -> Resul
             relative_correction: worst_correction,
         });
     }
+    let residual_sd = s2.sqrt().to_f64();
+    if !residual_sd.is_finite() || coefficients.iter().any(|c| !c.is_finite()) {
+        return Err(IdentifyError::Overflow {
+            what: "the residual sum of squares or a coefficient",
+        });
+    }
     Ok(Fit {
         coefficients,
         covariance,
+        unscaled_covariance,
         std_errors,
         residuals,
-        residual_sd: s2.sqrt().to_f64(),
+        residual_sd,
         dof,
         condition_number: qr.condition_number(),
         rank_tolerance: tau,
@@ -674,5 +686,12 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn overflowing_data_is_an_error_not_nan() {
+        let d = DMatrix::from_row_slice(4, 2, &[1.0, 0.0, 1.0, 1.0, 1.0, 2.0, 1.0, 3.0]);
+        let y = [1e200, -1e200, 1e200, -1e200];
+        assert!(matches!(lstsq(&d, &y), Err(IdentifyError::Overflow { .. })));
     }
 }

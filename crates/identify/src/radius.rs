@@ -161,23 +161,24 @@ fn fit(
     let y: Vec<f64> = (0..m).map(|i| radius_error_m[i] * weight(i)).collect();
     let fit = lstsq(&design, &y)?;
     let last = model.unknowns() - 1;
+    // Unweighted: the ordinary standard errors. Weighted: those of the σᵢ taken as known,
+    // `√[(XᵀWX)⁻¹]ₖₖ`, times the Birge ratio when it exceeds 1.
+    let sigma = |k: usize| match sigma_m {
+        None => fit.std_errors[k],
+        Some(_) => fit.unscaled_covariance[(k, k)].sqrt() * fit.residual_sd.max(1.0),
+    };
     let (linear_m_s, linear_sigma_m_s) = match model {
         RadiusModel::TwoTerm => (None, None),
-        RadiusModel::ThreeTerm => (Some(fit.coefficients[1]), Some(fit.std_errors[1])),
+        RadiusModel::ThreeTerm => (Some(fit.coefficients[1]), Some(sigma(1))),
     };
-    // Weighted: σ from the σᵢ taken as known, times the Birge ratio when it exceeds 1.
-    let birge = if sigma_m.is_some() && fit.residual_sd > 0.0 {
-        fit.residual_sd.max(1.0) / fit.residual_sd
-    } else {
-        1.0
-    };
+    let c_r_sigma_m_s2 = sigma(last);
     let mut radius_fit = RadiusFit {
         model,
         c_r_m_s2: fit.coefficients[last],
-        c_r_sigma_m_s2: fit.std_errors[last] * birge,
+        c_r_sigma_m_s2,
         offset_m: fit.coefficients[0],
         linear_m_s,
-        linear_sigma_m_s: linear_sigma_m_s.map(|s| s * birge),
+        linear_sigma_m_s,
         residuals_m: Vec::new(),
         weighted: sigma_m.is_some(),
         fit,
@@ -378,7 +379,10 @@ mod tests {
         // σᵢ ten times the scatter: the Birge ratio is ≈ 0.1 and σ(C_r) is the known-σ value.
         let small = fit_radius_error_weighted(&w, &e, &[1e-8; 6], RadiusModel::TwoTerm).unwrap();
         assert!(small.fit.residual_sd < 1.0);
-        let known = small.fit.std_errors[1] / small.fit.residual_sd;
+        // Known σ: var(C_r) = 1/Σwᵢ(uᵢ − ū)² with u = ω², w = 1/σ², equal weights here.
+        let u: Vec<f64> = w.iter().map(|w| w * w).collect();
+        let mean = u.iter().sum::<f64>() / 6.0;
+        let known = 1e-8 / u.iter().map(|u| (u - mean).powi(2)).sum::<f64>().sqrt();
         assert!((small.c_r_sigma_m_s2 - known).abs() < 1e-12 * known);
         // σᵢ a tenth of the scatter: the Birge ratio is ≈ 10 and σ(C_r) grows with it.
         let large = fit_radius_error_weighted(&w, &e, &[1e-10; 6], RadiusModel::TwoTerm).unwrap();
@@ -423,5 +427,19 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn weighted_fit_through_exact_points_keeps_the_known_sigma() {
+        // Zero residuals: σ(C_r) is still that of the given σᵢ, not zero.
+        let w = [0.0, 1.0, 2.0, 3.0];
+        let e: Vec<f64> = w.iter().map(|w| 1e-6 + 2e-8 * w * w).collect();
+        let fit = fit_radius_error_weighted(&w, &e, &[1e-7; 4], RadiusModel::ThreeTerm).unwrap();
+        assert!(fit.c_r_sigma_m_s2 > 0.0);
+        assert!(fit.linear_sigma_m_s.unwrap() > 0.0);
+        // Closed form for equal σ: same as the unit-variance OLS covariance times σ.
+        let plain = fit_radius_error(&w, &e, RadiusModel::ThreeTerm).unwrap();
+        let unit = plain.fit.unscaled_covariance[(2, 2)].sqrt();
+        assert!((fit.c_r_sigma_m_s2 - 1e-7 * unit).abs() < 1e-9 * 1e-7 * unit);
     }
 }

@@ -158,7 +158,7 @@ pub fn parse(text: &str) -> Result<Dataset> {
     let (c0, c1) = certified_range
         .ok_or_else(|| missing("`Certified Values (lines A to B)` in the header"))?;
     let (d0, d1) = data_range.ok_or_else(|| missing("`Data (lines A to B)` in the header"))?;
-    if c0 == 0 || d0 == 0 || c1 < c0 || d1 < d0 || c1 > lines.len() || d1 > lines.len() {
+    if c0 == 0 || d0 < 2 || c1 < c0 || d1 < d0 || c1 > lines.len() || d1 > lines.len() {
         return Err(missing("line ranges inside the file"));
     }
 
@@ -487,6 +487,12 @@ mod tests {
         );
         assert!(matches!(
             parse("nothing here"),
+            Err(IdentifyError::StrdFormat { line: None, .. })
+        ));
+        // A data block said to start on line 1 leaves no room for its `Data:` header.
+        let text = tiny().replace("(lines 21 to 23)", "(lines 1 to 23)");
+        assert!(matches!(
+            parse(&text),
             Err(IdentifyError::StrdFormat { line: None, .. })
         ));
     }
