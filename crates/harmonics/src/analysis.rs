@@ -29,8 +29,8 @@ pub struct FitConfig {
     pub drift: bool,
     /// Use only the first this many complete revolutions (all when `None`).
     pub revolutions: Option<usize>,
-    /// Largest interval between samples, in mean sample intervals, before the recording is
-    /// refused as having a gap.
+    /// Largest interval between samples, in nominal (median) sample intervals, before the
+    /// recording is refused as having a gap.
     pub max_gap_intervals: f64,
 }
 
@@ -223,7 +223,7 @@ impl HarmonicAnalysis {
 /// ```
 pub fn analyze(signal: &ProbeSignal<'_>, config: &FitConfig) -> Result<HarmonicAnalysis> {
     config.validate()?;
-    let seg = segment(signal, config.max_gap_intervals)?;
+    let seg = segment(signal, config.max_gap_intervals, config.order)?;
     analyze_segmented(signal, config, &seg)
 }
 
@@ -275,7 +275,7 @@ fn fit_revolution(
 }
 
 /// [`analyze`] on a recording already cut by [`segment`] (with the same signal).
-pub fn analyze_segmented(
+pub(crate) fn analyze_segmented(
     signal: &ProbeSignal<'_>,
     config: &FitConfig,
     seg: &Segmentation,

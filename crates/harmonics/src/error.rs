@@ -89,6 +89,46 @@ pub enum HarmonicsError {
         /// The allowed gap in nominal intervals.
         max_intervals: f64,
     },
+    /// Two consecutive times are so far apart that their difference overflows.
+    #[error("sample {index}: interval of {interval_s} s since the previous sample is not finite")]
+    NonFiniteInterval {
+        /// Index of the sample.
+        index: usize,
+        /// The interval, s (infinite).
+        interval_s: f64,
+    },
+    /// The spindle turns by `π/N` or more in a sample interval, so no revolution can resolve
+    /// order `N` (checked before the recording is cut into revolutions).
+    #[error(
+        "spindle rate {rate_rad_s} rad/s turns {step_rad} rad in a sample interval of \
+         {interval_s} s, which aliases order {order} (must be below π/{order} = {limit_rad} rad)"
+    )]
+    RateAliases {
+        /// The rate, rad/s.
+        rate_rad_s: f64,
+        /// The interval, s: the nominal (median) one, or the longest when the recording
+        /// spans more turns than it has samples.
+        interval_s: f64,
+        /// The angle turned in it, rad.
+        step_rad: f64,
+        /// The fitted order.
+        order: usize,
+        /// `π/order`, rad.
+        limit_rad: f64,
+    },
+    /// The encoder's mean rate differs from the declared rate by more than the tolerance.
+    #[error(
+        "declared spindle rate {declared_rad_s} rad/s differs from the encoder's mean rate \
+         {encoder_rad_s} rad/s by more than {tolerance} (relative)"
+    )]
+    RateMismatch {
+        /// The declared rate, rad/s.
+        declared_rad_s: f64,
+        /// The encoder's mean rate (unwrapped angle span over time span), rad/s.
+        encoder_rad_s: f64,
+        /// The relative tolerance.
+        tolerance: f64,
+    },
     /// The encoder angle goes backwards (after unwrapping: steps are taken in (−π, π]).
     #[error(
         "sample {index}: encoder angle steps back by {step_rad} rad (the spindle turns one way)"

@@ -13,9 +13,10 @@
 //! (mean, standard deviation, standard error), as the paper does with 8 revolutions per rate.
 //!
 //! # Method
-//! - **Segmentation** ([`segment`]): revolution `r` holds the samples whose unwrapped angle is
-//!   in `[θ_first + 2πr, θ_first + 2π(r+1))`; a trailing revolution that leaves more than
-//!   `max_gap_intervals` mean angular steps unclosed is dropped and reported.
+//! - **Segmentation**: revolution `r` holds the samples whose unwrapped angle is in
+//!   `[θ_first + 2πr, θ_first + 2π(r+1))`; a trailing revolution that leaves more than
+//!   `max_gap_intervals` nominal angular steps unclosed (`ω` times the median sample interval;
+//!   with an encoder, the mean step) is dropped and reported.
 //! - **One streaming pass per revolution**: the normal matrix of the Fourier basis needs only
 //!   `Σ cos mθ, Σ sin mθ` for `m ≤ 2N` (product-to-sum identities) plus the data products; at
 //!   each sample `cos θ, sin θ` come from a vectorised polynomial and the higher orders from
@@ -28,10 +29,13 @@
 //! - **Parallel revolutions**: revolutions are independent, so a long recording's are fitted
 //!   on all cores (rayon; `RAYON_NUM_THREADS=1` keeps one); results do not depend on it.
 //! - **Refusals** (typed [`HarmonicsError`]s naming the sample or revolution): non-finite
-//!   values, time not increasing, a gap of more than `max_gap_intervals` mean intervals, an
-//!   encoder stepping back, less than one complete revolution, a revolution with fewer than
-//!   [`FitConfig::min_samples`] samples, and aliasing: an angular gap of `π/N` or more
-//!   inside a revolution (including the gap that closes it).
+//!   values or intervals, time not increasing, a gap of more than `max_gap_intervals` nominal
+//!   (median) intervals, an encoder stepping back, less than one complete revolution, a
+//!   revolution with fewer than [`FitConfig::min_samples`] samples, and aliasing: a rate that
+//!   turns `π/N` or more in the nominal interval, or an angular gap of `π/N` or more inside a
+//!   revolution (including the gap that closes it).
+//! - **Declared rate** ([`check_encoder_rate`]): with an encoder, its mean rate can be
+//!   compared with the rate a study declares (within [`ENCODER_RATE_TOLERANCE`]).
 //!
 //! This crate works on numbers and slices only; reading files is the `pipeline` crate's job.
 //!
@@ -60,14 +64,13 @@ mod synth;
 
 pub use analysis::{
     Coefficients, DEFAULT_ORDER, FitConfig, HarmonicAnalysis, RevolutionFit, analyze,
-    analyze_segmented,
 };
 pub use error::{HarmonicsError, Result};
 pub use geometry::{FirstHarmonic, LeverGeometry, PigaPlaneDrift, ProbeDirection};
 pub use kernel::MAX_ORDER;
 pub use signal::{
-    IncompleteRevolution, ProbeSignal, Segmentation, SpindleAngle, TimeAxis, check_time_axis,
-    segment,
+    ENCODER_RATE_TOLERANCE, IncompleteRevolution, ProbeSignal, SpindleAngle, TimeAxis,
+    check_encoder_rate, check_time_axis,
 };
 pub use solve::CONDITION_LIMIT;
 pub use synth::{SyntheticRecording, SyntheticSamples};

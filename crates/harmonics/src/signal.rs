@@ -58,14 +58,14 @@ pub struct IncompleteRevolution {
 
 /// A recording cut into complete revolutions.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Segmentation {
+pub(crate) struct Segmentation {
     /// Sample ranges of the complete revolutions, in order. Revolution `r` covers the angles
     /// `[θ_first + 2πr, θ_first + 2π(r+1))` from the first sample's angle.
-    pub revolutions: Vec<Range<usize>>,
+    pub(crate) revolutions: Vec<Range<usize>>,
     /// The trailing incomplete revolution, if any (dropped).
-    pub incomplete: Option<IncompleteRevolution>,
+    pub(crate) incomplete: Option<IncompleteRevolution>,
     /// The recording's time axis.
-    pub time_axis: TimeAxis,
+    pub(crate) time_axis: TimeAxis,
     /// Largest angular gap of each revolution (wrapping round it), rad, with the index of
     /// the sample before it; the index is `usize::MAX` when only a bound is known.
     pub(crate) max_gaps: Vec<(f64, usize)>,
@@ -130,8 +130,15 @@ pub fn check_time_axis(time_s: &[f64], max_gap_intervals: f64) -> Result<TimeAxi
             });
         }
     }
+    let mut max_interval_s = 0.0_f64;
     for i in 1..n {
         let interval_s = time_s[i] - time_s[i - 1];
+        if !interval_s.is_finite() {
+            return Err(HarmonicsError::NonFiniteInterval {
+                index: i,
+                interval_s,
+            });
+        }
         if interval_s > nominal * max_gap_intervals {
             return Err(HarmonicsError::SampleGap {
                 index: i,
@@ -140,8 +147,13 @@ pub fn check_time_axis(time_s: &[f64], max_gap_intervals: f64) -> Result<TimeAxi
                 max_intervals: max_gap_intervals,
             });
         }
+        max_interval_s = max_interval_s.max(interval_s);
     }
-    unreachable!("the fast path refused a valid time axis")
+    // Finite, increasing and without a gap: the slow scan has the last word.
+    Ok(TimeAxis {
+        nominal_interval_s: nominal,
+        max_interval_s,
+    })
 }
 
 /// The nominal sample interval: the median of up to 1025 intervals spread evenly over the
@@ -264,11 +276,16 @@ pub(crate) fn check_setting_gap(max_gap_intervals: f64) -> Result<()> {
 ///
 /// Checks, in this order, naming the sample: equal lengths, finite values, strictly
 /// increasing time, no gap above `max_gap_intervals` nominal intervals, an encoder angle that
-/// does not step back (or a finite positive rate). The trailing revolution is complete when
+/// does not step back (or a finite positive rate that turns less than `π/order` in the
+/// nominal interval, which also bounds the revolutions by the samples). The trailing revolution is complete when
 /// the angle left to close it is at most `max_gap_intervals` nominal angular steps; otherwise
 /// it is returned as [`Segmentation::incomplete`]. Fails with
 /// [`HarmonicsError::NoCompleteRevolution`] when no revolution is complete.
-pub fn segment(signal: &ProbeSignal<'_>, max_gap_intervals: f64) -> Result<Segmentation> {
+pub(crate) fn segment(
+    signal: &ProbeSignal<'_>,
+    max_gap_intervals: f64,
+    order: usize,
+) -> Result<Segmentation> {
     check_setting_gap(max_gap_intervals)?;
     let n = signal.time_s.len();
     if signal.gap.len() != n {
@@ -310,6 +327,7 @@ pub fn segment(signal: &ProbeSignal<'_>, max_gap_intervals: f64) -> Result<Segme
                     reason: "must be finite",
                 });
             }
+            check_rate_resolves(signal.time_s, rate_rad_s, time_axis, order)?;
             Ok(segment_rate(
                 signal.time_s,
                 rate_rad_s,
@@ -336,6 +354,29 @@ pub fn segment(signal: &ProbeSignal<'_>, max_gap_intervals: f64) -> Result<Segme
             Ok(s)
         }
     })
+}
+
+/// Refuses a rate that turns `π/order` or more in the nominal sample interval (no
+/// revolution could resolve the order), or whose recording spans more turns than it has
+/// samples (then some interval spans a whole turn); this bounds the revolutions by `n`.
+fn check_rate_resolves(t: &[f64], omega: f64, axis: TimeAxis, order: usize) -> Result<()> {
+    let limit_rad = std::f64::consts::PI / order as f64;
+    let refuse = |interval_s: f64| HarmonicsError::RateAliases {
+        rate_rad_s: omega,
+        interval_s,
+        step_rad: omega * interval_s,
+        order,
+        limit_rad,
+    };
+    // Both factors are finite and positive: the product is not NaN.
+    if omega * axis.nominal_interval_s >= limit_rad {
+        return Err(refuse(axis.nominal_interval_s));
+    }
+    let turns = omega * (t[t.len() - 1] - t[0]) / TAU;
+    if turns >= t.len() as f64 {
+        return Err(refuse(axis.max_interval_s));
+    }
+    Ok(())
 }
 
 fn segment_rate(
@@ -527,6 +568,90 @@ fn segment_encoder(a: &[f64], time_axis: TimeAxis, max_gap_intervals: f64) -> Re
         time_axis,
         max_gaps,
     })
+}
+
+/// Relative tolerance of [`check_encoder_rate`] used by the `pipeline` crate: 2 %. A speed
+/// ripple of a fraction of a degree leaves the mean rate well inside it; a recording made
+/// at another rate point of a study (10 % apart or more) is far outside.
+pub const ENCODER_RATE_TOLERANCE: f64 = 0.02;
+
+/// Checks that an encoder recording's mean rate — its unwrapped angle span over its time
+/// span — matches the declared rate `ω` within a relative `tolerance`:
+/// `|ω_enc − ω| ≤ tolerance·ω`. A rate-mode signal passes. Meant for a signal that
+/// [`analyze`](crate::analyze) accepted (steps below `π`, so the unwrapping is sound).
+///
+/// ```
+/// # use harmonics::{check_encoder_rate, HarmonicsError, ProbeSignal, SpindleAngle};
+/// let time_s = [0.0, 1.0, 2.0];
+/// let angle = [0.0, 3.0, 6.0]; // 3 rad/s, wrapping past 2π
+/// let signal = ProbeSignal { time_s: &time_s, gap: &[0.0; 3], angle: SpindleAngle::Encoder(&angle) };
+/// assert!(check_encoder_rate(&signal, 3.05, 0.02).is_ok());
+/// assert!(matches!(check_encoder_rate(&signal, 2.0, 0.02),
+///                  Err(HarmonicsError::RateMismatch { .. })));
+/// # Ok::<(), HarmonicsError>(())
+/// ```
+pub fn check_encoder_rate(
+    signal: &ProbeSignal<'_>,
+    declared_rate_rad_s: f64,
+    tolerance: f64,
+) -> Result<()> {
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(HarmonicsError::InvalidSetting {
+            field: "tolerance",
+            value: tolerance,
+            reason: "must be finite and not negative",
+        });
+    }
+    let SpindleAngle::Encoder(a) = signal.angle else {
+        return Ok(());
+    };
+    if !(declared_rate_rad_s.is_finite() && declared_rate_rad_s > 0.0) {
+        return Err(HarmonicsError::InvalidRate {
+            rate_rad_s: declared_rate_rad_s,
+        });
+    }
+    let t = signal.time_s;
+    let n = t.len();
+    if a.len() != n {
+        return Err(HarmonicsError::LengthMismatch {
+            column: "angle",
+            len: a.len(),
+            expected: n,
+        });
+    }
+    if n < 2 {
+        return Err(HarmonicsError::NoCompleteRevolution {
+            samples: n,
+            turns: 0.0,
+        });
+    }
+    let encoder_rad_s = unwrapped_span(a) / (t[n - 1] - t[0]);
+    // NaN (a signal `analyze` would refuse) fails too.
+    let within = (encoder_rad_s - declared_rate_rad_s).abs() <= tolerance * declared_rate_rad_s;
+    if !within {
+        return Err(HarmonicsError::RateMismatch {
+            declared_rad_s: declared_rate_rad_s,
+            encoder_rad_s,
+            tolerance,
+        });
+    }
+    Ok(())
+}
+
+/// The sum of the wrapped steps of the encoder readings (in lanes, so that it vectorises).
+fn unwrapped_span(a: &[f64]) -> f64 {
+    const W: usize = 8;
+    let mut acc = [0.0_f64; W];
+    let pairs = a.len() - 1;
+    let body = pairs - pairs % W;
+    for i in (0..body).step_by(W) {
+        let w: &[f64; W + 1] = a[i..i + W + 1].try_into().expect("window");
+        for l in 0..W {
+            acc[l] += encoder_step(w[l], w[l + 1]);
+        }
+    }
+    let tail: f64 = (body..pairs).map(|i| encoder_step(a[i], a[i + 1])).sum();
+    acc.iter().sum::<f64>() + tail
 }
 
 /// The largest angular gap of a revolution, wrapping round it, with the sample before it.

@@ -2,8 +2,9 @@
 //! QR on the explicit design matrix, and every refusal.
 
 use harmonics::{
-    Coefficients, FitConfig, HarmonicsError, MAX_ORDER, ProbeSignal, SpindleAngle,
-    SyntheticRecording, SyntheticSamples, analyze,
+    Coefficients, ENCODER_RATE_TOLERANCE, FitConfig, HarmonicsError, MAX_ORDER, ProbeSignal,
+    SpindleAngle, SyntheticRecording, SyntheticSamples, analyze, check_encoder_rate,
+    check_time_axis,
 };
 
 /// Coefficients of order `n` with distinct, non-trivial values.
@@ -601,10 +602,140 @@ mod refusals {
         assert!(
             matches!(
                 e,
-                HarmonicsError::TooFewSamples { .. } | HarmonicsError::Aliasing { .. }
+                HarmonicsError::TooFewSamples { .. }
+                    | HarmonicsError::Aliasing { .. }
+                    | HarmonicsError::RateAliases { .. }
             ),
             "{e}"
         );
+    }
+
+    #[test]
+    fn overflowing_intervals_are_refused() {
+        for t in [vec![-1e308, 1e308], vec![-1e308, 1e308, 1.5e308]] {
+            let e = check_time_axis(&t, 3.0).unwrap_err();
+            assert!(
+                matches!(e, HarmonicsError::NonFiniteInterval { index: 1, .. }),
+                "{e}"
+            );
+            let y = vec![1.0; t.len()];
+            let signal = ProbeSignal {
+                time_s: &t,
+                gap: &y,
+                angle: SpindleAngle::Rate {
+                    rate_rad_s: 1.0,
+                    start_angle_rad: 0.0,
+                },
+            };
+            assert!(matches!(
+                analyze(&signal, &FitConfig::default()),
+                Err(HarmonicsError::NonFiniteInterval { index: 1, .. })
+            ));
+        }
+    }
+
+    #[test]
+    fn rate_too_fast_for_the_sampling_is_refused_before_segmenting() {
+        let (rec, data) = base();
+        // 1e300 rad/s overflowed the revolution count; 1e12 asked for terabytes.
+        for rate_rad_s in [1e300, 1e12, f64::MAX] {
+            let signal = ProbeSignal {
+                angle: SpindleAngle::Rate {
+                    rate_rad_s,
+                    start_angle_rad: 0.0,
+                },
+                ..rate_signal(&rec, &data)
+            };
+            let e = analyze(&signal, &FitConfig::default()).unwrap_err();
+            match e {
+                HarmonicsError::RateAliases {
+                    order: 4,
+                    interval_s,
+                    limit_rad,
+                    ..
+                } => {
+                    approx::assert_relative_eq!(interval_s, 0.002, max_relative = 1e-9);
+                    approx::assert_relative_eq!(
+                        limit_rad,
+                        std::f64::consts::FRAC_PI_4,
+                        max_relative = 1e-15
+                    );
+                }
+                e => panic!("{e}"),
+            }
+        }
+        // Just below π/4 per interval the rate is accepted (then the revolutions are short).
+        let signal = ProbeSignal {
+            angle: SpindleAngle::Rate {
+                rate_rad_s: 0.99 * std::f64::consts::FRAC_PI_4 / 0.002,
+                start_angle_rad: 0.0,
+            },
+            ..rate_signal(&rec, &data)
+        };
+        assert!(!matches!(
+            analyze(&signal, &FitConfig::default()),
+            Err(HarmonicsError::RateAliases { .. })
+        ));
+        // A recording spanning more turns than samples, with a long gap allowed.
+        let t = [0.0, 0.001, 0.002, 1e6];
+        let y = [0.0; 4];
+        let signal = ProbeSignal {
+            time_s: &t,
+            gap: &y,
+            angle: SpindleAngle::Rate {
+                rate_rad_s: 1.0,
+                start_angle_rad: 0.0,
+            },
+        };
+        let config = FitConfig {
+            max_gap_intervals: 1e12,
+            ..FitConfig::default()
+        };
+        assert!(matches!(
+            analyze(&signal, &config),
+            Err(HarmonicsError::RateAliases { interval_s, .. }) if interval_s > 9e5
+        ));
+    }
+
+    #[test]
+    fn encoder_rate_must_match_the_declared_rate() {
+        let (rec, data) = base();
+        let signal = encoder_signal(&data);
+        let w = rec.rate_rad_s;
+        // Within 2 %, on either side.
+        for declared in [w, w * 1.019, w / 1.019] {
+            assert!(check_encoder_rate(&signal, declared, ENCODER_RATE_TOLERANCE).is_ok());
+        }
+        for declared in [w * 1.021, w / 1.021, 10f64.to_radians()] {
+            match check_encoder_rate(&signal, declared, ENCODER_RATE_TOLERANCE) {
+                Err(HarmonicsError::RateMismatch {
+                    declared_rad_s,
+                    encoder_rad_s,
+                    ..
+                }) => {
+                    assert_eq!(declared_rad_s, declared);
+                    approx::assert_relative_eq!(encoder_rad_s, w, max_relative = 1e-9);
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+        // A speed ripple leaves the mean rate within the tolerance.
+        let wobbly = SyntheticRecording {
+            wobble_rad: 0.05,
+            ..rec.clone()
+        }
+        .generate();
+        assert!(check_encoder_rate(&encoder_signal(&wobbly), w, ENCODER_RATE_TOLERANCE).is_ok());
+        // The rate mode has nothing to compare; bad settings are refused.
+        assert!(check_encoder_rate(&rate_signal(&rec, &data), 1.0, 0.02).is_ok());
+        assert!(matches!(
+            check_encoder_rate(&signal, -1.0, 0.02),
+            Err(HarmonicsError::InvalidRate { .. })
+        ));
+        assert!(matches!(
+            check_encoder_rate(&signal, w, f64::NAN),
+            Err(HarmonicsError::InvalidSetting { .. })
+        ));
     }
 
     #[test]

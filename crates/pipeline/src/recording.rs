@@ -1,9 +1,11 @@
 //! Probe recordings: delimited text files of time, probe gap and, optionally, the spindle
 //! encoder's angle, one sample per row (the raw data behind eq. 20).
 //!
-//! The file is read into memory once and parsed in a single pass without an allocation per
-//! row: fields are parsed in place by a fast decimal parser (exact for up to 19 significant
-//! digits and exponents within ±22, the standard library's parser otherwise). Errors name the
+//! A file is streamed through one reused buffer of about a megabyte and parsed in a single
+//! pass without an allocation per row: fields are parsed in place by a fast decimal parser
+//! (exact for up to 19 significant digits and exponents within ±22, the standard library's
+//! parser otherwise). Lines end with LF, CRLF, or (in a file whose first line end is one) a
+//! lone CR; a leading UTF-8 byte-order mark is skipped; fields may be quoted. Errors name the
 //! file and the 1-based line.
 //!
 //! ```
@@ -176,6 +178,16 @@ pub enum RecordingError {
         field: &'static str,
         /// What is wrong.
         reason: &'static str,
+    },
+    /// No line end within 16 MiB (a binary file, or not a text table).
+    #[error("{}:{line}: no line end within {max_bytes} bytes", path.display())]
+    LineTooLong {
+        /// The file.
+        path: PathBuf,
+        /// The line that does not end.
+        line: usize,
+        /// The longest line read, bytes.
+        max_bytes: usize,
     },
     /// The file has no header line (it is empty, blank or only comments).
     #[error("{}: empty file (no header line)", path.display())]
@@ -375,23 +387,18 @@ impl SyntheticSpec {
 /// Fits eq. 20 per revolution to a loaded recording ([`harmonics::analyze`]), with the angle
 /// from the encoder column when present, else from the rate; an error naming a sample is
 /// given the sample's line in the file.
+///
+/// With an encoder column, the encoder's mean rate must match `rate_rad_s` within
+/// [`harmonics::ENCODER_RATE_TOLERANCE`] (2 %), else [`HarmonicsError::RateMismatch`]: a
+/// study fits with the declared rate, so a file attached to the wrong rate point is refused.
 pub fn analyze_recording(
     recording: &Recording,
     rate_rad_s: f64,
     start_angle_rad: f64,
     config: &harmonics::FitConfig,
 ) -> Result<harmonics::HarmonicAnalysis, RecordingError> {
-    harmonics::analyze(&recording.signal(rate_rad_s, start_angle_rad), config).map_err(|source| {
-        let index = match &source {
-            HarmonicsError::NonFinite { index, .. }
-            | HarmonicsError::TimeNotIncreasing { index, .. }
-            | HarmonicsError::SampleGap { index, .. }
-            | HarmonicsError::AngleNotIncreasing { index, .. } => Some(*index),
-            HarmonicsError::TooFewSamples { first_sample, .. } => Some(*first_sample),
-            HarmonicsError::Aliasing { after_sample, .. } => Some(*after_sample),
-            _ => None,
-        };
-        let line = index.and_then(|row| {
+    let located = |source: HarmonicsError| {
+        let line = sample_index(&source).and_then(|row| {
             let text = std::fs::read(&recording.path).ok()?;
             Some(line_of_row(&text, row))
         });
@@ -400,7 +407,27 @@ pub fn analyze_recording(
             line,
             error: source,
         }
-    })
+    };
+    let signal = recording.signal(rate_rad_s, start_angle_rad);
+    let analysis = harmonics::analyze(&signal, config).map_err(located)?;
+    // The encoder gives the angle, but the declared rate is the ω a study fits with.
+    harmonics::check_encoder_rate(&signal, rate_rad_s, harmonics::ENCODER_RATE_TOLERANCE)
+        .map_err(located)?;
+    Ok(analysis)
+}
+
+/// The sample an analysis error names, if any.
+fn sample_index(error: &HarmonicsError) -> Option<usize> {
+    match error {
+        HarmonicsError::NonFinite { index, .. }
+        | HarmonicsError::NonFiniteInterval { index, .. }
+        | HarmonicsError::TimeNotIncreasing { index, .. }
+        | HarmonicsError::SampleGap { index, .. }
+        | HarmonicsError::AngleNotIncreasing { index, .. } => Some(*index),
+        HarmonicsError::TooFewSamples { first_sample, .. } => Some(*first_sample),
+        HarmonicsError::Aliasing { after_sample, .. } => Some(*after_sample),
+        _ => None,
+    }
 }
 
 /// Pieces of text at least this long are parsed on two threads.
@@ -414,8 +441,10 @@ impl RecordingError {
             | Self::Parse { line, .. }
             | Self::NonFinite { line, .. }
             | Self::TimeNotIncreasing { line, .. }
-            | Self::SampleGap { line, .. } => *line += offset,
-            Self::NoSamples { line, .. } | Self::MissingColumn { line, .. } => *line += offset,
+            | Self::SampleGap { line, .. }
+            | Self::NoSamples { line, .. }
+            | Self::MissingColumn { line, .. }
+            | Self::LineTooLong { line, .. } => *line += offset,
             Self::Samples { line, .. } => {
                 if let Some(l) = line {
                     *l += offset;
@@ -430,8 +459,42 @@ impl RecordingError {
 /// Bytes read from the file at a time by [`load_recording`].
 const CHUNK_BYTES: usize = 1 << 20;
 
+/// Longest line [`load_recording`] accepts, bytes (16 MiB): a file without a line end
+/// within it is refused rather than read whole.
+pub(crate) const MAX_LINE_BYTES: usize = 16 << 20;
+
+/// The UTF-8 byte-order mark, skipped at the start of a file.
+const BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// Whether a text's line ends are lone CRs: its first line end is a CR not followed by LF.
+/// `None` while the text read so far does not tell.
+fn lone_cr_line_ends(text: &[u8], complete: bool) -> Option<bool> {
+    match text.iter().position(|&b| b == b'\n' || b == b'\r') {
+        Some(i) if text[i] == b'\n' => Some(false),
+        Some(i) if i + 1 < text.len() => Some(text[i + 1] != b'\n'),
+        // A CR as the last byte read: a lone CR only if nothing follows.
+        Some(_) => complete.then_some(true),
+        None => complete.then_some(false),
+    }
+}
+
+/// The text without a leading byte-order mark and with lone-CR line ends turned into LF
+/// (copied only then).
+fn normalized(text: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+    let text = text.strip_prefix(BOM).unwrap_or(text);
+    if lone_cr_line_ends(text, true) == Some(true) {
+        text.iter()
+            .map(|&b| if b == b'\r' { b'\n' } else { b })
+            .collect::<Vec<u8>>()
+            .into()
+    } else {
+        text.into()
+    }
+}
+
 /// Reads a probe recording from a file, streaming it through one reused buffer of about
-/// a megabyte (whole lines are parsed; a partial last line waits for the next read).
+/// a megabyte (whole lines are parsed; a partial last line waits for the next read). A
+/// line longer than 16 MiB is refused ([`RecordingError::LineTooLong`]).
 pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording, RecordingError> {
     use std::io::Read as _;
     let io = |error| RecordingError::Io {
@@ -443,9 +506,18 @@ pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording
     let mut parser = RowParser::new(path, format, size)?;
     let mut buf: Vec<u8> = Vec::with_capacity(CHUNK_BYTES + 64 * 1024);
     let mut eof = false;
+    let mut start = true;
+    // Whether line ends are lone CRs (decided at the first line end), and how much of the
+    // buffer is known to hold no line end (so that a long line is scanned once).
+    let mut lone_cr = None;
+    let mut scanned: usize = 0;
     while !eof {
-        // Top the buffer up to a chunk (more if one line is longer than that).
-        let target = (buf.len() + 1).max(CHUNK_BYTES);
+        // Top the buffer up to a chunk, or double it while one line is longer than that.
+        let target = if scanned > 0 {
+            (2 * buf.len()).max(CHUNK_BYTES)
+        } else {
+            CHUNK_BYTES
+        };
         while buf.len() < target {
             let old = buf.len();
             buf.resize(target, 0);
@@ -456,16 +528,46 @@ pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording
                 break;
             }
         }
-        let complete = if eof {
-            buf.len()
-        } else {
-            match buf.iter().rposition(|&b| b == b'\n') {
-                Some(i) => i + 1,
-                None => continue,
+        if start {
+            if buf.starts_with(BOM) {
+                buf.drain(..BOM.len());
+            }
+            start = false;
+        }
+        if lone_cr.is_none() {
+            lone_cr = lone_cr_line_ends(&buf, eof);
+        }
+        // A CR at the end of the part already scanned may just have been found lone.
+        let from = scanned.saturating_sub(1);
+        if lone_cr == Some(true) {
+            for b in &mut buf[from..] {
+                if *b == b'\r' {
+                    *b = b'\n';
+                }
+            }
+        }
+        let last_end = buf[from..]
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map(|i| from + i + 1);
+        if last_end.is_none() && buf.len() > MAX_LINE_BYTES {
+            return Err(RecordingError::LineTooLong {
+                path: path.to_owned(),
+                line: parser.line + 1,
+                max_bytes: MAX_LINE_BYTES,
+            });
+        }
+        let complete = match (eof, last_end) {
+            (true, _) => buf.len(),
+            (false, Some(end)) => end,
+            (false, None) => {
+                scanned = buf.len();
+                continue;
             }
         };
         parser.feed(&buf[..complete])?;
         buf.drain(..complete);
+        scanned = 0;
     }
     parser.finish(None)
 }
@@ -476,9 +578,10 @@ pub fn parse_recording(
     path: &Path,
     format: &RecordingFormat,
 ) -> Result<Recording, RecordingError> {
+    let text = normalized(text);
     let mut parser = RowParser::new(path, format, text.len())?;
-    parser.feed(text)?;
-    parser.finish(Some(text))
+    parser.feed(&text)?;
+    parser.finish(Some(&text))
 }
 
 /// The columns a header names.
@@ -681,9 +784,6 @@ impl<'a> RowParser<'a> {
         self.gap.extend_from_slice(&second.gap);
         self.angle.extend_from_slice(&second.angle);
         self.previous_s = second.previous_s;
-        if self.first_row_line.is_none() {
-            self.first_row_line = second.first_row_line.map(|l| offset + l);
-        }
         Ok(())
     }
 
@@ -742,45 +842,40 @@ impl<'a> RowParser<'a> {
                 line: self.header_line,
             });
         }
-        if self.time_s.len() > 1 {
-            harmonics::check_time_axis(&self.time_s, self.format.max_gap_intervals).map_err(
-                |e| {
-                    let line_of = |row: usize| match text {
-                        Some(t) => line_of_row(t, row),
-                        None => std::fs::read(path).map_or(0, |t| line_of_row(&t, row)),
-                    };
-                    match e {
-                        HarmonicsError::SampleGap {
-                            index,
-                            interval_s,
-                            nominal_interval_s,
-                            max_intervals,
-                        } => RecordingError::SampleGap {
-                            path: path.to_owned(),
-                            line: line_of(index),
-                            interval_s,
-                            nominal_interval_s,
-                            max_intervals,
-                        },
-                        HarmonicsError::TimeNotIncreasing {
-                            index,
-                            previous_s,
-                            time_s,
-                        } => RecordingError::TimeNotIncreasing {
-                            path: path.to_owned(),
-                            line: line_of(index),
-                            previous_s,
-                            time_s,
-                        },
-                        error => RecordingError::Samples {
-                            path: path.to_owned(),
-                            line: None,
-                            error,
-                        },
-                    }
+        // The rows are finite and increasing already; what is left is a gap, or intervals
+        // that overflow (a single row has no interval to check).
+        let check = match self.time_s.len() {
+            1 => Ok(()),
+            _ => harmonics::check_time_axis(&self.time_s, self.format.max_gap_intervals).map(drop),
+        };
+        check.map_err(|e| {
+            let line = sample_index(&e).map(|row| match text {
+                Some(t) => line_of_row(t, row),
+                None => std::fs::read(path).map_or(0, |t| line_of_row(&t, row)),
+            });
+            match (e, line) {
+                (
+                    HarmonicsError::SampleGap {
+                        interval_s,
+                        nominal_interval_s,
+                        max_intervals,
+                        ..
+                    },
+                    Some(line),
+                ) => RecordingError::SampleGap {
+                    path: path.to_owned(),
+                    line,
+                    interval_s,
+                    nominal_interval_s,
+                    max_intervals,
                 },
-            )?;
-        }
+                (error, line) => RecordingError::Samples {
+                    path: path.to_owned(),
+                    line,
+                    error,
+                },
+            }
+        })?;
         Ok(Recording {
             path: path.to_owned(),
             time_s: self.time_s,
@@ -828,8 +923,8 @@ impl RowError {
     }
 }
 
-/// Parses one row field by field: blanks, quotes-free fields, any number the standard
-/// library reads; finite values only.
+/// Parses one row field by field: blanks around fields, quoted fields, any number the
+/// standard library reads; finite values only.
 fn parse_row_slowly(
     row: &[u8],
     delimiter: u8,
@@ -850,9 +945,10 @@ fn parse_row_slowly(
         }
         let dest = wanted[next_wanted].1;
         next_wanted += 1;
+        let field = trim_quotes(field);
         let value = parse_f64(field).ok_or_else(|| RowError::Parse {
             dest,
-            text: String::from_utf8_lossy(field.trim_ascii()).into_owned(),
+            text: String::from_utf8_lossy(field).into_owned(),
         })?;
         if !value.is_finite() {
             return Err(RowError::NonFinite { dest, value });
@@ -875,6 +971,18 @@ fn delimiter_byte(format: &RecordingFormat) -> Result<u8, RecordingError> {
         return Err(RecordingError::InvalidFormat {
             field: "delimiter",
             reason: "must be one ASCII character that cannot occur in a number, a comment or a line end",
+        });
+    }
+    if format.gap_column == format.time_column {
+        return Err(RecordingError::InvalidFormat {
+            field: "gap_column",
+            reason: "must differ from `time_column`",
+        });
+    }
+    if format.angle_column == format.time_column || format.angle_column == format.gap_column {
+        return Err(RecordingError::InvalidFormat {
+            field: "angle_column",
+            reason: "must differ from `time_column` and `gap_column`",
         });
     }
     if !format.max_gap_intervals.is_finite() || format.max_gap_intervals < 1.0 {
@@ -901,7 +1009,8 @@ impl<'a> Lines<'a> {
         }
         let rest = &self.text[self.pos..];
         let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-        self.pos += end + 1;
+        // Past the line end, or at the text's end when the last line has none.
+        self.pos = (self.pos + end + 1).min(self.text.len());
         self.line += 1;
         let mut line = &rest[..end];
         if let [head @ .., b'\r'] = line {
@@ -924,8 +1033,9 @@ impl<'a> Lines<'a> {
 
 /// Line number of data row `row` (0-based): the `row + 1`-th content line after the header.
 fn line_of_row(text: &[u8], row: usize) -> usize {
+    let text = normalized(text);
     let mut lines = Lines {
-        text,
+        text: &text,
         pos: 0,
         line: 0,
     };
@@ -1114,13 +1224,19 @@ fn fast_row(
     values: &mut [f64; 3],
 ) -> Option<usize> {
     let last = dest_of.len() - 1;
+    let blank = delimiter == b' ' || delimiter == b'\t';
     for (f, &dest) in dest_of.iter().enumerate() {
         if dest == SKIP {
-            let off = text
-                .get(pos..)?
-                .iter()
-                .position(|&b| b == delimiter || b == b'\n')?;
-            if text[pos + off] != delimiter {
+            // The skipped field ends at the delimiter; with a blank delimiter at either
+            // blank (the slow path's rule), and an empty field there is a run of blanks.
+            let off = text.get(pos..)?.iter().position(|&b| {
+                b == delimiter || b == b'\n' || (blank && (b == b' ' || b == b'\t'))
+            })?;
+            if text[pos + off] != delimiter || (blank && off == 0) {
+                return None;
+            }
+            // A comment line is not a row.
+            if f == 0 && text[pos..pos + off].trim_ascii_start().first() == Some(&b'#') {
                 return None;
             }
             pos += off + 1;
@@ -1665,6 +1781,63 @@ mod tests {
     }
 
     #[test]
+    fn encoder_file_at_another_rate_than_declared_is_refused() {
+        let spec = SyntheticSpec::default(); // 120 deg/s, with an encoder and speed ripple
+        let rec = parse(&spec.csv()).unwrap();
+        let config = harmonics::FitConfig::default();
+        assert!(analyze_recording(&rec, 120f64.to_radians(), 0.0, &config).is_ok());
+        assert!(analyze_recording(&rec, 118f64.to_radians(), 0.0, &config).is_ok());
+        let e = analyze_recording(&rec, 10f64.to_radians(), 0.0, &config).unwrap_err();
+        match &e {
+            RecordingError::Samples {
+                line: None,
+                error:
+                    HarmonicsError::RateMismatch {
+                        declared_rad_s,
+                        encoder_rad_s,
+                        ..
+                    },
+                ..
+            } => {
+                approx::assert_relative_eq!(*declared_rad_s, 10f64.to_radians());
+                approx::assert_relative_eq!(
+                    *encoder_rad_s,
+                    120f64.to_radians(),
+                    max_relative = 1e-2 // the ripple moves the mean by 0.3 %
+                );
+            }
+            e => panic!("{e}"),
+        }
+        assert!(
+            e.to_string().starts_with("rec.csv: declared spindle rate"),
+            "{e}"
+        );
+        // Without the encoder column the rate gives the angle and nothing is compared.
+        let no_encoder = SyntheticSpec {
+            encoder: false,
+            ..spec
+        };
+        let rec = parse(&no_encoder.csv()).unwrap();
+        assert!(analyze_recording(&rec, 120f64.to_radians(), 0.0, &config).is_ok());
+    }
+
+    #[test]
+    fn overflowing_time_intervals_are_an_error() {
+        let e = parse("time_s,gap_um\n-1e308,1\n1e308,1\n").unwrap_err();
+        assert!(
+            matches!(
+                e,
+                RecordingError::Samples {
+                    line: Some(3),
+                    error: HarmonicsError::NonFiniteInterval { index: 1, .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn signal_uses_the_encoder_when_present() {
         let rec = parse("time_s,gap_um,angle_deg\n0,1,10\n0.001,1,11\n").unwrap();
         assert!(matches!(
@@ -1679,5 +1852,133 @@ mod tests {
                 start_angle_rad: 0.5
             }
         );
+    }
+
+    #[test]
+    fn header_as_last_line_without_line_end_is_no_samples() {
+        for text in [
+            "time_s,gap_um",
+            "# c\ntime_s,gap_um\r",
+            "# c\r\ntime_s,gap_um\r\n",
+        ] {
+            let e = parse(text).unwrap_err();
+            assert!(
+                matches!(e, RecordingError::NoSamples { .. }),
+                "{text:?}: {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn comment_is_not_data_when_the_first_column_is_skipped() {
+        let text = "label,time_s,gap_um\nx,0,1\n#note,0.0005,999\n  #note,0.0007,999\nx,0.001,2\n";
+        let rec = parse(text).unwrap();
+        assert_eq!(rec.time_s, [0.0, 0.001]);
+        assert_eq!(rec.gap, [1.0, 2.0]);
+    }
+
+    #[test]
+    fn utf8_byte_order_mark_is_skipped() {
+        let rec = parse("\u{feff}time_s,gap_um\n0,1\n0.001,2\n").unwrap();
+        assert_eq!(rec.gap, [1.0, 2.0]);
+        let rec = parse("\u{feff}# c\ntime_s,gap_um\n0,1\n0.001,2\n").unwrap();
+        assert_eq!(rec.gap, [1.0, 2.0]);
+    }
+
+    #[test]
+    fn lone_carriage_returns_end_lines() {
+        let text = "# c\rtime_s,gap_um\r0,1\r\r0.001,2\r0.002,3";
+        let rec = parse(text).unwrap();
+        assert_eq!(rec.gap, [1.0, 2.0, 3.0]);
+        let e = parse("time_s,gap_um\r0,1\r0.001,x\r").unwrap_err();
+        assert!(matches!(e, RecordingError::Parse { line: 3, .. }), "{e}");
+    }
+
+    #[test]
+    fn fast_and_slow_paths_split_blank_delimited_fields_alike() {
+        let format = RecordingFormat {
+            delimiter: ' ',
+            ..RecordingFormat::default()
+        };
+        // A tab inside the skipped first field, and a run of blanks after it.
+        let text = "idx\ttime_s gap_um\n0\t0.000 47.0 0\n1\t0.001 48.0 0\n";
+        let rec = parse_recording(text.as_bytes(), Path::new("r.txt"), &format).unwrap();
+        assert_eq!(rec.time_s, [0.0, 0.001]);
+        assert_eq!(rec.gap, [47.0, 48.0]);
+        // A run of blanks after a skipped field is one separator, not an empty field.
+        let text = "a b time_s gap_um\nx  5 0 1\nx  6 0.001 2\n";
+        let rec = parse_recording(text.as_bytes(), Path::new("r.txt"), &format).unwrap();
+        assert_eq!(rec.time_s, [0.0, 0.001]);
+        assert_eq!(rec.gap, [1.0, 2.0]);
+    }
+
+    #[test]
+    fn quoted_numbers_are_read() {
+        let rec =
+            parse("\"time_s\",\"gap_um\"\n\"0.000000\",\"1.5\"\n\"0.001\", \"2\" \n").unwrap();
+        assert_eq!(rec.time_s, [0.0, 0.001]);
+        assert_eq!(rec.gap, [1.5, 2.0]);
+    }
+
+    #[test]
+    fn overlapping_column_names_are_refused() {
+        for (time, gap, angle, field) in [
+            ("t", "t", "a", "gap_column"),
+            ("t", "g", "t", "angle_column"),
+            ("t", "g", "g", "angle_column"),
+        ] {
+            let format = RecordingFormat {
+                time_column: time.into(),
+                gap_column: gap.into(),
+                angle_column: angle.into(),
+                ..RecordingFormat::default()
+            };
+            let e = parse_recording(b"t,g\n0,1\n", Path::new("r"), &format).unwrap_err();
+            assert!(
+                matches!(e, RecordingError::InvalidFormat { field: f, .. } if f == field),
+                "{e}"
+            );
+        }
+    }
+
+    #[test]
+    fn file_without_line_feeds_loads_in_linear_time() {
+        let dir = std::env::temp_dir().join(format!("recording-cr-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // CR-only line ends over several chunks: read once, lines ended by CR.
+        let mut text = String::from("time_s,gap_um\r");
+        let mut i = 0;
+        while text.len() < 3 * CHUNK_BYTES {
+            text += &format!("{:.6},{:.6}\r", i as f64 * 0.001, (i as f64).sin());
+            i += 1;
+        }
+        let path = dir.join("cr.csv");
+        std::fs::write(&path, &text).unwrap();
+        let start = std::time::Instant::now();
+        let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
+        assert_eq!(rec.len(), i);
+        assert_eq!(
+            rec,
+            parse_recording(text.as_bytes(), &path, &RecordingFormat::default()).unwrap()
+        );
+        // A file with no line end at all is refused once the longest line is exceeded.
+        let binary = vec![b'x'; MAX_LINE_BYTES + 10];
+        std::fs::write(&path, &binary).unwrap();
+        let e = load_recording(&path, &RecordingFormat::default()).unwrap_err();
+        assert!(
+            matches!(e, RecordingError::LineTooLong { line: 1, .. }),
+            "{e}"
+        );
+        assert!(e.to_string().contains("cr.csv"), "{e}");
+        assert!(start.elapsed().as_secs_f64() < 5.0);
+        // BOM in a streamed file too.
+        std::fs::write(&path, "\u{feff}time_s,gap_um\n0,1\n0.001,2\n").unwrap();
+        assert_eq!(
+            load_recording(&path, &RecordingFormat::default())
+                .unwrap()
+                .gap,
+            [1.0, 2.0]
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -183,20 +183,25 @@ fn less_than_one_revolution() {
 
 #[test]
 fn too_few_samples_in_a_revolution() {
-    // 10 samples per revolution at 12 deg/s… sampled at 1/3 Hz: order 5 needs 12.
+    // 11 samples per revolution (33° apart, 1 s at 33 deg/s): order 5 needs 12.
     let mut text = String::from("time_s,gap_um\n");
-    for i in 0..30 {
-        text += &format!("{},{}\n", f64::from(i) * 3.0, 1.0 + f64::from(i).sin());
+    for i in 0..36 {
+        text += &format!("{},{}\n", f64::from(i), 1.0 + f64::from(i).sin());
     }
     let f = Temp::new("sparse.csv", &text);
     fails_with(
-        &[f.path(), "--rate-deg-s", "12", "--order", "5"],
-        "sparse.csv:2: revolution 0 (from sample 0): 10 samples, the fit needs at least 12",
+        &[f.path(), "--rate-deg-s", "33", "--order", "5"],
+        "sparse.csv:2: revolution 0 (from sample 0): 11 samples, the fit needs at least 12",
     );
     assert!(
-        xtask(&[f.path(), "--rate-deg-s", "12", "--order", "4"])
+        xtask(&[f.path(), "--rate-deg-s", "33", "--order", "4"])
             .status
             .success()
+    );
+    // At 36° a sample (10 per revolution) the rate itself aliases order 5.
+    fails_with(
+        &[f.path(), "--rate-deg-s", "36", "--order", "5"],
+        "which aliases order 5",
     );
 }
 
@@ -215,15 +220,49 @@ fn aliasing() {
         );
     }
     let f = Temp::new("alias.csv", &text);
+    // The encoder turns 1020° in 1.19 s: 857 deg/s is the declared rate it matches.
     fails_with(
-        &[f.path(), "--rate-deg-s", "100"],
+        &[f.path(), "--rate-deg-s", "857"],
         "alias.csv:41: revolution 0: angular gap of",
     );
     assert!(
-        xtask(&[f.path(), "--rate-deg-s", "100", "--order", "2"])
+        xtask(&[f.path(), "--rate-deg-s", "857", "--order", "2"])
             .status
             .success()
     );
+    fails_with(
+        &[f.path(), "--rate-deg-s", "100", "--order", "2"],
+        "differs from the encoder's mean rate",
+    );
+}
+
+#[test]
+fn reviewer_reproducers() {
+    // A header with no line end and nothing after it: no samples, no panic.
+    let f = Temp::new("h.csv", "time_s,gap_um");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "h.csv:1: header but no data rows",
+    );
+    // Times whose difference overflows.
+    let f = Temp::new("overflow.csv", "time_s,gap_um\n-1e308,1\n1e308,1\n");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "overflow.csv:3: sample 1: interval of inf s",
+    );
+    // A rate far too fast for the sampling is refused, not allocated for.
+    for rate in ["1e300", "1e12"] {
+        fails_with(
+            &[
+                fixture().to_str().unwrap(),
+                "--rate-deg-s",
+                rate,
+                "--angle-column",
+                "none",
+            ],
+            "aliases order 4",
+        );
+    }
 }
 
 #[test]
