@@ -58,13 +58,15 @@ impl RevolutionQuadrature {
         self.points
     }
 
-    /// The node times over the first revolution at `rate_rad_s`, in seconds. At zero rate the
-    /// motion does not depend on time and the single node `t = 0` is returned.
+    /// The node times over the first revolution at `rate_rad_s`, in seconds. At zero rate (or
+    /// a rate so small that its period overflows) the motion does not depend on time within
+    /// double precision and the single node `t = 0` is returned.
     pub fn sample_times_s(&self, rate_rad_s: f64) -> impl Iterator<Item = f64> + use<> {
-        let (n, step) = if rate_rad_s == 0.0 {
-            (1, 0.0)
+        let step = TAU / rate_rad_s.abs() / self.points as f64;
+        let (n, step) = if step.is_finite() {
+            (self.points, step)
         } else {
-            (self.points, TAU / rate_rad_s.abs() / self.points as f64)
+            (1, 0.0)
         };
         (0..n).map(move |j| j as f64 * step)
     }
@@ -129,5 +131,13 @@ mod tests {
         let q = RevolutionQuadrature::minimal(3);
         assert_eq!(q.sample_times_s(0.0).collect::<Vec<_>>(), vec![0.0]);
         assert_relative_eq!(q.mean(0.0, |_| 4.0), 4.0);
+    }
+
+    #[test]
+    fn a_subnormal_rate_is_taken_as_zero_not_nan() {
+        let q = RevolutionQuadrature::minimal(1);
+        let times: Vec<f64> = q.sample_times_s(1e-318).collect();
+        assert_eq!(times, vec![0.0]);
+        assert!(q.mean(1e-318, |t| t + 1.0).is_finite());
     }
 }
