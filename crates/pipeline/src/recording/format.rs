@@ -1,0 +1,133 @@
+//! The layout of a recording file: column names, units, delimiter.
+
+use serde::{Deserialize, Serialize};
+
+use super::RecordingError;
+
+/// Length unit of the gap column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LengthUnit {
+    /// Micrometres (the paper's unit).
+    #[default]
+    Um,
+    /// Millimetres.
+    Mm,
+    /// Metres.
+    M,
+}
+
+impl LengthUnit {
+    /// Micrometres per unit.
+    pub const fn um_per_unit(self) -> f64 {
+        match self {
+            Self::Um => 1.0,
+            Self::Mm => 1e3,
+            Self::M => 1e6,
+        }
+    }
+
+    /// The unit's symbol (`um`, `mm`, `m`).
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Um => "um",
+            Self::Mm => "mm",
+            Self::M => "m",
+        }
+    }
+}
+
+/// Angle unit of the encoder column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AngleUnit {
+    /// Degrees.
+    #[default]
+    Deg,
+    /// Radians.
+    Rad,
+}
+
+impl AngleUnit {
+    /// Radians per unit.
+    pub const fn rad_per_unit(self) -> f64 {
+        match self {
+            Self::Deg => std::f64::consts::PI / 180.0,
+            Self::Rad => 1.0,
+        }
+    }
+}
+
+/// Layout of a probe-recording file; every field has a default, so a study configuration
+/// names only what differs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RecordingFormat {
+    /// Header name of the time column, seconds (default `time_s`).
+    pub time_column: String,
+    /// Header name of the gap column (default `gap_um`).
+    pub gap_column: String,
+    /// Header name of the encoder-angle column (default `angle_deg`), used when the header
+    /// has it; zero at the O1X1 reference, may wrap.
+    pub angle_column: String,
+    /// Unit of the gap column (default µm).
+    pub gap_unit: LengthUnit,
+    /// Unit of the angle column (default degrees).
+    pub angle_unit: AngleUnit,
+    /// Field delimiter, one ASCII character (default `,`). With `' '` or `'\t'`, runs of
+    /// blanks separate fields.
+    pub delimiter: char,
+    /// Largest interval between samples, in nominal (median) sample intervals, before the
+    /// file is refused as having a gap (default 3).
+    pub max_gap_intervals: f64,
+}
+
+impl Default for RecordingFormat {
+    fn default() -> Self {
+        Self {
+            time_column: "time_s".into(),
+            gap_column: "gap_um".into(),
+            angle_column: "angle_deg".into(),
+            gap_unit: LengthUnit::Um,
+            angle_unit: AngleUnit::Deg,
+            delimiter: ',',
+            max_gap_intervals: 3.0,
+        }
+    }
+}
+
+pub(super) fn delimiter_byte(format: &RecordingFormat) -> Result<u8, RecordingError> {
+    let d = format.delimiter;
+    if !d.is_ascii()
+        || d == '\n'
+        || d == '\r'
+        || d == '#'
+        || d == '"'
+        || d.is_ascii_digit()
+        || "+-.eE".contains(d)
+    {
+        return Err(RecordingError::InvalidFormat {
+            field: "delimiter",
+            reason: "must be one ASCII character that cannot occur in a number, a comment or a line end",
+        });
+    }
+    if format.gap_column == format.time_column {
+        return Err(RecordingError::InvalidFormat {
+            field: "gap_column",
+            reason: "must differ from `time_column`",
+        });
+    }
+    if format.angle_column == format.time_column || format.angle_column == format.gap_column {
+        return Err(RecordingError::InvalidFormat {
+            field: "angle_column",
+            reason: "must differ from `time_column` and `gap_column`",
+        });
+    }
+    if !format.max_gap_intervals.is_finite() || format.max_gap_intervals < 1.0 {
+        return Err(RecordingError::InvalidFormat {
+            field: "max_gap_intervals",
+            reason: "must be finite and at least 1",
+        });
+    }
+    Ok(d as u8)
+}

@@ -1,0 +1,94 @@
+//! Synthetic recordings with known coefficients.
+
+/// A synthetic probe recording with known coefficients, written in the default
+/// [`RecordingFormat`](super::RecordingFormat): for fixtures, benchmarks and demonstrations (see the
+/// `synth_recording` example).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SyntheticSpec {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Sample rate, Hz.
+    pub sample_rate_hz: f64,
+    /// Turns recorded (a fraction leaves an incomplete last revolution).
+    pub revolutions: f64,
+    /// Write the encoder-angle column.
+    pub encoder: bool,
+    /// Standard deviation of the gap noise, µm.
+    pub noise_um: f64,
+    /// Non-uniform part of the spindle angle, rad (see [`harmonics::SyntheticRecording`]).
+    pub wobble_rad: f64,
+    /// Angle of the first sample from O1X1, deg.
+    pub start_angle_deg: f64,
+    /// Seed of the noise.
+    pub seed: u64,
+    /// The coefficients of eq. 20, µm.
+    pub coefficients: harmonics::Coefficients,
+}
+
+impl Default for SyntheticSpec {
+    fn default() -> Self {
+        Self {
+            rate_deg_s: 120.0,
+            sample_rate_hz: 500.0,
+            revolutions: 2.5,
+            encoder: true,
+            noise_um: 0.02,
+            wobble_rad: 0.05,
+            start_angle_deg: 30.0,
+            seed: 20_250_101,
+            coefficients: harmonics::Coefficients {
+                l0: 50.0,
+                c: vec![-3.0, 0.4, -0.15, 0.05],
+                s: vec![-1.2, 0.25, 0.1, -0.03],
+                drift_per_s: None,
+            },
+        }
+    }
+}
+
+impl SyntheticSpec {
+    /// Number of samples.
+    pub fn samples(&self) -> usize {
+        (self.revolutions * 360.0 / self.rate_deg_s * self.sample_rate_hz).round() as usize
+    }
+
+    /// The generator of the samples.
+    pub fn recording(&self) -> harmonics::SyntheticRecording {
+        harmonics::SyntheticRecording {
+            rate_rad_s: self.rate_deg_s.to_radians(),
+            sample_rate_hz: self.sample_rate_hz,
+            samples: self.samples(),
+            start_time_s: 0.0,
+            start_angle_rad: self.start_angle_deg.to_radians(),
+            coefficients: self.coefficients.clone(),
+            noise_std: self.noise_um,
+            wobble_rad: self.wobble_rad,
+            seed: self.seed,
+        }
+    }
+
+    /// The CSV text: `time_s,gap_um[,angle_deg]`, six decimals.
+    pub fn csv(&self) -> String {
+        use std::fmt::Write as _;
+        let data = self.recording().generate();
+        let mut out = String::with_capacity(data.time_s.len() * 32 + 128);
+        let _ = writeln!(
+            out,
+            "# synthetic probe recording: {} deg/s, {} Hz, {} turns, noise {} um, seed {}",
+            self.rate_deg_s, self.sample_rate_hz, self.revolutions, self.noise_um, self.seed
+        );
+        out += if self.encoder {
+            "time_s,gap_um,angle_deg\n"
+        } else {
+            "time_s,gap_um\n"
+        };
+        for i in 0..data.time_s.len() {
+            let _ = write!(out, "{:.6},{:.6}", data.time_s[i], data.gap[i]);
+            if self.encoder {
+                let _ = write!(out, ",{:.6}", data.angle_rad[i].to_degrees());
+            }
+            out.push('\n');
+        }
+        out
+    }
+}
