@@ -84,8 +84,9 @@ pub struct MechanismResults {
 pub struct MechanismPhase {
     /// The measured C_r the spindle was given, m·s².
     pub c_r_m_s2: f64,
-    /// Its standard deviation, used in the compensation (0 when the phase has none), m·s².
-    pub c_r_sigma_m_s2: f64,
+    /// Its standard deviation, m·s² (`None` when the phase has none, e.g. the exact
+    /// two-point form; the compensation then takes C_r as exact).
+    pub c_r_sigma_m_s2: Option<f64>,
     /// The simulated PIGA's k2.
     pub k2_true: f64,
     /// The a² coefficient of the plain eq. 18 fit: `k2 + Δk2`.
@@ -94,8 +95,9 @@ pub struct MechanismPhase {
     pub k2_uncompensated_sigma: f64,
     /// The a² coefficient after removing `k1·C_r·ω⁴/g`.
     pub k2_compensated: f64,
-    /// Its standard deviation: the fit's and σ(C_r)'s contributions.
-    pub k2_compensated_sigma: f64,
+    /// Its standard deviation: the fit's and σ(C_r)'s contributions (`None` when σ(C_r) is
+    /// unknown).
+    pub k2_compensated_sigma: Option<f64>,
     /// `Δk2 = k1·C_r·g/R²` (eq. 19).
     pub delta_k2_predicted: f64,
     /// `k2_uncompensated − k2_true`: the pseudo-second-order error the fit absorbed.
@@ -228,7 +230,7 @@ fn run_phase(
     seed: u64,
 ) -> std::result::Result<MechanismPhase, PhaseFailure> {
     let c_r_m_s2 = phase.fit.c_r_m_s2;
-    let c_r_sigma_m_s2 = phase.fit.c_r_sigma_m_s2.unwrap_or(0.0);
+    let c_r_sigma_m_s2 = phase.fit.c_r_sigma_m_s2;
     let centrifuge = Centrifuge {
         radius_m: config.radius_m,
         site: Site {
@@ -260,7 +262,7 @@ fn run_phase(
     }
     let compensation = Compensation {
         c_r_m_s2,
-        c_r_sigma_m_s2,
+        c_r_sigma_m_s2: c_r_sigma_m_s2.unwrap_or(0.0),
         k1: K1Source::Given {
             k1_rad_s_g: config.k1_rad_s_g,
         },
@@ -282,7 +284,7 @@ fn run_phase(
         k2_uncompensated,
         k2_uncompensated_sigma: cal.uncompensated.k2_apparent_sigma_rad_s_g2,
         k2_compensated: cal.k2_rad_s_g2,
-        k2_compensated_sigma: cal.k2_sigma_rad_s_g2,
+        k2_compensated_sigma: c_r_sigma_m_s2.map(|_| cal.k2_sigma_rad_s_g2),
         delta_k2_predicted: cal.delta_k2.delta_k2_rad_s_g2,
         delta_k2_apparent: k2_uncompensated - k2_true,
         k2_error_compensated: cal.k2_rad_s_g2 - k2_true,

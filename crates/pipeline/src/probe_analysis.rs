@@ -68,6 +68,8 @@ pub(crate) struct ProbeHarmonic {
     pub(crate) ds1_sigma_um: Option<f64>,
     pub(crate) revolutions: usize,
     pub(crate) residual_rms_um: f64,
+    /// Standard error of `dc1_um` from the fit residuals (white noise), µm.
+    pub(crate) dc1_noise_sigma_um: f64,
     pub(crate) trace: ProbeTrace,
 }
 
@@ -120,12 +122,23 @@ pub(crate) fn analyse(
                 samples: recording.len(),
             });
             let um = recording.gap_unit.um_per_unit();
-            let rms = analysis
-                .revolutions
+            let revs = &analysis.revolutions;
+            let samples: usize = revs.iter().map(|r| r.samples).sum();
+            // Pooled residual variance s² of the per-revolution fits.
+            let pooled = revs
                 .iter()
-                .map(|r| r.residual_rms * r.residual_rms)
+                .map(|r| r.residual_rms * r.residual_rms * r.samples as f64)
                 .sum::<f64>()
-                / analysis.revolutions.len() as f64;
+                / samples as f64;
+            // White-noise standard error of the mean first-harmonic coefficient: each
+            // revolution's d_c1 has variance ≈ 2s²/nᵣ, and K revolutions are averaged.
+            let k = revs.len() as f64;
+            let noise_sigma = revs
+                .iter()
+                .map(|r| 2.0 * pooled / r.samples as f64)
+                .sum::<f64>()
+                .sqrt()
+                / k;
             let mean_um = scale(&analysis.mean, um);
             Ok(ProbeHarmonic {
                 dc1_um: mean_um.c[0],
@@ -133,7 +146,8 @@ pub(crate) fn analyse(
                 dc1_sigma_um: analysis.std_error.as_ref().map(|e| e.c[0] * um),
                 ds1_sigma_um: analysis.std_error.as_ref().map(|e| e.s[0] * um),
                 revolutions: analysis.revolutions_used(),
-                residual_rms_um: rms.sqrt() * um,
+                residual_rms_um: pooled.sqrt() * um,
+                dc1_noise_sigma_um: noise_sigma * um,
                 trace: trace(
                     &recording,
                     point.rate_deg_s,

@@ -288,8 +288,11 @@ fn mechanism_table(out: &mut String, m: &MechanismResults) {
         m.piga.k2_rad_s_g2,
         m.piga.k3_rad_s_g3,
         m.rates_deg_s.len(),
-        m.rates_deg_s.first().copied().unwrap_or(f64::NAN),
-        m.rates_deg_s.last().copied().unwrap_or(f64::NAN),
+        m.rates_deg_s.iter().copied().fold(f64::INFINITY, f64::min),
+        m.rates_deg_s
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max),
         m.latitude_deg,
         m.output_noise_rad_s,
     );
@@ -304,12 +307,12 @@ fn mechanism_table(out: &mut String, m: &MechanismResults) {
     ] {
         let _ = writeln!(
             out,
-            "| {name} | {} | {} | {} | {} ± {:.2e} | {} | {} | {:+.2e} | {:.2e} |",
+            "| {name} | {} | {} | {} | {} ± {} | {} | {} | {:+.2e} | {:.2e} |",
             sci(p.c_r_m_s2),
             sci(p.k2_true),
             sci(p.k2_uncompensated),
             sci(p.k2_compensated),
-            p.k2_compensated_sigma,
+            opt(p.k2_compensated_sigma, |s| format!("{s:.2e}")),
             sci(p.delta_k2_predicted),
             sci(p.delta_k2_apparent),
             p.k2_error_compensated,

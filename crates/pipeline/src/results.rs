@@ -56,7 +56,10 @@ pub struct PointResult {
     pub dc1_sigma_um: Option<f64>,
     /// Standard error of `ds1_um` across revolutions (recordings only), µm.
     pub ds1_sigma_um: Option<f64>,
-    /// Standard error of the radius error, `lever ratio × σ(d_c1)` (recordings only), µm.
+    /// Standard error of the radius error from the per-revolution fit residuals (recordings
+    /// only), µm: `lever ratio × √(Σᵣ 2s²/nᵣ)/K` for K revolutions of nᵣ samples and pooled
+    /// residual variance s². Unlike `dc1_sigma_um`, which rests on K − 1 degrees of freedom,
+    /// it rests on thousands, so it can weigh the points of a fit.
     pub radius_error_sigma_um: Option<f64>,
     /// Complete revolutions averaged (recordings only).
     pub revolutions: Option<usize>,

@@ -80,7 +80,7 @@ fn run_phase(
     let (points, traces) = phase_points(config, phase, section, path, lever_ratio, progress)?;
     if let Points::RadiusChange { .. } = phase.points {
         return Ok(PhaseResults {
-            fit: exact_two_point(config, &points),
+            fit: exact_two_point(config, &points, section, path)?,
             points,
             alternative: None,
             traces,
@@ -120,11 +120,28 @@ fn run_phase(
 }
 
 /// `a + C_r·ω²` through two points: `C_r = Δr / (ω₂² − ω₁²)`, exact, with no standard error.
-fn exact_two_point(config: &StudyConfig, points: &[PointResult]) -> ModelFit {
+fn exact_two_point(
+    config: &StudyConfig,
+    points: &[PointResult],
+    section: &str,
+    path: &Path,
+) -> Result<ModelFit> {
     let [p1, p2] = [&points[0], &points[1]];
     let (w1, w2) = (p1.rate_rad_s, p2.rate_rad_s);
     let c_r_m_s2 = um_to_m(p2.radius_error_um - p1.radius_error_um) / (w2 * w2 - w1 * w1);
-    ModelFit {
+    let k2 = identify::pseudo_second_order(
+        config.k1_rad_s_g,
+        c_r_m_s2,
+        0.0,
+        config.g_m_s2,
+        config.radius_m,
+    )
+    .map_err(|source| PipelineError::Identify {
+        path: path.to_owned(),
+        field: format!("{section}.points"),
+        source,
+    })?;
+    Ok(ModelFit {
         model: RadiusModel::TwoTerm,
         c_r_m_s2,
         c_r_sigma_m_s2: None,
@@ -136,10 +153,9 @@ fn exact_two_point(config: &StudyConfig, points: &[PointResult]) -> ModelFit {
         reduced_chi: None,
         dof: 0,
         condition_number: None,
-        delta_k2_rad_s_g2: config.k1_rad_s_g * c_r_m_s2 * config.g_m_s2
-            / (config.radius_m * config.radius_m),
+        delta_k2_rad_s_g2: k2.delta_k2_rad_s_g2,
         delta_k2_sigma_rad_s_g2: None,
-    }
+    })
 }
 
 /// Per-point geometry: each input form gives the radius error at the PIGA plane.
@@ -199,7 +215,7 @@ fn phase_points(
                 points.push(PointResult {
                     dc1_sigma_um: h.dc1_sigma_um,
                     ds1_sigma_um: h.ds1_sigma_um,
-                    radius_error_sigma_um: h.dc1_sigma_um.map(|s| s * lever_ratio),
+                    radius_error_sigma_um: Some(h.dc1_noise_sigma_um * lever_ratio),
                     revolutions: Some(h.revolutions),
                     residual_rms_um: Some(h.residual_rms_um),
                     ..point
@@ -247,16 +263,21 @@ fn fit_model(
     let fit = match weighting {
         Weighting::Unweighted => identify::fit_radius_error(&rates, &radius_errors_m, model),
         Weighting::InverseVariance => {
-            let sigma_m = points
-                .iter()
-                .map(|p| p.radius_error_sigma_um.map(um_to_m))
-                .collect::<Option<Vec<f64>>>()
-                .ok_or_else(|| PipelineError::Unsupported {
-                    path: path.to_owned(),
-                    field: format!("{section}.weighting"),
-                    reason: "inverse_variance weighting needs at least two revolutions in \
-                             every recording, for the standard error of its first harmonic",
-                })?;
+            let mut sigma_m = Vec::with_capacity(points.len());
+            for (i, p) in points.iter().enumerate() {
+                match p.radius_error_sigma_um {
+                    Some(s) if s > 0.0 => sigma_m.push(um_to_m(s)),
+                    _ => {
+                        return Err(PipelineError::Unsupported {
+                            path: path.to_owned(),
+                            field: format!("{section}.points.files[{i}]"),
+                            reason: "inverse_variance weighting needs a standard error for \
+                                     every recording, and this one's harmonic fit has no \
+                                     residual (noise-free data?)",
+                        });
+                    }
+                }
+            }
             identify::fit_radius_error_weighted(&rates, &radius_errors_m, &sigma_m, model)
         }
     }

@@ -133,6 +133,10 @@ fn mechanism_shows_the_pseudo_second_order_term_and_its_removal() {
             "{name}: {phase:?}"
         );
     }
+    // The published pre-balance C_r has no σ, so its compensated k2 has none either.
+    assert_eq!(m.pre_balance.c_r_sigma_m_s2, None);
+    assert_eq!(m.pre_balance.k2_compensated_sigma, None);
+    assert!(m.post_balance.k2_compensated_sigma.unwrap() > 0.0);
     assert_relative_eq!(
         m.pre_balance.delta_k2_predicted,
         1.40e-6,

@@ -283,3 +283,62 @@ fn c_r_standard_error_is_optimistic_for_fixed_revolutions() {
     assert!(mean_p.abs() < 0.5, "{z_prop:?}");
     assert!((0.7..1.3).contains(&rms_p), "{z_prop:?}");
 }
+
+/// The study's C_r z-scores over `seeds` simulations with the given weighting, through files:
+/// simulate → write the recordings → a study whose phases are those recordings → run.
+fn study_z_scores(base: &LoadedScenario, seeds: u64, weighting: &str) -> Vec<f64> {
+    let dir = std::env::temp_dir().join(format!("closed-loop-weighting-{}", std::process::id()));
+    let z = (0..seeds)
+        .map(|seed| {
+            let loaded = modified(base, |s| s.seed = seed);
+            let sim = simulate(&loaded).unwrap();
+            let files = pipeline::write_simulation(&dir, &sim).unwrap();
+            let list: String = files
+                .recordings
+                .iter()
+                .zip(&sim.truth.rates)
+                .map(|(f, r)| format!("(rate_deg_s: {}, file: {:?}),", r.rate_deg_s, f))
+                .collect();
+            let phase = format!(
+                "(weighting: {weighting}, points: recordings((fit: (order: {}), files: [{list}])))",
+                fit_order(&loaded.scenario)
+            );
+            let text = format!(
+                "(name: \"z\", radius_m: 2.5, g_m_s2: 9.8, k1_rad_s_g: 0.56, \
+                 lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0), \
+                 pre_balance: {phase}, post_balance: {phase})"
+            );
+            let study = pipeline::StudyConfig::parse(&text, &dir.join("z.ron")).unwrap();
+            let fit = pipeline::run(&study).unwrap().post_balance.fit;
+            (fit.c_r_m_s2 - sim.truth.c_r_m_s2) / fit.c_r_sigma_m_s2.unwrap()
+        })
+        .collect();
+    std::fs::remove_dir_all(&dir).unwrap();
+    z
+}
+
+/// With a fixed number of revolutions per rate (unequal variances), the study's
+/// `weighting: inverse_variance` gives an honest σ(Ĉ_r): each point's σ comes from its fit
+/// residuals (thousands of degrees of freedom), not from the spread of two revolutions.
+#[test]
+#[allow(clippy::print_stderr)] // the measured figures, shown with --nocapture
+fn weighted_study_standard_error_is_honest_for_fixed_revolutions() {
+    let base = modified(&post_balance(), |s| {
+        s.revolutions = 2;
+        s.min_duration_s = 0.0;
+        s.probe.noise_um = 0.05;
+        s.probe.sample_rate_hz = 250.0;
+    });
+    let z = study_z_scores(&base, 30, "inverse_variance");
+    let (mean, rms) = moments(&z);
+    eprintln!("fixed revolutions, weighted study, 30 seeds: mean z = {mean:+.3}, rms z = {rms:.3}");
+    // Known σᵢ (scaled up only when the Birge ratio exceeds 1): z close to N(0, 1), a bit
+    // narrower when the Birge ratio enlarges σ. 3-standard-error bounds for 30 draws.
+    assert!(mean.abs() < 0.6, "{z:?}");
+    assert!((0.6..1.35).contains(&rms), "{z:?}");
+    // The same recordings fitted unweighted: the optimistic σ this weighting exists for.
+    let z = study_z_scores(&base, 30, "unweighted");
+    let (_, rms_unweighted) = moments(&z);
+    eprintln!("fixed revolutions, unweighted study, 30 seeds: rms z = {rms_unweighted:.3}");
+    assert!(rms_unweighted > 1.5, "{z:?}");
+}
