@@ -14,7 +14,7 @@ pub(crate) struct Regress {
     /// Study configuration. Default: the paper's study.
     #[arg(long)]
     config: Option<PathBuf>,
-    /// Expected values. Default: fixtures/expected/<config file name>.
+    /// Expected values. Default: the file of the same name in fixtures/expected/.
     #[arg(long)]
     expected: Option<PathBuf>,
 }

@@ -18,7 +18,7 @@ pub(crate) struct Study {
     #[arg(long)]
     out: Option<PathBuf>,
     /// Values to show beside the computed ones in the report. Default:
-    /// fixtures/expected/<config file name> when it exists.
+    /// the file of the same name in fixtures/expected/, when it exists.
     #[arg(long)]
     expected: Option<PathBuf>,
     /// Do not compare with expected values.
