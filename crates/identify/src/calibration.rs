@@ -396,45 +396,64 @@ mod tests {
         }
     }
 
+    /// Monte Carlo check of the reported σ of the compensated k2: the empirical spread over
+    /// repeated noisy experiments must match it. A sign error in the cross term
+    /// `2·d·cov(c2, c4)`, or a missing term, shifts the reported σ far outside the tolerance.
     #[test]
-    fn fitted_k1_adds_its_own_variance() {
-        // With σ(C_r) = 0, the fitted-k1 variance adds (C_r g²/R³)²·var(c2) − 2(C_r g²/R³)·cov(c2, c4).
-        let w = rates(10);
-        let y = outputs(&w, [1e-5, 0.0, 0.1428, 0.0, 5e-6, 0.0], 1e-6);
-        let c_r = 1e-5;
-        let fitted = identify_compensated(
-            &w,
-            &y,
-            R,
-            G,
-            &Compensation {
-                c_r_m_s2: c_r,
-                c_r_sigma_m_s2: 0.0,
-                k1: K1Source::Fitted,
-            },
-        )
-        .unwrap();
-        let cov = &fitted.compensated.fit.covariance;
-        let d = -c_r * G * G / (R * R * R);
-        let expected = (cov[(4, 4)] + d * d * cov[(2, 2)] + 2.0 * d * cov[(2, 4)]).sqrt();
-        assert_relative_eq!(fitted.k2_sigma_rad_s_g2, expected, max_relative = 1e-12);
-        let given = identify_compensated(
-            &w,
-            &y,
-            R,
-            G,
-            &Compensation {
-                c_r_m_s2: c_r,
-                c_r_sigma_m_s2: 0.0,
-                k1: K1Source::Given { k1_rad_s_g: 0.56 },
-            },
-        )
-        .unwrap();
-        assert_relative_eq!(
-            given.k2_sigma_rad_s_g2,
-            given.compensated.fit.covariance[(4, 4)].sqrt(),
-            max_relative = 1e-12
-        );
+    fn compensated_k2_sigma_matches_monte_carlo() {
+        use rand::SeedableRng;
+        use rand::rngs::StdRng;
+        use rand_distr::{Distribution, Normal};
+
+        const DRAWS: usize = 2000;
+        // C_r is exaggerated (a real one is ~1e-6 m·s²) so that d = −C_r·g²/R³ = −1 and the
+        // k1 terms are as large as the fit's own: with these 8 rates corr(c2, c4) = +0.98, and
+        // the fitted-k1 fit variance is var(c4) + var(c2) − 2·cov(c2, c4) ≈ 0.18·var(c4).
+        // σ(C_r) contributes about as much as the fit. Measured: empirical sd 4.39e-8, reported
+        // 4.24e-8 (fitted k1); 7.97e-8 and 8.19e-8 (given k1). With the cross term's sign
+        // flipped the reported σ is 1.25e-7 (2.9×), with it dropped 9.4e-8 (2.1×).
+        let c_r = R.powi(3) / (G * G);
+        let (k1, k2, c_r_sigma, noise_sd) = (0.56, 5e-6, 3e-8, 1e-9);
+        let w = rates(8);
+        let clean: Vec<f64> = outputs(&w, [1e-4, 2e-6, k1 * R / G, 0.0, k2, 1e-7], 0.0)
+            .iter()
+            .zip(&w)
+            .map(|(y, w)| y + k1 * c_r * w.powi(4) / G)
+            .collect();
+        let noise = Normal::new(0.0, noise_sd).unwrap();
+        let c_r_draw = Normal::new(c_r, c_r_sigma).unwrap();
+        for (seed, source) in [
+            (1, K1Source::Fitted),
+            (2, K1Source::Given { k1_rad_s_g: k1 }),
+        ] {
+            let mut rng = StdRng::seed_from_u64(seed);
+            let (mut sum, mut sum_sq, mut reported_var) = (0.0, 0.0, 0.0);
+            for _ in 0..DRAWS {
+                let y: Vec<f64> = clean.iter().map(|y| y + noise.sample(&mut rng)).collect();
+                let comp = Compensation {
+                    c_r_m_s2: c_r_draw.sample(&mut rng),
+                    c_r_sigma_m_s2: c_r_sigma,
+                    k1: source,
+                };
+                let cal = identify_compensated(&w, &y, R, G, &comp).unwrap();
+                let dev = cal.k2_rad_s_g2 - k2;
+                sum += dev;
+                sum_sq += dev * dev;
+                reported_var += cal.k2_sigma_rad_s_g2.powi(2);
+            }
+            let n = DRAWS as f64;
+            let mean = sum / n;
+            let empirical_sd = ((sum_sq - n * mean * mean) / (n - 1.0)).sqrt();
+            // Each draw's σ scales with its own residual variance s² (2 degrees of freedom), whose
+            // mean is the true noise variance: compare with the RMS of the reported σ.
+            let reported_sd = (reported_var / n).sqrt();
+            assert_relative_eq!(empirical_sd, reported_sd, max_relative = 0.1);
+            // Unbiased: the mean is within 4 standard errors of the truth.
+            assert!(
+                mean.abs() < 4.0 * empirical_sd / n.sqrt(),
+                "{source:?}: mean {mean:e}"
+            );
+        }
     }
 
     #[test]
