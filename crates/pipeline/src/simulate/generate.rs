@@ -3,7 +3,8 @@
 use std::f64::consts::TAU;
 
 use accel_model::rate_points;
-use harmonics::ProbeDirection;
+use harmonics::{FirstHarmonic, LeverGeometry};
+use identify::pseudo_second_order;
 use kinematics::{
     Centrifuge, Chain, ErrorMotion, Point, Spindle, SpindleOffsets, spindle_transform,
 };
@@ -14,9 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use super::scenario::{LoadedScenario, ProbeSpec, Scenario, recording_file_name};
 use crate::error::{PipelineError, Result};
-
-/// Metres to micrometres.
-const UM_PER_M: f64 = 1e6;
+use crate::units::m_to_um;
 
 /// Stream tags that keep the random streams of the probe and the PIGA independent of each
 /// other; each rate has its own streams, keyed by its value, so that adding, removing or
@@ -190,7 +189,12 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     let g = s.centrifuge.site.gravity_m_s2;
     let radius = s.centrifuge.radius_m;
     let k = &s.piga.coefficients;
-    let lever_ratio = lever_ratio(&s.probe);
+    let lever = Lever::new(&s.probe.lever).map_err(|source| PipelineError::Harmonics {
+        path: loaded.path.clone(),
+        field: "probe.lever".to_owned(),
+        source,
+    })?;
+    let lever_ratio = lever.ratio;
 
     let rates_rad_s: Vec<f64> = s.rates_deg_s.iter().map(|d| d.to_radians()).collect();
     let points =
@@ -211,7 +215,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
                 source,
             }
         })?;
-        let recording = record(s, &chain, rate_deg_s);
+        let recording = record(s, lever, &chain, rate_deg_s);
         let mut piga_rng = stream(s.seed, PIGA_STREAM, rate_deg_s.to_bits());
         let output_rad_s = point.output_rad_s
             + normal(s.piga.noise_rad_s).map_or(0.0, |d| d.sample(&mut piga_rng));
@@ -230,8 +234,8 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             output_noise_free_rad_s: point.output_rad_s,
             output_rad_s,
             offsets,
-            radius_error_um: offsets.dr_x_m * UM_PER_M,
-            probe_first_harmonic: probe_truth(&s.probe, &offsets, lever_ratio),
+            radius_error_um: m_to_um(offsets.dr_x_m),
+            probe_first_harmonic: probe_truth(lever, &offsets),
             recording: recording.file_name.clone(),
             revolutions: s.revolutions_at(rate_deg_s),
             samples: recording.time_s.len(),
@@ -243,7 +247,14 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     }
 
     let c_r = error_motion.c_r_m_s2;
-    let delta_k2 = k.k1_rad_s_g * c_r * g / (radius * radius);
+    // σ(C_r) = 0: the truth is exact
+    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, c_r, 0.0, g, radius)
+        .map_err(|source| PipelineError::Identify {
+            path: loaded.path.clone(),
+            field: "piga".to_owned(),
+            source,
+        })?
+        .delta_k2_rad_s_g2;
     Ok(Simulation {
         recordings,
         piga,
@@ -259,27 +270,34 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     })
 }
 
-/// `(h_probe + h_piga)/h_probe` of a validated probe.
-fn lever_ratio(probe: &ProbeSpec) -> f64 {
-    let l = &probe.lever;
-    (l.pivot_to_probe_mm + l.probe_to_piga_mm) / l.pivot_to_probe_mm
+/// The probe geometry as the simulator uses it, both numbers from `harmonics`' conventions.
+#[derive(Debug, Clone, Copy)]
+struct Lever {
+    /// `(h_probe + h_piga)/h_probe` ([`LeverGeometry::lever_ratio`]).
+    ratio: f64,
+    /// `+1` for a probe that measures along `O1X1` (the gap opens as the axis moves to `+X1`),
+    /// `−1` against it (the paper's set-up: the gap closes).
+    sign: f64,
 }
 
-/// `+1` for a probe that measures along `O1X1` (the gap opens as the axis moves to `+X1`),
-/// `−1` against it (the paper's set-up: the gap closes).
-fn direction_sign(probe: &ProbeSpec) -> f64 {
-    match probe.lever.probe_direction {
-        ProbeDirection::AlongO1X1 => 1.0,
-        ProbeDirection::AgainstO1X1 => -1.0,
+impl Lever {
+    fn new(lever: &LeverGeometry) -> std::result::Result<Self, harmonics::HarmonicsError> {
+        let ratio = lever.lever_ratio()?;
+        // Eq. 21–22 as `harmonics` reads them: a unit d_c1 stands for a radius error of
+        // ±ratio at the PIGA plane, + along O1X1 and − against it.
+        let sign = lever
+            .project(FirstHarmonic::new(1.0, 0.0)?)?
+            .radius_error
+            .signum();
+        Ok(Self { ratio, sign })
     }
 }
 
 /// The exact first harmonic of the gap: the axis point in the probe plane is
 /// `(Δr_x cos θ − Δr_y sin θ, …)/ratio` along `O1X1`, read with the probe's sign.
-fn probe_truth(probe: &ProbeSpec, offsets: &SpindleOffsets, ratio: f64) -> ProbeTruth {
-    let sign = direction_sign(probe);
-    let dc1_um = sign * offsets.dr_x_m * UM_PER_M / ratio;
-    let ds1_um = -sign * offsets.dr_y_m * UM_PER_M / ratio;
+fn probe_truth(lever: Lever, offsets: &SpindleOffsets) -> ProbeTruth {
+    let dc1_um = lever.sign * m_to_um(offsets.dr_x_m) / lever.ratio;
+    let ds1_um = -lever.sign * m_to_um(offsets.dr_y_m) / lever.ratio;
     ProbeTruth {
         dc1_um,
         ds1_um,
@@ -314,15 +332,14 @@ fn spindle_angle_rad(probe: &ProbeSpec, rate_rad_s: f64, t_s: f64) -> f64 {
 }
 
 /// The probe recording at one rate.
-fn record(s: &Scenario, chain: &Chain, rate_deg_s: f64) -> SimulatedRecording {
+fn record(s: &Scenario, lever: Lever, chain: &Chain, rate_deg_s: f64) -> SimulatedRecording {
     let probe = &s.probe;
     let n = sample_count(
         probe.sample_rate_hz,
         rate_deg_s,
         s.revolutions_at(rate_deg_s),
     );
-    let ratio = lever_ratio(probe);
-    let sign = direction_sign(probe);
+    let Lever { ratio, sign } = lever;
     let mut rng = stream(s.seed, PROBE_STREAM, rate_deg_s.to_bits());
     let noise = normal(probe.noise_um);
     // The spindle-axis point at the PIGA plane (the O2 origin) in the sleeve frame. Eq. 5
@@ -347,7 +364,7 @@ fn record(s: &Scenario, chain: &Chain, rate_deg_s: f64) -> SimulatedRecording {
         let (sin1, cos1) = theta.sin_cos();
         // X1 component of Rot(z, θ)·p0, carried down the cone to the probe plane
         // (eq. 22 read backwards)
-        let x_probe_um = (p0[0] * cos1 - p0[1] * sin1) * UM_PER_M / ratio;
+        let x_probe_um = m_to_um(p0[0] * cos1 - p0[1] * sin1) / ratio;
         // cos kθ, sin kθ by the angle-addition recurrence
         (cos_k[0], sin_k[0]) = (1.0, 0.0);
         for k in 1..=highest {
@@ -455,12 +472,36 @@ mod tests {
     }
 
     #[test]
+    fn lever_takes_ratio_and_sign_from_harmonics() {
+        use harmonics::ProbeDirection;
+        for (direction, sign) in [
+            (ProbeDirection::AgainstO1X1, -1.0),
+            (ProbeDirection::AlongO1X1, 1.0),
+        ] {
+            let lever = Lever::new(&LeverGeometry {
+                pivot_to_probe_mm: 700.0,
+                probe_to_piga_mm: 510.0,
+                probe_direction: direction,
+            })
+            .unwrap();
+            assert_eq!(lever.sign, sign, "{direction:?}");
+            assert_relative_eq!(lever.ratio, 1210.0 / 700.0, max_relative = 1e-15);
+        }
+        let bad = LeverGeometry {
+            pivot_to_probe_mm: 0.0,
+            probe_to_piga_mm: 510.0,
+            probe_direction: ProbeDirection::AlongO1X1,
+        };
+        assert!(Lever::new(&bad).is_err());
+    }
+
+    #[test]
     fn ripple_keeps_the_period_and_the_mean_rate() {
         let probe = ProbeSpec {
             lever: harmonics::LeverGeometry {
                 pivot_to_probe_mm: 700.0,
                 probe_to_piga_mm: 510.0,
-                probe_direction: ProbeDirection::AgainstO1X1,
+                probe_direction: harmonics::ProbeDirection::AgainstO1X1,
             },
             sample_rate_hz: 1000.0,
             noise_um: 0.0,
