@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use accel_model::PigaCoefficients;
-use harmonics::LeverGeometry;
+use harmonics::{FitConfig, LeverGeometry};
 use kinematics::{ErrorMotion, ErrorMotionSpec, Site};
 use serde::{Deserialize, Serialize};
 
@@ -19,6 +19,10 @@ pub const MAX_TOTAL_SAMPLES: f64 = 2.0e8;
 
 /// Most revolutions per rate point.
 const MAX_REVOLUTIONS: usize = 10_000;
+
+/// Largest magnitude of a probe length in a scenario (offset, noise σ, sleeve harmonic), µm:
+/// a kilometre, far beyond any probe, and small enough that no sum of them overflows.
+const MAX_LENGTH_UM: f64 = 1e9;
 
 /// A closed-loop simulation scenario: a centrifuge with spindle error motion, a displacement
 /// probe on its sleeve and a PIGA on its arm, run at a list of rates.
@@ -169,9 +173,12 @@ impl Scenario {
     ///
     /// # Errors
     /// [`PipelineError::InvalidField`] naming the field (e.g. `centrifuge.radius_m`,
-    /// `probe.sleeve_harmonics[1].order`) for a number outside its domain;
+    /// `probe.sleeve_harmonics[1].order`) for a number outside its domain (probe lengths in
+    /// µm at most 1e9 in magnitude);
     /// [`PipelineError::EmptyList`] for no rates; [`PipelineError::DuplicateRate`] for a rate
-    /// given twice (or two rates that would share a recording's file name);
+    /// given twice; [`PipelineError::RecordingNameCollision`] for two rates that would share
+    /// a recording's file name; [`PipelineError::RateTooFast`] for a rate at which a
+    /// revolution holds fewer samples than the order-4 harmonic fit (with drift) needs;
     /// [`PipelineError::Kinematics`] for a bad error motion; [`PipelineError::Harmonics`] for a
     /// bad lever geometry.
     pub fn check(self, path: &Path) -> Result<LoadedScenario> {
@@ -218,7 +225,8 @@ impl Scenario {
             })?;
         v.positive("probe.sample_rate_hz", p.sample_rate_hz)?;
         v.non_negative("probe.noise_um", p.noise_um)?;
-        v.finite("probe.l0_um", p.l0_um)?;
+        v.length_um("probe.noise_um", p.noise_um)?;
+        v.length_um("probe.l0_um", p.l0_um)?;
         v.finite("probe.start_angle_deg", p.start_angle_deg)?;
         for (i, h) in p.sleeve_harmonics.iter().enumerate() {
             let field = format!("probe.sleeve_harmonics[{i}]");
@@ -236,8 +244,8 @@ impl Scenario {
                     "this order appears twice",
                 ));
             }
-            v.finite(&format!("{field}.c_um"), h.c_um)?;
-            v.finite(&format!("{field}.s_um"), h.s_um)?;
+            v.length_um(&format!("{field}.c_um"), h.c_um)?;
+            v.length_um(&format!("{field}.s_um"), h.s_um)?;
         }
         if let Some(r) = &p.speed_ripple {
             v.finite("probe.speed_ripple.amplitude_deg", r.amplitude_deg)?;
@@ -264,21 +272,48 @@ impl Scenario {
                 field: "rates_deg_s".to_owned(),
             });
         }
+        // Every revolution must hold enough samples for the paper's order-4 fit (with drift).
+        let min_samples = FitConfig {
+            drift: true,
+            ..FitConfig::default()
+        }
+        .min_samples();
         for (i, &r) in self.rates_deg_s.iter().enumerate() {
             let field = format!("rates_deg_s[{i}]");
             if !(r.is_finite() && r > 0.0) {
                 return Err(v.invalid(&field, r, "a rate must be finite and > 0"));
+            }
+            let samples_per_revolution = p.sample_rate_hz * 360.0 / r;
+            if samples_per_revolution < min_samples as f64 {
+                return Err(PipelineError::RateTooFast {
+                    path: path.to_owned(),
+                    field,
+                    rate_deg_s: r,
+                    samples_per_revolution,
+                    need: min_samples,
+                    max_rate_deg_s: p.sample_rate_hz * 360.0 / min_samples as f64,
+                });
+            }
+            if let Some(j) = self.rates_deg_s[..i].iter().position(|&q| q == r) {
+                return Err(PipelineError::DuplicateRate {
+                    path: path.to_owned(),
+                    field,
+                    first: format!("rates_deg_s[{j}]"),
+                    rate_deg_s: r,
+                });
             }
             let name = recording_file_name(r);
             if let Some(j) = self.rates_deg_s[..i]
                 .iter()
                 .position(|&q| recording_file_name(q) == name)
             {
-                return Err(PipelineError::DuplicateRate {
+                return Err(PipelineError::RecordingNameCollision {
                     path: path.to_owned(),
                     field,
                     first: format!("rates_deg_s[{j}]"),
                     rate_deg_s: r,
+                    first_rate_deg_s: self.rates_deg_s[j],
+                    file_name: name,
                 });
             }
         }
@@ -401,6 +436,20 @@ impl Validator<'_> {
             Ok(())
         } else {
             Err(self.invalid(field, value, "must be finite and > 0"))
+        }
+    }
+
+    /// A length in µm: finite and at most [`MAX_LENGTH_UM`] in magnitude, so that sums of
+    /// such lengths in a recording stay finite.
+    fn length_um(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value.abs() <= MAX_LENGTH_UM {
+            Ok(())
+        } else {
+            Err(self.invalid(
+                field,
+                value,
+                "must be finite and at most 1e9 µm in magnitude",
+            ))
         }
     }
 

@@ -185,9 +185,10 @@ fn other_domains() {
         parse_with("135.0, 160.1234", "-135.0, 160.1234"),
         "rates_deg_s[5]",
     );
-    // 5 Hz gives 9 samples per turn at 200 deg/s: too few for the 6th sleeve harmonic
+    // 7 Hz gives 12.6 samples per turn at 200 deg/s: enough for the order-4 fit, too few for
+    // the 6th sleeve harmonic
     assert_invalid(
-        parse_with("sample_rate_hz: 1000.0", "sample_rate_hz: 5.0"),
+        parse_with("sample_rate_hz: 1000.0", "sample_rate_hz: 7.0"),
         "probe.sample_rate_hz",
     );
     // a billion samples are refused before any allocation
@@ -212,10 +213,96 @@ fn duplicate_rates() {
         }
         other => panic!("expected DuplicateRate, got {other:?}"),
     }
-    // rates that would share a file name are duplicates too
+    // distinct rates that would share a file name are reported as such, naming both
+    let result = parse_with("10.0, 40.0,", "10.00001, 10.00002,");
+    let message = result
+        .as_ref()
+        .map_or_else(ToString::to_string, |_| String::new());
+    assert!(!message.contains("twice"), "{message}");
+    assert!(
+        message.contains("10.00001") && message.contains("10.00002"),
+        "{message}"
+    );
+    match result {
+        Err(PipelineError::RecordingNameCollision {
+            field,
+            first,
+            rate_deg_s,
+            first_rate_deg_s,
+            file_name,
+            ..
+        }) => {
+            assert_eq!(field, "rates_deg_s[1]");
+            assert_eq!(first, "rates_deg_s[0]");
+            assert_eq!((first_rate_deg_s, rate_deg_s), (10.00001, 10.00002));
+            assert_eq!(file_name, "probe_010.0000deg_s.csv");
+        }
+        other => panic!("expected RecordingNameCollision, got {other:?}"),
+    }
+}
+
+#[test]
+fn probe_lengths_are_bounded() {
+    for (from, to, field) in [
+        ("l0_um: 50.0", "l0_um: 1e308", "probe.l0_um"),
+        ("l0_um: 50.0", "l0_um: -1.1e9", "probe.l0_um"),
+        ("noise_um: 0.01", "noise_um: 1e308", "probe.noise_um"),
+        ("noise_um: 0.01", "noise_um: 2e9", "probe.noise_um"),
+        (
+            "(order: 6,",
+            "(order: 6, c_um: 1e300, s_um: 0.0), (order: 7,",
+            "probe.sleeve_harmonics[3].c_um",
+        ),
+    ] {
+        assert_invalid(parse_with(from, to), field);
+    }
+    // a kilometre is still accepted, and it simulates to finite gaps
+    let mut s = parse_with("l0_um: 50.0", "l0_um: -1e9").unwrap();
+    s.scenario.probe.noise_um = 1e9;
+    s.scenario.rates_deg_s = vec![200.0];
+    s.scenario.revolutions = 1;
+    s.scenario.min_duration_s = 0.0;
+    let sim = pipeline::simulate(&s).unwrap();
+    assert!(sim.recordings[0].gap_um.iter().all(|g| g.is_finite()));
+}
+
+#[test]
+fn a_rate_too_fast_for_the_sample_rate_is_named() {
+    // 1e300 deg/s: blamed on the rate, not on min_duration_s or the sample rate
+    match parse_with("135.0, 160.1234", "1e300, 160.1234") {
+        Err(PipelineError::RateTooFast {
+            field,
+            rate_deg_s,
+            need,
+            max_rate_deg_s,
+            ..
+        }) => {
+            assert_eq!(field, "rates_deg_s[5]");
+            assert_eq!(rate_deg_s, 1e300);
+            // order 4 with drift: 2·4 + 2 parameters, one more sample than that
+            assert_eq!(need, 11);
+            approx::assert_relative_eq!(max_rate_deg_s, 1000.0 * 360.0 / 11.0);
+        }
+        other => panic!("expected RateTooFast, got {other:?}"),
+    }
+    // 5 Hz gives 9.0 samples per turn at 200.1234 deg/s, too few for the order-4 fit
+    match parse_with("sample_rate_hz: 1000.0", "sample_rate_hz: 5.0") {
+        Err(PipelineError::RateTooFast {
+            field,
+            samples_per_revolution,
+            ..
+        }) => {
+            assert_eq!(field, "rates_deg_s[7]");
+            approx::assert_relative_eq!(samples_per_revolution, 5.0 * 360.0 / 200.1234);
+        }
+        other => panic!("expected RateTooFast, got {other:?}"),
+    }
+    // the bound is 32727.27 deg/s at 1 kHz: just below it the rate passes (and the 6th sleeve
+    // harmonic then blames the sample rate), just above it the rate is refused
+    assert_invalid(parse_with("200.1234]", "32727.0]"), "probe.sample_rate_hz");
     assert!(matches!(
-        parse_with("135.0, 160.1234", "40.00001, 160.1234"),
-        Err(PipelineError::DuplicateRate { .. })
+        parse_with("200.1234]", "32728.0]"),
+        Err(PipelineError::RateTooFast { field, .. }) if field == "rates_deg_s[7]"
     ));
 }
 
