@@ -106,9 +106,17 @@ impl RatePoint {
 pub fn mean_output_rad_s(chain: &Chain, piga: &PigaCoefficients, points: usize) -> Result<f64> {
     piga.validate()?;
     let q = RevolutionQuadrature::new(points, OUTPUT_HIGHEST_HARMONIC)?;
-    Ok(q.mean(chain.rate_rad_s(), |t| {
-        piga.instantaneous_output_rad_s(chain, t)
-    }))
+    Ok(revolution_means(chain, piga, &q)[0])
+}
+
+/// `[⟨λ̇⟩, ⟨a_x⟩, ⟨ω_I⟩]` over one revolution of `chain` by the rule `q`: eq. 15 is evaluated
+/// at each node, then averaged.
+fn revolution_means(chain: &Chain, piga: &PigaCoefficients, q: &RevolutionQuadrature) -> [f64; 3] {
+    q.mean_array(chain.rate_rad_s(), |t| {
+        let i = chain.inputs_at(t);
+        let (a, w) = (i.a_x_g(), i.omega_i_rad_s());
+        [piga.output_rad_s(a, w), a, w]
+    })
 }
 
 /// Mean output and exact mean inputs at one rate.
@@ -123,11 +131,7 @@ pub fn rate_point(
     piga.validate()?;
     let chain = Chain::new(centrifuge, rate_rad_s)?;
     let q = RevolutionQuadrature::minimal(OUTPUT_HIGHEST_HARMONIC);
-    let [output_rad_s, a_x_g, omega_i_rad_s] = q.mean_array(rate_rad_s, |t| {
-        let i = chain.inputs_at(t);
-        let (a, w) = (i.a_x_g(), i.omega_i_rad_s());
-        [piga.output_rad_s(a, w), a, w]
-    });
+    let [output_rad_s, a_x_g, omega_i_rad_s] = revolution_means(&chain, piga, &q);
     Ok(RatePoint {
         rate_rad_s,
         output_rad_s,
