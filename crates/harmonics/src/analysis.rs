@@ -115,6 +115,19 @@ impl Coefficients {
         FirstHarmonic::new(self.c[0], self.s[0])
     }
 
+    /// Every coefficient multiplied by `k`, e.g. to change the gap's unit.
+    ///
+    /// ```
+    /// # use harmonics::Coefficients;
+    /// let mm = Coefficients { l0: 0.05, c: vec![-0.003], s: vec![0.001], drift_per_s: None };
+    /// let um = mm.scaled(1e3);
+    /// approx::assert_relative_eq!(um.c[0], -3.0, max_relative = 1e-15);
+    /// ```
+    #[must_use]
+    pub fn scaled(&self, k: f64) -> Self {
+        self.map(|v| v * k)
+    }
+
     fn map(&self, f: impl Fn(f64) -> f64) -> Self {
         Self {
             l0: f(self.l0),

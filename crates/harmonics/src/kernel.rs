@@ -66,6 +66,24 @@ pub(crate) struct Sums {
     pub(crate) tau_y: f64,
 }
 
+impl Sums {
+    /// All sums zero, for `n` samples.
+    pub(crate) const fn empty(n: usize) -> Self {
+        Self {
+            n: n as f64,
+            cos: [0.0; MOMENTS],
+            sin: [0.0; MOMENTS],
+            y_cos: [0.0; MAX_ORDER + 1],
+            y_sin: [0.0; MAX_ORDER + 1],
+            yy: 0.0,
+            tau_cos: [0.0; MAX_ORDER + 1],
+            tau_sin: [0.0; MAX_ORDER + 1],
+            tau_tau: 0.0,
+            tau_y: 0.0,
+        }
+    }
+}
+
 /// Per-lane accumulators.
 struct Acc<const W: usize> {
     cos: [[f64; W]; MOMENTS],
@@ -213,18 +231,7 @@ fn pass<const N: usize, const DRIFT: bool>(
         let ts = if DRIFT { [t[i]] } else { [0.0] };
         narrow.add::<N, DRIFT>(&[x[i]], &[y[i]], &ts, map, centre);
     }
-    let mut sums = Sums {
-        n: n as f64,
-        cos: [0.0; MOMENTS],
-        sin: [0.0; MOMENTS],
-        y_cos: [0.0; MAX_ORDER + 1],
-        y_sin: [0.0; MAX_ORDER + 1],
-        yy: 0.0,
-        tau_cos: [0.0; MAX_ORDER + 1],
-        tau_sin: [0.0; MAX_ORDER + 1],
-        tau_tau: 0.0,
-        tau_y: 0.0,
-    };
+    let mut sums = Sums::empty(n);
     wide.reduce_into(&mut sums);
     narrow.reduce_into(&mut sums);
     sums.cos[0] = sums.n;
@@ -285,18 +292,7 @@ mod tests {
 
     /// Direct evaluation with libm, for comparison.
     fn direct(order: usize, x: &[f64], y: &[f64], t: &[f64], map: AngleMap, c: Centring) -> Sums {
-        let mut s = Sums {
-            n: x.len() as f64,
-            cos: [0.0; MOMENTS],
-            sin: [0.0; MOMENTS],
-            y_cos: [0.0; MAX_ORDER + 1],
-            y_sin: [0.0; MAX_ORDER + 1],
-            yy: 0.0,
-            tau_cos: [0.0; MAX_ORDER + 1],
-            tau_sin: [0.0; MAX_ORDER + 1],
-            tau_tau: 0.0,
-            tau_y: 0.0,
-        };
+        let mut s = Sums::empty(x.len());
         for i in 0..x.len() {
             let theta = (x[i] - map.shift) * map.scale + map.offset;
             let yv = y[i] - c.y_ref;

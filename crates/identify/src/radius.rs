@@ -346,14 +346,20 @@ mod tests {
         ));
     }
 
-    #[test]
-    fn weighted_fit_with_equal_sigmas_is_the_ordinary_fit() {
+    /// Six rates and radius errors `2e-6 − 3e-8·ω²` with a ±1e-9 m alternating scatter.
+    fn alternating_scatter() -> ([f64; 6], Vec<f64>) {
         let w = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
-        let e: Vec<f64> = w
+        let e = w
             .iter()
             .enumerate()
             .map(|(i, w)| 2e-6 - 3e-8 * w * w + if i % 2 == 0 { 1e-9 } else { -1e-9 })
             .collect();
+        (w, e)
+    }
+
+    #[test]
+    fn weighted_fit_with_equal_sigmas_is_the_ordinary_fit() {
+        let (w, e) = alternating_scatter();
         let plain = fit_radius_error(&w, &e, RadiusModel::TwoTerm).unwrap();
         // Equal σᵢ below the scatter (Birge ratio > 1): the weighted fit is the ordinary one.
         let weighted =
@@ -370,12 +376,7 @@ mod tests {
 
     #[test]
     fn weighted_sigma_is_never_shrunk_by_a_small_scatter() {
-        let w = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
-        let e: Vec<f64> = w
-            .iter()
-            .enumerate()
-            .map(|(i, w)| 2e-6 - 3e-8 * w * w + if i % 2 == 0 { 1e-9 } else { -1e-9 })
-            .collect();
+        let (w, e) = alternating_scatter();
         // σᵢ ten times the scatter: the Birge ratio is ≈ 0.1 and σ(C_r) is the known-σ value.
         let small = fit_radius_error_weighted(&w, &e, &[1e-8; 6], RadiusModel::TwoTerm).unwrap();
         assert!(small.fit.residual_sd < 1.0);

@@ -139,7 +139,7 @@ pub(crate) fn analyse(
                 .sum::<f64>()
                 .sqrt()
                 / k;
-            let mean_um = scale(&analysis.mean, um);
+            let mean_um = analysis.mean.scaled(um);
             Ok(ProbeHarmonic {
                 dc1_um: mean_um.c[0],
                 ds1_um: mean_um.s[0],
@@ -162,15 +162,6 @@ pub(crate) fn analyse(
             })
         })
         .collect()
-}
-
-fn scale(c: &Coefficients, k: f64) -> Coefficients {
-    Coefficients {
-        l0: c.l0 * k,
-        c: c.c.iter().map(|v| v * k).collect(),
-        s: c.s.iter().map(|v| v * k).collect(),
-        drift_per_s: c.drift_per_s.map(|v| v * k),
-    }
 }
 
 /// The first fitted revolution's samples, decimated, against the absolute spindle angle.
