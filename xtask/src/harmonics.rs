@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, bail};
 use harmonics::{Coefficients, FitConfig, HarmonicAnalysis, ProbeDirection};
-use pipeline::{AngleUnit, LengthUnit, Recording, RecordingFormat};
+use recording::{AngleUnit, LengthUnit, Recording, RecordingFormat};
 use serde_json::{Value, json};
 
 /// Fit eq. 20 to every complete revolution of a probe recording and average the coefficients.
@@ -81,9 +81,9 @@ impl Harmonics {
             revolutions: self.revolutions,
             max_gap_intervals: self.max_gap_intervals,
         };
-        let recording = pipeline::load_recording(&self.file, &format)?;
+        let recording = recording::load_recording(&self.file, &format)?;
         let rate_rad_s = self.rate_deg_s.to_radians();
-        let fit = pipeline::analyze_recording(
+        let fit = recording::analyze_recording(
             &recording,
             rate_rad_s,
             self.start_angle_deg.to_radians(),

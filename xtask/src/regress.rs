@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context as _, bail};
 use clap::Args;
-use pipeline::{Expected, StudyConfig};
+use pipeline::StudyConfig;
+use report::Expected;
 
 use crate::paths;
 

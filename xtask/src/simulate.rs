@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use clap::Args;
-use pipeline::Scenario;
+use simulate::Scenario;
 
 use crate::paths;
 
@@ -26,8 +26,8 @@ impl Simulate {
             .clone()
             .unwrap_or_else(|| paths::workspace_root().join("target/simulate"));
         let scenario = Scenario::load(&self.config)?;
-        let sim = pipeline::simulate(&scenario)?;
-        let files = pipeline::write_simulation(&out, &sim)
+        let sim = simulate::simulate(&scenario)?;
+        let files = simulate::write_simulation(&out, &sim)
             .with_context(|| format!("writing the simulation into {}", out.display()))?;
 
         let t = &sim.truth;

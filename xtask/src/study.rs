@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use clap::Args;
-use pipeline::{Expected, Progress, StudyConfig, StudyResults};
+use pipeline::{Progress, StudyConfig, StudyResults};
+use report::Expected;
 
 use crate::paths;
 
@@ -62,8 +63,9 @@ impl Study {
         };
         let expected = expected_path.as_deref().map(Expected::load).transpose()?;
         let outcomes = expected.as_ref().map(|e| e.compare(&results)).transpose()?;
-        let files = pipeline::write_outputs(&out, &results, expected.as_ref(), outcomes.as_deref())
-            .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
+        let files =
+            report::write_outputs(&out, &results, expected.as_ref(), outcomes.as_deref())
+                .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
         print_summary(&results);
         if let Some(outcomes) = &outcomes {
             let failed = outcomes.iter().filter(|o| !o.passed).count();

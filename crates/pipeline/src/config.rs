@@ -305,7 +305,7 @@ impl PhaseConfig {
 }
 
 /// A human name of a radius-error model.
-pub(crate) const fn model_name(model: RadiusModel) -> &'static str {
+pub const fn model_name(model: RadiusModel) -> &'static str {
     match model {
         RadiusModel::TwoTerm => "a + C_r·ω²",
         RadiusModel::ThreeTerm => "a + b·ω + C_r·ω²",

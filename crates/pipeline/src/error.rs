@@ -53,40 +53,6 @@ pub enum PipelineError {
         /// The repeated rate.
         rate_deg_s: f64,
     },
-    /// Two different rates of a scenario would write their probe recordings to the same file
-    /// (the file name keeps four decimals of the rate).
-    #[error("{}: field `{field}`: rate {rate_deg_s} deg/s and rate {first_rate_deg_s} deg/s (`{first}`) would both be recorded as `{file_name}`", path.display())]
-    RecordingNameCollision {
-        /// The file concerned.
-        path: PathBuf,
-        /// Path of the second rate.
-        field: String,
-        /// Path of the first rate.
-        first: String,
-        /// The second rate.
-        rate_deg_s: f64,
-        /// The first rate.
-        first_rate_deg_s: f64,
-        /// The file name they share.
-        file_name: String,
-    },
-    /// A rate is so fast that a revolution holds fewer probe samples than the harmonic fit of
-    /// one revolution needs.
-    #[error("{}: field `{field}` = {rate_deg_s} deg/s: a revolution would hold {samples_per_revolution} samples at the probe's sample rate, the harmonic fit needs at least {need} (rate at most {max_rate_deg_s} deg/s)", path.display())]
-    RateTooFast {
-        /// The file concerned.
-        path: PathBuf,
-        /// Path of the rate.
-        field: String,
-        /// The rate given.
-        rate_deg_s: f64,
-        /// Samples in one revolution at this rate (`sample_rate_hz·360/rate_deg_s`).
-        samples_per_revolution: f64,
-        /// Samples a revolution needs.
-        need: usize,
-        /// The fastest rate that gives them.
-        max_rate_deg_s: f64,
-    },
     /// A phase has too few rate points for its radius-error model: a fit needs one more point
     /// than the model has unknowns, to have a standard error.
     #[error("{}: field `{field}`: {got} rate point(s), the {model} model needs at least {need} (one more than its unknowns)", path.display())]
@@ -121,22 +87,6 @@ pub enum PipelineError {
         field: String,
         /// The harmonic analysis' error.
         source: harmonics::HarmonicsError,
-    },
-    /// A figure could not be drawn.
-    #[error("drawing {what}: {message}")]
-    Plot {
-        /// Which figure.
-        what: &'static str,
-        /// The backend's message.
-        message: String,
-    },
-    /// Results could not be serialised.
-    #[error("serialising {what}: {message}")]
-    Serialize {
-        /// What was being serialised.
-        what: &'static str,
-        /// The serialiser's message.
-        message: String,
     },
     /// A list that must not be empty is empty.
     #[error("{}: field `{field}`: the list is empty", path.display())]
@@ -175,7 +125,7 @@ pub enum PipelineError {
         field: String,
         /// The recording's own error (it names the recording's file and line); boxed, as it
         /// is large.
-        source: Box<crate::recording::RecordingError>,
+        source: Box<recording::RecordingError>,
     },
     /// A setting cannot be used with the rest of the configuration or data.
     #[error("{}: field `{field}`: {reason}", path.display())]

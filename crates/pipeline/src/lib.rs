@@ -35,38 +35,17 @@
 
 mod config;
 mod error;
-mod expected;
 mod mechanism;
-mod output;
-mod plot;
 mod probe_analysis;
-mod recording;
-mod report;
 mod results;
-mod simulate;
 mod study;
-mod units;
 
 pub use config::{
     HarmonicPoint, LoadedStudy, PhaseConfig, Points, RadiusPoint, StudyConfig, Weighting,
+    model_name,
 };
 pub use error::{PipelineError, Result};
-pub use expected::{Check, CheckOutcome, Expected};
 pub use mechanism::{MechanismConfig, MechanismPhase, MechanismResults};
-pub use output::{WrittenFiles, results_json, write_outputs};
-pub use plot::{probe_signals_svg, radius_error_svg};
 pub use probe_analysis::{ProbeTrace, Progress, RecordingPoint, RecordingSet};
-pub use recording::{
-    AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, SyntheticSpec,
-    analyze_recording, load_recording, parse_recording,
-};
-pub use report::render as render_report;
 pub use results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
-pub use simulate::{
-    CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaRow, PigaSpec,
-    ProbeSpec, ProbeTruth, Scenario, SimulatedRecording, Simulation, SimulationFiles,
-    SleeveHarmonic, SpeedRipple, Truth, TruthRate, piga_csv_text, recording_file_name, simulate,
-    write_simulation,
-};
 pub use study::{run, run_with_progress};
-pub use units::{deg_s_to_rad_s, m_to_um, um_to_m};

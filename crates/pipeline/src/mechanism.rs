@@ -19,7 +19,7 @@ use serde::{Deserialize, Serialize};
 use crate::config::StudyConfig;
 use crate::error::{PipelineError, Result};
 use crate::results::PhaseResults;
-use crate::units::{deg_s_to_rad_s, um_to_m};
+use units::{deg_s_to_rad_s, um_to_m};
 
 /// Configuration of the mechanism section (`mechanism: (...)` in the study file).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

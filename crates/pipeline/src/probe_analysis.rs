@@ -10,8 +10,8 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
-use crate::recording::{Recording, RecordingFormat, analyze_recording, load_recording};
-use crate::units::deg_s_to_rad_s;
+use recording::{Recording, RecordingFormat, analyze_recording, load_recording};
+use units::deg_s_to_rad_s;
 
 /// Probe recordings of one phase, one file per rate.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -10,7 +10,7 @@ use crate::error::{PipelineError, Result};
 use crate::mechanism;
 use crate::probe_analysis::{self, ProbeTrace, Progress};
 use crate::results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
-use crate::units::{deg_s_to_rad_s, m_to_um, um_to_m};
+use units::{deg_s_to_rad_s, m_to_um, um_to_m};
 
 /// Runs a loaded study: both phases, each with its per-point geometry, its radius-error fit
 /// and the pseudo-second-order error `Δk2` it implies.

@@ -1,0 +1,74 @@
+//! The results of both fixture studies equal those written before the crate split
+//! (`fixtures/baseline/`), number by number to a relative 1e-12 and key by key exactly.
+
+use pipeline::StudyConfig;
+use serde_json::Value;
+
+use crate::root;
+
+/// Walks two JSON trees side by side; every difference is pushed with its path.
+fn compare(path: &str, actual: &Value, expected: &Value, out: &mut Vec<String>) {
+    match (actual, expected) {
+        (Value::Number(a), Value::Number(e)) => {
+            let (a, e) = (a.as_f64().unwrap(), e.as_f64().unwrap());
+            let scale = a.abs().max(e.abs()).max(f64::MIN_POSITIVE);
+            if (a - e).abs() > 1e-12 * scale {
+                out.push(format!("{path}: {a:e} vs baseline {e:e}"));
+            }
+        }
+        (Value::Object(a), Value::Object(e)) => {
+            for (key, ev) in e {
+                match a.get(key) {
+                    Some(av) => compare(&format!("{path}.{key}"), av, ev, out),
+                    None => out.push(format!("{path}.{key}: missing")),
+                }
+            }
+            for key in a.keys().filter(|k| !e.contains_key(*k)) {
+                out.push(format!("{path}.{key}: not in the baseline"));
+            }
+        }
+        (Value::Array(a), Value::Array(e)) if a.len() == e.len() => {
+            for (i, (av, ev)) in a.iter().zip(e).enumerate() {
+                compare(&format!("{path}[{i}]"), av, ev, out);
+            }
+        }
+        _ if actual == expected => {}
+        _ => out.push(format!("{path}: {actual} vs baseline {expected}")),
+    }
+}
+
+fn check(config: &str, baseline: &str) {
+    let study = StudyConfig::load(&root().join(config)).unwrap();
+    let results = pipeline::run(&study).unwrap();
+    let actual: Value = serde_json::from_str(&report::results_json(&results).unwrap()).unwrap();
+    let text = std::fs::read_to_string(root().join(baseline)).unwrap();
+    let expected: Value = serde_json::from_str(&text).unwrap();
+    let mut differences = Vec::new();
+    compare("", &actual, &expected, &mut differences);
+    assert!(differences.is_empty(), "{}", differences.join("\n"));
+}
+
+#[test]
+fn the_paper_study_equals_its_baseline() {
+    check(
+        "fixtures/studies/paper-2025.ron",
+        "fixtures/baseline/paper-2025.results.json",
+    );
+}
+
+#[test]
+fn the_recordings_study_equals_its_baseline() {
+    check(
+        "fixtures/studies/recordings-small.ron",
+        "fixtures/baseline/recordings-small.results.json",
+    );
+}
+
+#[test]
+fn the_comparison_sees_a_changed_number() {
+    let a: Value = serde_json::json!({"x": [1.0, 2.0], "y": "s"});
+    let b: Value = serde_json::json!({"x": [1.0, 2.000001], "y": "s"});
+    let mut out = Vec::new();
+    compare("", &a, &b, &mut out);
+    assert_eq!(out, [".x[1]: 2e0 vs baseline 2.000001e0"]);
+}

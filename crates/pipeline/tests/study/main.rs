@@ -1,0 +1,22 @@
+//! Behaviour of the study: the paper's numbers from its inputs, typed errors on bad
+//! configuration, recordings, and the closed loop simulate → harmonics → C_r fit →
+//! compensated identification.
+
+mod bad_config;
+mod baseline;
+mod mechanism;
+mod paper;
+mod recordings;
+mod scenarios;
+
+use std::path::{Path, PathBuf};
+
+/// The workspace root.
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The paper's study configuration text.
+fn paper_text() -> String {
+    std::fs::read_to_string(root().join("fixtures/studies/paper-2025.ron")).unwrap()
+}

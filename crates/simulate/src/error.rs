@@ -1,0 +1,147 @@
+//! The crate's error type.
+
+use std::path::PathBuf;
+
+/// Errors of reading, validating, running and writing a simulation scenario.
+///
+/// Every variant names the file it concerns and, where it applies, the field (as a path such
+/// as `rates_deg_s[2]`) or the line and column.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SimulateError {
+    /// The file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file concerned.
+        path: PathBuf,
+        /// The underlying I/O error.
+        source: std::io::Error,
+    },
+    /// The RON text is malformed, has an unknown field or lacks a required one.
+    #[error("{}:{line}:{column}: {message}", path.display())]
+    Parse {
+        /// The file concerned.
+        path: PathBuf,
+        /// 1-based line of the error.
+        line: usize,
+        /// 1-based column of the error.
+        column: usize,
+        /// What the parser said.
+        message: String,
+    },
+    /// A field has a value outside its domain.
+    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
+    InvalidField {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the field within the configuration.
+        field: String,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// Two points of one phase share a rate.
+    #[error("{}: field `{field}`: rate {rate_deg_s} deg/s appears twice (first at `{first}`)", path.display())]
+    DuplicateRate {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the second occurrence.
+        field: String,
+        /// Path of the first occurrence.
+        first: String,
+        /// The repeated rate.
+        rate_deg_s: f64,
+    },
+    /// (the file name keeps four decimals of the rate).
+    #[error("{}: field `{field}`: rate {rate_deg_s} deg/s and rate {first_rate_deg_s} deg/s (`{first}`) would both be recorded as `{file_name}`", path.display())]
+    RecordingNameCollision {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the second rate.
+        field: String,
+        /// Path of the first rate.
+        first: String,
+        /// The second rate.
+        rate_deg_s: f64,
+        /// The first rate.
+        first_rate_deg_s: f64,
+        /// The file name they share.
+        file_name: String,
+    },
+    /// one revolution needs.
+    #[error("{}: field `{field}` = {rate_deg_s} deg/s: a revolution would hold {samples_per_revolution} samples at the probe's sample rate, the harmonic fit needs at least {need} (rate at most {max_rate_deg_s} deg/s)", path.display())]
+    RateTooFast {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the rate.
+        field: String,
+        /// The rate given.
+        rate_deg_s: f64,
+        /// Samples in one revolution at this rate (`sample_rate_hz·360/rate_deg_s`).
+        samples_per_revolution: f64,
+        /// Samples a revolution needs.
+        need: usize,
+        /// The fastest rate that gives them.
+        max_rate_deg_s: f64,
+    },
+    /// The least-squares identification failed.
+    #[error("{}: `{field}`: {source}", path.display())]
+    Identify {
+        /// The file concerned.
+        path: PathBuf,
+        /// The section whose fit failed.
+        field: String,
+        /// The solver's error.
+        source: identify::IdentifyError,
+    },
+    /// The harmonic geometry was refused.
+    #[error("{}: `{field}`: {source}", path.display())]
+    Harmonics {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field concerned.
+        field: String,
+        /// The harmonic analysis' error.
+        source: harmonics::HarmonicsError,
+    },
+    /// Results could not be serialised.
+    #[error("serialising {what}: {message}")]
+    Serialize {
+        /// What was being serialised.
+        what: &'static str,
+        /// The serialiser's message.
+        message: String,
+    },
+    /// A list that must not be empty is empty.
+    #[error("{}: field `{field}`: the list is empty", path.display())]
+    EmptyList {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the list.
+        field: String,
+    },
+    /// The kinematic chain (or the error motion it is built from) was refused.
+    #[error("{}: `{field}`: {source}", path.display())]
+    Kinematics {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field concerned.
+        field: String,
+        /// The chain's error.
+        source: kinematics::Error,
+    },
+    /// The PIGA model was refused.
+    #[error("{}: `{field}`: {source}", path.display())]
+    AccelModel {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field concerned.
+        field: String,
+        /// The PIGA model's error.
+        source: accel_model::Error,
+    },
+}
+
+/// Result alias of this crate.
+pub type Result<T> = std::result::Result<T, SimulateError>;

@@ -1,0 +1,526 @@
+//! The simulation itself, in memory: probe recordings, PIGA outputs and the truth.
+
+use std::f64::consts::TAU;
+
+use accel_model::rate_points;
+use harmonics::{FirstHarmonic, LeverGeometry};
+use identify::pseudo_second_order;
+use kinematics::{
+    Centrifuge, Chain, ErrorMotion, Point, Spindle, SpindleOffsets, spindle_transform,
+};
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+use rand_distr::{Distribution, Normal};
+use serde::{Deserialize, Serialize};
+
+use super::scenario::{LoadedScenario, ProbeSpec, Scenario, recording_file_name};
+use crate::error::{Result, SimulateError};
+use units::m_to_um;
+
+/// Stream tags that keep the random streams of the probe and the PIGA independent of each
+/// other; each rate has its own streams, keyed by its value, so that adding, removing or
+/// reordering rates leaves the noise of the others unchanged.
+const PROBE_STREAM: u64 = 1;
+const PIGA_STREAM: u64 = 2;
+
+/// Everything a scenario produces, in memory.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Simulation {
+    /// One probe recording per rate, in the scenario's order.
+    pub recordings: Vec<SimulatedRecording>,
+    /// The PIGA calibration table (`piga.csv`), one row per rate.
+    pub piga: Vec<PigaRow>,
+    /// Every parameter and the exact per-rate quantities (`truth.json`).
+    pub truth: Truth,
+}
+
+/// One probe recording: the columns of `probe_<rate>deg_s.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SimulatedRecording {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// File name (`probe_010.0000deg_s.csv`).
+    pub file_name: String,
+    /// Sample times, s (`i / sample_rate_hz`).
+    pub time_s: Vec<f64>,
+    /// Probe gap, µm.
+    pub gap_um: Vec<f64>,
+    /// Encoder angle of the spindle from `O1X1`, deg in `[0, 360)`, when the scenario asks
+    /// for it.
+    pub angle_deg: Option<Vec<f64>>,
+}
+
+impl SimulatedRecording {
+    /// The encoder angle in radians (for `harmonics::SpindleAngle::Encoder`).
+    #[must_use]
+    pub fn angle_rad(&self) -> Option<Vec<f64>> {
+        self.angle_deg
+            .as_ref()
+            .map(|a| a.iter().map(|d| d.to_radians()).collect())
+    }
+}
+
+/// One row of `piga.csv`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PigaRow {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Mean PIGA output over whole revolutions plus the scenario's noise, rad/s.
+    pub output_rad_s: f64,
+}
+
+/// The truth behind a simulation (`truth.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Truth {
+    /// The scenario as given.
+    pub scenario: Scenario,
+    /// The error-motion coefficients it stands for (resolved from a physical imbalance if the
+    /// scenario gives one).
+    pub error_motion: ErrorMotion,
+    /// Lever ratio `(h_probe + h_piga)/h_probe` of the probe geometry.
+    pub lever_ratio: f64,
+    /// `C_r`, m·s² (from `error_motion`).
+    pub c_r_m_s2: f64,
+    /// The pseudo-second-order error the scenario should produce, `Δk2 = k1·C_r·g/R²`
+    /// (eq. 19), rad/(s·g²).
+    pub delta_k2_predicted_rad_s_g2: f64,
+    /// `k2 + Δk2`: the apparent k2 an uncompensated eq. 18 fit should return, rad/(s·g²).
+    pub k2_apparent_predicted_rad_s_g2: f64,
+    /// Per-rate truth, in the scenario's order.
+    pub rates: Vec<TruthRate>,
+}
+
+/// The exact quantities at one rate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TruthRate {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Spindle rate, rad/s.
+    pub rate_rad_s: f64,
+    /// Nominal input `a = Rω²/g`, g.
+    pub a_nominal_g: f64,
+    /// Exact mean specific force along the input axis over a revolution, g (eq. 12).
+    pub a_x_g: f64,
+    /// Exact mean angular rate about the input axis over a revolution, rad/s (eq. 13).
+    pub omega_i_rad_s: f64,
+    /// Mean PIGA output over a revolution without noise, rad/s (eq. 15).
+    pub output_noise_free_rad_s: f64,
+    /// The output written to `piga.csv` (noise included), rad/s.
+    pub output_rad_s: f64,
+    /// Drift and tilt of the spindle at this rate in `O2` (eq. 5).
+    pub offsets: SpindleOffsets,
+    /// Radius error at the PIGA plane, `Δr_x = Δr_xs + C_r ω²`, µm.
+    pub radius_error_um: f64,
+    /// The first harmonic the probe sees (eq. 21), without noise.
+    pub probe_first_harmonic: ProbeTruth,
+    /// The recording's file name.
+    pub recording: String,
+    /// Whole revolutions in the recording.
+    pub revolutions: usize,
+    /// Number of samples in the recording.
+    pub samples: usize,
+    /// Standard deviation that the probe noise gives the radius error fitted from this
+    /// recording, µm: `ratio·σ·√(2/N)` for N samples spread evenly over whole revolutions
+    /// (the variance of a least-squares Fourier coefficient). Recordings of fixed
+    /// revolutions have N ∝ 1/ω, so their radius errors are not equally precise.
+    pub radius_error_sigma_um: f64,
+}
+
+/// The exact first harmonic of the probe gap at one rate.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ProbeTruth {
+    /// `d_c1`, µm.
+    pub dc1_um: f64,
+    /// `d_s1`, µm.
+    pub ds1_um: f64,
+    /// `ΔR1 = hypot(d_c1, d_s1)`, µm.
+    pub amplitude_um: f64,
+    /// Azimuth β of the drift from `X2`, deg (eq. 7).
+    pub beta_deg: f64,
+}
+
+/// Runs a scenario in memory.
+///
+/// For each rate, the probe recording follows the probe model of `docs/SIMULATION.md`: the
+/// spindle-axis point at the PIGA plane from the exact chain (eq. 5), carried to the probe
+/// plane by the cone of eq. 22, read against (or along) `O1X1`, plus the sleeve harmonics and
+/// white noise. The PIGA row is `accel_model::rate_points` (eq. 15 averaged over whole
+/// revolutions of the exact inputs) plus white noise. Deterministic for a given seed.
+///
+/// ```
+/// use std::path::Path;
+/// let text = r#"(
+///     name: "doc", seed: 1,
+///     centrifuge: (radius_m: 2.5, site: (latitude_deg: 45.0, earth_rate_rad_s: 7.292115e-5, gravity_m_s2: 9.8)),
+///     error_motion: Coefficients((dr_xs_m: 5.6e-6, c_r_m_s2: -4.05e-8)),
+///     probe: (lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0),
+///             sample_rate_hz: 1000.0, noise_um: 0.0, l0_um: 50.0),
+///     piga: (coefficients: (k0_rad_s: 0.0, k1_rad_s_g: 0.56, k2_rad_s_g2: 0.0, k3_rad_s_g3: 0.0)),
+///     rates_deg_s: [100.0, 200.0],
+///     revolutions: 1,
+/// )"#;
+/// let scenario = simulate::Scenario::parse(text, Path::new("doc.ron"))?;
+/// let sim = simulate::simulate(&scenario)?;
+/// assert_eq!(sim.recordings.len(), 2);
+/// assert_eq!(sim.recordings[0].time_s.len(), 3600); // one revolution at 100 deg/s, 1 kHz
+/// // noise-free: the gap is l0 − Δr_x·700/1210·cos θ at θ = 0
+/// let dr_x_um = 5.6 - 0.0405 * 100f64.to_radians().powi(2);
+/// approx::assert_relative_eq!(sim.recordings[0].gap_um[0], 50.0 - dr_x_um * 700.0 / 1210.0,
+///                             max_relative = 1e-12);
+/// // Δk2 = k1·C_r·g/R² (eq. 19)
+/// approx::assert_relative_eq!(sim.truth.delta_k2_predicted_rad_s_g2,
+///                             0.56 * -4.05e-8 * 9.8 / 6.25, max_relative = 1e-12);
+/// # Ok::<(), simulate::SimulateError>(())
+/// ```
+///
+/// # Errors
+/// As [`Scenario::check`] if the scenario was altered after loading so that it is no longer
+/// valid; [`SimulateError::Kinematics`] or [`SimulateError::AccelModel`] if the chain or the
+/// PIGA model refuses an input (a valid scenario does not trigger them).
+pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
+    let s = &loaded.scenario;
+    // `LoadedScenario`'s fields are public: check again rather than trust them (cheap).
+    let error_motion = s.validate(&loaded.path)?;
+    let centrifuge = Centrifuge {
+        radius_m: s.centrifuge.radius_m,
+        site: s.centrifuge.site,
+        error_motion,
+    };
+    let g = s.centrifuge.site.gravity_m_s2;
+    let radius = s.centrifuge.radius_m;
+    let k = &s.piga.coefficients;
+    let lever = Lever::new(&s.probe.lever).map_err(|source| SimulateError::Harmonics {
+        path: loaded.path.clone(),
+        field: "probe.lever".to_owned(),
+        source,
+    })?;
+    let lever_ratio = lever.ratio;
+
+    let rates_rad_s: Vec<f64> = s.rates_deg_s.iter().map(|d| d.to_radians()).collect();
+    let points =
+        rate_points(&centrifuge, k, &rates_rad_s).map_err(|source| SimulateError::AccelModel {
+            path: loaded.path.clone(),
+            field: "piga".to_owned(),
+            source,
+        })?;
+
+    let mut recordings = Vec::with_capacity(points.len());
+    let mut piga = Vec::with_capacity(points.len());
+    let mut rates = Vec::with_capacity(points.len());
+    for (i, (point, &rate_deg_s)) in points.iter().zip(&s.rates_deg_s).enumerate() {
+        let chain = Chain::new(&centrifuge, point.rate_rad_s).map_err(|source| {
+            SimulateError::Kinematics {
+                path: loaded.path.clone(),
+                field: format!("rates_deg_s[{i}]"),
+                source,
+            }
+        })?;
+        let recording = record(s, lever, &chain, rate_deg_s);
+        let mut piga_rng = stream(s.seed, PIGA_STREAM, rate_deg_s.to_bits());
+        let output_rad_s = point.output_rad_s
+            + normal(s.piga.noise_rad_s).map_or(0.0, |d| d.sample(&mut piga_rng));
+        piga.push(PigaRow {
+            rate_deg_s,
+            output_rad_s,
+        });
+        let offsets = *chain.offsets();
+        let w = point.rate_rad_s;
+        rates.push(TruthRate {
+            rate_deg_s,
+            rate_rad_s: w,
+            a_nominal_g: radius * w * w / g,
+            a_x_g: point.a_x_g,
+            omega_i_rad_s: point.omega_i_rad_s,
+            output_noise_free_rad_s: point.output_rad_s,
+            output_rad_s,
+            offsets,
+            radius_error_um: m_to_um(offsets.dr_x_m),
+            probe_first_harmonic: probe_truth(lever, &offsets),
+            recording: recording.file_name.clone(),
+            revolutions: s.revolutions_at(rate_deg_s),
+            samples: recording.time_s.len(),
+            radius_error_sigma_um: lever_ratio
+                * s.probe.noise_um
+                * (2.0 / recording.time_s.len() as f64).sqrt(),
+        });
+        recordings.push(recording);
+    }
+
+    let c_r = error_motion.c_r_m_s2;
+    // σ(C_r) = 0: the truth is exact
+    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, c_r, 0.0, g, radius)
+        .map_err(|source| SimulateError::Identify {
+            path: loaded.path.clone(),
+            field: "piga".to_owned(),
+            source,
+        })?
+        .delta_k2_rad_s_g2;
+    Ok(Simulation {
+        recordings,
+        piga,
+        truth: Truth {
+            scenario: s.clone(),
+            error_motion,
+            lever_ratio,
+            c_r_m_s2: c_r,
+            delta_k2_predicted_rad_s_g2: delta_k2,
+            k2_apparent_predicted_rad_s_g2: k.k2_rad_s_g2 + delta_k2,
+            rates,
+        },
+    })
+}
+
+/// The probe geometry as the simulator uses it, both numbers from `harmonics`' conventions.
+#[derive(Debug, Clone, Copy)]
+struct Lever {
+    /// `(h_probe + h_piga)/h_probe` ([`LeverGeometry::lever_ratio`]).
+    ratio: f64,
+    /// `+1` for a probe that measures along `O1X1` (the gap opens as the axis moves to `+X1`),
+    /// `−1` against it (the paper's set-up: the gap closes).
+    sign: f64,
+}
+
+impl Lever {
+    fn new(lever: &LeverGeometry) -> std::result::Result<Self, harmonics::HarmonicsError> {
+        let ratio = lever.lever_ratio()?;
+        // Eq. 21–22 as `harmonics` reads them: a unit d_c1 stands for a radius error of
+        // ±ratio at the PIGA plane, + along O1X1 and − against it.
+        let sign = lever
+            .project(FirstHarmonic::new(1.0, 0.0)?)?
+            .radius_error
+            .signum();
+        Ok(Self { ratio, sign })
+    }
+}
+
+/// The exact first harmonic of the gap: the axis point in the probe plane is
+/// `(Δr_x cos θ − Δr_y sin θ, …)/ratio` along `O1X1`, read with the probe's sign.
+fn probe_truth(lever: Lever, offsets: &SpindleOffsets) -> ProbeTruth {
+    let dc1_um = lever.sign * m_to_um(offsets.dr_x_m) / lever.ratio;
+    let ds1_um = -lever.sign * m_to_um(offsets.dr_y_m) / lever.ratio;
+    ProbeTruth {
+        dc1_um,
+        ds1_um,
+        amplitude_um: dc1_um.hypot(ds1_um),
+        beta_deg: offsets.drift_azimuth_rad().to_degrees(),
+    }
+}
+
+/// Number of samples that cover `revolutions` whole turns at `rate_deg_s`: every sample
+/// time `i/f_s` is below the end time `revolutions·360/rate` (an end time that falls on a
+/// sample to within 1e-6 of an interval counts as falling on it).
+pub(crate) fn sample_count(sample_rate_hz: f64, rate_deg_s: f64, revolutions: usize) -> usize {
+    let x = revolutions as f64 * 360.0 / rate_deg_s * sample_rate_hz;
+    let n = if (x - x.round()).abs() < 1e-6 {
+        x.round()
+    } else {
+        x.ceil()
+    };
+    // a validated scenario keeps this well below usize::MAX (MAX_TOTAL_SAMPLES)
+    n as usize
+}
+
+/// The spindle angle `θ(t) = θ₀ + ωt + A·(sin(ωt + φ) − sin φ)`, rad (not wrapped).
+fn spindle_angle_rad(probe: &ProbeSpec, rate_rad_s: f64, t_s: f64) -> f64 {
+    let theta0 = probe.start_angle_deg.to_radians();
+    let wt = rate_rad_s * t_s;
+    let ripple = probe.speed_ripple.map_or(0.0, |r| {
+        let (a, phi) = (r.amplitude_deg.to_radians(), r.phase_deg.to_radians());
+        a * ((wt + phi).sin() - phi.sin())
+    });
+    theta0 + wt + ripple
+}
+
+/// The probe recording at one rate.
+fn record(s: &Scenario, lever: Lever, chain: &Chain, rate_deg_s: f64) -> SimulatedRecording {
+    let probe = &s.probe;
+    let n = sample_count(
+        probe.sample_rate_hz,
+        rate_deg_s,
+        s.revolutions_at(rate_deg_s),
+    );
+    let Lever { ratio, sign } = lever;
+    let mut rng = stream(s.seed, PROBE_STREAM, rate_deg_s.to_bits());
+    let noise = normal(probe.noise_um);
+    // The spindle-axis point at the PIGA plane (the O2 origin) in the sleeve frame. Eq. 5
+    // begins with Rot(z₁, θ), so T₂¹(θ) = Rot(z₁, θ)·T₂¹(0) and the point at angle θ is the
+    // chain's point at θ = 0 turned by θ (equal to evaluating the chain at θ; tested).
+    let p0 = axis_point_at_piga(chain.offsets(), 0.0);
+    let harmonics: Vec<(usize, f64, f64)> = probe
+        .sleeve_harmonics
+        .iter()
+        .map(|h| (h.order, h.c_um, h.s_um))
+        .collect();
+    let highest = harmonics.iter().map(|h| h.0).max().unwrap_or(1);
+    let mut cos_k = vec![0.0; highest + 1];
+    let mut sin_k = vec![0.0; highest + 1];
+
+    let mut time_s = Vec::with_capacity(n);
+    let mut gap_um = Vec::with_capacity(n);
+    let mut angle_deg = probe.encoder_angle.then(|| Vec::with_capacity(n));
+    for i in 0..n {
+        let t = i as f64 / probe.sample_rate_hz;
+        let theta = spindle_angle_rad(probe, chain.rate_rad_s(), t);
+        let (sin1, cos1) = theta.sin_cos();
+        // X1 component of Rot(z, θ)·p0, carried down the cone to the probe plane
+        // (eq. 22 read backwards)
+        let x_probe_um = m_to_um(p0[0] * cos1 - p0[1] * sin1) / ratio;
+        // cos kθ, sin kθ by the angle-addition recurrence
+        (cos_k[0], sin_k[0]) = (1.0, 0.0);
+        for k in 1..=highest {
+            cos_k[k] = cos_k[k - 1] * cos1 - sin_k[k - 1] * sin1;
+            sin_k[k] = sin_k[k - 1] * cos1 + cos_k[k - 1] * sin1;
+        }
+        let sleeve: f64 = harmonics
+            .iter()
+            .map(|&(k, c, s)| c * cos_k[k] + s * sin_k[k])
+            .sum();
+        let e = noise.as_ref().map_or(0.0, |d| d.sample(&mut rng));
+        time_s.push(t);
+        gap_um.push(probe.l0_um + sign * x_probe_um + sleeve + e);
+        if let Some(a) = angle_deg.as_mut() {
+            a.push(theta.rem_euclid(TAU).to_degrees() % 360.0);
+        }
+    }
+    SimulatedRecording {
+        rate_deg_s,
+        file_name: recording_file_name(rate_deg_s),
+        time_s,
+        gap_um,
+        angle_deg,
+    }
+}
+
+/// An independent random stream per (seed, purpose, key).
+fn stream(seed: u64, purpose: u64, key: u64) -> StdRng {
+    // SplitMix64 finaliser over the three numbers: distinct inputs give unrelated seeds.
+    let mut z = seed
+        ^ purpose.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ key.wrapping_mul(0xD1B5_4A32_D192_ED03);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    StdRng::seed_from_u64(z ^ (z >> 31))
+}
+
+/// The spindle-axis point at the PIGA plane (the `O2` origin) in the sleeve frame at spindle
+/// angle θ, from the chain of eq. 5: `T₂¹(θ)·[0 0 0 1]ᵀ`, m.
+fn axis_point_at_piga(offsets: &SpindleOffsets, theta_rad: f64) -> [f64; 3] {
+    spindle_transform(theta_rad, offsets)
+        .apply(Point::<Spindle>::new([0.0, 0.0, 0.0]))
+        .coords_m
+}
+
+/// N(0, σ²), or `None` (no draws at all) when σ is 0.
+fn normal(sigma: f64) -> Option<Normal<f64>> {
+    // σ was validated finite and ≥ 0, so `Normal::new` cannot fail
+    (sigma > 0.0)
+        .then(|| Normal::new(0.0, sigma).ok())
+        .flatten()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn sample_count_covers_whole_revolutions() {
+        // 10 deg/s at 1 kHz: 36 s per revolution, samples 0 … 71999 for two turns
+        assert_eq!(sample_count(1000.0, 10.0, 2), 72_000);
+        // 200.1234 deg/s: 1798.89 samples per turn, the last sample is inside the turn
+        let n = sample_count(1000.0, 200.1234, 1);
+        assert_eq!(n, 1799);
+        assert!(((n - 1) as f64) / 1000.0 < 360.0 / 200.1234);
+    }
+
+    #[test]
+    fn streams_are_distinct_and_repeatable() {
+        use rand::Rng;
+        let a: u64 = stream(7, PROBE_STREAM, 0).random();
+        let b: u64 = stream(7, PROBE_STREAM, 1).random();
+        let c: u64 = stream(7, PIGA_STREAM, 0).random();
+        let a2: u64 = stream(7, PROBE_STREAM, 0).random();
+        assert_eq!(a, a2);
+        assert_ne!(a, b);
+        assert_ne!(a, c);
+    }
+
+    #[test]
+    fn the_turned_point_is_the_chain_evaluated_at_the_angle() {
+        let offsets = SpindleOffsets {
+            dr_x_m: 5.6e-6,
+            dr_y_m: -2.0e-6,
+            dphi_x_rad: 3e-6,
+            dphi_y_rad: -1e-6,
+        };
+        let p0 = axis_point_at_piga(&offsets, 0.0);
+        for k in 0..50 {
+            let theta = 0.37 * f64::from(k) - 3.0;
+            let (s, c) = theta.sin_cos();
+            let turned = [p0[0] * c - p0[1] * s, p0[0] * s + p0[1] * c, p0[2]];
+            let direct = axis_point_at_piga(&offsets, theta);
+            for (a, b) in turned.iter().zip(&direct) {
+                assert!((a - b).abs() < 1e-20, "{theta}: {a} vs {b}");
+            }
+            // and it is ΔR·(cos(θ+β), sin(θ+β), 0) (eq. 9, corrected)
+            let dr = offsets.drift_magnitude_m();
+            let beta = offsets.drift_azimuth_rad();
+            assert_relative_eq!(direct[0], dr * (theta + beta).cos(), epsilon = 1e-20);
+            assert_relative_eq!(direct[1], dr * (theta + beta).sin(), epsilon = 1e-20);
+            assert_eq!(direct[2], 0.0);
+        }
+    }
+
+    #[test]
+    fn lever_takes_ratio_and_sign_from_harmonics() {
+        use harmonics::ProbeDirection;
+        for (direction, sign) in [
+            (ProbeDirection::AgainstO1X1, -1.0),
+            (ProbeDirection::AlongO1X1, 1.0),
+        ] {
+            let lever = Lever::new(&LeverGeometry {
+                pivot_to_probe_mm: 700.0,
+                probe_to_piga_mm: 510.0,
+                probe_direction: direction,
+            })
+            .unwrap();
+            assert_eq!(lever.sign, sign, "{direction:?}");
+            assert_relative_eq!(lever.ratio, 1210.0 / 700.0, max_relative = 1e-15);
+        }
+        let bad = LeverGeometry {
+            pivot_to_probe_mm: 0.0,
+            probe_to_piga_mm: 510.0,
+            probe_direction: ProbeDirection::AlongO1X1,
+        };
+        assert!(Lever::new(&bad).is_err());
+    }
+
+    #[test]
+    fn ripple_keeps_the_period_and_the_mean_rate() {
+        let probe = ProbeSpec {
+            lever: harmonics::LeverGeometry {
+                pivot_to_probe_mm: 700.0,
+                probe_to_piga_mm: 510.0,
+                probe_direction: harmonics::ProbeDirection::AgainstO1X1,
+            },
+            sample_rate_hz: 1000.0,
+            noise_um: 0.0,
+            l0_um: 0.0,
+            sleeve_harmonics: vec![],
+            encoder_angle: true,
+            speed_ripple: Some(super::super::scenario::SpeedRipple {
+                amplitude_deg: 2.0,
+                phase_deg: 40.0,
+            }),
+            start_angle_deg: 15.0,
+        };
+        let w = 1.3;
+        let theta0 = spindle_angle_rad(&probe, w, 0.0);
+        assert_relative_eq!(theta0, 15f64.to_radians(), max_relative = 1e-15);
+        let one_turn = spindle_angle_rad(&probe, w, TAU / w);
+        assert_relative_eq!(one_turn - theta0, TAU, max_relative = 1e-12);
+        // but not uniform within the turn
+        let quarter = spindle_angle_rad(&probe, w, 0.25 * TAU / w) - theta0;
+        assert!((quarter - 0.25 * TAU).abs() > 1e-3);
+    }
+}

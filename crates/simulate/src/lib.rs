@@ -1,0 +1,36 @@
+//! Closed-loop simulation of a centrifuge calibration: probe recordings, PIGA outputs and
+//! the truth behind them, from a RON scenario.
+//!
+//! A [`Scenario`] describes a centrifuge (radius, site), its spindle error motion (eq. 1–5,
+//! 16), a displacement probe on the sleeve (lever heights, direction, sampling, noise, sleeve
+//! harmonics, encoder, speed ripple), a PIGA (eq. 15) and a list of rates. [`simulate`] gives,
+//! in memory, one probe recording per rate, the PIGA calibration table and a [`Truth`];
+//! [`write_simulation`] writes them as `probe_<rate>deg_s.csv`, `piga.csv` and `truth.json`.
+//!
+//! **Probe model.** The chain of eq. 5 pivots the tilt at the PIGA plane (the `O2` origin),
+//! while the paper's probe analysis (eq. 22) assumes a cone about a pivot
+//! `h_p + h_a` below that plane. The simulator takes the spindle-axis point at the PIGA plane
+//! from the exact chain, `T₂¹(θ)·[0 0 0 1]ᵀ = ΔR(cos(θ+β), sin(θ+β), 0)`, scales its `X1`
+//! component by `h_p/(h_p + h_a)` to the probe plane, and reads it against `O1X1`
+//! (`gap = l0 − x`) or along it (`gap = l0 + x`), adding the sleeve harmonics
+//! `Σ c_k cos kθ + s_k sin kθ` and white noise. Then `d_c1 = −ΔR1 cos β` (eq. 21) and
+//! `−d_c1·(h_p + h_a)/h_p = Δr_x = Δr_xs + C_r ω²` (eq. 22) hold exactly for the noise-free
+//! signal. See `docs/SIMULATION.md`.
+//!
+//! **PIGA.** Each row of `piga.csv` is `accel_model::rate_points` — eq. 15 evaluated on the
+//! exact inputs of eq. 12–13 and averaged over whole revolutions — plus N(0, σ²).
+
+mod error;
+mod generate;
+mod scenario;
+mod write;
+
+pub use error::{Result, SimulateError};
+pub use generate::{
+    PigaRow, ProbeTruth, SimulatedRecording, Simulation, Truth, TruthRate, simulate,
+};
+pub use scenario::{
+    CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaSpec, ProbeSpec,
+    Scenario, SleeveHarmonic, SpeedRipple, recording_file_name,
+};
+pub use write::{SimulationFiles, piga_csv_text, write_simulation};

@@ -1,0 +1,463 @@
+//! The simulation scenario, read from RON and validated.
+
+use std::path::{Path, PathBuf};
+
+use accel_model::PigaCoefficients;
+use harmonics::{FitConfig, LeverGeometry};
+use kinematics::{ErrorMotion, ErrorMotionSpec, Site};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Result, SimulateError};
+
+/// Highest sleeve harmonic a scenario may add to the probe signal (the harmonic fit supports
+/// orders up to 8).
+pub const MAX_SLEEVE_ORDER: usize = 8;
+
+/// Most samples all recordings of one scenario may hold together (memory guard: 2·10⁸
+/// samples are about 5 GB of columns).
+pub const MAX_TOTAL_SAMPLES: f64 = 2.0e8;
+
+/// Most revolutions per rate point.
+const MAX_REVOLUTIONS: usize = 10_000;
+
+/// Largest magnitude of a probe length in a scenario (offset, noise σ, sleeve harmonic), µm:
+/// a kilometre, far beyond any probe, and small enough that no sum of them overflows.
+const MAX_LENGTH_UM: f64 = 1e9;
+
+/// A closed-loop simulation scenario: a centrifuge with spindle error motion, a displacement
+/// probe on its sleeve and a PIGA on its arm, run at a list of rates.
+///
+/// Every number carries its unit in its name. See `docs/SIMULATION.md` for the file format.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// A short name, copied into `truth.json`.
+    pub name: String,
+    /// Seed of the random number generator: the same seed gives the same files.
+    pub seed: u64,
+    /// Working radius and site.
+    pub centrifuge: CentrifugeSpec,
+    /// Spindle error motion: coefficients (static + `C ω²`) or a physical imbalance (eq. 1–4).
+    pub error_motion: ErrorMotionSpec,
+    /// The displacement probe and its recordings.
+    pub probe: ProbeSpec,
+    /// The PIGA's coefficients (eq. 15) and the noise on its per-rate mean output.
+    pub piga: PigaSpec,
+    /// Spindle rates of the calibration, deg/s (strictly positive, distinct).
+    pub rates_deg_s: Vec<f64>,
+    /// Whole revolutions recorded by the probe at each rate (at least; see `min_duration_s`).
+    pub revolutions: usize,
+    /// Shortest recording, s: a rate records more whole revolutions than `revolutions` if that
+    /// is needed to last this long (default 0: exactly `revolutions` at every rate). Equal
+    /// durations give every rate the same number of samples, hence first harmonics of equal
+    /// variance, which is what an unweighted `C_r` fit assumes.
+    #[serde(default)]
+    pub min_duration_s: f64,
+}
+
+/// The centrifuge without its error motion (which has its own section).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CentrifugeSpec {
+    /// Static working radius R (PIGA centre of mass to the mean spindle axis), m.
+    pub radius_m: f64,
+    /// Latitude, Earth rate and gravity.
+    pub site: Site,
+}
+
+/// The displacement probe on the spindle sleeve.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    /// Heights from the tilt pivot to the probe plane and on to the PIGA plane, and the
+    /// probe's measuring direction (eq. 21–22).
+    pub lever: LeverGeometry,
+    /// Sampling rate, Hz.
+    pub sample_rate_hz: f64,
+    /// Standard deviation of the white Gaussian noise on each gap sample, µm (0: none).
+    pub noise_um: f64,
+    /// Mean gap `l0`, µm.
+    pub l0_um: f64,
+    /// Harmonics of the spindle angle from the sleeve's roundness and uneven stiffness
+    /// (orders 2 to 8), added to the gap.
+    #[serde(default)]
+    pub sleeve_harmonics: Vec<SleeveHarmonic>,
+    /// Write the spindle encoder's angle as a third column `angle_deg`.
+    #[serde(default)]
+    pub encoder_angle: bool,
+    /// Once-per-revolution ripple of the spindle speed, so that the angle does not advance
+    /// uniformly in time.
+    #[serde(default)]
+    pub speed_ripple: Option<SpeedRipple>,
+    /// Spindle angle at the first sample, deg from `O1X1`.
+    #[serde(default)]
+    pub start_angle_deg: f64,
+}
+
+/// One sleeve harmonic: `c_um·cos kθ + s_um·sin kθ` with `k = order`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SleeveHarmonic {
+    /// Order `k` (2 to 8).
+    pub order: usize,
+    /// Cosine coefficient, µm.
+    pub c_um: f64,
+    /// Sine coefficient, µm.
+    pub s_um: f64,
+}
+
+/// Once-per-revolution speed ripple: the spindle angle is
+/// `θ(t) = θ₀ + ωt + A·(sin(ωt + φ) − sin φ)`, so the instantaneous rate is
+/// `ω·(1 + A cos(ωt + φ))` and every revolution still takes `2π/ω`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedRipple {
+    /// Angle amplitude `A`, deg (below one radian, 57.29°, so that the angle keeps advancing).
+    pub amplitude_deg: f64,
+    /// Phase `φ`, deg.
+    pub phase_deg: f64,
+}
+
+/// The PIGA of the simulated calibration.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PigaSpec {
+    /// `k0…k3` of eq. 15.
+    pub coefficients: PigaCoefficients,
+    /// Standard deviation of the white Gaussian noise added to each per-rate mean output,
+    /// rad/s (0: noise-free).
+    #[serde(default)]
+    pub noise_rad_s: f64,
+}
+
+/// A scenario read from a file (or text) and validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadedScenario {
+    /// Where it came from (named in every later error).
+    pub path: PathBuf,
+    /// The validated scenario.
+    pub scenario: Scenario,
+    /// The error motion's coefficients (resolved from a physical imbalance if need be).
+    pub error_motion: ErrorMotion,
+}
+
+impl Scenario {
+    /// Reads and validates a scenario file.
+    ///
+    /// # Errors
+    /// [`SimulateError::Io`] when the file cannot be read, otherwise as [`Scenario::parse`].
+    pub fn load(path: &Path) -> Result<LoadedScenario> {
+        let text = std::fs::read_to_string(path).map_err(|source| SimulateError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses and validates RON text; `path` only names the source in errors.
+    ///
+    /// # Errors
+    /// [`SimulateError::Parse`] for malformed RON, an unknown or a missing field; otherwise as
+    /// [`Scenario::check`].
+    pub fn parse(text: &str, path: &Path) -> Result<LoadedScenario> {
+        let scenario: Self = ron::from_str(text).map_err(|e| SimulateError::Parse {
+            path: path.to_owned(),
+            line: e.span.start.line,
+            column: e.span.start.col,
+            message: e.code.to_string(),
+        })?;
+        scenario.check(path)
+    }
+
+    /// Validates a scenario built in code; `path` names it in errors.
+    ///
+    /// # Errors
+    /// [`SimulateError::InvalidField`] naming the field (e.g. `centrifuge.radius_m`,
+    /// `probe.sleeve_harmonics[1].order`) for a number outside its domain (probe lengths in
+    /// µm at most 1e9 in magnitude);
+    /// [`SimulateError::EmptyList`] for no rates; [`SimulateError::DuplicateRate`] for a rate
+    /// given twice; [`SimulateError::RecordingNameCollision`] for two rates that would share
+    /// a recording's file name; [`SimulateError::RateTooFast`] for a rate at which a
+    /// revolution holds fewer samples than the order-4 harmonic fit (with drift) needs;
+    /// [`SimulateError::Kinematics`] for a bad error motion; [`SimulateError::Harmonics`] for a
+    /// bad lever geometry.
+    pub fn check(self, path: &Path) -> Result<LoadedScenario> {
+        let error_motion = self.validate(path)?;
+        Ok(LoadedScenario {
+            path: path.to_owned(),
+            scenario: self,
+            error_motion,
+        })
+    }
+
+    /// Checks every field; returns the resolved error motion.
+    pub(crate) fn validate(&self, path: &Path) -> Result<ErrorMotion> {
+        let v = Validator { path };
+        let c = &self.centrifuge;
+        v.positive("centrifuge.radius_m", c.radius_m)?;
+        v.finite("centrifuge.site.latitude_deg", c.site.latitude_deg)?;
+        if !(-90.0..=90.0).contains(&c.site.latitude_deg) {
+            return Err(v.invalid(
+                "centrifuge.site.latitude_deg",
+                c.site.latitude_deg,
+                "must lie in [-90, 90]",
+            ));
+        }
+        v.finite("centrifuge.site.earth_rate_rad_s", c.site.earth_rate_rad_s)?;
+        v.positive("centrifuge.site.gravity_m_s2", c.site.gravity_m_s2)?;
+
+        let error_motion =
+            self.error_motion
+                .resolve()
+                .map_err(|source| SimulateError::Kinematics {
+                    path: path.to_owned(),
+                    field: "error_motion".to_owned(),
+                    source,
+                })?;
+
+        let p = &self.probe;
+        p.lever
+            .validate()
+            .map_err(|source| SimulateError::Harmonics {
+                path: path.to_owned(),
+                field: "probe.lever".to_owned(),
+                source,
+            })?;
+        v.positive("probe.sample_rate_hz", p.sample_rate_hz)?;
+        v.non_negative("probe.noise_um", p.noise_um)?;
+        v.length_um("probe.noise_um", p.noise_um)?;
+        v.length_um("probe.l0_um", p.l0_um)?;
+        v.finite("probe.start_angle_deg", p.start_angle_deg)?;
+        for (i, h) in p.sleeve_harmonics.iter().enumerate() {
+            let field = format!("probe.sleeve_harmonics[{i}]");
+            if !(2..=MAX_SLEEVE_ORDER).contains(&h.order) {
+                return Err(v.invalid(
+                    &format!("{field}.order"),
+                    h.order as f64,
+                    "a sleeve harmonic's order must lie in 2..=8",
+                ));
+            }
+            if p.sleeve_harmonics[..i].iter().any(|q| q.order == h.order) {
+                return Err(v.invalid(
+                    &format!("{field}.order"),
+                    h.order as f64,
+                    "this order appears twice",
+                ));
+            }
+            v.length_um(&format!("{field}.c_um"), h.c_um)?;
+            v.length_um(&format!("{field}.s_um"), h.s_um)?;
+        }
+        if let Some(r) = &p.speed_ripple {
+            v.finite("probe.speed_ripple.amplitude_deg", r.amplitude_deg)?;
+            if r.amplitude_deg.abs().to_radians() >= 1.0 {
+                return Err(v.invalid(
+                    "probe.speed_ripple.amplitude_deg",
+                    r.amplitude_deg,
+                    "must be below one radian (57.29°) in magnitude, so that the angle keeps advancing",
+                ));
+            }
+            v.finite("probe.speed_ripple.phase_deg", r.phase_deg)?;
+        }
+
+        let k = &self.piga.coefficients;
+        v.finite("piga.coefficients.k0_rad_s", k.k0_rad_s)?;
+        v.finite("piga.coefficients.k1_rad_s_g", k.k1_rad_s_g)?;
+        v.finite("piga.coefficients.k2_rad_s_g2", k.k2_rad_s_g2)?;
+        v.finite("piga.coefficients.k3_rad_s_g3", k.k3_rad_s_g3)?;
+        v.non_negative("piga.noise_rad_s", self.piga.noise_rad_s)?;
+
+        if self.rates_deg_s.is_empty() {
+            return Err(SimulateError::EmptyList {
+                path: path.to_owned(),
+                field: "rates_deg_s".to_owned(),
+            });
+        }
+        // Every revolution must hold enough samples for the paper's order-4 fit (with drift).
+        let min_samples = FitConfig {
+            drift: true,
+            ..FitConfig::default()
+        }
+        .min_samples();
+        for (i, &r) in self.rates_deg_s.iter().enumerate() {
+            let field = format!("rates_deg_s[{i}]");
+            if !(r.is_finite() && r > 0.0) {
+                return Err(v.invalid(&field, r, "a rate must be finite and > 0"));
+            }
+            let samples_per_revolution = p.sample_rate_hz * 360.0 / r;
+            if samples_per_revolution < min_samples as f64 {
+                return Err(SimulateError::RateTooFast {
+                    path: path.to_owned(),
+                    field,
+                    rate_deg_s: r,
+                    samples_per_revolution,
+                    need: min_samples,
+                    max_rate_deg_s: p.sample_rate_hz * 360.0 / min_samples as f64,
+                });
+            }
+            if let Some(j) = self.rates_deg_s[..i].iter().position(|&q| q == r) {
+                return Err(SimulateError::DuplicateRate {
+                    path: path.to_owned(),
+                    field,
+                    first: format!("rates_deg_s[{j}]"),
+                    rate_deg_s: r,
+                });
+            }
+            let name = recording_file_name(r);
+            if let Some(j) = self.rates_deg_s[..i]
+                .iter()
+                .position(|&q| recording_file_name(q) == name)
+            {
+                return Err(SimulateError::RecordingNameCollision {
+                    path: path.to_owned(),
+                    field,
+                    first: format!("rates_deg_s[{j}]"),
+                    rate_deg_s: r,
+                    first_rate_deg_s: self.rates_deg_s[j],
+                    file_name: name,
+                });
+            }
+        }
+
+        if self.revolutions == 0 || self.revolutions > MAX_REVOLUTIONS {
+            return Err(v.invalid(
+                "revolutions",
+                self.revolutions as f64,
+                "must lie in 1..=10000",
+            ));
+        }
+        v.non_negative("min_duration_s", self.min_duration_s)?;
+        if self
+            .rates_deg_s
+            .iter()
+            .any(|&r| self.revolutions_at(r) > MAX_REVOLUTIONS)
+        {
+            return Err(v.invalid(
+                "min_duration_s",
+                self.min_duration_s,
+                "needs more than 10000 revolutions at the fastest rate",
+            ));
+        }
+        // The fastest rate has the fewest samples per revolution; they must resolve the
+        // highest sleeve harmonic (more than two samples per period of it).
+        let fastest = self.rates_deg_s.iter().copied().fold(0.0, f64::max);
+        let highest = p
+            .sleeve_harmonics
+            .iter()
+            .map(|h| h.order)
+            .max()
+            .unwrap_or(1);
+        let per_rev_fastest = p.sample_rate_hz * 360.0 / fastest;
+        if per_rev_fastest <= (2 * highest + 2) as f64 {
+            return Err(v.invalid(
+                "probe.sample_rate_hz",
+                p.sample_rate_hz,
+                "too low: the fastest rate needs more than 2·(highest harmonic) + 2 samples per revolution",
+            ));
+        }
+        let total: f64 = self
+            .rates_deg_s
+            .iter()
+            .map(|&r| p.sample_rate_hz * 360.0 / r * self.revolutions_at(r) as f64)
+            .sum();
+        if total > MAX_TOTAL_SAMPLES {
+            return Err(v.invalid(
+                "revolutions",
+                self.revolutions as f64,
+                "the recordings would hold more than 2e8 samples; lower revolutions, min_duration_s or sample_rate_hz",
+            ));
+        }
+        Ok(error_motion)
+    }
+
+    /// Whole revolutions recorded at `rate_deg_s`: `revolutions`, or more if needed to last
+    /// `min_duration_s` (a duration within 1e-9 of a whole number of turns counts as that
+    /// number).
+    ///
+    /// ```
+    /// # let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/scenarios/post-balance.ron")).unwrap();
+    /// let mut s = simulate::Scenario::parse(&text, std::path::Path::new("post-balance.ron"))?.scenario;
+    /// s.revolutions = 2;
+    /// s.min_duration_s = 72.0;
+    /// assert_eq!(s.revolutions_at(10.0), 2);    // 36 s per turn
+    /// assert_eq!(s.revolutions_at(100.0), 20);  // 3.6 s per turn
+    /// assert_eq!(s.revolutions_at(200.1234), 41);
+    /// # Ok::<(), simulate::SimulateError>(())
+    /// ```
+    #[must_use]
+    pub fn revolutions_at(&self, rate_deg_s: f64) -> usize {
+        let turns = self.min_duration_s * rate_deg_s / 360.0;
+        let needed = if (turns - turns.round()).abs() < 1e-9 {
+            turns.round()
+        } else {
+            turns.ceil()
+        };
+        // `as` saturates; validation bounds the result
+        self.revolutions.max(needed as usize)
+    }
+}
+
+/// The file name of the probe recording at `rate_deg_s`: `probe_010.0000deg_s.csv`
+/// (four decimals, zero-padded to three integer digits).
+///
+/// ```
+/// assert_eq!(simulate::recording_file_name(10.0), "probe_010.0000deg_s.csv");
+/// assert_eq!(simulate::recording_file_name(200.1234), "probe_200.1234deg_s.csv");
+/// ```
+#[must_use]
+pub fn recording_file_name(rate_deg_s: f64) -> String {
+    format!("probe_{rate_deg_s:08.4}deg_s.csv")
+}
+
+/// Field checks that name the file and the field.
+struct Validator<'a> {
+    path: &'a Path,
+}
+
+impl Validator<'_> {
+    fn invalid(&self, field: &str, value: f64, reason: &'static str) -> SimulateError {
+        SimulateError::InvalidField {
+            path: self.path.to_owned(),
+            field: field.to_owned(),
+            value,
+            reason,
+        }
+    }
+
+    fn finite(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() {
+            Ok(())
+        } else {
+            Err(self.invalid(field, value, "must be finite"))
+        }
+    }
+
+    fn positive(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(self.invalid(field, value, "must be finite and > 0"))
+        }
+    }
+
+    /// A length in µm: finite and at most [`MAX_LENGTH_UM`] in magnitude, so that sums of
+    /// such lengths in a recording stay finite.
+    fn length_um(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value.abs() <= MAX_LENGTH_UM {
+            Ok(())
+        } else {
+            Err(self.invalid(
+                field,
+                value,
+                "must be finite and at most 1e9 µm in magnitude",
+            ))
+        }
+    }
+
+    fn non_negative(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(())
+        } else {
+            Err(self.invalid(field, value, "must be finite and >= 0"))
+        }
+    }
+}

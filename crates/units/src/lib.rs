@@ -1,0 +1,33 @@
+//! Unit conversions of centrifuge-cal: the one place where deg/s become rad/s and µm become m.
+//!
+//! Every crate that converts a configured or reported quantity calls these `const fn`s, so a
+//! conversion factor exists once in the workspace.
+
+use std::f64::consts::PI;
+
+/// Degrees per second to radians per second.
+pub const fn deg_s_to_rad_s(rate_deg_s: f64) -> f64 {
+    rate_deg_s * (PI / 180.0)
+}
+
+/// Micrometres to metres.
+pub const fn um_to_m(length_um: f64) -> f64 {
+    length_um / 1e6
+}
+
+/// Metres to micrometres.
+pub const fn m_to_um(length_m: f64) -> f64 {
+    length_m * 1e6
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn conversions() {
+        assert_eq!(deg_s_to_rad_s(180.0), PI);
+        assert_eq!(um_to_m(2.5), 2.5e-6);
+        assert!((m_to_um(um_to_m(5.598)) - 5.598).abs() < 1e-15);
+    }
+}
