@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use anyhow::{Context as _, bail};
 use clap::Args;
-use pipeline::StudyConfig;
 use report::Expected;
 
 use crate::paths;
@@ -32,7 +31,7 @@ impl Regress {
                 )
             })?,
         };
-        let results = pipeline::run(&StudyConfig::load(&config)?)?;
+        let results = pipeline::run(&pipeline::load_study(&config)?)?;
         let outcomes = Expected::load(&expected_path)?.compare(&results)?;
         let mut failed = 0;
         for o in &outcomes {

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use clap::Args;
-use pipeline::{Progress, StudyConfig, StudyResults};
+use pipeline::{Progress, StudyResults};
 use report::Expected;
 
 use crate::paths;
@@ -31,7 +31,7 @@ impl Study {
     pub(crate) fn run(&self) -> anyhow::Result<()> {
         let config = self.config.clone().unwrap_or_else(paths::paper_study);
         let out = self.out.clone().unwrap_or_else(paths::study_out);
-        let study = StudyConfig::load(&config)?;
+        let study = pipeline::load_study(&config)?;
         let bar = indicatif::ProgressBar::hidden();
         let results = pipeline::run_with_progress(&study, &|event| match event {
             Progress::Recordings { total } => {

@@ -1,18 +1,16 @@
-//! The study configuration, read from RON.
+//! The study file's format: data-transfer types read from RON (`docs/CONFIGURATION.md`).
 //!
-//! A study names the centrifuge geometry, the PIGA scale factor, gravity, the radius-error
-//! model, and for the pre- and post-balance phases the rate points with what was measured at
-//! each. See `docs/CONFIGURATION.md` for the file format.
+//! These types define the file format and nothing else: they hold what the file says,
+//! unvalidated. [`crate::Inputs::new`] turns them into the validated inputs of a study; the
+//! library types (`harmonics::LeverGeometry`, `harmonics::FitConfig`, `identify::RadiusModel`)
+//! are built there, so renaming a library field cannot change the file format.
 
 use std::path::{Path, PathBuf};
 
-use harmonics::LeverGeometry;
-use identify::RadiusModel;
+use recording::RecordingFormat;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
-use crate::mechanism::MechanismConfig;
-use crate::probe_analysis::RecordingSet;
 
 /// A whole study: one centrifuge, one PIGA, a pre- and a post-balance phase.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -27,10 +25,10 @@ pub struct StudyConfig {
     /// PIGA scale factor `k1`, rad/(s·g).
     pub k1_rad_s_g: f64,
     /// Heights that carry the probe's first harmonic to the PIGA plane, and the probe direction.
-    pub lever: LeverGeometry,
+    pub lever: LeverConfig,
     /// Model of the radius error against rate (default: the paper's `a + C_r·ω²`).
-    #[serde(default = "default_model")]
-    pub radius_model: RadiusModel,
+    #[serde(default)]
+    pub radius_model: RadiusModelName,
     /// The phase measured before balancing.
     pub pre_balance: PhaseConfig,
     /// The phase measured after balancing.
@@ -41,8 +39,40 @@ pub struct StudyConfig {
     pub mechanism: Option<MechanismConfig>,
 }
 
-const fn default_model() -> RadiusModel {
-    RadiusModel::TwoTerm
+/// The probe's lever geometry (eq. 22): heights in mm and the measuring direction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LeverConfig {
+    /// Height from the tilt pivot to the probe plane, mm.
+    pub pivot_to_probe_mm: f64,
+    /// Height from the probe plane to the PIGA centre-of-mass plane, mm.
+    pub probe_to_piga_mm: f64,
+    /// The probe's measuring direction (default: against O1X1, the paper's set-up).
+    #[serde(default)]
+    pub probe_direction: ProbeDirectionName,
+}
+
+/// Direction in which the displacement probe measures, relative to the sleeve axis O1X1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum ProbeDirectionName {
+    /// Against O1X1 (the paper's set-up, Fig. 3).
+    #[default]
+    #[serde(rename = "against_o1_x1")]
+    AgainstO1X1,
+    /// Along O1X1.
+    #[serde(rename = "along_o1_x1")]
+    AlongO1X1,
+}
+
+/// A radius-error model, as the study file and `results.json` name it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RadiusModelName {
+    /// `Δr = a + C_r·ω²`, the paper's model.
+    #[default]
+    TwoTerm,
+    /// `Δr = a + b·ω + C_r·ω²`.
+    ThreeTerm,
 }
 
 /// The measurements of one phase (pre- or post-balance).
@@ -63,9 +93,9 @@ pub enum Weighting {
     /// Ordinary least squares: every point counts the same (the paper's fit).
     #[default]
     Unweighted,
-    /// Each point weighted by `1/σ²` of its radius error, σ from the spread of its
-    /// recording's per-revolution first harmonics (recordings with ≥ 2 revolutions only).
-    /// Right when the rates were recorded with different numbers of samples or noise.
+    /// Each point weighted by `1/σ²` of its radius error, σ from its recording's per-revolution
+    /// fit residuals (recordings only). Right when the rates were recorded with different
+    /// numbers of samples or noise.
     InverseVariance,
 }
 
@@ -113,201 +143,119 @@ pub struct RadiusPoint {
     pub radius_error_um: f64,
 }
 
-/// A configuration that was read from a file and validated.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LoadedStudy {
-    /// The file it came from (named in every later error).
-    pub path: PathBuf,
-    /// The validated configuration.
-    pub config: StudyConfig,
+/// Probe recordings of one phase, one file per rate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordingSet {
+    /// Layout of the files (columns, units, delimiter); defaults to `time_s,gap_um[,angle_deg]`.
+    #[serde(default)]
+    pub format: RecordingFormat,
+    /// Settings of the per-revolution fit (order 4 by default, as in the paper).
+    #[serde(default)]
+    pub fit: FitSettings,
+    /// Angle of each recording's first sample from O1X1, deg, used when a file has no encoder
+    /// column (default 0).
+    #[serde(default)]
+    pub start_angle_deg: f64,
+    /// The recordings.
+    pub files: Vec<RecordingPoint>,
+}
+
+/// Settings of the per-revolution harmonic fit (eq. 20).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FitSettings {
+    /// Highest Fourier order fitted (1 to 8; the paper uses 4).
+    pub order: usize,
+    /// Also fit a linear drift in time within each revolution.
+    pub drift: bool,
+    /// Use only the first this many complete revolutions (all when absent).
+    pub revolutions: Option<usize>,
+    /// Largest interval between samples, in nominal (median) sample intervals, before the
+    /// recording is refused as having a gap.
+    pub max_gap_intervals: f64,
+}
+
+impl Default for FitSettings {
+    fn default() -> Self {
+        let d = harmonics::FitConfig::default();
+        Self {
+            order: d.order,
+            drift: d.drift,
+            revolutions: d.revolutions,
+            max_gap_intervals: d.max_gap_intervals,
+        }
+    }
+}
+
+/// One recording and the rate it was taken at.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordingPoint {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// The CSV file, relative to the configuration file's folder unless absolute.
+    pub file: PathBuf,
+}
+
+/// The mechanism section (`mechanism: (...)` in the study file): a PIGA calibration simulated
+/// through the exact chain with the C_r each phase measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MechanismConfig {
+    /// PIGA bias k0 of the simulated instrument, rad/s (k1 is the study's `k1_rad_s_g`).
+    #[serde(default)]
+    pub k0_rad_s: f64,
+    /// True second-order coefficient k2, rad/(s·g²).
+    pub k2_rad_s_g2: f64,
+    /// Third-order coefficient k3, rad/(s·g³).
+    #[serde(default)]
+    pub k3_rad_s_g3: f64,
+    /// Latitude of the centrifuge, degrees (default 45).
+    #[serde(default = "default_latitude")]
+    pub latitude_deg: f64,
+    /// Earth rotation rate, rad/s (default `kinematics::EARTH_RATE_RAD_S`).
+    #[serde(default = "default_earth_rate")]
+    pub earth_rate_rad_s: f64,
+    /// Calibration rates, deg/s: at least seven distinct (six unknowns and a residual degree
+    /// of freedom).
+    pub rates_deg_s: Vec<f64>,
+    /// Standard deviation of the noise added to each per-rate mean output, rad/s (default 0:
+    /// noise-free).
+    #[serde(default)]
+    pub output_noise_rad_s: f64,
+    /// Seed of the output noise.
+    #[serde(default)]
+    pub seed: u64,
+}
+
+const fn default_latitude() -> f64 {
+    45.0
+}
+
+const fn default_earth_rate() -> f64 {
+    kinematics::EARTH_RATE_RAD_S
 }
 
 impl StudyConfig {
-    /// Reads and validates a study configuration.
-    pub fn load(path: &Path) -> Result<LoadedStudy> {
-        let text = std::fs::read_to_string(path).map_err(|source| PipelineError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Self::parse(&text, path)
-    }
-
-    /// Parses and validates RON text; `path` is only used to name the source in errors.
-    pub fn parse(text: &str, path: &Path) -> Result<LoadedStudy> {
-        // Optional sections are written without `Some(...)`.
+    /// Parses RON text into the file's data-transfer types, unvalidated; `path` only names the
+    /// source in errors. Optional sections are written without `Some(...)`.
+    pub fn from_ron(text: &str, path: &Path) -> Result<Self> {
         let options = ron::Options::default()
             .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-        let config: StudyConfig = options.from_str(text).map_err(|e| PipelineError::Parse {
+        options.from_str(text).map_err(|e| PipelineError::Parse {
             path: path.to_owned(),
             line: e.span.start.line,
             column: e.span.start.col,
             message: e.code.to_string(),
-        })?;
-        config.validate(path)?;
-        Ok(LoadedStudy {
-            path: path.to_owned(),
-            config,
         })
-    }
-
-    /// Checks every number's domain, the rates' uniqueness and the number of points.
-    pub fn validate(&self, path: &Path) -> Result<()> {
-        let invalid = |field: String, value: f64, reason| PipelineError::InvalidField {
-            path: path.to_owned(),
-            field,
-            value,
-            reason,
-        };
-        let positive = |field: &str, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(invalid(field.to_owned(), value, "must be finite and > 0"))
-            }
-        };
-        positive("radius_m", self.radius_m)?;
-        positive("g_m_s2", self.g_m_s2)?;
-        positive("k1_rad_s_g", self.k1_rad_s_g)?;
-        self.lever
-            .validate()
-            .map_err(|source| PipelineError::Harmonics {
-                path: path.to_owned(),
-                field: "lever".to_owned(),
-                source,
-            })?;
-        for (name, phase) in [
-            ("pre_balance", &self.pre_balance),
-            ("post_balance", &self.post_balance),
-        ] {
-            phase.validate(name, self.radius_model, path)?;
-        }
-        if let Some(mechanism) = &self.mechanism {
-            mechanism.validate(path)?;
-        }
-        Ok(())
-    }
-}
-
-impl PhaseConfig {
-    fn validate(&self, section: &str, model: RadiusModel, path: &Path) -> Result<()> {
-        let invalid = |field: String, value: f64, reason| PipelineError::InvalidField {
-            path: path.to_owned(),
-            field,
-            value,
-            reason,
-        };
-        let finite = |field: String, value: f64| {
-            if value.is_finite() {
-                Ok(())
-            } else {
-                Err(invalid(field, value, "must be finite"))
-            }
-        };
-        let rate = |field: String, value: f64| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(invalid(field, value, "a rate must be finite and > 0"))
-            }
-        };
-        let list = format!("{section}.points");
-        if self.weighting == Weighting::InverseVariance
-            && !matches!(self.points, Points::Recordings(_))
-        {
-            return Err(PipelineError::Unsupported {
-                path: path.to_owned(),
-                field: format!("{section}.weighting"),
-                reason: "inverse_variance weighting needs points given as recordings",
-            });
-        }
-        let rates: Vec<f64> = match &self.points {
-            Points::FirstHarmonic(points) => {
-                for (i, p) in points.iter().enumerate() {
-                    rate(format!("{list}[{i}].rate_deg_s"), p.rate_deg_s)?;
-                    finite(format!("{list}[{i}].dc1_um"), p.dc1_um)?;
-                    finite(format!("{list}[{i}].ds1_um"), p.ds1_um)?;
-                }
-                points.iter().map(|p| p.rate_deg_s).collect()
-            }
-            Points::RadiusError(points) => {
-                for (i, p) in points.iter().enumerate() {
-                    rate(format!("{list}[{i}].rate_deg_s"), p.rate_deg_s)?;
-                    finite(format!("{list}[{i}].radius_error_um"), p.radius_error_um)?;
-                }
-                points.iter().map(|p| p.rate_deg_s).collect()
-            }
-            Points::Recordings(set) => {
-                if set.files.is_empty() {
-                    return Err(PipelineError::EmptyList {
-                        path: path.to_owned(),
-                        field: format!("{list}.files"),
-                    });
-                }
-                set.fit
-                    .validate()
-                    .map_err(|source| PipelineError::Harmonics {
-                        path: path.to_owned(),
-                        field: format!("{list}.fit"),
-                        source,
-                    })?;
-                finite(format!("{list}.start_angle_deg"), set.start_angle_deg)?;
-                for (i, p) in set.files.iter().enumerate() {
-                    rate(format!("{list}.files[{i}].rate_deg_s"), p.rate_deg_s)?;
-                }
-                set.files.iter().map(|p| p.rate_deg_s).collect()
-            }
-            Points::RadiusChange {
-                from_rate_deg_s,
-                to_rate_deg_s,
-                change_um,
-            } => {
-                rate(format!("{list}.from_rate_deg_s"), *from_rate_deg_s)?;
-                rate(format!("{list}.to_rate_deg_s"), *to_rate_deg_s)?;
-                finite(format!("{list}.change_um"), *change_um)?;
-                if from_rate_deg_s == to_rate_deg_s {
-                    return Err(PipelineError::DuplicateRate {
-                        path: path.to_owned(),
-                        field: format!("{list}.to_rate_deg_s"),
-                        first: format!("{list}.from_rate_deg_s"),
-                        rate_deg_s: *to_rate_deg_s,
-                    });
-                }
-                return Ok(());
-            }
-        };
-        let items = match &self.points {
-            Points::Recordings(_) => format!("{list}.files"),
-            _ => list.clone(),
-        };
-        for (i, r) in rates.iter().enumerate() {
-            if let Some(j) = rates[..i].iter().position(|q| q == r) {
-                return Err(PipelineError::DuplicateRate {
-                    path: path.to_owned(),
-                    field: format!("{items}[{i}].rate_deg_s"),
-                    first: format!("{items}[{j}].rate_deg_s"),
-                    rate_deg_s: *r,
-                });
-            }
-        }
-        // One point more than the unknowns, so that the fit has a standard error.
-        let need = model.unknowns() + 1;
-        if rates.len() < need {
-            return Err(PipelineError::TooFewPoints {
-                path: path.to_owned(),
-                field: list,
-                got: rates.len(),
-                need,
-                model: model_name(model),
-            });
-        }
-        Ok(())
     }
 }
 
 /// A human name of a radius-error model.
-pub const fn model_name(model: RadiusModel) -> &'static str {
+pub const fn model_name(model: RadiusModelName) -> &'static str {
     match model {
-        RadiusModel::TwoTerm => "a + C_r·ω²",
-        RadiusModel::ThreeTerm => "a + b·ω + C_r·ω²",
+        RadiusModelName::TwoTerm => "a + C_r·ω²",
+        RadiusModelName::ThreeTerm => "a + b·ω + C_r·ω²",
     }
 }

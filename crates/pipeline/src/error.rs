@@ -10,7 +10,7 @@ use std::path::PathBuf;
 #[non_exhaustive]
 pub enum PipelineError {
     /// The file could not be read or written.
-    #[error("{}: {source}", path.display())]
+    #[error("{}", path.display())]
     Io {
         /// The file concerned.
         path: PathBuf,
@@ -39,7 +39,7 @@ pub enum PipelineError {
         /// The value given.
         value: f64,
         /// What is wrong with it.
-        reason: &'static str,
+        reason: InvalidReason,
     },
     /// Two points of one phase share a rate.
     #[error("{}: field `{field}`: rate {rate_deg_s} deg/s appears twice (first at `{first}`)", path.display())]
@@ -69,7 +69,7 @@ pub enum PipelineError {
         model: &'static str,
     },
     /// The least-squares identification failed.
-    #[error("{}: `{field}`: {source}", path.display())]
+    #[error("{}: `{field}`", path.display())]
     Identify {
         /// The file concerned.
         path: PathBuf,
@@ -79,7 +79,7 @@ pub enum PipelineError {
         source: identify::IdentifyError,
     },
     /// The harmonic geometry was refused.
-    #[error("{}: `{field}`: {source}", path.display())]
+    #[error("{}: `{field}`", path.display())]
     Harmonics {
         /// The file concerned.
         path: PathBuf,
@@ -97,7 +97,7 @@ pub enum PipelineError {
         field: String,
     },
     /// The kinematic chain (or the error motion it is built from) was refused.
-    #[error("{}: `{field}`: {source}", path.display())]
+    #[error("{}: `{field}`", path.display())]
     Kinematics {
         /// The file concerned.
         path: PathBuf,
@@ -107,7 +107,7 @@ pub enum PipelineError {
         source: kinematics::Error,
     },
     /// The PIGA model was refused.
-    #[error("{}: `{field}`: {source}", path.display())]
+    #[error("{}: `{field}`", path.display())]
     AccelModel {
         /// The file concerned.
         path: PathBuf,
@@ -117,7 +117,7 @@ pub enum PipelineError {
         source: accel_model::Error,
     },
     /// A probe recording named by the configuration could not be read or analysed.
-    #[error("{}: `{field}`: {source}", path.display())]
+    #[error("{}: `{field}`", path.display())]
     Recording {
         /// The configuration file.
         path: PathBuf,
@@ -135,8 +135,94 @@ pub enum PipelineError {
         /// The setting.
         field: String,
         /// Why it cannot be used.
-        reason: &'static str,
+        reason: UnsupportedReason,
     },
+    /// A file is larger than its format allows; it was not read.
+    #[error("{}: larger than {max_bytes} bytes, the limit for this kind of file", path.display())]
+    TooLarge {
+        /// The file concerned.
+        path: PathBuf,
+        /// The limit.
+        max_bytes: u64,
+    },
+    /// A text file is not UTF-8.
+    #[error("{}: not UTF-8 text (first invalid byte at offset {byte})", path.display())]
+    NotUtf8 {
+        /// The file concerned.
+        path: PathBuf,
+        /// Offset of the first invalid byte.
+        byte: usize,
+    },
+    /// Several errors, each complete, in the configuration's order.
+    #[error("{} errors:{}", errors.len(), list(errors))]
+    Several {
+        /// The errors.
+        errors: Vec<PipelineError>,
+    },
+}
+
+/// Why a field's value is outside its domain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InvalidReason {
+    /// The value must be finite.
+    #[error("must be finite")]
+    NotFinite,
+    /// The value must be finite and positive.
+    #[error("must be finite and > 0")]
+    NotPositive,
+    /// The value must be finite and not negative.
+    #[error("must be finite and ≥ 0")]
+    Negative,
+    /// A rate must be finite and positive.
+    #[error("a rate must be finite and > 0")]
+    RateNotPositive,
+    /// A latitude must be finite and within ±90°.
+    #[error("must be finite and within ±90")]
+    NotALatitude,
+}
+
+/// Why a setting cannot be used with the rest of the configuration or data.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum UnsupportedReason {
+    /// Inverse-variance weighting needs each point's σ, which only recordings give.
+    #[error("inverse_variance weighting needs points given as recordings")]
+    WeightingNeedsRecordings,
+    /// A recording's harmonic fit left no residual, so it has no σ to weigh it by.
+    #[error(
+        "inverse_variance weighting needs a standard error for every recording, and this one's \
+         harmonic fit has no residual (noise-free data?)"
+    )]
+    NoStandardError,
+}
+
+impl PipelineError {
+    /// `Ok` for no error, the error itself for one, [`PipelineError::Several`] for more.
+    pub(crate) fn from_list(mut errors: Vec<Self>) -> Result<()> {
+        match errors.len() {
+            0 => Ok(()),
+            1 => Err(errors.remove(0)),
+            _ => Err(Self::Several { errors }),
+        }
+    }
+}
+
+/// The errors of a list, in the configuration's order, one per line.
+fn list(errors: &[PipelineError]) -> String {
+    use std::error::Error as _;
+    let mut out = String::new();
+    for e in errors {
+        out.push_str("\n  ");
+        out.push_str(&e.to_string());
+        let mut cause = e.source();
+        while let Some(c) = cause {
+            out.push_str(": ");
+            out.push_str(&c.to_string());
+            cause = c.source();
+        }
+    }
+    out
 }
 
 /// Result alias of this crate.

@@ -22,7 +22,7 @@
 //!         (rate_deg_s: 200.0, radius_error_um: 0.6),
 //!     ])),
 //! )"#;
-//! let study = pipeline::StudyConfig::parse(text, Path::new("example.ron"))?;
+//! let study = pipeline::parse_study(text, Path::new("example.ron"))?;
 //! let results = pipeline::run(&study)?;
 //! assert!(results.post_balance.fit.c_r_m_s2 < 0.0);
 //! assert!(results.pre_balance.fit.c_r_m_s2 > 0.0);
@@ -35,17 +35,24 @@
 
 mod config;
 mod error;
+mod inputs;
+mod load;
 mod mechanism;
 mod probe_analysis;
 mod results;
 mod study;
 
 pub use config::{
-    HarmonicPoint, LoadedStudy, PhaseConfig, Points, RadiusPoint, StudyConfig, Weighting,
-    model_name,
+    FitSettings, HarmonicPoint, LeverConfig, MechanismConfig, PhaseConfig, Points,
+    ProbeDirectionName, RadiusModelName, RadiusPoint, RecordingPoint, RecordingSet, StudyConfig,
+    Weighting, model_name,
 };
-pub use error::{PipelineError, Result};
-pub use mechanism::{MechanismConfig, MechanismPhase, MechanismResults};
-pub use probe_analysis::{ProbeTrace, Progress, RecordingPoint, RecordingSet};
-pub use results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
+pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
+pub use inputs::{Inputs, RecordingLoader};
+pub use load::{MAX_STUDY_BYTES, load_study, parse_study};
+pub use probe_analysis::Progress;
+pub use results::{
+    MechanismPhase, MechanismResults, ModelFit, PhaseResults, PigaResult, PointResult, ProbeTrace,
+    StudyInputs, StudyResults,
+};
 pub use study::{run, run_with_progress};

@@ -1,45 +1,18 @@
-//! A phase given as probe recordings: each file is loaded, fitted per revolution (eq. 20) and
+//! A phase given as probe recordings: each recording is fitted per revolution (eq. 20) and
 //! reduced to its mean first harmonic with its standard error (eq. 21), ready for the
 //! geometry of eq. 22.
 
 use std::f64::consts::TAU;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use harmonics::{Coefficients, FitConfig};
+use harmonics::Coefficients;
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
-
-use crate::error::{PipelineError, Result};
-use recording::{Recording, RecordingFormat, analyze_recording, load_recording};
+use recording::{Recording, analyze_recording};
 use units::deg_s_to_rad_s;
 
-/// Probe recordings of one phase, one file per rate.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RecordingSet {
-    /// Layout of the files (columns, units, delimiter); defaults to `time_s,gap_um[,angle_deg]`.
-    #[serde(default)]
-    pub format: RecordingFormat,
-    /// Settings of the per-revolution fit (order 4 by default, as in the paper).
-    #[serde(default)]
-    pub fit: FitConfig,
-    /// Angle of each recording's first sample from O1X1, deg, used when a file has no encoder
-    /// column (default 0).
-    #[serde(default)]
-    pub start_angle_deg: f64,
-    /// The recordings.
-    pub files: Vec<RecordingPoint>,
-}
-
-/// One recording and the rate it was taken at.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RecordingPoint {
-    /// Spindle rate, deg/s.
-    pub rate_deg_s: f64,
-    /// The CSV file, relative to the configuration file's folder unless absolute.
-    pub file: PathBuf,
-}
+use crate::error::{PipelineError, Result};
+use crate::inputs::RecordingPhase;
+use crate::results::ProbeTrace;
 
 /// What a study reports of progress, for a command line to show.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,52 +46,35 @@ pub(crate) struct ProbeHarmonic {
     pub(crate) trace: ProbeTrace,
 }
 
-/// One revolution of a recording and the fitted eq. 20 curve: the paper's Fig. 4.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct ProbeTrace {
-    /// Rate, deg/s.
-    pub rate_deg_s: f64,
-    /// Spindle angle of each shown sample, deg in [0, 360).
-    pub angle_deg: Vec<f64>,
-    /// Gap of each shown sample, µm.
-    pub gap_um: Vec<f64>,
-    /// Mean fitted coefficients over the revolutions used, µm.
-    pub fit_um: Option<Coefficients>,
-}
-
 /// Most samples drawn per trace (the revolution is decimated evenly beyond this).
 const MAX_TRACE_POINTS: usize = 1500;
 
-/// The folder that relative recording paths are resolved against.
-fn base_dir(config_path: &Path) -> &Path {
-    config_path.parent().unwrap_or_else(|| Path::new("."))
-}
-
-/// Analyses every recording of a phase, in parallel, in the configuration's order.
-pub(crate) fn analyse(
-    set: &RecordingSet,
+/// Analyses every recording of a phase, in parallel; every failure is reported, in the
+/// configuration's order.
+pub(crate) fn analyze(
+    set: &RecordingPhase,
     section: &str,
     config_path: &Path,
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<Vec<ProbeHarmonic>> {
-    let base = base_dir(config_path);
-    set.files
+    let results: Vec<Result<ProbeHarmonic>> = set
+        .files
         .par_iter()
         .enumerate()
         .map(|(i, point)| {
-            let file = base.join(&point.file);
             let recording_error = |source| PipelineError::Recording {
                 path: config_path.to_owned(),
                 field: format!("{section}.points.files[{i}]"),
                 source: Box::new(source),
             };
-            let recording = load_recording(&file, &set.format).map_err(recording_error)?;
+            let recording = &point.recording;
+            let file = &point.file;
             let rate_rad_s = deg_s_to_rad_s(point.rate_deg_s);
-            let start_angle_rad = set.start_angle_deg.to_radians();
-            let analysis = analyze_recording(&recording, rate_rad_s, start_angle_rad, &set.fit)
+            let start_angle_rad = set.start_angle_rad;
+            let analysis = analyze_recording(recording, rate_rad_s, start_angle_rad, &set.fit)
                 .map_err(recording_error)?;
             progress(Progress::RecordingDone {
-                path: &file,
+                path: file,
                 samples: recording.len(),
             });
             let um = recording.gap_unit.um_per_unit();
@@ -149,7 +105,7 @@ pub(crate) fn analyse(
                 residual_rms_um: pooled.sqrt() * um,
                 dc1_noise_sigma_um: noise_sigma * um,
                 trace: trace(
-                    &recording,
+                    recording,
                     point.rate_deg_s,
                     rate_rad_s,
                     start_angle_rad,
@@ -161,7 +117,17 @@ pub(crate) fn analyse(
                 ),
             })
         })
-        .collect()
+        .collect();
+    let mut harmonics = Vec::with_capacity(results.len());
+    let mut errors = Vec::new();
+    for result in results {
+        match result {
+            Ok(h) => harmonics.push(h),
+            Err(e) => errors.push(e),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    Ok(harmonics)
 }
 
 /// The first fitted revolution's samples, decimated, against the absolute spindle angle.

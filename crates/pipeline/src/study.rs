@@ -1,67 +1,94 @@
 //! Orchestration: per-point geometry (eq. 21–22), the radius-error fit and Δk2 (eq. 19).
+//!
+//! Everything here computes on [`Inputs`]; nothing touches the file system.
 
 use std::path::Path;
 
 use harmonics::FirstHarmonic;
 use identify::RadiusModel;
-
-use crate::config::{LoadedStudy, PhaseConfig, Points, StudyConfig, Weighting};
-use crate::error::{PipelineError, Result};
-use crate::mechanism;
-use crate::probe_analysis::{self, ProbeTrace, Progress};
-use crate::results::{ModelFit, PhaseResults, PointResult, StudyInputs, StudyResults};
 use units::{deg_s_to_rad_s, m_to_um, um_to_m};
 
-/// Runs a loaded study: both phases, each with its per-point geometry, its radius-error fit
-/// and the pseudo-second-order error `Δk2` it implies.
+use crate::config::{RadiusModelName, Weighting};
+use crate::error::{PipelineError, Result, UnsupportedReason};
+use crate::inputs::{Inputs, Phase, PhaseData, radius_model};
+use crate::mechanism::{self, Geometry, MeasuredDrift, PhaseFailure};
+use crate::probe_analysis::{self, Progress};
+use crate::results::{
+    MechanismResults, ModelFit, PhaseResults, PigaResult, PointResult, ProbeTrace, StudyInputs,
+    StudyResults,
+};
+
+/// Runs a study: both phases, each with its per-point geometry, its radius-error fit and the
+/// pseudo-second-order error `Δk2` it implies, and the mechanism section when configured.
 ///
-/// The computation reads only the configuration (and the recordings it names); published
-/// values are never consulted.
-pub fn run(study: &LoadedStudy) -> Result<StudyResults> {
-    run_with_progress(study, &|_| {})
+/// The computation reads only the inputs; published values are never consulted.
+pub fn run(inputs: &Inputs) -> Result<StudyResults> {
+    run_with_progress(inputs, &|_| {})
 }
 
 /// [`run`], reporting progress through `progress` (called from several threads while
 /// recordings are analysed in parallel).
 pub fn run_with_progress(
-    study: &LoadedStudy,
+    inputs: &Inputs,
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<StudyResults> {
-    let config = &study.config;
-    let path = study.path.as_path();
-    let lever_ratio = config
-        .lever
-        .lever_ratio()
-        .map_err(|source| PipelineError::Harmonics {
-            path: path.to_owned(),
-            field: "lever".to_owned(),
-            source,
-        })?;
-    let total = [&config.pre_balance, &config.post_balance]
+    let _study = tracing::info_span!("study", name = %inputs.name).entered();
+    let total = [&inputs.pre_balance, &inputs.post_balance]
         .iter()
-        .map(|phase| match &phase.points {
-            Points::Recordings(set) => set.files.len(),
+        .map(|phase| match &phase.data {
+            PhaseData::Recordings(set) => set.files.len(),
             _ => 0,
         })
         .sum();
     if total > 0 {
         progress(Progress::Recordings { total });
     }
-    let run = |phase, section| run_phase(config, phase, section, path, lever_ratio, progress);
-    let pre_balance = run(&config.pre_balance, "pre_balance")?;
-    let post_balance = run(&config.post_balance, "post_balance")?;
-    let mechanism = config
+    let pre_balance = run_phase(inputs, &inputs.pre_balance, progress)?;
+    let post_balance = run_phase(inputs, &inputs.post_balance, progress)?;
+    let mechanism = inputs
         .mechanism
         .as_ref()
-        .map(|m| mechanism::run(config, m, &pre_balance, &post_balance, path))
+        .map(|m| {
+            let _span = tracing::info_span!("mechanism").entered();
+            let geometry = Geometry {
+                radius_m: inputs.radius_m,
+                g_m_s2: inputs.g_m_s2,
+            };
+            let phase = |results: &PhaseResults, section: &str, seed: u64| {
+                let drift = MeasuredDrift {
+                    c_r_m_s2: results.fit.c_r_m_s2,
+                    c_r_sigma_m_s2: results.fit.c_r_sigma_m_s2,
+                    offset_um: results.fit.offset_um,
+                };
+                mechanism::run_phase(geometry, m, drift, seed)
+                    .map_err(|e| locate(e, &inputs.source, section))
+            };
+            Ok::<_, PipelineError>(MechanismResults {
+                rates_deg_s: m.rates_deg_s.clone(),
+                piga: PigaResult {
+                    k0_rad_s: m.piga.k0_rad_s,
+                    k1_rad_s_g: m.piga.k1_rad_s_g,
+                    k2_rad_s_g2: m.piga.k2_rad_s_g2,
+                    k3_rad_s_g3: m.piga.k3_rad_s_g3,
+                },
+                latitude_deg: m.latitude_deg,
+                output_noise_rad_s: m.output_noise_rad_s,
+                pre_balance: phase(&pre_balance, "mechanism.pre_balance", m.seed)?,
+                post_balance: phase(
+                    &post_balance,
+                    "mechanism.post_balance",
+                    m.seed.wrapping_add(1),
+                )?,
+            })
+        })
         .transpose()?;
     Ok(StudyResults {
-        study: config.name.clone(),
+        study: inputs.name.clone(),
         inputs: StudyInputs {
-            radius_m: config.radius_m,
-            g_m_s2: config.g_m_s2,
-            k1_rad_s_g: config.k1_rad_s_g,
-            lever_ratio,
+            radius_m: inputs.radius_m,
+            g_m_s2: inputs.g_m_s2,
+            k1_rad_s_g: inputs.k1_rad_s_g,
+            lever_ratio: inputs.lever_ratio,
         },
         pre_balance,
         post_balance,
@@ -69,48 +96,54 @@ pub fn run_with_progress(
     })
 }
 
+/// A mechanism failure as a study error naming the configuration and the section.
+fn locate(failure: PhaseFailure, path: &Path, field: &str) -> PipelineError {
+    match failure {
+        PhaseFailure::Model(source) => PipelineError::AccelModel {
+            path: path.to_owned(),
+            field: field.to_owned(),
+            source,
+        },
+        PhaseFailure::Identify(source) => PipelineError::Identify {
+            path: path.to_owned(),
+            field: field.to_owned(),
+            source,
+        },
+    }
+}
+
 fn run_phase(
-    config: &StudyConfig,
-    phase: &PhaseConfig,
-    section: &str,
-    path: &Path,
-    lever_ratio: f64,
+    inputs: &Inputs,
+    phase: &Phase,
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<PhaseResults> {
-    let (points, traces) = phase_points(config, phase, section, path, lever_ratio, progress)?;
-    if let Points::RadiusChange { .. } = phase.points {
+    let _span = tracing::info_span!("phase", key = phase.key).entered();
+    let (points, traces) = phase_points(inputs, phase, progress)?;
+    tracing::info!(points = points.len(), "per-point geometry done");
+    if let PhaseData::RadiusChange { .. } = phase.data {
         return Ok(PhaseResults {
-            fit: exact_two_point(config, &points, section, path)?,
+            fit: exact_two_point(inputs, &points, phase.key)?,
             points,
             alternative: None,
             traces,
         });
     }
-    let fit = fit_model(
-        config,
-        &points,
-        config.radius_model,
-        phase.weighting,
-        section,
-        path,
-    )?;
-    let other = match config.radius_model {
-        RadiusModel::TwoTerm => RadiusModel::ThreeTerm,
-        RadiusModel::ThreeTerm => RadiusModel::TwoTerm,
+    let fit = fit_model(inputs, &points, inputs.radius_model, phase)?;
+    let other = match inputs.radius_model {
+        RadiusModelName::TwoTerm => RadiusModelName::ThreeTerm,
+        RadiusModelName::ThreeTerm => RadiusModelName::TwoTerm,
     };
     // The alternative is shown only where it has a residual degree of freedom.
-    let alternative = if points.len() > other.unknowns() {
-        Some(fit_model(
-            config,
-            &points,
-            other,
-            phase.weighting,
-            section,
-            path,
-        )?)
+    let alternative = if points.len() > radius_model(other).unknowns() {
+        Some(fit_model(inputs, &points, other, phase)?)
     } else {
         None
     };
+    tracing::info!(
+        c_r_m_s2 = fit.c_r_m_s2,
+        delta_k2_rad_s_g2 = fit.delta_k2_rad_s_g2,
+        "radius-error fit done"
+    );
     Ok(PhaseResults {
         points,
         fit,
@@ -120,29 +153,24 @@ fn run_phase(
 }
 
 /// `a + C_r·ω²` through two points: `C_r = Δr / (ω₂² − ω₁²)`, exact, with no standard error.
-fn exact_two_point(
-    config: &StudyConfig,
-    points: &[PointResult],
-    section: &str,
-    path: &Path,
-) -> Result<ModelFit> {
+fn exact_two_point(inputs: &Inputs, points: &[PointResult], section: &str) -> Result<ModelFit> {
     let [p1, p2] = [&points[0], &points[1]];
     let (w1, w2) = (p1.rate_rad_s, p2.rate_rad_s);
     let c_r_m_s2 = um_to_m(p2.radius_error_um - p1.radius_error_um) / (w2 * w2 - w1 * w1);
     let k2 = identify::pseudo_second_order(
-        config.k1_rad_s_g,
+        inputs.k1_rad_s_g,
         c_r_m_s2,
         0.0,
-        config.g_m_s2,
-        config.radius_m,
+        inputs.g_m_s2,
+        inputs.radius_m,
     )
     .map_err(|source| PipelineError::Identify {
-        path: path.to_owned(),
+        path: inputs.source.clone(),
         field: format!("{section}.points"),
         source,
     })?;
     Ok(ModelFit {
-        model: RadiusModel::TwoTerm,
+        model: RadiusModelName::TwoTerm,
         c_r_m_s2,
         c_r_sigma_m_s2: None,
         offset_um: p1.radius_error_um - m_to_um(c_r_m_s2 * w1 * w1),
@@ -160,13 +188,12 @@ fn exact_two_point(
 
 /// Per-point geometry: each input form gives the radius error at the PIGA plane.
 fn phase_points(
-    config: &StudyConfig,
-    phase: &PhaseConfig,
-    section: &str,
-    path: &Path,
-    lever_ratio: f64,
+    inputs: &Inputs,
+    phase: &Phase,
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<(Vec<PointResult>, Vec<ProbeTrace>)> {
+    let section = phase.key;
+    let path = inputs.source.as_path();
     let radius_point = |rate_deg_s: f64, radius_error_um: f64| PointResult {
         rate_deg_s,
         rate_rad_s: deg_s_to_rad_s(rate_deg_s),
@@ -183,7 +210,7 @@ fn phase_points(
     };
     let harmonic_point = |i: usize, rate_deg_s: f64, dc1_um: f64, ds1_um: f64| {
         let drift = FirstHarmonic::new(dc1_um, ds1_um)
-            .and_then(|h| config.lever.project(h))
+            .and_then(|h| inputs.lever.project(h))
             .map_err(|source| PipelineError::Harmonics {
                 path: path.to_owned(),
                 field: format!("{section}.points[{i}]"),
@@ -197,8 +224,8 @@ fn phase_points(
             ..radius_point(rate_deg_s, drift.radius_error)
         })
     };
-    match &phase.points {
-        Points::FirstHarmonic(points) => Ok((
+    match &phase.data {
+        PhaseData::FirstHarmonic(points) => Ok((
             points
                 .iter()
                 .enumerate()
@@ -206,16 +233,16 @@ fn phase_points(
                 .collect::<Result<_>>()?,
             Vec::new(),
         )),
-        Points::Recordings(set) => {
-            let analysed = probe_analysis::analyse(set, section, path, progress)?;
-            let mut points = Vec::with_capacity(analysed.len());
-            let mut traces = Vec::with_capacity(analysed.len());
-            for (i, (file, h)) in set.files.iter().zip(analysed).enumerate() {
+        PhaseData::Recordings(set) => {
+            let analyzed = probe_analysis::analyze(set, section, path, progress)?;
+            let mut points = Vec::with_capacity(analyzed.len());
+            let mut traces = Vec::with_capacity(analyzed.len());
+            for (i, (file, h)) in set.files.iter().zip(analyzed).enumerate() {
                 let point = harmonic_point(i, file.rate_deg_s, h.dc1_um, h.ds1_um)?;
                 points.push(PointResult {
                     dc1_sigma_um: h.dc1_sigma_um,
                     ds1_sigma_um: h.ds1_sigma_um,
-                    radius_error_sigma_um: Some(h.dc1_noise_sigma_um * lever_ratio),
+                    radius_error_sigma_um: Some(h.dc1_noise_sigma_um * inputs.lever_ratio),
                     revolutions: Some(h.revolutions),
                     residual_rms_um: Some(h.residual_rms_um),
                     ..point
@@ -224,14 +251,14 @@ fn phase_points(
             }
             Ok((points, traces))
         }
-        Points::RadiusError(points) => Ok((
+        PhaseData::RadiusError(points) => Ok((
             points
                 .iter()
                 .map(|p| radius_point(p.rate_deg_s, p.radius_error_um))
                 .collect(),
             Vec::new(),
         )),
-        Points::RadiusChange {
+        PhaseData::RadiusChange {
             from_rate_deg_s,
             to_rate_deg_s,
             change_um,
@@ -246,22 +273,22 @@ fn phase_points(
 }
 
 fn fit_model(
-    config: &StudyConfig,
+    inputs: &Inputs,
     points: &[PointResult],
-    model: RadiusModel,
-    weighting: Weighting,
-    section: &str,
-    path: &Path,
+    model: RadiusModelName,
+    phase: &Phase,
 ) -> Result<ModelFit> {
+    let section = phase.key;
     let identify_error = |source| PipelineError::Identify {
-        path: path.to_owned(),
+        path: inputs.source.clone(),
         field: format!("{section}.points"),
         source,
     };
+    let solver_model: RadiusModel = radius_model(model);
     let rates: Vec<f64> = points.iter().map(|p| p.rate_rad_s).collect();
     let radius_errors_m: Vec<f64> = points.iter().map(|p| um_to_m(p.radius_error_um)).collect();
-    let fit = match weighting {
-        Weighting::Unweighted => identify::fit_radius_error(&rates, &radius_errors_m, model),
+    let fit = match phase.weighting {
+        Weighting::Unweighted => identify::fit_radius_error(&rates, &radius_errors_m, solver_model),
         Weighting::InverseVariance => {
             let mut sigma_m = Vec::with_capacity(points.len());
             for (i, p) in points.iter().enumerate() {
@@ -269,26 +296,24 @@ fn fit_model(
                     Some(s) if s > 0.0 => sigma_m.push(um_to_m(s)),
                     _ => {
                         return Err(PipelineError::Unsupported {
-                            path: path.to_owned(),
+                            path: inputs.source.clone(),
                             field: format!("{section}.points.files[{i}]"),
-                            reason: "inverse_variance weighting needs a standard error for \
-                                     every recording, and this one's harmonic fit has no \
-                                     residual (noise-free data?)",
+                            reason: UnsupportedReason::NoStandardError,
                         });
                     }
                 }
             }
-            identify::fit_radius_error_weighted(&rates, &radius_errors_m, &sigma_m, model)
+            identify::fit_radius_error_weighted(&rates, &radius_errors_m, &sigma_m, solver_model)
         }
     }
     .map_err(identify_error)?;
     let ssr_um2: f64 = fit.residuals_m.iter().map(|r| m_to_um(*r).powi(2)).sum();
     let k2 = identify::pseudo_second_order(
-        config.k1_rad_s_g,
+        inputs.k1_rad_s_g,
         fit.c_r_m_s2,
         fit.c_r_sigma_m_s2,
-        config.g_m_s2,
-        config.radius_m,
+        inputs.g_m_s2,
+        inputs.radius_m,
     )
     .map_err(identify_error)?;
     Ok(ModelFit {
@@ -299,7 +324,7 @@ fn fit_model(
         linear_um_s: fit.linear_m_s.map(m_to_um),
         residuals_um: fit.residuals_m.iter().map(|r| m_to_um(*r)).collect(),
         residual_sd_um: Some((ssr_um2 / fit.fit.dof as f64).sqrt()),
-        weighting,
+        weighting: phase.weighting,
         reduced_chi: fit.weighted.then_some(fit.fit.residual_sd),
         dof: fit.fit.dof,
         condition_number: Some(fit.fit.condition_number),

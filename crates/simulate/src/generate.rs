@@ -2,7 +2,7 @@
 
 use std::f64::consts::TAU;
 
-use accel_model::rate_points;
+use accel_model::{PigaCoefficients, rate_points};
 use harmonics::{FirstHarmonic, LeverGeometry};
 use identify::pseudo_second_order;
 use kinematics::{
@@ -216,9 +216,11 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             }
         })?;
         let recording = record(s, lever, &chain, rate_deg_s);
-        let mut piga_rng = stream(s.seed, PIGA_STREAM, rate_deg_s.to_bits());
-        let output_rad_s = point.output_rad_s
-            + normal(s.piga.noise_rad_s).map_or(0.0, |d| d.sample(&mut piga_rng));
+        let noise = OutputNoise {
+            sigma_rad_s: s.piga.noise_rad_s,
+            seed: s.seed,
+        };
+        let output_rad_s = noise.added_to(point.output_rad_s, rate_deg_s);
         piga.push(PigaRow {
             rate_deg_s,
             output_rad_s,
@@ -389,6 +391,48 @@ fn record(s: &Scenario, lever: Lever, chain: &Chain, rate_deg_s: f64) -> Simulat
         gap_um,
         angle_deg,
     }
+}
+
+/// White noise on the PIGA's per-rate mean output: N(0, σ²), one independent stream per rate
+/// drawn from the seed (the simulator's one noise model for PIGA tables).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutputNoise {
+    /// Standard deviation, rad/s (0: noise-free; must be finite and ≥ 0).
+    pub sigma_rad_s: f64,
+    /// Seed of the streams.
+    pub seed: u64,
+}
+
+impl OutputNoise {
+    /// `output_rad_s` plus this rate's draw.
+    fn added_to(&self, output_rad_s: f64, rate_deg_s: f64) -> f64 {
+        let mut rng = stream(self.seed, PIGA_STREAM, rate_deg_s.to_bits());
+        output_rad_s + normal(self.sigma_rad_s).map_or(0.0, |d| d.sample(&mut rng))
+    }
+}
+
+/// A PIGA calibration table: at each rate, eq. 15 averaged over whole revolutions of the
+/// exact chain (`accel_model::rate_points`) plus the output noise. The same rows
+/// [`simulate`] writes to `piga.csv`.
+///
+/// # Errors
+/// The PIGA model's error for an input it refuses (a non-finite rate or coefficient).
+pub fn piga_table(
+    centrifuge: &Centrifuge,
+    piga: &PigaCoefficients,
+    rates_deg_s: &[f64],
+    noise: &OutputNoise,
+) -> std::result::Result<Vec<PigaRow>, accel_model::Error> {
+    let rates_rad_s: Vec<f64> = rates_deg_s.iter().map(|d| d.to_radians()).collect();
+    let points = rate_points(centrifuge, piga, &rates_rad_s)?;
+    Ok(points
+        .iter()
+        .zip(rates_deg_s)
+        .map(|(point, &rate_deg_s)| PigaRow {
+            rate_deg_s,
+            output_rad_s: noise.added_to(point.output_rad_s, rate_deg_s),
+        })
+        .collect())
 }
 
 /// An independent random stream per (seed, purpose, key).

@@ -27,7 +27,8 @@ mod write;
 
 pub use error::{Result, SimulateError};
 pub use generate::{
-    PigaRow, ProbeTruth, SimulatedRecording, Simulation, Truth, TruthRate, simulate,
+    OutputNoise, PigaRow, ProbeTruth, SimulatedRecording, Simulation, Truth, TruthRate, piga_table,
+    simulate,
 };
 pub use scenario::{
     CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaSpec, ProbeSpec,

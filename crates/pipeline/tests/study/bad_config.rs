@@ -2,18 +2,18 @@
 
 use std::path::{Path, PathBuf};
 
-use pipeline::{PipelineError, StudyConfig};
+use pipeline::PipelineError;
 
 use super::paper_text;
 
-fn parse(text: &str) -> Result<pipeline::LoadedStudy, PipelineError> {
-    StudyConfig::parse(text, Path::new("bad.ron"))
+fn parse(text: &str) -> Result<pipeline::Inputs, PipelineError> {
+    pipeline::parse_study(text, Path::new("bad.ron"))
 }
 
 #[test]
 fn unreadable_file_names_the_file() {
     let missing = PathBuf::from("/nonexistent/study.ron");
-    match StudyConfig::load(&missing) {
+    match pipeline::load_study(&missing) {
         Err(PipelineError::Io { path, .. }) => assert_eq!(path, missing),
         other => panic!("expected Io, got {other:?}"),
     }

@@ -1,7 +1,6 @@
 //! The results of both fixture studies equal those written before the crate split
 //! (`fixtures/baseline/`), number by number to a relative 1e-12 and key by key exactly.
 
-use pipeline::StudyConfig;
 use serde_json::Value;
 
 use crate::root;
@@ -38,7 +37,7 @@ fn compare(path: &str, actual: &Value, expected: &Value, out: &mut Vec<String>) 
 }
 
 fn check(config: &str, baseline: &str) {
-    let study = StudyConfig::load(&root().join(config)).unwrap();
+    let study = pipeline::load_study(&root().join(config)).unwrap();
     let results = pipeline::run(&study).unwrap();
     let actual: Value = serde_json::from_str(&report::results_json(&results).unwrap()).unwrap();
     let text = std::fs::read_to_string(root().join(baseline)).unwrap();

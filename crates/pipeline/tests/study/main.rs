@@ -4,6 +4,7 @@
 
 mod bad_config;
 mod baseline;
+mod in_memory;
 mod mechanism;
 mod paper;
 mod recordings;
@@ -19,4 +20,16 @@ fn root() -> PathBuf {
 /// The paper's study configuration text.
 fn paper_text() -> String {
     std::fs::read_to_string(root().join("fixtures/studies/paper-2025.ron")).unwrap()
+}
+
+/// An error and its sources joined by `: `, as the command line prints them.
+fn chain(error: &dyn std::error::Error) -> String {
+    let mut out = error.to_string();
+    let mut cause = error.source();
+    while let Some(c) = cause {
+        out.push_str(": ");
+        out.push_str(&c.to_string());
+        cause = c.source();
+    }
+    out
 }

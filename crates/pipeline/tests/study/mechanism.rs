@@ -308,7 +308,7 @@ fn study_z_scores(base: &LoadedScenario, seeds: u64, weighting: &str) -> Vec<f64
                  lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0), \
                  pre_balance: {phase}, post_balance: {phase})"
             );
-            let study = pipeline::StudyConfig::parse(&text, &dir.join("z.ron")).unwrap();
+            let study = pipeline::parse_study(&text, &dir.join("z.ron")).unwrap();
             let fit = pipeline::run(&study).unwrap().post_balance.fit;
             (fit.c_r_m_s2 - sim.truth.c_r_m_s2) / fit.c_r_sigma_m_s2.unwrap()
         })

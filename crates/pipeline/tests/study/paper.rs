@@ -1,13 +1,12 @@
 //! The paper's study reproduced from its published inputs.
 
 use approx::assert_relative_eq;
-use pipeline::StudyConfig;
 use report::Expected;
 
 use super::root;
 
 fn paper_results() -> pipeline::StudyResults {
-    let study = StudyConfig::load(&root().join("fixtures/studies/paper-2025.ron")).unwrap();
+    let study = pipeline::load_study(&root().join("fixtures/studies/paper-2025.ron")).unwrap();
     pipeline::run(&study).unwrap()
 }
 

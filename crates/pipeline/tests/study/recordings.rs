@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use pipeline::{PipelineError, StudyConfig};
+use pipeline::PipelineError;
 use report::Expected;
 
 use super::root;
@@ -14,7 +14,7 @@ fn study_path() -> PathBuf {
 
 #[test]
 fn recordings_recover_the_simulated_truth() {
-    let study = StudyConfig::load(&study_path()).unwrap();
+    let study = pipeline::load_study(&study_path()).unwrap();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let results = pipeline::run_with_progress(&study, &|event| {
         if let pipeline::Progress::RecordingDone { .. } = event {
@@ -46,7 +46,7 @@ fn recordings_recover_the_simulated_truth() {
 }
 
 /// The recordings study with its recording list replaced, written into a temporary folder.
-fn study_with_files(dir: &Path, files: &str) -> Result<pipeline::LoadedStudy, PipelineError> {
+fn study_with_files(dir: &Path, files: &str) -> Result<pipeline::Inputs, PipelineError> {
     let text = std::fs::read_to_string(study_path()).unwrap();
     let start = text.find("files: [").unwrap();
     let end = start + text[start..].find("],").unwrap() + 2;
@@ -54,7 +54,7 @@ fn study_with_files(dir: &Path, files: &str) -> Result<pipeline::LoadedStudy, Pi
     std::fs::create_dir_all(dir).unwrap();
     let path = dir.join("study.ron");
     std::fs::write(&path, text).unwrap();
-    StudyConfig::load(&path)
+    pipeline::load_study(&path)
 }
 
 fn good_files(dir: &Path) -> Vec<PathBuf> {
@@ -100,8 +100,7 @@ fn a_missing_recording_names_the_field_and_the_file() {
     let dir = temp("missing");
     let mut files = good_files(&dir);
     files[2] = dir.join("nope.csv");
-    let study = study_with_files(&dir, &list(&files, &RATES)).unwrap();
-    let err = pipeline::run(&study).unwrap_err();
+    let err = study_with_files(&dir, &list(&files, &RATES)).unwrap_err();
     match &err {
         PipelineError::Recording { field, source, .. } => {
             assert_eq!(field, "pre_balance.points.files[2]");
@@ -120,9 +119,8 @@ fn a_bad_sample_names_the_recording_and_its_line() {
     let mut lines: Vec<&str> = text.lines().collect();
     lines[100] = "3.960000,NaN,7.920000";
     std::fs::write(&files[1], lines.join("\n")).unwrap();
-    let study = study_with_files(&dir, &list(&files, &RATES)).unwrap();
-    let err = pipeline::run(&study).unwrap_err();
-    let message = err.to_string();
+    let err = study_with_files(&dir, &list(&files, &RATES)).unwrap_err();
+    let message = crate::chain(&err);
     assert!(
         message.contains("probe_040.0000deg_s.csv:101"),
         "the message names the file and line: {message}"
@@ -155,7 +153,7 @@ fn recording_lists_are_validated() {
     let text = std::fs::read_to_string(study_path())
         .unwrap()
         .replace("fit: (order: 4, drift: false)", "fit: (order: 0)");
-    match StudyConfig::parse(&text, &study_path()) {
+    match pipeline::parse_study(&text, &study_path()) {
         Err(PipelineError::Harmonics { field, .. }) => assert_eq!(field, "pre_balance.points.fit"),
         other => panic!("expected Harmonics, got {other:?}"),
     }
@@ -169,7 +167,7 @@ fn inverse_variance_weighting_uses_each_recordings_standard_error() {
         "pre_balance: (\n        weighting: inverse_variance,\n        points: recordings((",
     );
     assert!(text.contains("weighting: inverse_variance"));
-    let study = StudyConfig::parse(&text, &study_path()).unwrap();
+    let study = pipeline::parse_study(&text, &study_path()).unwrap();
     let results = pipeline::run(&study).unwrap();
     let fit = &results.pre_balance.fit;
     assert_eq!(fit.weighting, pipeline::Weighting::InverseVariance);
@@ -183,7 +181,7 @@ fn inverse_variance_weighting_uses_each_recordings_standard_error() {
         "post_balance: (\n        points: first_harmonic(",
         "post_balance: (\n        weighting: inverse_variance,\n        points: first_harmonic(",
     );
-    match StudyConfig::parse(&text, &study_path()) {
+    match pipeline::parse_study(&text, &study_path()) {
         Err(PipelineError::Unsupported { field, .. }) => {
             assert_eq!(field, "post_balance.weighting");
         }

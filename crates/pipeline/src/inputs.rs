@@ -1,0 +1,503 @@
+//! The validated inputs of a study: the one place where a configuration is checked.
+//!
+//! [`Inputs::new`] takes the file's data-transfer types ([`StudyConfig`]) and the recordings
+//! they name (through a loader the caller supplies, so a study can run on recordings held in
+//! memory) and returns inputs whose fields are private and valid by construction ("parse,
+//! don't validate"); [`crate::run`] computes on them without checking them again.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use accel_model::PigaCoefficients;
+use harmonics::{FitConfig, LeverGeometry, ProbeDirection};
+use identify::RadiusModel;
+use rayon::prelude::*;
+use recording::{Recording, RecordingError, RecordingFormat};
+
+use crate::config::{
+    FitSettings, HarmonicPoint, LeverConfig, MechanismConfig, PhaseConfig, Points,
+    ProbeDirectionName, RadiusModelName, RadiusPoint, StudyConfig, Weighting,
+};
+use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
+
+/// Reads the recording at a path in a format: the caller's access to recordings (files at the
+/// edge, or recordings held in memory in a test).
+pub type RecordingLoader<'a> =
+    dyn Fn(&Path, &RecordingFormat) -> std::result::Result<Recording, RecordingError> + Sync + 'a;
+
+/// Least number of distinct mechanism calibration rates: six unknowns plus one degree of
+/// freedom.
+pub(crate) const MIN_MECHANISM_RATES: usize = identify::MIN_DISTINCT_RATES + 1;
+
+/// The validated inputs of a study.
+#[derive(Debug, Clone)]
+pub struct Inputs {
+    pub(crate) source: PathBuf,
+    pub(crate) name: String,
+    pub(crate) radius_m: f64,
+    pub(crate) g_m_s2: f64,
+    pub(crate) k1_rad_s_g: f64,
+    pub(crate) lever: LeverGeometry,
+    pub(crate) lever_ratio: f64,
+    pub(crate) radius_model: RadiusModelName,
+    pub(crate) pre_balance: Phase,
+    pub(crate) post_balance: Phase,
+    pub(crate) mechanism: Option<Mechanism>,
+}
+
+/// One validated phase.
+#[derive(Debug, Clone)]
+pub(crate) struct Phase {
+    /// `pre_balance` or `post_balance`: the section named in errors.
+    pub(crate) key: &'static str,
+    pub(crate) weighting: Weighting,
+    pub(crate) data: PhaseData,
+}
+
+/// What a validated phase holds.
+#[derive(Debug, Clone)]
+pub(crate) enum PhaseData {
+    FirstHarmonic(Vec<HarmonicPoint>),
+    RadiusError(Vec<RadiusPoint>),
+    Recordings(RecordingPhase),
+    RadiusChange {
+        from_rate_deg_s: f64,
+        to_rate_deg_s: f64,
+        change_um: f64,
+    },
+}
+
+/// A phase given as recordings, loaded.
+#[derive(Debug, Clone)]
+pub(crate) struct RecordingPhase {
+    pub(crate) fit: FitConfig,
+    pub(crate) start_angle_rad: f64,
+    pub(crate) files: Vec<LoadedRecording>,
+}
+
+/// One recording of a phase, in memory.
+#[derive(Debug, Clone)]
+pub(crate) struct LoadedRecording {
+    pub(crate) rate_deg_s: f64,
+    /// Where it came from, as resolved against the configuration's folder.
+    pub(crate) file: PathBuf,
+    pub(crate) recording: Recording,
+}
+
+/// The validated mechanism section.
+#[derive(Debug, Clone)]
+pub(crate) struct Mechanism {
+    pub(crate) piga: PigaCoefficients,
+    pub(crate) latitude_deg: f64,
+    pub(crate) earth_rate_rad_s: f64,
+    pub(crate) rates_deg_s: Vec<f64>,
+    pub(crate) output_noise_rad_s: f64,
+    pub(crate) seed: u64,
+}
+
+impl Inputs {
+    /// Validates a configuration read from `source` (named in every error; relative recording
+    /// paths are resolved against its folder) and loads the recordings it names through
+    /// `load`, in parallel.
+    ///
+    /// # Errors
+    /// The first invalid field in the file's order; for recordings, every recording that could
+    /// not be loaded, in the configuration's order ([`PipelineError::Several`] when more than
+    /// one).
+    pub fn new(config: StudyConfig, source: &Path, load: &RecordingLoader<'_>) -> Result<Self> {
+        let check = Check { path: source };
+        check.positive("radius_m", config.radius_m)?;
+        check.positive("g_m_s2", config.g_m_s2)?;
+        check.positive("k1_rad_s_g", config.k1_rad_s_g)?;
+        let lever = lever_geometry(config.lever);
+        let lever_ratio = lever
+            .lever_ratio()
+            .map_err(|source_error| PipelineError::Harmonics {
+                path: source.to_owned(),
+                field: "lever".to_owned(),
+                source: source_error,
+            })?;
+        let model = config.radius_model;
+        let pre = check.phase("pre_balance", &config.pre_balance, model)?;
+        let post = check.phase("post_balance", &config.post_balance, model)?;
+        let mechanism = config
+            .mechanism
+            .as_ref()
+            .map(|m| check.mechanism(m, config.k1_rad_s_g))
+            .transpose()?;
+        let base = source.parent().unwrap_or_else(|| Path::new("."));
+        let (pre_balance, post_balance) = load_phases(
+            [
+                ("pre_balance", config.pre_balance),
+                ("post_balance", config.post_balance),
+            ],
+            [pre, post],
+            base,
+            source,
+            load,
+        )?;
+        Ok(Self {
+            source: source.to_owned(),
+            name: config.name,
+            radius_m: config.radius_m,
+            g_m_s2: config.g_m_s2,
+            k1_rad_s_g: config.k1_rad_s_g,
+            lever,
+            lever_ratio,
+            radius_model: model,
+            pre_balance,
+            post_balance,
+            mechanism,
+        })
+    }
+
+    /// The study's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The configuration file the inputs came from.
+    pub fn source(&self) -> &Path {
+        &self.source
+    }
+
+    /// Every recording the study read, in the configuration's order.
+    pub fn recording_files(&self) -> impl Iterator<Item = &Path> {
+        [&self.pre_balance, &self.post_balance]
+            .into_iter()
+            .flat_map(|phase| match &phase.data {
+                PhaseData::Recordings(set) => set.files.as_slice(),
+                _ => &[],
+            })
+            .map(|f| f.file.as_path())
+    }
+}
+
+/// The library's lever geometry from the file's.
+fn lever_geometry(lever: LeverConfig) -> LeverGeometry {
+    LeverGeometry {
+        pivot_to_probe_mm: lever.pivot_to_probe_mm,
+        probe_to_piga_mm: lever.probe_to_piga_mm,
+        probe_direction: match lever.probe_direction {
+            ProbeDirectionName::AgainstO1X1 => ProbeDirection::AgainstO1X1,
+            ProbeDirectionName::AlongO1X1 => ProbeDirection::AlongO1X1,
+        },
+    }
+}
+
+/// The solver's model from the file's name of it.
+pub(crate) const fn radius_model(name: RadiusModelName) -> RadiusModel {
+    match name {
+        RadiusModelName::TwoTerm => RadiusModel::TwoTerm,
+        RadiusModelName::ThreeTerm => RadiusModel::ThreeTerm,
+    }
+}
+
+/// The library's fit settings from the file's.
+fn fit_config(fit: FitSettings) -> FitConfig {
+    FitConfig {
+        order: fit.order,
+        drift: fit.drift,
+        revolutions: fit.revolutions,
+        max_gap_intervals: fit.max_gap_intervals,
+    }
+}
+
+/// A phase whose numbers are valid, before its recordings are loaded.
+enum Checked {
+    Ready(PhaseData),
+    Recordings {
+        fit: FitConfig,
+        start_angle_rad: f64,
+    },
+}
+
+/// Loads the recordings of both phases in parallel and assembles the phases; every loading
+/// error is reported, in the configuration's order.
+fn load_phases(
+    configs: [(&'static str, PhaseConfig); 2],
+    checked: [(Weighting, Checked); 2],
+    base: &Path,
+    source: &Path,
+    load: &RecordingLoader<'_>,
+) -> Result<(Phase, Phase)> {
+    // (phase index, file index, rate, resolved path, format)
+    let mut jobs = Vec::new();
+    for (p, (_, config)) in configs.iter().enumerate() {
+        if let Points::Recordings(set) = &config.points {
+            for (i, point) in set.files.iter().enumerate() {
+                jobs.push((p, i, point.rate_deg_s, base.join(&point.file), &set.format));
+            }
+        }
+    }
+    let loaded: Vec<_> = jobs
+        .par_iter()
+        .map(|(_, _, _, file, format)| {
+            let _span = tracing::info_span!("load", file = %file.display()).entered();
+            load(file, format)
+        })
+        .collect();
+    let mut errors = Vec::new();
+    let mut files: [Vec<LoadedRecording>; 2] = [Vec::new(), Vec::new()];
+    for ((p, i, rate_deg_s, file, _), result) in jobs.iter().zip(loaded) {
+        match result {
+            Ok(recording) => files[*p].push(LoadedRecording {
+                rate_deg_s: *rate_deg_s,
+                file: file.clone(),
+                recording,
+            }),
+            Err(error) => errors.push(PipelineError::Recording {
+                path: source.to_owned(),
+                field: format!("{}.points.files[{i}]", configs[*p].0),
+                source: Box::new(error),
+            }),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    let [(k0, _), (k1, _)] = configs;
+    let [c0, c1] = checked;
+    let [f0, f1] = files;
+    let phase = |key, (weighting, checked): (Weighting, Checked), files| Phase {
+        key,
+        weighting,
+        data: match checked {
+            Checked::Ready(data) => data,
+            Checked::Recordings {
+                fit,
+                start_angle_rad,
+            } => PhaseData::Recordings(RecordingPhase {
+                fit,
+                start_angle_rad,
+                files,
+            }),
+        },
+    };
+    Ok((phase(k0, c0, f0), phase(k1, c1, f1)))
+}
+
+/// Field checks that name the configuration file.
+struct Check<'a> {
+    path: &'a Path,
+}
+
+impl Check<'_> {
+    fn invalid(&self, field: String, value: f64, reason: InvalidReason) -> PipelineError {
+        PipelineError::InvalidField {
+            path: self.path.to_owned(),
+            field,
+            value,
+            reason,
+        }
+    }
+
+    fn positive(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(self.invalid(field.to_owned(), value, InvalidReason::NotPositive))
+        }
+    }
+
+    fn finite(&self, field: String, value: f64) -> Result<()> {
+        if value.is_finite() {
+            Ok(())
+        } else {
+            Err(self.invalid(field, value, InvalidReason::NotFinite))
+        }
+    }
+
+    fn rate(&self, field: String, value: f64) -> Result<()> {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(self.invalid(field, value, InvalidReason::RateNotPositive))
+        }
+    }
+
+    /// Refuses a rate that appears twice, naming both places (linear time).
+    fn unique_rates(&self, items: &str, rates: &[f64]) -> Result<()> {
+        let mut seen: HashMap<u64, usize> = HashMap::with_capacity(rates.len());
+        for (i, r) in rates.iter().enumerate() {
+            // Rates are finite and > 0 here, so equal values have equal bits.
+            if let Some(j) = seen.insert(r.to_bits(), i) {
+                return Err(PipelineError::DuplicateRate {
+                    path: self.path.to_owned(),
+                    field: format!("{items}[{i}].rate_deg_s"),
+                    first: format!("{items}[{j}].rate_deg_s"),
+                    rate_deg_s: *r,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn phase(
+        &self,
+        section: &'static str,
+        phase: &PhaseConfig,
+        model: RadiusModelName,
+    ) -> Result<(Weighting, Checked)> {
+        let list = format!("{section}.points");
+        if phase.weighting == Weighting::InverseVariance
+            && !matches!(phase.points, Points::Recordings(_))
+        {
+            return Err(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: format!("{section}.weighting"),
+                reason: UnsupportedReason::WeightingNeedsRecordings,
+            });
+        }
+        let (rates, checked): (Vec<f64>, Checked) = match &phase.points {
+            Points::FirstHarmonic(points) => {
+                for (i, p) in points.iter().enumerate() {
+                    self.rate(format!("{list}[{i}].rate_deg_s"), p.rate_deg_s)?;
+                    self.finite(format!("{list}[{i}].dc1_um"), p.dc1_um)?;
+                    self.finite(format!("{list}[{i}].ds1_um"), p.ds1_um)?;
+                }
+                self.unique_rates(&list, &rates_of(points, |p| p.rate_deg_s))?;
+                (
+                    rates_of(points, |p| p.rate_deg_s),
+                    Checked::Ready(PhaseData::FirstHarmonic(points.clone())),
+                )
+            }
+            Points::RadiusError(points) => {
+                for (i, p) in points.iter().enumerate() {
+                    self.rate(format!("{list}[{i}].rate_deg_s"), p.rate_deg_s)?;
+                    self.finite(format!("{list}[{i}].radius_error_um"), p.radius_error_um)?;
+                }
+                self.unique_rates(&list, &rates_of(points, |p| p.rate_deg_s))?;
+                (
+                    rates_of(points, |p| p.rate_deg_s),
+                    Checked::Ready(PhaseData::RadiusError(points.clone())),
+                )
+            }
+            Points::Recordings(set) => {
+                if set.files.is_empty() {
+                    return Err(PipelineError::EmptyList {
+                        path: self.path.to_owned(),
+                        field: format!("{list}.files"),
+                    });
+                }
+                let fit = fit_config(set.fit);
+                fit.validate().map_err(|source| PipelineError::Harmonics {
+                    path: self.path.to_owned(),
+                    field: format!("{list}.fit"),
+                    source,
+                })?;
+                self.finite(format!("{list}.start_angle_deg"), set.start_angle_deg)?;
+                for (i, p) in set.files.iter().enumerate() {
+                    self.rate(format!("{list}.files[{i}].rate_deg_s"), p.rate_deg_s)?;
+                }
+                let rates = rates_of(&set.files, |p| p.rate_deg_s);
+                self.unique_rates(&format!("{list}.files"), &rates)?;
+                (
+                    rates,
+                    Checked::Recordings {
+                        fit,
+                        start_angle_rad: set.start_angle_deg.to_radians(),
+                    },
+                )
+            }
+            Points::RadiusChange {
+                from_rate_deg_s,
+                to_rate_deg_s,
+                change_um,
+            } => {
+                self.rate(format!("{list}.from_rate_deg_s"), *from_rate_deg_s)?;
+                self.rate(format!("{list}.to_rate_deg_s"), *to_rate_deg_s)?;
+                self.finite(format!("{list}.change_um"), *change_um)?;
+                if from_rate_deg_s == to_rate_deg_s {
+                    return Err(PipelineError::DuplicateRate {
+                        path: self.path.to_owned(),
+                        field: format!("{list}.to_rate_deg_s"),
+                        first: format!("{list}.from_rate_deg_s"),
+                        rate_deg_s: *to_rate_deg_s,
+                    });
+                }
+                let data = PhaseData::RadiusChange {
+                    from_rate_deg_s: *from_rate_deg_s,
+                    to_rate_deg_s: *to_rate_deg_s,
+                    change_um: *change_um,
+                };
+                return Ok((Weighting::Unweighted, Checked::Ready(data)));
+            }
+        };
+        // One point more than the unknowns, so that the fit has a standard error.
+        let need = radius_model(model).unknowns() + 1;
+        if rates.len() < need {
+            return Err(PipelineError::TooFewPoints {
+                path: self.path.to_owned(),
+                field: list,
+                got: rates.len(),
+                need,
+                model: crate::config::model_name(model),
+            });
+        }
+        Ok((phase.weighting, checked))
+    }
+
+    fn mechanism(&self, m: &MechanismConfig, k1_rad_s_g: f64) -> Result<Mechanism> {
+        for (field, value) in [
+            ("mechanism.k0_rad_s", m.k0_rad_s),
+            ("mechanism.k2_rad_s_g2", m.k2_rad_s_g2),
+            ("mechanism.k3_rad_s_g3", m.k3_rad_s_g3),
+        ] {
+            self.finite(field.to_owned(), value)?;
+        }
+        if !(m.latitude_deg.is_finite() && m.latitude_deg.abs() <= 90.0) {
+            return Err(self.invalid(
+                "mechanism.latitude_deg".to_owned(),
+                m.latitude_deg,
+                InvalidReason::NotALatitude,
+            ));
+        }
+        for (field, value) in [
+            ("mechanism.earth_rate_rad_s", m.earth_rate_rad_s),
+            ("mechanism.output_noise_rad_s", m.output_noise_rad_s),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(self.invalid(field.to_owned(), value, InvalidReason::Negative));
+            }
+        }
+        for (i, &rate) in m.rates_deg_s.iter().enumerate() {
+            self.rate(format!("mechanism.rates_deg_s[{i}]"), rate)?;
+        }
+        let mut seen: HashMap<u64, usize> = HashMap::with_capacity(m.rates_deg_s.len());
+        for (i, &rate) in m.rates_deg_s.iter().enumerate() {
+            if let Some(j) = seen.insert(rate.to_bits(), i) {
+                return Err(PipelineError::DuplicateRate {
+                    path: self.path.to_owned(),
+                    field: format!("mechanism.rates_deg_s[{i}]"),
+                    first: format!("mechanism.rates_deg_s[{j}]"),
+                    rate_deg_s: rate,
+                });
+            }
+        }
+        if m.rates_deg_s.len() < MIN_MECHANISM_RATES {
+            return Err(PipelineError::TooFewPoints {
+                path: self.path.to_owned(),
+                field: "mechanism.rates_deg_s".to_owned(),
+                got: m.rates_deg_s.len(),
+                need: MIN_MECHANISM_RATES,
+                model: "eq. 18 calibration",
+            });
+        }
+        Ok(Mechanism {
+            piga: PigaCoefficients {
+                k0_rad_s: m.k0_rad_s,
+                k1_rad_s_g,
+                k2_rad_s_g2: m.k2_rad_s_g2,
+                k3_rad_s_g3: m.k3_rad_s_g3,
+            },
+            latitude_deg: m.latitude_deg,
+            earth_rate_rad_s: m.earth_rate_rad_s,
+            rates_deg_s: m.rates_deg_s.clone(),
+            output_noise_rad_s: m.output_noise_rad_s,
+            seed: m.seed,
+        })
+    }
+}
+
+fn rates_of<T>(items: &[T], rate: impl Fn(&T) -> f64) -> Vec<f64> {
+    items.iter().map(rate).collect()
+}

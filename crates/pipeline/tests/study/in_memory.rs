@@ -1,0 +1,59 @@
+//! A study runs on recordings held in memory: nothing is read from disk.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use pipeline::{Inputs, StudyConfig};
+use recording::{Recording, RecordingFormat};
+use simulate::Scenario;
+
+use crate::root;
+
+/// The pre-balance-small scenario simulated in memory, each recording parsed from its CSV
+/// text in memory, keyed by a path that does not exist on disk.
+fn recordings_in_memory() -> HashMap<PathBuf, Recording> {
+    let text =
+        std::fs::read_to_string(root().join("fixtures/scenarios/pre-balance-small.ron")).unwrap();
+    let scenario = Scenario::parse(&text, Path::new("pre-balance-small.ron")).unwrap();
+    let simulation = simulate::simulate(&scenario).unwrap();
+    simulation
+        .recordings
+        .iter()
+        .map(|r| {
+            let mut csv = Vec::new();
+            r.write_csv(&mut csv).unwrap();
+            let path = Path::new("/nonexistent/in-memory").join(&r.file_name);
+            let recording =
+                recording::parse_recording(&csv, &path, &RecordingFormat::default()).unwrap();
+            (path, recording)
+        })
+        .collect()
+}
+
+#[test]
+fn a_study_runs_on_recordings_in_memory() {
+    let memory = recordings_in_memory();
+    let text = std::fs::read_to_string(root().join("fixtures/studies/recordings-small.ron"))
+        .unwrap()
+        .replace("../recordings/pre-balance-small/", "in-memory/");
+    let source = Path::new("/nonexistent/study.ron");
+    let config = StudyConfig::from_ron(&text, source).unwrap();
+    let loads = std::sync::atomic::AtomicUsize::new(0);
+    let inputs = Inputs::new(config, source, &|path, _format| {
+        loads.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Ok(memory[path].clone())
+    })
+    .unwrap();
+    assert_eq!(loads.into_inner(), 6);
+    let in_memory = pipeline::run(&inputs).unwrap();
+
+    // The same study from the committed files, which the simulator wrote from the same
+    // scenario: the same numbers.
+    let from_disk = pipeline::run(
+        &pipeline::load_study(&root().join("fixtures/studies/recordings-small.ron")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(in_memory.pre_balance.points, from_disk.pre_balance.points);
+    assert_eq!(in_memory.pre_balance.fit, from_disk.pre_balance.fit);
+    assert_eq!(in_memory.post_balance, from_disk.post_balance);
+}
