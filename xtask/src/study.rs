@@ -39,7 +39,7 @@ impl Study {
                 bar.set_length(total as u64);
                 bar.set_style(
                     indicatif::ProgressStyle::with_template(
-                        "{bar:30} {pos}/{len} recordings analysed {msg}",
+                        "{bar:30} {pos}/{len} recordings analyzed {msg}",
                     )
                     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
                 );

@@ -295,14 +295,14 @@ pub(crate) fn segment(
             expected: n,
         });
     }
-    if let SpindleAngle::Encoder(a) = signal.angle {
-        if a.len() != n {
-            return Err(HarmonicsError::LengthMismatch {
-                column: "angle",
-                len: a.len(),
-                expected: n,
-            });
-        }
+    if let SpindleAngle::Encoder(a) = signal.angle
+        && a.len() != n
+    {
+        return Err(HarmonicsError::LengthMismatch {
+            column: "angle",
+            len: a.len(),
+            expected: n,
+        });
     }
     let time_axis = check_time_axis(signal.time_s, max_gap_intervals)?;
     if let Some(index) = first_non_finite(signal.gap) {

@@ -230,10 +230,10 @@ pub fn parse(text: &str) -> Result<Dataset> {
                     ));
                 }
             }
-        } else if let Some(rest) = line.trim().strip_prefix("Standard Deviation") {
-            if let Ok(v) = rest.trim().parse::<f64>() {
-                certified_residual_sd.get_or_insert(v);
-            }
+        } else if let Some(rest) = line.trim().strip_prefix("Standard Deviation")
+            && let Ok(v) = rest.trim().parse::<f64>()
+        {
+            certified_residual_sd.get_or_insert(v);
         }
     }
     let certified_residual_sd =

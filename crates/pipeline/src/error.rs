@@ -116,7 +116,7 @@ pub enum PipelineError {
         /// The PIGA model's error.
         source: accel_model::Error,
     },
-    /// A probe recording named by the configuration could not be read or analysed.
+    /// A probe recording named by the configuration could not be read or analyzed.
     #[error("{}: `{field}`", path.display())]
     Recording {
         /// The configuration file.

@@ -1,14 +1,17 @@
-//! The centrifuge-cal study: configuration, orchestration and reports.
+//! The centrifuge-cal study: from a study's configuration to its results.
 //!
-//! A study reads a RON configuration ([`StudyConfig`]) naming the centrifuge radius, the PIGA
-//! scale factor, gravity and, for the pre- and post-balance phases, what was measured at each
-//! rate: first-harmonic probe coefficients (eq. 20–21), radius errors, or a published change of
-//! radius error. [`run`] carries each point to the PIGA plane (eq. 22), fits the radius error
-//! `Δr(ω) = a + C_r·ω²` (eq. 16) and gives the pseudo-second-order error
-//! `Δk2 = k1·C_r·g/R²` (eq. 19). [`write_outputs`] writes `results.json`, `report.md` and
-//! `radius_error.svg` (the paper's Fig. 5).
+//! A study file (RON, [`StudyConfig`]: the file's data-transfer types) names the centrifuge
+//! radius, the PIGA scale factor, gravity and, for the pre- and post-balance phases, what was
+//! measured at each rate: first-harmonic probe coefficients (eq. 20–21), radius errors, probe
+//! recordings, or a published change of radius error. [`Inputs::new`] validates it once and
+//! loads the recordings it names through a loader the caller gives (files at the edge:
+//! [`load_study`]; or recordings in memory). [`run`] then computes on values only: it carries
+//! each point to the PIGA plane (eq. 22), fits the radius error `Δr(ω) = a + C_r·ω²` (eq. 16)
+//! and gives the pseudo-second-order error `Δk2 = k1·C_r·g/R²` (eq. 19); with a `mechanism`
+//! section, it simulates the PIGA calibration of eq. 18 with each phase's C_r and identifies
+//! k2 with and without compensation (eq. 17–19). The `report` crate writes the outputs.
 //!
-//! Only this crate and the command line touch files.
+//! Only the `load` module touches files.
 //!
 //! ```
 //! use std::path::Path;
@@ -22,8 +25,11 @@
 //!         (rate_deg_s: 200.0, radius_error_um: 0.6),
 //!     ])),
 //! )"#;
-//! let study = pipeline::parse_study(text, Path::new("example.ron"))?;
-//! let results = pipeline::run(&study)?;
+//! let path = Path::new("example.ron");
+//! let config = pipeline::StudyConfig::from_ron(text, path)?;
+//! // No recordings here: a loader that is never called.
+//! let inputs = pipeline::Inputs::new(config, path, &|file, _| unreachable!("{file:?}"))?;
+//! let results = pipeline::run(&inputs)?;
 //! assert!(results.post_balance.fit.c_r_m_s2 < 0.0);
 //! assert!(results.pre_balance.fit.c_r_m_s2 > 0.0);
 //! # Ok::<(), pipeline::PipelineError>(())

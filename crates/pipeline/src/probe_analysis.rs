@@ -18,12 +18,12 @@ use crate::results::ProbeTrace;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub enum Progress<'a> {
-    /// The number of recordings the study will analyse.
+    /// The number of recordings the study will analyze.
     Recordings {
         /// How many.
         total: usize,
     },
-    /// One recording has been analysed.
+    /// One recording has been analyzed.
     RecordingDone {
         /// The file.
         path: &'a Path,
@@ -49,7 +49,7 @@ pub(crate) struct ProbeHarmonic {
 /// Most samples drawn per trace (the revolution is decimated evenly beyond this).
 const MAX_TRACE_POINTS: usize = 1500;
 
-/// Analyses every recording of a phase, in parallel; every failure is reported, in the
+/// Analyzes every recording of a phase, in parallel; every failure is reported, in the
 /// configuration's order.
 pub(crate) fn analyze(
     set: &RecordingPhase,

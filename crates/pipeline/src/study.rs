@@ -27,7 +27,7 @@ pub fn run(inputs: &Inputs) -> Result<StudyResults> {
 }
 
 /// [`run`], reporting progress through `progress` (called from several threads while
-/// recordings are analysed in parallel).
+/// recordings are analyzed in parallel).
 pub fn run_with_progress(
     inputs: &Inputs,
     progress: &(dyn Fn(Progress<'_>) + Sync),

@@ -198,15 +198,15 @@ impl<'a> RowParser<'a> {
         lines.pos = text.len();
         lines.line = offset + later.line;
         // The first row of the second half must follow the last of the first half.
-        if let (Some(&t), Some(line)) = (second.time_s.first(), second.first_row_line) {
-            if t <= self.previous_s {
-                return Err(RecordingError::TimeNotIncreasing {
-                    path: self.path.to_owned(),
-                    line: offset + line,
-                    previous_s: self.previous_s,
-                    time_s: t,
-                });
-            }
+        if let (Some(&t), Some(line)) = (second.time_s.first(), second.first_row_line)
+            && t <= self.previous_s
+        {
+            return Err(RecordingError::TimeNotIncreasing {
+                path: self.path.to_owned(),
+                line: offset + line,
+                previous_s: self.previous_s,
+                time_s: t,
+            });
         }
         r2.map_err(|e| e.with_line_offset(offset))?;
         self.time_s.extend_from_slice(&second.time_s);

@@ -1,4 +1,5 @@
 //! Command-line behaviour of `cargo xtask` subcommands (one binary, a module per subcommand).
 
 mod harmonics;
+mod snapshots;
 mod workflow;
