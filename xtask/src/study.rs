@@ -95,23 +95,26 @@ impl Study {
 /// Prints the summary table.
 pub(crate) fn print_summary(results: &StudyResults) {
     println!("study {}", results.study);
-    println!();
-    println!(
-        "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12}",
-        "rate deg/s", "d_c1 µm", "d_s1 µm", "ΔR1 µm", "β deg", "Δr µm"
-    );
     let f =
         |x: Option<f64>, prec: usize| x.map_or_else(|| "—".to_owned(), |v| format!("{v:.prec$}"));
-    for p in &results.post_balance.points {
+    for phase in &results.phases {
+        println!();
+        println!("phase {}", phase.name);
         println!(
-            "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12.4}",
-            p.rate_deg_s,
-            f(p.dc1_um, 4),
-            f(p.ds1_um, 4),
-            f(p.amplitude_um, 4),
-            f(p.beta_deg, 3),
-            p.radius_error_um
+            "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12}",
+            "rate deg/s", "d_c1 µm", "d_s1 µm", "ΔR1 µm", "β deg", "Δr µm"
         );
+        for p in &phase.points {
+            println!(
+                "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12.4}",
+                p.rate_deg_s,
+                f(p.dc1_um, 4),
+                f(p.ds1_um, 4),
+                f(p.amplitude_um, 4),
+                f(p.beta_deg, 3),
+                p.radius_error_um
+            );
+        }
     }
     println!();
     println!(
@@ -119,10 +122,8 @@ pub(crate) fn print_summary(results: &StudyResults) {
         "phase", "model", "C_r m·s²", "σ(C_r)", "Δk2 rad/s/g²", "σ(Δk2)"
     );
     let e = |x: Option<f64>| x.map_or_else(|| "—".to_owned(), |v| format!("{v:.3e}"));
-    for (name, phase) in [
-        ("post-balance", &results.post_balance),
-        ("pre-balance", &results.pre_balance),
-    ] {
+    for phase in &results.phases {
+        let name = &phase.name;
         for fit in std::iter::once(&phase.fit).chain(phase.alternative.as_ref()) {
             println!(
                 "{:<13} {:<18} {:>12.4e} {:>11} {:>14.3e} {:>11}",

@@ -12,7 +12,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
 
-/// A whole study: one centrifuge, one PIGA, a pre- and a post-balance phase.
+/// A whole study: one centrifuge, one PIGA, and any number of named probe phases (before
+/// balancing, with a trial weight, after balancing, ...).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StudyConfig {
@@ -29,12 +30,10 @@ pub struct StudyConfig {
     /// Model of the radius error against rate (default: the paper's `a + C_r·ω²`).
     #[serde(default)]
     pub radius_model: RadiusModelName,
-    /// The phase measured before balancing.
-    pub pre_balance: PhaseConfig,
-    /// The phase measured after balancing.
-    pub post_balance: PhaseConfig,
-    /// A PIGA calibration simulated with the measured C_r, identified with and without
-    /// compensation (absent: not run).
+    /// The probe phases, in the order they are reported (at least one; names unique).
+    pub phases: Vec<PhaseConfig>,
+    /// A PIGA calibration simulated with each phase's measured C_r, identified with and
+    /// without compensation (absent: not run).
     #[serde(default)]
     pub mechanism: Option<MechanismConfig>,
 }
@@ -75,10 +74,13 @@ pub enum RadiusModelName {
     ThreeTerm,
 }
 
-/// The measurements of one phase (pre- or post-balance).
+/// The measurements of one named phase.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PhaseConfig {
+    /// The phase's name: letters, digits, `_` and `-` (it names output files), unique in the
+    /// study, e.g. `pre_balance`, `trial_weight`, `post_balance`.
+    pub name: String,
     /// What was measured at each rate.
     pub points: Points,
     /// How the radius-error fit weighs the points (default: unweighted, the paper's).
@@ -203,6 +205,9 @@ pub struct RecordingPoint {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MechanismConfig {
+    /// The phases whose C_r is simulated, by name (default: every phase, in study order).
+    #[serde(default)]
+    pub phases: Option<Vec<String>>,
     /// PIGA bias k0 of the simulated instrument, rad/s (k1 is the study's `k1_rad_s_g`).
     #[serde(default)]
     pub k0_rad_s: f64,

@@ -137,6 +137,40 @@ pub enum PipelineError {
         /// Why it cannot be used.
         reason: UnsupportedReason,
     },
+    /// Two items of a list share a name.
+    #[error("{}: field `{field}`: the name `{name}` is already used at `{first}`", path.display())]
+    DuplicateName {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the second occurrence.
+        field: String,
+        /// Path of the first occurrence.
+        first: String,
+        /// The repeated name.
+        name: String,
+    },
+    /// A name is empty or has characters other than letters, digits, `_` and `-`.
+    #[error("{}: field `{field}`: `{name}` is not a valid name (letters, digits, `_` and `-`, at most 64)", path.display())]
+    InvalidName {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the name.
+        field: String,
+        /// The name given.
+        name: String,
+    },
+    /// A reference to a phase that the study does not have.
+    #[error("{}: field `{field}`: no phase is named `{name}` (the study's phases: {})", path.display(), known.join(", "))]
+    UnknownPhase {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the reference.
+        field: String,
+        /// The name given.
+        name: String,
+        /// The phases the study has.
+        known: Vec<String>,
+    },
     /// A file is larger than its format allows; it was not read.
     #[error("{}: larger than {max_bytes} bytes, the limit for this kind of file", path.display())]
     TooLarge {

@@ -40,16 +40,17 @@ pub struct Inputs {
     pub(crate) lever: LeverGeometry,
     pub(crate) lever_ratio: f64,
     pub(crate) radius_model: RadiusModelName,
-    pub(crate) pre_balance: Phase,
-    pub(crate) post_balance: Phase,
+    pub(crate) phases: Vec<Phase>,
     pub(crate) mechanism: Option<Mechanism>,
 }
 
 /// One validated phase.
 #[derive(Debug, Clone)]
 pub(crate) struct Phase {
-    /// `pre_balance` or `post_balance`: the section named in errors.
-    pub(crate) key: &'static str,
+    /// The phase's name.
+    pub(crate) name: String,
+    /// `phases[i]`: the section named in errors.
+    pub(crate) key: String,
     pub(crate) weighting: Weighting,
     pub(crate) data: PhaseData,
 }
@@ -87,6 +88,8 @@ pub(crate) struct LoadedRecording {
 /// The validated mechanism section.
 #[derive(Debug, Clone)]
 pub(crate) struct Mechanism {
+    /// Indices of the phases simulated, in the order given.
+    pub(crate) phases: Vec<usize>,
     pub(crate) piga: PigaCoefficients,
     pub(crate) latitude_deg: f64,
     pub(crate) earth_rate_rad_s: f64,
@@ -118,24 +121,34 @@ impl Inputs {
                 source: source_error,
             })?;
         let model = config.radius_model;
-        let pre = check.phase("pre_balance", &config.pre_balance, model)?;
-        let post = check.phase("post_balance", &config.post_balance, model)?;
+        if config.phases.is_empty() {
+            return Err(PipelineError::EmptyList {
+                path: source.to_owned(),
+                field: "phases".to_owned(),
+            });
+        }
+        let mut names: HashMap<&str, usize> = HashMap::with_capacity(config.phases.len());
+        let mut checked = Vec::with_capacity(config.phases.len());
+        for (i, phase) in config.phases.iter().enumerate() {
+            let key = format!("phases[{i}]");
+            check.phase_name(&key, &phase.name)?;
+            if let Some(j) = names.insert(&phase.name, i) {
+                return Err(PipelineError::DuplicateName {
+                    path: source.to_owned(),
+                    field: format!("{key}.name"),
+                    first: format!("phases[{j}].name"),
+                    name: phase.name.clone(),
+                });
+            }
+            checked.push(check.phase(&key, phase, model)?);
+        }
         let mechanism = config
             .mechanism
             .as_ref()
-            .map(|m| check.mechanism(m, config.k1_rad_s_g))
+            .map(|m| check.mechanism(m, config.k1_rad_s_g, &names))
             .transpose()?;
         let base = source.parent().unwrap_or_else(|| Path::new("."));
-        let (pre_balance, post_balance) = load_phases(
-            [
-                ("pre_balance", config.pre_balance),
-                ("post_balance", config.post_balance),
-            ],
-            [pre, post],
-            base,
-            source,
-            load,
-        )?;
+        let phases = load_phases(&config.phases, checked, base, source, load)?;
         Ok(Self {
             source: source.to_owned(),
             name: config.name,
@@ -145,8 +158,7 @@ impl Inputs {
             lever,
             lever_ratio,
             radius_model: model,
-            pre_balance,
-            post_balance,
+            phases,
             mechanism,
         })
     }
@@ -163,8 +175,8 @@ impl Inputs {
 
     /// Every recording the study read, in the configuration's order.
     pub fn recording_files(&self) -> impl Iterator<Item = &Path> {
-        [&self.pre_balance, &self.post_balance]
-            .into_iter()
+        self.phases
+            .iter()
             .flat_map(|phase| match &phase.data {
                 PhaseData::Recordings(set) => set.files.as_slice(),
                 _ => &[],
@@ -212,18 +224,18 @@ enum Checked {
     },
 }
 
-/// Loads the recordings of both phases in parallel and assembles the phases; every loading
+/// Loads the recordings of every phase in parallel and assembles the phases; every loading
 /// error is reported, in the configuration's order.
 fn load_phases(
-    configs: [(&'static str, PhaseConfig); 2],
-    checked: [(Weighting, Checked); 2],
+    configs: &[PhaseConfig],
+    checked: Vec<(Weighting, Checked)>,
     base: &Path,
     source: &Path,
     load: &RecordingLoader<'_>,
-) -> Result<(Phase, Phase)> {
+) -> Result<Vec<Phase>> {
     // (phase index, file index, rate, resolved path, format)
     let mut jobs = Vec::new();
-    for (p, (_, config)) in configs.iter().enumerate() {
+    for (p, config) in configs.iter().enumerate() {
         if let Points::Recordings(set) = &config.points {
             for (i, point) in set.files.iter().enumerate() {
                 jobs.push((p, i, point.rate_deg_s, base.join(&point.file), &set.format));
@@ -238,7 +250,7 @@ fn load_phases(
         })
         .collect();
     let mut errors = Vec::new();
-    let mut files: [Vec<LoadedRecording>; 2] = [Vec::new(), Vec::new()];
+    let mut files: Vec<Vec<LoadedRecording>> = vec![Vec::new(); configs.len()];
     for ((p, i, rate_deg_s, file, _), result) in jobs.iter().zip(loaded) {
         match result {
             Ok(recording) => files[*p].push(LoadedRecording {
@@ -248,31 +260,34 @@ fn load_phases(
             }),
             Err(error) => errors.push(PipelineError::Recording {
                 path: source.to_owned(),
-                field: format!("{}.points.files[{i}]", configs[*p].0),
+                field: format!("phases[{p}].points.files[{i}]"),
                 source: Box::new(error),
             }),
         }
     }
     PipelineError::from_list(errors)?;
-    let [(k0, _), (k1, _)] = configs;
-    let [c0, c1] = checked;
-    let [f0, f1] = files;
-    let phase = |key, (weighting, checked): (Weighting, Checked), files| Phase {
-        key,
-        weighting,
-        data: match checked {
-            Checked::Ready(data) => data,
-            Checked::Recordings {
-                fit,
-                start_angle_rad,
-            } => PhaseData::Recordings(RecordingPhase {
-                fit,
-                start_angle_rad,
-                files,
-            }),
-        },
-    };
-    Ok((phase(k0, c0, f0), phase(k1, c1, f1)))
+    Ok(configs
+        .iter()
+        .zip(checked)
+        .zip(files)
+        .enumerate()
+        .map(|(p, ((config, (weighting, checked)), files))| Phase {
+            name: config.name.clone(),
+            key: format!("phases[{p}]"),
+            weighting,
+            data: match checked {
+                Checked::Ready(data) => data,
+                Checked::Recordings {
+                    fit,
+                    start_angle_rad,
+                } => PhaseData::Recordings(RecordingPhase {
+                    fit,
+                    start_angle_rad,
+                    files,
+                }),
+            },
+        })
+        .collect())
 }
 
 /// Field checks that name the configuration file.
@@ -331,9 +346,27 @@ impl Check<'_> {
         Ok(())
     }
 
+    /// A phase name: non-empty letters, digits, `_` and `-` (it names output files).
+    fn phase_name(&self, key: &str, name: &str) -> Result<()> {
+        let valid = !name.is_empty()
+            && name.len() <= 64
+            && name
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-');
+        if valid {
+            Ok(())
+        } else {
+            Err(PipelineError::InvalidName {
+                path: self.path.to_owned(),
+                field: format!("{key}.name"),
+                name: name.to_owned(),
+            })
+        }
+    }
+
     fn phase(
         &self,
-        section: &'static str,
+        section: &str,
         phase: &PhaseConfig,
         model: RadiusModelName,
     ) -> Result<(Weighting, Checked)> {
@@ -436,7 +469,46 @@ impl Check<'_> {
         Ok((phase.weighting, checked))
     }
 
-    fn mechanism(&self, m: &MechanismConfig, k1_rad_s_g: f64) -> Result<Mechanism> {
+    fn mechanism(
+        &self,
+        m: &MechanismConfig,
+        k1_rad_s_g: f64,
+        names: &HashMap<&str, usize>,
+    ) -> Result<Mechanism> {
+        let phases = match &m.phases {
+            None => {
+                let mut all: Vec<usize> = names.values().copied().collect();
+                all.sort_unstable();
+                all
+            }
+            Some(list) => {
+                let mut phases = Vec::with_capacity(list.len());
+                for (i, name) in list.iter().enumerate() {
+                    let field = format!("mechanism.phases[{i}]");
+                    let Some(&p) = names.get(name.as_str()) else {
+                        return Err(PipelineError::UnknownPhase {
+                            path: self.path.to_owned(),
+                            field,
+                            name: name.clone(),
+                            known: sorted_names(names),
+                        });
+                    };
+                    if phases.contains(&p) {
+                        return Err(PipelineError::DuplicateName {
+                            path: self.path.to_owned(),
+                            field,
+                            first: format!(
+                                "mechanism.phases[{}]",
+                                phases.iter().position(|&q| q == p).unwrap_or(0)
+                            ),
+                            name: name.clone(),
+                        });
+                    }
+                    phases.push(p);
+                }
+                phases
+            }
+        };
         for (field, value) in [
             ("mechanism.k0_rad_s", m.k0_rad_s),
             ("mechanism.k2_rad_s_g2", m.k2_rad_s_g2),
@@ -483,6 +555,7 @@ impl Check<'_> {
             });
         }
         Ok(Mechanism {
+            phases,
             piga: PigaCoefficients {
                 k0_rad_s: m.k0_rad_s,
                 k1_rad_s_g,
@@ -496,6 +569,13 @@ impl Check<'_> {
             seed: m.seed,
         })
     }
+}
+
+/// The phase names in the study's order, for a hint.
+fn sorted_names(names: &HashMap<&str, usize>) -> Vec<String> {
+    let mut list: Vec<(usize, &str)> = names.iter().map(|(n, i)| (*i, *n)).collect();
+    list.sort_unstable();
+    list.into_iter().map(|(_, n)| n.to_owned()).collect()
 }
 
 fn rates_of<T>(items: &[T], rate: impl Fn(&T) -> f64) -> Vec<f64> {

@@ -90,6 +90,7 @@ pub(crate) fn run_phase(
     let k2_true = piga.k2_rad_s_g2;
     let k2_uncompensated = cal.uncompensated.k2_apparent_rad_s_g2;
     Ok(MechanismPhase {
+        phase: String::new(),
         c_r_m_s2: drift.c_r_m_s2,
         c_r_sigma_m_s2: drift.c_r_sigma_m_s2,
         k2_true,

@@ -12,10 +12,8 @@ pub struct StudyResults {
     pub study: String,
     /// The scalar inputs the results depend on, echoed for traceability.
     pub inputs: StudyInputs,
-    /// Results before balancing.
-    pub pre_balance: PhaseResults,
-    /// Results after balancing.
-    pub post_balance: PhaseResults,
+    /// Results of each phase, in the study's order.
+    pub phases: Vec<PhaseResults>,
     /// The simulated calibration with and without compensation (when configured).
     pub mechanism: Option<MechanismResults>,
 }
@@ -102,6 +100,8 @@ pub struct ModelFit {
 /// Results of one phase.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PhaseResults {
+    /// The phase's name (from the configuration).
+    pub name: String,
     /// Per-rate geometry.
     pub points: Vec<PointResult>,
     /// The fit of the configured model.
@@ -139,10 +139,8 @@ pub struct MechanismResults {
     pub latitude_deg: f64,
     /// Noise added to each mean output, rad/s.
     pub output_noise_rad_s: f64,
-    /// Before balancing.
-    pub pre_balance: MechanismPhase,
-    /// After balancing.
-    pub post_balance: MechanismPhase,
+    /// One simulated calibration per phase simulated.
+    pub phases: Vec<MechanismPhase>,
 }
 
 /// PIGA coefficients as `results.json` writes them.
@@ -161,6 +159,8 @@ pub struct PigaResult {
 /// One phase's simulated calibration. Coefficients in rad/(s·g²).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MechanismPhase {
+    /// The phase whose C_r was simulated.
+    pub phase: String,
     /// The measured C_r the spindle was given, m·s².
     pub c_r_m_s2: f64,
     /// Its standard deviation, m·s² (`None` when the phase has none, e.g. the exact
@@ -185,4 +185,11 @@ pub struct MechanismPhase {
     pub k2_error_compensated: f64,
     /// Condition number of the column-scaled eq. 18 design.
     pub condition_number: f64,
+}
+
+impl StudyResults {
+    /// The results of the phase of this name.
+    pub fn phase(&self, name: &str) -> Option<&PhaseResults> {
+        self.phases.iter().find(|p| p.name == name)
+    }
 }

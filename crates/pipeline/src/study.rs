@@ -14,8 +14,8 @@ use crate::inputs::{Inputs, Phase, PhaseData, radius_model};
 use crate::mechanism::{self, Geometry, MeasuredDrift, PhaseFailure};
 use crate::probe_analysis::{self, Progress};
 use crate::results::{
-    MechanismResults, ModelFit, PhaseResults, PigaResult, PointResult, ProbeTrace, StudyInputs,
-    StudyResults,
+    MechanismPhase, MechanismResults, ModelFit, PhaseResults, PigaResult, PointResult, ProbeTrace,
+    StudyInputs, StudyResults,
 };
 
 /// Runs a study: both phases, each with its per-point geometry, its radius-error fit and the
@@ -33,7 +33,8 @@ pub fn run_with_progress(
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<StudyResults> {
     let _study = tracing::info_span!("study", name = %inputs.name).entered();
-    let total = [&inputs.pre_balance, &inputs.post_balance]
+    let total = inputs
+        .phases
         .iter()
         .map(|phase| match &phase.data {
             PhaseData::Recordings(set) => set.files.len(),
@@ -43,8 +44,11 @@ pub fn run_with_progress(
     if total > 0 {
         progress(Progress::Recordings { total });
     }
-    let pre_balance = run_phase(inputs, &inputs.pre_balance, progress)?;
-    let post_balance = run_phase(inputs, &inputs.post_balance, progress)?;
+    let phases = inputs
+        .phases
+        .iter()
+        .map(|phase| run_phase(inputs, phase, progress))
+        .collect::<Result<Vec<_>>>()?;
     let mechanism = inputs
         .mechanism
         .as_ref()
@@ -54,14 +58,20 @@ pub fn run_with_progress(
                 radius_m: inputs.radius_m,
                 g_m_s2: inputs.g_m_s2,
             };
-            let phase = |results: &PhaseResults, section: &str, seed: u64| {
+            let phase = |(n, &p): (usize, &usize)| {
+                let results: &PhaseResults = &phases[p];
                 let drift = MeasuredDrift {
                     c_r_m_s2: results.fit.c_r_m_s2,
                     c_r_sigma_m_s2: results.fit.c_r_sigma_m_s2,
                     offset_um: results.fit.offset_um,
                 };
-                mechanism::run_phase(geometry, m, drift, seed)
-                    .map_err(|e| locate(e, &inputs.source, section))
+                // One noise stream per simulated phase: the seed, then seed + 1, ...
+                mechanism::run_phase(geometry, m, drift, m.seed.wrapping_add(n as u64))
+                    .map(|phase| MechanismPhase {
+                        phase: results.name.clone(),
+                        ..phase
+                    })
+                    .map_err(|e| locate(e, &inputs.source, &format!("mechanism.phases[{n}]")))
             };
             Ok::<_, PipelineError>(MechanismResults {
                 rates_deg_s: m.rates_deg_s.clone(),
@@ -73,12 +83,12 @@ pub fn run_with_progress(
                 },
                 latitude_deg: m.latitude_deg,
                 output_noise_rad_s: m.output_noise_rad_s,
-                pre_balance: phase(&pre_balance, "mechanism.pre_balance", m.seed)?,
-                post_balance: phase(
-                    &post_balance,
-                    "mechanism.post_balance",
-                    m.seed.wrapping_add(1),
-                )?,
+                phases: m
+                    .phases
+                    .iter()
+                    .enumerate()
+                    .map(phase)
+                    .collect::<Result<Vec<_>>>()?,
             })
         })
         .transpose()?;
@@ -90,8 +100,7 @@ pub fn run_with_progress(
             k1_rad_s_g: inputs.k1_rad_s_g,
             lever_ratio: inputs.lever_ratio,
         },
-        pre_balance,
-        post_balance,
+        phases,
         mechanism,
     })
 }
@@ -117,12 +126,13 @@ fn run_phase(
     phase: &Phase,
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<PhaseResults> {
-    let _span = tracing::info_span!("phase", key = phase.key).entered();
+    let _span = tracing::info_span!("phase", name = %phase.name).entered();
     let (points, traces) = phase_points(inputs, phase, progress)?;
     tracing::info!(points = points.len(), "per-point geometry done");
     if let PhaseData::RadiusChange { .. } = phase.data {
         return Ok(PhaseResults {
-            fit: exact_two_point(inputs, &points, phase.key)?,
+            name: phase.name.clone(),
+            fit: exact_two_point(inputs, &points, &phase.key)?,
             points,
             alternative: None,
             traces,
@@ -145,6 +155,7 @@ fn run_phase(
         "radius-error fit done"
     );
     Ok(PhaseResults {
+        name: phase.name.clone(),
         points,
         fit,
         alternative,
@@ -192,7 +203,7 @@ fn phase_points(
     phase: &Phase,
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<(Vec<PointResult>, Vec<ProbeTrace>)> {
-    let section = phase.key;
+    let section = phase.key.as_str();
     let path = inputs.source.as_path();
     let radius_point = |rate_deg_s: f64, radius_error_um: f64| PointResult {
         rate_deg_s,
@@ -278,7 +289,7 @@ fn fit_model(
     model: RadiusModelName,
     phase: &Phase,
 ) -> Result<ModelFit> {
-    let section = phase.key;
+    let section = phase.key.as_str();
     let identify_error = |source| PipelineError::Identify {
         path: inputs.source.clone(),
         field: format!("{section}.points"),

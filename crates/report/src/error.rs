@@ -34,6 +34,9 @@ pub enum ReportError {
         /// The backend's message.
         message: String,
     },
+    /// The results have no phase to draw.
+    #[error("the results have no phase")]
+    NoPhase,
     /// Results could not be serialised.
     #[error("serialising {what}: {message}")]
     Serialize {

@@ -22,7 +22,8 @@ pub struct Expected {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Check {
-    /// Dotted path into `results.json`, e.g. `post_balance.points[0].radius_error_um`.
+    /// Dotted path into `results.json`, e.g. `phases[post_balance].points[0].radius_error_um`:
+    /// an index in brackets is a position in a list, or the `name` (or `phase`) of an element.
     pub path: String,
     /// The expected value.
     pub value: f64,
@@ -109,8 +110,15 @@ fn lookup(root: &serde_json::Value, path: &str) -> Option<f64> {
         };
         node = node.get(key)?;
         for index in indices.split('[').skip(1) {
-            let i: usize = index.strip_suffix(']')?.parse().ok()?;
-            node = node.get(i)?;
+            let index = index.strip_suffix(']')?;
+            node = match index.parse::<usize>() {
+                Ok(i) => node.get(i)?,
+                Err(_) => node.as_array()?.iter().find(|item| {
+                    ["name", "phase"]
+                        .iter()
+                        .any(|k| item.get(k).and_then(|v| v.as_str()) == Some(index))
+                })?,
+            };
         }
     }
     node.as_f64()
@@ -129,5 +137,18 @@ mod tests {
         assert_eq!(lookup(&v, "a.b[2]"), None);
         assert_eq!(lookup(&v, "a.n"), None);
         assert_eq!(lookup(&v, "a.x"), None);
+    }
+
+    #[test]
+    fn lookup_finds_list_elements_by_name() {
+        let v: serde_json::Value = serde_json::from_str(
+            r#"{"phases": [{"name": "pre", "c": 1.0}, {"name": "post", "c": 2.0}],
+                "m": {"phases": [{"phase": "post", "k": 3.0}]}}"#,
+        )
+        .unwrap();
+        assert_eq!(lookup(&v, "phases[post].c"), Some(2.0));
+        assert_eq!(lookup(&v, "phases[pre].c"), Some(1.0));
+        assert_eq!(lookup(&v, "m.phases[post].k"), Some(3.0));
+        assert_eq!(lookup(&v, "phases[trial].c"), None);
     }
 }

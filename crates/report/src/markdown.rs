@@ -36,31 +36,33 @@ pub fn render(
         let _ = writeln!(out, "Published values for comparison: {}.\n", e.source);
     }
 
-    for (title, key, phase) in [
-        ("Post-balance", "post_balance", &results.post_balance),
-        ("Pre-balance", "pre_balance", &results.pre_balance),
-    ] {
+    for phase in &results.phases {
         if phase.points.iter().any(|p| p.dc1_um.is_some()) {
-            let table1 = if key == "post_balance" {
-                " (Table 1)"
+            let key = phase_key(&phase.name);
+            let beside = if published(&format!("{key}.points[0].amplitude_um")).is_some() {
+                " (published values beside: the paper's Table 1)"
             } else {
                 ""
             };
-            let _ = writeln!(out, "## {title} first harmonic and radius error{table1}\n");
-            point_table(&mut out, phase, key, &published);
+            let _ = writeln!(
+                out,
+                "## Phase `{}`: first harmonic and radius error{beside}\n",
+                phase.name
+            );
+            point_table(&mut out, phase, &key, &published);
         }
     }
 
-    for (title, key, phase) in [
-        ("Post-balance", "post_balance", &results.post_balance),
-        ("Pre-balance", "pre_balance", &results.pre_balance),
-    ] {
-        let _ = writeln!(out, "## {title} radius-error fit\n");
-        fit_table(&mut out, phase, key, &published);
+    for phase in &results.phases {
+        let key = phase_key(&phase.name);
+        let _ = writeln!(out, "## Phase `{}`: radius-error fit\n", phase.name);
+        fit_table(&mut out, phase, &key, &published);
         residual_table(&mut out, phase);
     }
 
-    discrepancy(&mut out, &results.post_balance, &published);
+    for phase in &results.phases {
+        discrepancy(&mut out, phase, &published);
+    }
     if let Some(m) = &results.mechanism {
         mechanism_table(&mut out, m);
     }
@@ -93,6 +95,11 @@ pub fn render(
         let _ = writeln!(out, "\n{passed} of {total} checks pass.");
     }
     out
+}
+
+/// The results path of a phase, as expected-value files name it: `phases[<name>]`.
+fn phase_key(name: &str) -> String {
+    format!("phases[{name}]")
 }
 
 fn point_table(
@@ -237,8 +244,17 @@ fn residual_table(out: &mut String, phase: &PhaseResults) {
     let _ = writeln!(out);
 }
 
+/// For a phase whose published σ(C_r) is known, the account of how it relates to ours.
 fn discrepancy(out: &mut String, phase: &PhaseResults, published: &dyn Fn(&str) -> Option<f64>) {
-    let _ = writeln!(out, "## On the paper's stated uncertainty of C_r\n");
+    let key = phase_key(&phase.name);
+    let Some(sigma) = published(&format!("{key}.c_r_sigma_m_s2")) else {
+        return;
+    };
+    let _ = writeln!(
+        out,
+        "## On the paper's stated uncertainty of C_r (phase `{}`)\n",
+        phase.name
+    );
     let fit = &phase.fit;
     let _ = writeln!(
         out,
@@ -258,16 +274,14 @@ fn discrepancy(out: &mut String, phase: &PhaseResults, published: &dyn Fn(&str) 
             opt(alt.c_r_sigma_m_s2, sci)
         );
     }
-    if let Some(sigma) = published("post_balance.c_r_sigma_m_s2") {
-        let _ = writeln!(
-            out,
-            "The paper states C_r = {} ± {sigma:e} m·s²: its value matches the two-term fit, while \
-             its ±{sigma:e} matches the standard error of the ω² coefficient of the three-term fit \
-             a + b·ω + c·ω², whose value is different. We report each model with its own standard \
-             error rather than reproducing the paper's pairing.",
-            opt(published("post_balance.c_r_m_s2"), |x| format!("{x:e}"))
-        );
-    }
+    let _ = writeln!(
+        out,
+        "The paper states C_r = {} ± {sigma:e} m·s²: its value matches the two-term fit, while \
+         its ±{sigma:e} matches the standard error of the ω² coefficient of the three-term fit \
+         a + b·ω + c·ω², whose value is different. We report each model with its own standard \
+         error rather than reproducing the paper's pairing.",
+        opt(published(&format!("{key}.c_r_m_s2")), |x| format!("{x:e}"))
+    );
     let _ = writeln!(out);
 }
 
@@ -301,13 +315,11 @@ fn mechanism_table(out: &mut String, m: &MechanismResults) {
         "| phase | C_r (m·s²) | k2 true | k2 uncompensated | k2 compensated (± σ) | Δk2 predicted (eq. 19) | uncompensated − true | compensated − true | cond |"
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
-    for (name, p) in [
-        ("pre-balance", &m.pre_balance),
-        ("post-balance", &m.post_balance),
-    ] {
+    for p in &m.phases {
         let _ = writeln!(
             out,
-            "| {name} | {} | {} | {} | {} ± {} | {} | {} | {:+.2e} | {:.2e} |",
+            "| `{}` | {} | {} | {} | {} ± {} | {} | {} | {:+.2e} | {:.2e} |",
+            p.phase,
             sci(p.c_r_m_s2),
             sci(p.k2_true),
             sci(p.k2_uncompensated),

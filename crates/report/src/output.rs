@@ -15,7 +15,8 @@ pub struct WrittenFiles {
     pub results_json: PathBuf,
     /// `report.md`.
     pub report_md: PathBuf,
-    /// `radius_error.svg` (the paper's Fig. 5).
+    /// `radius_error.svg` (the paper's Fig. 5): the last phase whose fit has residual degrees
+    /// of freedom.
     pub radius_error_svg: PathBuf,
     /// `probe_signals_<phase>.svg` (the paper's Fig. 4), for each phase given as recordings.
     pub probe_signals_svg: Vec<PathBuf>,
@@ -49,23 +50,30 @@ pub fn write_outputs(
         path: dir.to_owned(),
         source,
     })?;
-    let title = format!("{}: radius error after balancing", results.study);
     let mut probe_signals_svg = Vec::new();
-    for (key, phase) in [
-        ("pre_balance", &results.pre_balance),
-        ("post_balance", &results.post_balance),
-    ] {
+    for phase in &results.phases {
+        let key = &phase.name;
         let title = format!("{}: probe signal over one revolution, {key}", results.study);
         if let Some(svg) = probe_signals_svg_text(phase, &title)? {
             probe_signals_svg.push(write(dir.join(format!("probe_signals_{key}.svg")), &svg)?);
         }
     }
+    // Fig. 5: the last phase whose fit has residual degrees of freedom (the paper's: after
+    // balancing), else the last phase.
+    let figure = results
+        .phases
+        .iter()
+        .rev()
+        .find(|p| p.fit.dof > 0)
+        .or(results.phases.last())
+        .ok_or(ReportError::NoPhase)?;
+    let title = format!("{}: radius error, phase {}", results.study, figure.name);
     Ok(WrittenFiles {
         results_json: write(dir.join("results.json"), &results_json(results)?)?,
         report_md: write(dir.join("report.md"), &render(results, expected, outcomes))?,
         radius_error_svg: write(
             dir.join("radius_error.svg"),
-            &radius_error_svg(&results.post_balance, &title)?,
+            &radius_error_svg(figure, &title)?,
         )?,
         probe_signals_svg,
     })

@@ -108,7 +108,10 @@ fn regress_fails_on_a_changed_expectation() {
     let out = xtask(&["regress", "--expected", expected.to_str().unwrap()]);
     assert!(!out.status.success());
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("FAIL  post_balance.c_r_m_s2"), "{stdout}");
+    assert!(
+        stdout.contains("FAIL  phases[post_balance].c_r_m_s2"),
+        "{stdout}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -81,14 +81,14 @@ fn non_finite_number_is_refused_with_its_field() {
     let text = paper_text().replace("dc1_um: -3.1877", "dc1_um: NaN");
     match parse(&text) {
         Err(PipelineError::InvalidField { field, .. }) => {
-            assert_eq!(field, "post_balance.points[2].dc1_um");
+            assert_eq!(field, "phases[1].points[2].dc1_um");
         }
         other => panic!("expected InvalidField, got {other:?}"),
     }
     let text = paper_text().replace("change_um: 19.4640", "change_um: inf");
     match parse(&text) {
         Err(PipelineError::InvalidField { field, .. }) => {
-            assert_eq!(field, "pre_balance.points.change_um");
+            assert_eq!(field, "phases[0].points.change_um");
         }
         other => panic!("expected InvalidField, got {other:?}"),
     }
@@ -104,8 +104,8 @@ fn duplicate_rates_are_refused() {
             rate_deg_s,
             ..
         }) => {
-            assert_eq!(field, "post_balance.points[1].rate_deg_s");
-            assert_eq!(first, "post_balance.points[0].rate_deg_s");
+            assert_eq!(field, "phases[1].points[1].rate_deg_s");
+            assert_eq!(first, "phases[1].points[0].rate_deg_s");
             assert_eq!(rate_deg_s, 10.0);
         }
         other => panic!("expected DuplicateRate, got {other:?}"),
@@ -117,18 +117,18 @@ fn fewer_points_than_unknowns_is_refused() {
     let text = r#"(
         name: "few", radius_m: 2.5, g_m_s2: 9.8, k1_rad_s_g: 0.56, radius_model: three_term,
         lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0),
-        pre_balance: (points: radius_error([(rate_deg_s: 10.0, radius_error_um: 0.0),
+        phases: [(name: "pre_balance", points: radius_error([(rate_deg_s: 10.0, radius_error_um: 0.0),
                                             (rate_deg_s: 20.0, radius_error_um: 0.1),
                                             (rate_deg_s: 30.0, radius_error_um: 0.3),
                                             (rate_deg_s: 40.0, radius_error_um: 0.6)])),
-        post_balance: (points: radius_error([(rate_deg_s: 10.0, radius_error_um: 1.0),
-                                             (rate_deg_s: 200.0, radius_error_um: 0.9)])),
+        (name: "post_balance", points: radius_error([(rate_deg_s: 10.0, radius_error_um: 1.0),
+                                             (rate_deg_s: 200.0, radius_error_um: 0.9)]))],
     )"#;
     match parse(text) {
         Err(PipelineError::TooFewPoints {
             field, got, need, ..
         }) => {
-            assert_eq!(field, "post_balance.points");
+            assert_eq!(field, "phases[1].points");
             assert_eq!((got, need), (2, 4));
         }
         other => panic!("expected TooFewPoints, got {other:?}"),
@@ -140,7 +140,7 @@ fn zero_or_negative_rate_is_refused() {
     let text = paper_text().replace("rate_deg_s: 60.0,", "rate_deg_s: -60.0,");
     match parse(&text) {
         Err(PipelineError::InvalidField { field, .. }) => {
-            assert_eq!(field, "post_balance.points[1].rate_deg_s");
+            assert_eq!(field, "phases[1].points[1].rate_deg_s");
         }
         other => panic!("expected InvalidField, got {other:?}"),
     }
@@ -190,5 +190,55 @@ fn mechanism_needs_seven_distinct_finite_rates() {
             assert_eq!(field, "mechanism.latitude_deg")
         }
         other => panic!("expected InvalidField, got {other:?}"),
+    }
+}
+
+#[test]
+fn phase_names_are_unique_and_valid() {
+    let text = paper_text().replace("name: \"post_balance\"", "name: \"pre_balance\"");
+    match parse(&text) {
+        Err(PipelineError::DuplicateName {
+            field, first, name, ..
+        }) => {
+            assert_eq!(field, "phases[1].name");
+            assert_eq!(first, "phases[0].name");
+            assert_eq!(name, "pre_balance");
+        }
+        other => panic!("expected DuplicateName, got {other:?}"),
+    }
+    let text = paper_text().replace("name: \"post_balance\"", "name: \"after balancing\"");
+    match parse(&text) {
+        Err(PipelineError::InvalidName { field, .. }) => assert_eq!(field, "phases[1].name"),
+        other => panic!("expected InvalidName, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_study_without_phases_is_refused() {
+    let text = paper_text();
+    let start = text.find("phases: [").unwrap();
+    let end = text.find("    ],\n").unwrap() + "    ],\n".len();
+    let text = format!("{}phases: [],\n{}", &text[..start], &text[end..]);
+    match parse(&text) {
+        Err(PipelineError::EmptyList { field, .. }) => assert_eq!(field, "phases"),
+        other => panic!("expected EmptyList, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_mechanism_names_known_phases() {
+    let text = paper_text().replace(
+        "k0_rad_s: 1.0e-4,",
+        "k0_rad_s: 1.0e-4,\n        phases: [\"post_balance\", \"trial\"],",
+    );
+    match parse(&text) {
+        Err(PipelineError::UnknownPhase {
+            field, name, known, ..
+        }) => {
+            assert_eq!(field, "mechanism.phases[1]");
+            assert_eq!(name, "trial");
+            assert_eq!(known, ["pre_balance", "post_balance"]);
+        }
+        other => panic!("expected UnknownPhase, got {other:?}"),
     }
 }

@@ -53,7 +53,16 @@ fn a_study_runs_on_recordings_in_memory() {
         &pipeline::load_study(&root().join("fixtures/studies/recordings-small.ron")).unwrap(),
     )
     .unwrap();
-    assert_eq!(in_memory.pre_balance.points, from_disk.pre_balance.points);
-    assert_eq!(in_memory.pre_balance.fit, from_disk.pre_balance.fit);
-    assert_eq!(in_memory.post_balance, from_disk.post_balance);
+    assert_eq!(
+        in_memory.phase("pre_balance").unwrap().points,
+        from_disk.phase("pre_balance").unwrap().points
+    );
+    assert_eq!(
+        in_memory.phase("pre_balance").unwrap().fit,
+        from_disk.phase("pre_balance").unwrap().fit
+    );
+    assert_eq!(
+        in_memory.phase("post_balance").unwrap(),
+        from_disk.phase("post_balance").unwrap()
+    );
 }

@@ -300,16 +300,18 @@ fn study_z_scores(base: &LoadedScenario, seeds: u64, weighting: &str) -> Vec<f64
                 .map(|(f, r)| format!("(rate_deg_s: {}, file: {:?}),", r.rate_deg_s, f))
                 .collect();
             let phase = format!(
-                "(weighting: {weighting}, points: recordings((fit: (order: {}), files: [{list}])))",
+                "(name: \"measured\", weighting: {weighting}, \
+                 points: recordings((fit: (order: {}), files: [{list}])))",
                 fit_order(&loaded.scenario)
             );
             let text = format!(
                 "(name: \"z\", radius_m: 2.5, g_m_s2: 9.8, k1_rad_s_g: 0.56, \
                  lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0), \
-                 pre_balance: {phase}, post_balance: {phase})"
+                 phases: [{phase}])"
             );
             let study = pipeline::parse_study(&text, &dir.join("z.ron")).unwrap();
-            let fit = pipeline::run(&study).unwrap().post_balance.fit;
+            let results = pipeline::run(&study).unwrap();
+            let fit = results.phase("measured").unwrap().fit.clone();
             (fit.c_r_m_s2 - sim.truth.c_r_m_s2) / fit.c_r_sigma_m_s2.unwrap()
         })
         .collect();

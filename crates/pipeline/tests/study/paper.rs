@@ -23,7 +23,7 @@ fn regression_against_expected_fixture() {
 #[test]
 fn post_balance_figures_of_the_notes() {
     let r = paper_results();
-    let post = &r.post_balance;
+    let post = &r.phase("post_balance").unwrap();
     assert_relative_eq!(post.fit.c_r_m_s2, -4.0526e-8, max_relative = 1e-4);
     assert_relative_eq!(
         post.fit.c_r_sigma_m_s2.unwrap(),
@@ -45,7 +45,7 @@ fn post_balance_figures_of_the_notes() {
 #[test]
 fn pre_balance_figures_of_the_notes() {
     let r = paper_results();
-    let pre = &r.pre_balance;
+    let pre = &r.phase("pre_balance").unwrap();
     assert_relative_eq!(pre.fit.c_r_m_s2, 1.6e-6, max_relative = 0.01);
     assert_relative_eq!(pre.fit.delta_k2_rad_s_g2, 1.40e-6, max_relative = 0.005);
     // Two points, two unknowns: no standard error can be claimed.
@@ -71,7 +71,7 @@ fn outputs_are_written_and_json_has_the_documented_keys() {
         "delta_k2_sigma_rad_s_g2",
     ] {
         assert!(
-            json["post_balance"][key].is_string() || json["post_balance"][key].is_number(),
+            json["phases"][1][key].is_string() || json["phases"][1][key].is_number(),
             "{key}"
         );
     }
@@ -83,10 +83,12 @@ fn outputs_are_written_and_json_has_the_documented_keys() {
         "beta_deg",
         "radius_error_um",
     ] {
-        assert!(json["post_balance"]["points"][0][key].is_number(), "{key}");
+        assert!(json["phases"][1]["points"][0][key].is_number(), "{key}");
     }
-    assert!(json["pre_balance"]["c_r_m_s2"].is_number());
-    assert!(json["pre_balance"]["delta_k2_rad_s_g2"].is_number());
+    assert_eq!(json["phases"][0]["name"], "pre_balance");
+    assert_eq!(json["phases"][1]["name"], "post_balance");
+    assert!(json["phases"][0]["c_r_m_s2"].is_number());
+    assert!(json["phases"][0]["delta_k2_rad_s_g2"].is_number());
     let svg = std::fs::read_to_string(&files.radius_error_svg).unwrap();
     assert!(
         svg.starts_with("<svg") && svg.contains("<circle"),
@@ -102,7 +104,7 @@ fn outputs_are_written_and_json_has_the_documented_keys() {
         "the three-term σ is computed and shown"
     );
     assert!(
-        report.contains("| `post_balance.c_r_m_s2` | -4.05e-8 |"),
+        report.contains("| `phases[post_balance].c_r_m_s2` | -4.05e-8 |"),
         "checks are listed"
     );
     std::fs::remove_dir_all(&dir).unwrap();
@@ -115,7 +117,7 @@ fn mechanism_shows_the_pseudo_second_order_term_and_its_removal() {
         .mechanism
         .as_ref()
         .expect("the paper study configures the mechanism section");
-    for (name, phase) in [("pre", &m.pre_balance), ("post", &m.post_balance)] {
+    for (name, phase) in [("pre", &m.phases[0]), ("post", &m.phases[1])] {
         let dk2 = phase.delta_k2_predicted;
         // Δk2 = k1·C_r·g/R² from the measured C_r.
         assert_relative_eq!(
@@ -134,16 +136,16 @@ fn mechanism_shows_the_pseudo_second_order_term_and_its_removal() {
         );
     }
     // The published pre-balance C_r has no σ, so its compensated k2 has none either.
-    assert_eq!(m.pre_balance.c_r_sigma_m_s2, None);
-    assert_eq!(m.pre_balance.k2_compensated_sigma, None);
-    assert!(m.post_balance.k2_compensated_sigma.unwrap() > 0.0);
+    assert_eq!(m.phases[0].c_r_sigma_m_s2, None);
+    assert_eq!(m.phases[0].k2_compensated_sigma, None);
+    assert!(m.phases[1].k2_compensated_sigma.unwrap() > 0.0);
     assert_relative_eq!(
-        m.pre_balance.delta_k2_predicted,
+        m.phases[0].delta_k2_predicted,
         1.40e-6,
         max_relative = 0.005
     );
     assert_relative_eq!(
-        m.post_balance.delta_k2_predicted,
+        m.phases[1].delta_k2_predicted,
         -3.56e-8,
         max_relative = 0.005
     );

@@ -27,12 +27,12 @@ fn recordings_recover_the_simulated_truth() {
     let outcomes = expected.compare(&results).unwrap();
     let failed: Vec<_> = outcomes.iter().filter(|o| !o.passed).collect();
     assert!(failed.is_empty(), "{failed:#?}");
-    for p in &results.pre_balance.points {
+    for p in &results.phase("pre_balance").unwrap().points {
         assert!(p.revolutions.unwrap() >= 2);
         let sigma = p.radius_error_sigma_um.unwrap();
         assert!(sigma > 0.0 && sigma < 0.02, "{p:?}");
     }
-    assert_eq!(results.pre_balance.traces.len(), 6);
+    assert_eq!(results.phase("pre_balance").unwrap().traces.len(), 6);
     let dir = std::env::temp_dir().join(format!("centrifuge-cal-rec-{}", std::process::id()));
     let files = report::write_outputs(&dir, &results, None, None).unwrap();
     assert_eq!(
@@ -91,7 +91,7 @@ fn relative_paths_resolve_against_the_configuration() {
     let files = good_files(&dir);
     let study = study_with_files(&dir, &list(&files, &RATES)).unwrap();
     let results = pipeline::run(&study).unwrap();
-    assert_eq!(results.pre_balance.points.len(), 4);
+    assert_eq!(results.phase("pre_balance").unwrap().points.len(), 4);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -103,7 +103,7 @@ fn a_missing_recording_names_the_field_and_the_file() {
     let err = study_with_files(&dir, &list(&files, &RATES)).unwrap_err();
     match &err {
         PipelineError::Recording { field, source, .. } => {
-            assert_eq!(field, "pre_balance.points.files[2]");
+            assert_eq!(field, "phases[0].points.files[2]");
             assert!(source.to_string().contains("nope.csv"), "{source}");
         }
         other => panic!("expected Recording, got {other:?}"),
@@ -135,14 +135,14 @@ fn recording_lists_are_validated() {
     let files = good_files(&dir);
     match study_with_files(&dir, "") {
         Err(PipelineError::EmptyList { field, .. }) => {
-            assert_eq!(field, "pre_balance.points.files")
+            assert_eq!(field, "phases[0].points.files")
         }
         other => panic!("expected EmptyList, got {other:?}"),
     }
     match study_with_files(&dir, &list(&files, &[20.0, 40.0, 20.0, 110.1234])) {
         Err(PipelineError::DuplicateRate { field, first, .. }) => {
-            assert_eq!(field, "pre_balance.points.files[2].rate_deg_s");
-            assert_eq!(first, "pre_balance.points.files[0].rate_deg_s");
+            assert_eq!(field, "phases[0].points.files[2].rate_deg_s");
+            assert_eq!(first, "phases[0].points.files[0].rate_deg_s");
         }
         other => panic!("expected DuplicateRate, got {other:?}"),
     }
@@ -154,7 +154,7 @@ fn recording_lists_are_validated() {
         .unwrap()
         .replace("fit: (order: 4, drift: false)", "fit: (order: 0)");
     match pipeline::parse_study(&text, &study_path()) {
-        Err(PipelineError::Harmonics { field, .. }) => assert_eq!(field, "pre_balance.points.fit"),
+        Err(PipelineError::Harmonics { field, .. }) => assert_eq!(field, "phases[0].points.fit"),
         other => panic!("expected Harmonics, got {other:?}"),
     }
     std::fs::remove_dir_all(&dir).unwrap();
@@ -163,27 +163,34 @@ fn recording_lists_are_validated() {
 #[test]
 fn inverse_variance_weighting_uses_each_recordings_standard_error() {
     let text = std::fs::read_to_string(study_path()).unwrap().replace(
-        "pre_balance: (\n        points: recordings((",
-        "pre_balance: (\n        weighting: inverse_variance,\n        points: recordings((",
+        "name: \"pre_balance\",\n            points: recordings((",
+        "name: \"pre_balance\",\n            weighting: inverse_variance,\n            points: recordings((",
     );
     assert!(text.contains("weighting: inverse_variance"));
     let study = pipeline::parse_study(&text, &study_path()).unwrap();
     let results = pipeline::run(&study).unwrap();
-    let fit = &results.pre_balance.fit;
+    let fit = &results.phase("pre_balance").unwrap().fit;
     assert_eq!(fit.weighting, pipeline::Weighting::InverseVariance);
     let chi = fit.reduced_chi.unwrap();
     assert!(chi > 0.1 && chi < 5.0, "√(χ²/dof) = {chi}");
     // The weighted C_r also recovers the scenario's 1.6e-6 (3σ of the probe noise).
     assert!((fit.c_r_m_s2 - 1.6e-6).abs() < 1.0e-9, "{}", fit.c_r_m_s2);
-    assert!(results.post_balance.fit.reduced_chi.is_none());
+    assert!(
+        results
+            .phase("post_balance")
+            .unwrap()
+            .fit
+            .reduced_chi
+            .is_none()
+    );
     // Weighting needs recordings: refused on Table 1 coefficients.
     let text = text.replace(
-        "post_balance: (\n        points: first_harmonic(",
-        "post_balance: (\n        weighting: inverse_variance,\n        points: first_harmonic(",
+        "name: \"post_balance\",\n            points: first_harmonic(",
+        "name: \"post_balance\",\n            weighting: inverse_variance,\n            points: first_harmonic(",
     );
     match pipeline::parse_study(&text, &study_path()) {
         Err(PipelineError::Unsupported { field, .. }) => {
-            assert_eq!(field, "post_balance.weighting");
+            assert_eq!(field, "phases[1].weighting");
         }
         other => panic!("expected Unsupported, got {other:?}"),
     }
