@@ -65,7 +65,7 @@ fn run(args: &[String]) -> Result<(), String> {
         i += 2;
     }
     let out = out.ok_or("usage: synth_recording OUT.csv [options]")?;
-    let text = spec.csv();
+    let text = spec.csv().map_err(|e| e.to_string())?;
     std::fs::write(&out, &text).map_err(|e| format!("{out}: {e}"))?;
     println!("{out}: {} bytes, {} samples", text.len(), spec.samples());
     Ok(())

@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use harmonics::HarmonicsError;
 
-/// Errors of reading a probe recording; each names the file and, where it applies, the
-/// 1-based line.
+/// Errors of reading a probe recording, each naming the file and, where it applies, the
+/// 1-based line; and of the probe-recording writer's input.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum RecordingError {
@@ -135,7 +135,34 @@ pub enum RecordingError {
         /// The check's error (its message is part of this one's).
         error: HarmonicsError,
     },
+    /// Columns given to the probe-recording writer differ in length.
+    #[error(
+        "probe columns to write differ in length: {time} times, {gap} gaps{}",
+        angle.map(|a| format!(", {a} angles")).unwrap_or_default()
+    )]
+    ColumnLengths {
+        /// Length of the time column.
+        time: usize,
+        /// Length of the gap column.
+        gap: usize,
+        /// Length of the angle column, when there is one.
+        angle: Option<usize>,
+    },
+    /// A value given to the probe-recording writer is NaN or infinite (the reader would
+    /// refuse the file).
+    #[error("probe column `{column}` to write: value {value} at index {index} is not finite")]
+    NonFiniteValue {
+        /// The column (`time_s`, `gap_um` or `angle_deg`).
+        column: &'static str,
+        /// The 0-based index of the value.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
 }
+
+/// Result alias of this crate.
+pub type Result<T, E = RecordingError> = std::result::Result<T, E>;
 
 impl RecordingError {
     /// The error with its line moved by `offset` (for a piece parsed apart).
@@ -154,7 +181,11 @@ impl RecordingError {
                     *l += offset;
                 }
             }
-            Self::Io { .. } | Self::InvalidFormat { .. } | Self::Empty { .. } => {}
+            Self::Io { .. }
+            | Self::InvalidFormat { .. }
+            | Self::Empty { .. }
+            | Self::ColumnLengths { .. }
+            | Self::NonFiniteValue { .. } => {}
         }
         self
     }

@@ -58,6 +58,13 @@ impl AngleUnit {
     }
 }
 
+/// Default name of the time column, s; the writer's header name.
+pub(crate) const TIME_COLUMN: &str = "time_s";
+/// Default name of the gap column, µm; the writer's header name.
+pub(crate) const GAP_COLUMN: &str = "gap_um";
+/// Default name of the encoder-angle column, deg; the writer's header name.
+pub(crate) const ANGLE_COLUMN: &str = "angle_deg";
+
 /// Layout of a probe-recording file; every field has a default, so a study configuration
 /// names only what differs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -85,9 +92,9 @@ pub struct RecordingFormat {
 impl Default for RecordingFormat {
     fn default() -> Self {
         Self {
-            time_column: "time_s".into(),
-            gap_column: "gap_um".into(),
-            angle_column: "angle_deg".into(),
+            time_column: TIME_COLUMN.into(),
+            gap_column: GAP_COLUMN.into(),
+            angle_column: ANGLE_COLUMN.into(),
             gap_unit: LengthUnit::Um,
             angle_unit: AngleUnit::Deg,
             delimiter: ',',

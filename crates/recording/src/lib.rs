@@ -23,14 +23,16 @@ mod lines;
 mod number;
 mod rows;
 mod synth;
+mod write;
 
 use std::path::{Path, PathBuf};
 
 use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
 
-pub use error::RecordingError;
+pub use error::{RecordingError, Result};
 pub use format::{AngleUnit, LengthUnit, RecordingFormat};
 pub use synth::SyntheticSpec;
+pub use write::{ProbeColumns, WriteOptions, write_probe_csv};
 
 use lines::{BOM, line_of_row, lone_cr_line_ends, normalized};
 use rows::RowParser;
@@ -586,7 +588,7 @@ mod tests {
         let text = std::fs::read_to_string(&path).unwrap();
         assert_eq!(
             text,
-            spec.csv(),
+            spec.csv().unwrap(),
             "regenerate with the synth_recording example"
         );
         assert!(text.len() < 300_000);
@@ -618,7 +620,7 @@ mod tests {
             ..SyntheticSpec::default()
         };
         let path = dir.join("half.csv");
-        std::fs::write(&path, spec.csv()).unwrap();
+        std::fs::write(&path, spec.csv().unwrap()).unwrap();
         let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
         let e = analyze_recording(
             &rec,
@@ -638,7 +640,7 @@ mod tests {
             "{e}"
         );
         // An encoder stepping back at row 100, line 103 (after the comment and the header).
-        let mut text = SyntheticSpec::default().csv();
+        let mut text = SyntheticSpec::default().csv().unwrap();
         let lines: Vec<&str> = text.lines().collect();
         let fields: Vec<&str> = lines[102].split(',').collect();
         let back = format!(
@@ -676,7 +678,7 @@ mod tests {
     #[test]
     fn encoder_file_at_another_rate_than_declared_is_refused() {
         let spec = SyntheticSpec::default(); // 120 deg/s, with an encoder and speed ripple
-        let rec = parse(&spec.csv()).unwrap();
+        let rec = parse(&spec.csv().unwrap()).unwrap();
         let config = harmonics::FitConfig::default();
         assert!(analyze_recording(&rec, 120f64.to_radians(), 0.0, &config).is_ok());
         assert!(analyze_recording(&rec, 118f64.to_radians(), 0.0, &config).is_ok());
@@ -710,7 +712,7 @@ mod tests {
             encoder: false,
             ..spec
         };
-        let rec = parse(&no_encoder.csv()).unwrap();
+        let rec = parse(&no_encoder.csv().unwrap()).unwrap();
         assert!(analyze_recording(&rec, 120f64.to_radians(), 0.0, &config).is_ok());
     }
 
