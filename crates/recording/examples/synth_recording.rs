@@ -1,7 +1,7 @@
 //! Writes a deterministic synthetic probe recording (CSV) with known Fourier coefficients.
 //!
 //! ```text
-//! cargo run -p recording --example synth_recording -- OUT.csv [--rate-deg-s W] [--sample-rate-hz F]
+//! cargo run -p recording --features synthetic --example synth_recording -- OUT.csv [--rate-deg-s W] [--sample-rate-hz F]
 //!     [--revolutions R] [--encoder | --no-encoder] [--noise-um S] [--wobble-rad A]
 //!     [--start-angle-deg D] [--seed N]
 //! ```

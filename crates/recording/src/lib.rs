@@ -22,6 +22,7 @@ mod format;
 mod lines;
 mod number;
 mod rows;
+#[cfg(feature = "synthetic")]
 mod synth;
 mod write;
 
@@ -31,6 +32,7 @@ use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
 
 pub use error::{RecordingError, Result};
 pub use format::{AngleUnit, LengthUnit, RecordingFormat};
+#[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 pub use write::{ProbeColumns, WriteOptions, write_probe_csv};
 

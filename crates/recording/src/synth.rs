@@ -1,4 +1,4 @@
-//! Synthetic recordings with known coefficients.
+//! Synthetic recordings with known coefficients (feature `synthetic`).
 
 use crate::error::Result;
 use crate::write::{ProbeColumns, WriteOptions, write_probe_csv};
