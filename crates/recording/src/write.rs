@@ -190,5 +190,6 @@ mod tests {
         .unwrap();
         assert_eq!(rec.time_s, t);
         assert_eq!(rec.gap, g);
+        assert_eq!(rec.line_of_sample(0), 6);
     }
 }

@@ -1,0 +1,3 @@
+//! Behaviour of the readers through the public API.
+
+mod probe;
