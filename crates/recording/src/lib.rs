@@ -26,6 +26,7 @@ mod format;
 mod line_table;
 mod lines;
 mod number;
+mod piga;
 mod probe;
 mod rows;
 mod stream;
@@ -36,6 +37,9 @@ mod write;
 
 pub use error::{RecordingError, Result};
 pub use format::{AngleUnit, LengthUnit, RecordingFormat};
+pub use piga::{
+    PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
+};
 pub use probe::{Recording, analyze_recording, load_recording, parse_recording};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;

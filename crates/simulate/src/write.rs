@@ -4,7 +4,9 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-use recording::{ProbeColumns, WriteOptions, write_probe_csv};
+use recording::{
+    PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, ProbeColumns, WriteOptions, write_probe_csv,
+};
 
 use super::generate::{PigaRow, SimulatedRecording, Simulation};
 use crate::error::{Result, SimulateError};
@@ -61,7 +63,7 @@ pub fn write_simulation(dir: &Path, sim: &Simulation) -> Result<SimulationFiles>
 /// ```
 #[must_use]
 pub fn piga_csv_text(rows: &[PigaRow]) -> String {
-    let mut text = String::from("rate_deg_s,output_rad_s\n");
+    let mut text = format!("{PIGA_RATE_COLUMN},{PIGA_OUTPUT_COLUMN}\n");
     for r in rows {
         // writing to a String cannot fail
         let _ = writeln!(text, "{},{}", r.rate_deg_s, r.output_rad_s);

@@ -172,12 +172,18 @@ fn piga_csv_is_exact_and_parses_back() {
     let base = modified(&post_balance(), |s| s.piga.noise_rad_s = 1e-6);
     let sim = simulate(&base).unwrap();
     let text = piga_csv_text(&sim.piga);
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("rate_deg_s,output_rad_s"));
-    for (line, row) in lines.zip(&sim.piga) {
-        let (r, y) = line.split_once(',').unwrap();
-        assert_eq!(r.parse::<f64>().unwrap(), row.rate_deg_s);
-        assert_eq!(y.parse::<f64>().unwrap(), row.output_rad_s);
+    assert!(text.starts_with("rate_deg_s,output_rad_s\n"));
+    // the PIGA-table reader reads every number back exactly
+    let table = recording::parse_piga_table(text.as_bytes(), Path::new("piga.csv")).unwrap();
+    assert_eq!(table.len(), sim.piga.len());
+    for ((r, y), row) in table
+        .rate_deg_s
+        .iter()
+        .zip(&table.output_rad_s)
+        .zip(&sim.piga)
+    {
+        assert_eq!(*r, row.rate_deg_s);
+        assert_eq!(*y, row.output_rad_s);
     }
     // the noise is added to the exact mean
     for (row, truth) in sim.piga.iter().zip(&sim.truth.rates) {
