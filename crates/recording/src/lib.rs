@@ -1,15 +1,39 @@
-//! Probe recordings: delimited text files of time, probe gap and, optionally, the spindle
-//! encoder's angle, one sample per row (the raw data behind eq. 20).
+//! Lab data as labs store it: the readers of probe recordings and PIGA tables, the
+//! probe-recording writer, and the conversion of a recording to the input of the harmonic
+//! analysis ([`harmonics::ProbeSignal`], eq. 20).
 //!
-//! A file is read by one table parser ([`load_table`], [`parse_table`]): it is streamed
-//! through one reused buffer of about a megabyte and parsed in a single pass without an
-//! allocation per row; the columns grow with the rows read, never with the file's size.
-//! Fields are parsed in place by a fast decimal parser (exact for up to 19 significant
-//! digits and exponents within ±22, the standard library's parser otherwise). Lines end
-//! with LF, CRLF, or (in a file whose first line end is one) a lone CR; a leading UTF-8
-//! byte-order mark is skipped; fields may be quoted. Errors name the file and the 1-based
-//! line; a loaded recording keeps a compact row → line table, so an error found later (one
-//! of [`analyze_recording`]) names its line without reading the file again.
+//! # Formats
+//!
+//! Both are delimited text tables read by one parser ([`load_table`], [`parse_table`]):
+//! blank lines and lines starting with `#` are skipped, the first other line is the header
+//! naming the columns, then one row per line. Lines end with LF, CRLF, or (in a file whose
+//! first line end is one) a lone CR; a leading UTF-8 byte-order mark is skipped; fields may
+//! be quoted and have blanks around them; with a blank delimiter, runs of blanks separate
+//! fields. Columns are found by name; the others are skipped. Every value read must be a
+//! finite number.
+//!
+//! - **Probe recording** ([`load_recording`], [`parse_recording`], [`RecordingFormat`]):
+//!   time (s), probe gap (µm, mm or m) and, optionally, the spindle encoder's angle (deg or
+//!   rad), one sample per row; names, units and delimiter configurable (default
+//!   `time_s,gap_um[,angle_deg]`, comma-separated). Times must increase without a gap of
+//!   more than a few nominal sample intervals. Rows may have more fields than are read.
+//!   [`write_probe_csv`] writes this format.
+//! - **PIGA table** ([`load_piga_table`], [`PigaTable`]): `rate_deg_s,output_rad_s`, the mean
+//!   PIGA output at each centrifuge rate (the data of eq. 18); every row as many fields as
+//!   the header.
+//!
+//! # Reading
+//!
+//! A file is streamed through one reused buffer of about a megabyte and parsed in a single
+//! pass without an allocation per row; the columns grow with the rows read, never with the
+//! file's size, and a line longer than 16 MiB is refused ([`RecordingError::LineTooLong`]),
+//! so a binary file or `/dev/zero` is an error, not unbounded growth. Fields are parsed in
+//! place by a fast decimal parser (exact for up to 19 significant digits and exponents
+//! within ±22, the standard library's parser otherwise); pieces of 256 kB or more are
+//! parsed as two halves on two threads. Errors name the file and the 1-based line; a table
+//! keeps a compact row → line table (memory grows with its comment and blank lines, not its
+//! rows), so an error found after reading, such as one of [`analyze_recording`], names its
+//! line without reading the file again.
 //!
 //! ```
 //! use recording::{parse_recording, RecordingFormat};
@@ -20,6 +44,18 @@
 //! assert_eq!(rec.line_of_sample(1), 4);
 //! # Ok::<(), recording::RecordingError>(())
 //! ```
+//!
+//! # Features
+//!
+//! - `synthetic`: `SyntheticSpec`, synthetic recordings with known
+//!   coefficients for fixtures, tests and benchmarks (the `synth_recording` example).
+//!
+//! # Boundaries
+//!
+//! The crate reads and writes lab files and hands values to `harmonics`; it knows nothing
+//! of kinematics, identification, studies, reports or configuration files. It must not
+//! depend on `plotters`, `rand`, `ron`, `faer`, `nalgebra`, `kinematics` or `identify`
+//! (`ron` only as a dev-dependency); `.ci/layering` checks this.
 
 mod error;
 mod format;
