@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context as _, bail};
+use anyhow::Context as _;
 use identify::{
     Calibration, CompensatedCalibration, Compensation, K1Source, identify_calibration,
     identify_compensated,
@@ -13,7 +13,7 @@ use identify::{
 #[derive(Debug, clap::Args)]
 pub(crate) struct Identify {
     /// CSV file with header `rate_deg_s,output_rad_s`: one row per rate point (mean output over
-    /// whole revolutions, rad/s).
+    /// whole revolutions, rad/s); `#` comment lines and blank lines are skipped.
     file: PathBuf,
     /// Working radius R (m), used to form a = R·ω²/g.
     #[arg(long)]
@@ -39,8 +39,9 @@ pub(crate) struct Identify {
 
 impl Identify {
     pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let (rate_deg_s, output_rad_s) = read_table(&self.file)?;
-        let rate_rad_s: Vec<f64> = rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let table = recording::load_piga_table(&self.file)?;
+        let rate_rad_s: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let output_rad_s = &table.output_rad_s;
         let context = || format!("identifying {}", self.file.display());
         let result = match (self.c_r_m_s2, self.c_r_sigma_m_s2) {
             (Some(c_r_m_s2), Some(c_r_sigma_m_s2)) => {
@@ -55,7 +56,7 @@ impl Identify {
                 };
                 let c = identify_compensated(
                     &rate_rad_s,
-                    &output_rad_s,
+                    output_rad_s,
                     self.radius_m,
                     self.g,
                     &compensation,
@@ -64,7 +65,7 @@ impl Identify {
                 (c.uncompensated.clone(), Some(c))
             }
             _ => (
-                identify_calibration(&rate_rad_s, &output_rad_s, self.radius_m, self.g)
+                identify_calibration(&rate_rad_s, output_rad_s, self.radius_m, self.g)
                     .with_context(context)?,
                 None,
             ),
@@ -77,50 +78,6 @@ impl Identify {
         }
         Ok(())
     }
-}
-
-/// Reads `rate_deg_s,output_rad_s`; every error names the file and the line.
-fn read_table(path: &Path) -> anyhow::Result<(Vec<f64>, Vec<f64>)> {
-    let name = path.display();
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .with_context(|| format!("{name}: cannot open"))?;
-    let headers = reader
-        .headers()
-        .with_context(|| format!("{name}: line 1: cannot read the header"))?
-        .clone();
-    let names: Vec<&str> = headers.iter().collect();
-    if names != ["rate_deg_s", "output_rad_s"] {
-        bail!(
-            "{name}: line 1: header must be `rate_deg_s,output_rad_s`, found `{}`",
-            names.join(",")
-        );
-    }
-    let (mut rates, mut outputs) = (Vec::new(), Vec::new());
-    for record in reader.records() {
-        let record = record.map_err(|e| {
-            let line = e.position().map_or(0, csv::Position::line);
-            anyhow::anyhow!("{name}: line {line}: {e}")
-        })?;
-        let line = record.position().map_or(0, csv::Position::line);
-        let field = |index: usize, column: &str| -> anyhow::Result<f64> {
-            let text = record.get(index).unwrap_or("");
-            let value: f64 = text.parse().map_err(|_| {
-                anyhow::anyhow!("{name}: line {line}: {column} `{text}` is not a number")
-            })?;
-            if !value.is_finite() {
-                bail!("{name}: line {line}: {column} `{text}` is not finite");
-            }
-            Ok(value)
-        };
-        rates.push(field(0, "rate_deg_s")?);
-        outputs.push(field(1, "output_rad_s")?);
-    }
-    if rates.is_empty() {
-        bail!("{name}: no data rows after the header");
-    }
-    Ok((rates, outputs))
 }
 
 fn print_report(path: &Path, cal: &Calibration, comp: Option<&CompensatedCalibration>) {
@@ -264,48 +221,20 @@ mod tests {
     }
 
     #[test]
-    fn reads_a_table() {
-        let f = TempFile::new("ok", "rate_deg_s,output_rad_s\n10, 0.5\n20,1.5e-1\n");
-        let (r, o) = read_table(&f.0).unwrap();
-        assert_eq!(r, vec![10.0, 20.0]);
-        assert_eq!(o, vec![0.5, 0.15]);
-    }
-
-    #[test]
-    fn errors_name_file_and_line() {
+    fn table_errors_name_file_and_line() {
         let f = TempFile::new("bad-number", "rate_deg_s,output_rad_s\n10,0.5\n20,abc\n");
-        let e = format!("{:#}", read_table(&f.0).unwrap_err());
-        assert!(
-            e.contains(&f.0.display().to_string()) && e.contains("line 3"),
-            "{e}"
-        );
-        assert!(e.contains("output_rad_s `abc`"), "{e}");
-
-        let f = TempFile::new("header", "rate,output\n10,0.5\n");
-        let e = format!("{:#}", read_table(&f.0).unwrap_err());
-        assert!(
-            e.contains("line 1") && e.contains("rate_deg_s,output_rad_s"),
-            "{e}"
-        );
-
-        let f = TempFile::new("fields", "rate_deg_s,output_rad_s\n10,0.5\n20,0.6,7\n");
-        let e = format!("{:#}", read_table(&f.0).unwrap_err());
-        assert!(
-            e.contains(&f.0.display().to_string()) && e.contains("line 3"),
-            "{e}"
-        );
-
-        let f = TempFile::new("nan", "rate_deg_s,output_rad_s\n10,NaN\n");
-        let e = format!("{:#}", read_table(&f.0).unwrap_err());
-        assert!(e.contains("line 2") && e.contains("not finite"), "{e}");
-
-        let f = TempFile::new("empty", "rate_deg_s,output_rad_s\n");
-        let e = format!("{:#}", read_table(&f.0).unwrap_err());
-        assert!(e.contains("no data rows"), "{e}");
-
-        let missing = std::env::temp_dir().join("xtask-identify-does-not-exist.csv");
-        let e = format!("{:#}", read_table(&missing).unwrap_err());
-        assert!(e.contains("xtask-identify-does-not-exist.csv"), "{e}");
+        let args = Identify {
+            file: f.0.clone(),
+            radius_m: 2.5,
+            g: 9.8,
+            k1: None,
+            c_r_m_s2: None,
+            c_r_sigma_m_s2: None,
+            json: true,
+        };
+        let e = format!("{:#}", args.run().unwrap_err());
+        let at = format!("{}:3: column `output_rad_s`", f.0.display());
+        assert!(e.contains(&at), "{e}");
     }
 
     #[test]
@@ -328,8 +257,9 @@ mod tests {
             c_r_sigma_m_s2: Some(1e-8),
             json: true,
         };
-        let (rates, outputs) = read_table(&args.file).unwrap();
-        let rates: Vec<f64> = rates.iter().map(|d| d.to_radians()).collect();
+        let table = recording::load_piga_table(&args.file).unwrap();
+        let rates: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let outputs = table.output_rad_s;
         let comp = Compensation {
             c_r_m_s2: c_r,
             c_r_sigma_m_s2: 1e-8,

@@ -1,7 +1,7 @@
 //! Writes a deterministic synthetic probe recording (CSV) with known Fourier coefficients.
 //!
 //! ```text
-//! cargo run -p recording --example synth_recording -- OUT.csv [--rate-deg-s W] [--sample-rate-hz F]
+//! cargo run -p recording --features synthetic --example synth_recording -- OUT.csv [--rate-deg-s W] [--sample-rate-hz F]
 //!     [--revolutions R] [--encoder | --no-encoder] [--noise-um S] [--wobble-rad A]
 //!     [--start-angle-deg D] [--seed N]
 //! ```
@@ -65,7 +65,7 @@ fn run(args: &[String]) -> Result<(), String> {
         i += 2;
     }
     let out = out.ok_or("usage: synth_recording OUT.csv [options]")?;
-    let text = spec.csv();
+    let text = spec.csv().map_err(|e| e.to_string())?;
     std::fs::write(&out, &text).map_err(|e| format!("{out}: {e}"))?;
     println!("{out}: {} bytes, {} samples", text.len(), spec.samples());
     Ok(())

@@ -2,7 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::RecordingError;
+use crate::error::RecordingError;
+use crate::table::{TableColumn, TableFormat};
 
 /// Length unit of the gap column.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -58,6 +59,13 @@ impl AngleUnit {
     }
 }
 
+/// Default name of the time column, s; the writer's header name.
+pub(crate) const TIME_COLUMN: &str = "time_s";
+/// Default name of the gap column, µm; the writer's header name.
+pub(crate) const GAP_COLUMN: &str = "gap_um";
+/// Default name of the encoder-angle column, deg; the writer's header name.
+pub(crate) const ANGLE_COLUMN: &str = "angle_deg";
+
 /// Layout of a probe-recording file; every field has a default, so a study configuration
 /// names only what differs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -85,9 +93,9 @@ pub struct RecordingFormat {
 impl Default for RecordingFormat {
     fn default() -> Self {
         Self {
-            time_column: "time_s".into(),
-            gap_column: "gap_um".into(),
-            angle_column: "angle_deg".into(),
+            time_column: TIME_COLUMN.into(),
+            gap_column: GAP_COLUMN.into(),
+            angle_column: ANGLE_COLUMN.into(),
             gap_unit: LengthUnit::Um,
             angle_unit: AngleUnit::Deg,
             delimiter: ',',
@@ -96,8 +104,10 @@ impl Default for RecordingFormat {
     }
 }
 
-pub(super) fn delimiter_byte(format: &RecordingFormat) -> Result<u8, RecordingError> {
-    let d = format.delimiter;
+/// The delimiter as a byte, if it can separate numeric fields: one ASCII character that
+/// cannot occur in a number, a comment or a line end.
+pub(crate) fn delimiter_byte(delimiter: char) -> Result<u8, RecordingError> {
+    let d = delimiter;
     if !d.is_ascii()
         || d == '\n'
         || d == '\r'
@@ -106,28 +116,41 @@ pub(super) fn delimiter_byte(format: &RecordingFormat) -> Result<u8, RecordingEr
         || d.is_ascii_digit()
         || "+-.eE".contains(d)
     {
-        return Err(RecordingError::InvalidFormat {
-            field: "delimiter",
-            reason: "must be one ASCII character that cannot occur in a number, a comment or a line end",
-        });
-    }
-    if format.gap_column == format.time_column {
-        return Err(RecordingError::InvalidFormat {
-            field: "gap_column",
-            reason: "must differ from `time_column`",
-        });
-    }
-    if format.angle_column == format.time_column || format.angle_column == format.gap_column {
-        return Err(RecordingError::InvalidFormat {
-            field: "angle_column",
-            reason: "must differ from `time_column` and `gap_column`",
-        });
-    }
-    if !format.max_gap_intervals.is_finite() || format.max_gap_intervals < 1.0 {
-        return Err(RecordingError::InvalidFormat {
-            field: "max_gap_intervals",
-            reason: "must be finite and at least 1",
-        });
+        return Err(RecordingError::InvalidDelimiter { delimiter: d });
     }
     Ok(d as u8)
+}
+
+impl RecordingFormat {
+    /// The table the format describes: time and gap required, the angle column optional,
+    /// rows may have more fields than those read. Checks the format.
+    pub(crate) fn table_format(&self) -> Result<TableFormat, RecordingError> {
+        delimiter_byte(self.delimiter)?;
+        if self.gap_column == self.time_column {
+            return Err(RecordingError::DuplicateColumn {
+                field: "gap_column",
+                name: self.gap_column.clone(),
+            });
+        }
+        if self.angle_column == self.time_column || self.angle_column == self.gap_column {
+            return Err(RecordingError::DuplicateColumn {
+                field: "angle_column",
+                name: self.angle_column.clone(),
+            });
+        }
+        if !self.max_gap_intervals.is_finite() || self.max_gap_intervals < 1.0 {
+            return Err(RecordingError::InvalidGapLimit {
+                value: self.max_gap_intervals,
+            });
+        }
+        Ok(TableFormat {
+            columns: vec![
+                TableColumn::required(&self.time_column),
+                TableColumn::required(&self.gap_column),
+                TableColumn::optional(&self.angle_column),
+            ],
+            delimiter: self.delimiter,
+            flexible: true,
+        })
+    }
 }

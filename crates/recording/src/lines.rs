@@ -1,11 +1,11 @@
 //! Lines of a text: line ends, comments, blank lines and fields.
 
 /// The UTF-8 byte-order mark, skipped at the start of a file.
-pub(super) const BOM: &[u8] = b"\xEF\xBB\xBF";
+pub(crate) const BOM: &[u8] = b"\xEF\xBB\xBF";
 
 /// Whether a text's line ends are lone CRs: its first line end is a CR not followed by LF.
 /// `None` while the text read so far does not tell.
-pub(super) fn lone_cr_line_ends(text: &[u8], complete: bool) -> Option<bool> {
+pub(crate) fn lone_cr_line_ends(text: &[u8], complete: bool) -> Option<bool> {
     match text.iter().position(|&b| b == b'\n' || b == b'\r') {
         Some(i) if text[i] == b'\n' => Some(false),
         Some(i) if i + 1 < text.len() => Some(text[i + 1] != b'\n'),
@@ -17,7 +17,7 @@ pub(super) fn lone_cr_line_ends(text: &[u8], complete: bool) -> Option<bool> {
 
 /// The text without a leading byte-order mark and with lone-CR line ends turned into LF
 /// (copied only then).
-pub(super) fn normalized(text: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+pub(crate) fn normalized(text: &[u8]) -> std::borrow::Cow<'_, [u8]> {
     let text = text.strip_prefix(BOM).unwrap_or(text);
     if lone_cr_line_ends(text, true) == Some(true) {
         text.iter()
@@ -31,14 +31,14 @@ pub(super) fn normalized(text: &[u8]) -> std::borrow::Cow<'_, [u8]> {
 
 /// Lines of a text with their 1-based numbers; `next_content` skips blank lines and
 /// `#` comments.
-pub(super) struct Lines<'a> {
-    pub(super) text: &'a [u8],
-    pub(super) pos: usize,
-    pub(super) line: usize,
+pub(crate) struct Lines<'a> {
+    pub(crate) text: &'a [u8],
+    pub(crate) pos: usize,
+    pub(crate) line: usize,
 }
 
 impl<'a> Lines<'a> {
-    pub(super) fn next_line(&mut self) -> Option<(usize, &'a [u8])> {
+    pub(crate) fn next_line(&mut self) -> Option<(usize, &'a [u8])> {
         if self.pos >= self.text.len() {
             return None;
         }
@@ -54,7 +54,7 @@ impl<'a> Lines<'a> {
         Some((self.line, line))
     }
 
-    pub(super) fn next_content(&mut self) -> Option<(usize, &'a [u8])> {
+    pub(crate) fn next_content(&mut self) -> Option<(usize, &'a [u8])> {
         while let Some((n, line)) = self.next_line() {
             let t = line.trim_ascii_start();
             if t.is_empty() || t[0] == b'#' {
@@ -66,23 +66,8 @@ impl<'a> Lines<'a> {
     }
 }
 
-/// Line number of data row `row` (0-based): the `row + 1`-th content line after the header.
-pub(super) fn line_of_row(text: &[u8], row: usize) -> usize {
-    let text = normalized(text);
-    let mut lines = Lines {
-        text: &text,
-        pos: 0,
-        line: 0,
-    };
-    lines.next_content(); // header
-    for _ in 0..row {
-        lines.next_content();
-    }
-    lines.next_content().map_or(lines.line, |(n, _)| n)
-}
-
 /// Fields of a line. A blank delimiter (space or tab) treats any run of blanks as one.
-pub(super) fn split_fields(line: &[u8], delimiter: u8) -> impl Iterator<Item = &[u8]> {
+pub(crate) fn split_fields(line: &[u8], delimiter: u8) -> impl Iterator<Item = &[u8]> {
     let blank = delimiter == b' ' || delimiter == b'\t';
     let mut rest = Some(if blank { line.trim_ascii() } else { line });
     std::iter::from_fn(move || {
@@ -113,7 +98,7 @@ pub(super) fn split_fields(line: &[u8], delimiter: u8) -> impl Iterator<Item = &
     })
 }
 
-pub(super) fn trim_quotes(field: &[u8]) -> &[u8] {
+pub(crate) fn trim_quotes(field: &[u8]) -> &[u8] {
     let f = field.trim_ascii();
     match f {
         [b'"', inner @ .., b'"'] => inner,

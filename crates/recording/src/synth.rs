@@ -1,4 +1,7 @@
-//! Synthetic recordings with known coefficients.
+//! Synthetic recordings with known coefficients (feature `synthetic`).
+
+use crate::error::Result;
+use crate::write::{ProbeColumns, WriteOptions, write_probe_csv};
 
 /// A synthetic probe recording with known coefficients, written in the default
 /// [`RecordingFormat`](super::RecordingFormat): for fixtures, benchmarks and demonstrations (see the
@@ -67,28 +70,30 @@ impl SyntheticSpec {
         }
     }
 
-    /// The CSV text: `time_s,gap_um[,angle_deg]`, six decimals.
-    pub fn csv(&self) -> String {
-        use std::fmt::Write as _;
+    /// The CSV text written by [`write_probe_csv`](crate::write_probe_csv): a comment line
+    /// naming the settings, `time_s,gap_um[,angle_deg]`, six decimals.
+    ///
+    /// # Errors
+    /// [`RecordingError::NonFiniteValue`](crate::RecordingError::NonFiniteValue) if the settings give a NaN or infinite sample.
+    pub fn csv(&self) -> Result<String> {
         let data = self.recording().generate();
-        let mut out = String::with_capacity(data.time_s.len() * 32 + 128);
-        let _ = writeln!(
-            out,
-            "# synthetic probe recording: {} deg/s, {} Hz, {} turns, noise {} um, seed {}",
+        let angle_deg: Option<Vec<f64>> = self
+            .encoder
+            .then(|| data.angle_rad.iter().map(|a| a.to_degrees()).collect());
+        let columns = ProbeColumns::new(&data.time_s, &data.gap, angle_deg.as_deref())?;
+        let comment = format!(
+            "synthetic probe recording: {} deg/s, {} Hz, {} turns, noise {} um, seed {}",
             self.rate_deg_s, self.sample_rate_hz, self.revolutions, self.noise_um, self.seed
         );
-        out += if self.encoder {
-            "time_s,gap_um,angle_deg\n"
-        } else {
-            "time_s,gap_um\n"
+        let options = WriteOptions {
+            decimals: 6,
+            header_comment: Some(&comment),
         };
-        for i in 0..data.time_s.len() {
-            let _ = write!(out, "{:.6},{:.6}", data.time_s[i], data.gap[i]);
-            if self.encoder {
-                let _ = write!(out, ",{:.6}", data.angle_rad[i].to_degrees());
-            }
-            out.push('\n');
-        }
-        out
+        let mut out = Vec::with_capacity(data.time_s.len() * 32 + 128);
+        // Writing to a Vec cannot fail.
+        let _ = write_probe_csv(&mut out, &columns, &options);
+        // The writer writes ASCII only.
+        Ok(String::from_utf8(out)
+            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
     }
 }

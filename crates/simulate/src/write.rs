@@ -4,6 +4,10 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
+use recording::{
+    PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, ProbeColumns, WriteOptions, write_probe_csv,
+};
+
 use super::generate::{PigaRow, SimulatedRecording, Simulation};
 use crate::error::{Result, SimulateError};
 
@@ -59,7 +63,7 @@ pub fn write_simulation(dir: &Path, sim: &Simulation) -> Result<SimulationFiles>
 /// ```
 #[must_use]
 pub fn piga_csv_text(rows: &[PigaRow]) -> String {
-    let mut text = String::from("rate_deg_s,output_rad_s\n");
+    let mut text = format!("{PIGA_RATE_COLUMN},{PIGA_OUTPUT_COLUMN}\n");
     for r in rows {
         // writing to a String cannot fail
         let _ = writeln!(text, "{},{}", r.rate_deg_s, r.output_rad_s);
@@ -80,28 +84,23 @@ fn write_recording(path: &Path, r: &SimulatedRecording) -> Result<()> {
 }
 
 impl SimulatedRecording {
-    /// Writes the recording as CSV in the probe-recording format: header
-    /// `time_s,gap_um[,angle_deg]`, then one row per sample; times, gaps and angles with
-    /// nine decimals (ns, fm — far below any probe noise — and 1e-9 deg).
+    /// Writes the recording as CSV in the probe-recording format
+    /// ([`recording::write_probe_csv`]): header `time_s,gap_um[,angle_deg]`, then one row
+    /// per sample; times, gaps and angles with nine decimals (ns, fm — far below any probe
+    /// noise — and 1e-9 deg).
     ///
     /// # Errors
-    /// Whatever `out` returns.
+    /// Whatever `out` returns; [`std::io::ErrorKind::InvalidInput`] wrapping the
+    /// [`recording::RecordingError`] if the columns differ in length or hold a value that
+    /// is not finite (nothing is written then).
     pub fn write_csv<W: std::io::Write>(&self, out: &mut W) -> std::io::Result<()> {
-        match &self.angle_deg {
-            Some(angle) => {
-                writeln!(out, "time_s,gap_um,angle_deg")?;
-                for ((t, g), a) in self.time_s.iter().zip(&self.gap_um).zip(angle) {
-                    writeln!(out, "{t:.9},{g:.9},{a:.9}")?;
-                }
-            }
-            None => {
-                writeln!(out, "time_s,gap_um")?;
-                for (t, g) in self.time_s.iter().zip(&self.gap_um) {
-                    writeln!(out, "{t:.9},{g:.9}")?;
-                }
-            }
-        }
-        Ok(())
+        let columns = ProbeColumns::new(&self.time_s, &self.gap_um, self.angle_deg.as_deref())
+            .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidInput, e))?;
+        let options = WriteOptions {
+            decimals: 9,
+            header_comment: None,
+        };
+        write_probe_csv(out, &columns, &options)
     }
 }
 

@@ -191,7 +191,7 @@ fn too_few_samples_in_a_revolution() {
     let f = Temp::new("sparse.csv", &text);
     fails_with(
         &[f.path(), "--rate-deg-s", "33", "--order", "5"],
-        "sparse.csv:2: revolution 0 (from sample 0): 11 samples, the fit needs at least 12",
+        "sparse.csv:2: cannot analyse the samples: revolution 0 (from sample 0): 11 samples, the fit needs at least 12",
     );
     assert!(
         xtask(&[f.path(), "--rate-deg-s", "33", "--order", "4"])
@@ -223,7 +223,7 @@ fn aliasing() {
     // The encoder turns 1020° in 1.19 s: 857 deg/s is the declared rate it matches.
     fails_with(
         &[f.path(), "--rate-deg-s", "857"],
-        "alias.csv:41: revolution 0: angular gap of",
+        "alias.csv:41: cannot analyse the samples: revolution 0: angular gap of",
     );
     assert!(
         xtask(&[f.path(), "--rate-deg-s", "857", "--order", "2"])
@@ -248,7 +248,7 @@ fn reviewer_reproducers() {
     let f = Temp::new("overflow.csv", "time_s,gap_um\n-1e308,1\n1e308,1\n");
     fails_with(
         &[f.path(), "--rate-deg-s", "120"],
-        "overflow.csv:3: sample 1: interval of inf s",
+        "overflow.csv:3: cannot analyse the samples: sample 1: interval of inf s",
     );
     // A rate far too fast for the sampling is refused, not allocated for.
     for rate in ["1e300", "1e12"] {

@@ -5,7 +5,7 @@ use std::path::Path;
 use approx::assert_relative_eq;
 use harmonics::{FitConfig, analyze};
 use recording::{RecordingFormat, parse_recording};
-use simulate::{piga_csv_text, simulate, write_simulation};
+use simulate::{Scenario, piga_csv_text, simulate, write_simulation};
 
 use crate::common::{modified, post_balance, pre_balance};
 
@@ -127,16 +127,63 @@ fn recordings_round_trip_through_the_recording_loader() {
 }
 
 #[test]
+fn the_committed_small_recordings_are_the_simulator_output() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let scenario = Scenario::load(&root.join("fixtures/scenarios/pre-balance-small.ron")).unwrap();
+    let sim = simulate(&scenario).unwrap();
+    let dir = root.join("fixtures/recordings/pre-balance-small");
+    let regenerate = "regenerate with `cargo xtask simulate --config \
+        fixtures/scenarios/pre-balance-small.ron --out fixtures/recordings/pre-balance-small`";
+    for rec in &sim.recordings {
+        let mut bytes = Vec::new();
+        rec.write_csv(&mut bytes).unwrap();
+        let committed = std::fs::read(dir.join(&rec.file_name)).unwrap();
+        assert!(
+            committed == bytes,
+            "{} differs: {regenerate}",
+            rec.file_name
+        );
+    }
+    let piga = std::fs::read_to_string(dir.join("piga.csv")).unwrap();
+    assert!(
+        piga == piga_csv_text(&sim.piga),
+        "piga.csv differs: {regenerate}"
+    );
+}
+
+#[test]
+fn a_recording_the_reader_would_refuse_is_not_written() {
+    let sim = simulate(&pre_balance()).unwrap();
+    let mut rec = sim.recordings[0].clone();
+    rec.gap_um.pop();
+    let mut bytes = Vec::new();
+    let e = rec.write_csv(&mut bytes).unwrap_err();
+    assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput);
+    assert!(matches!(
+        e.get_ref()
+            .and_then(|e| e.downcast_ref::<recording::RecordingError>()),
+        Some(recording::RecordingError::ColumnLengths { .. })
+    ));
+    assert!(bytes.is_empty());
+}
+
+#[test]
 fn piga_csv_is_exact_and_parses_back() {
     let base = modified(&post_balance(), |s| s.piga.noise_rad_s = 1e-6);
     let sim = simulate(&base).unwrap();
     let text = piga_csv_text(&sim.piga);
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("rate_deg_s,output_rad_s"));
-    for (line, row) in lines.zip(&sim.piga) {
-        let (r, y) = line.split_once(',').unwrap();
-        assert_eq!(r.parse::<f64>().unwrap(), row.rate_deg_s);
-        assert_eq!(y.parse::<f64>().unwrap(), row.output_rad_s);
+    assert!(text.starts_with("rate_deg_s,output_rad_s\n"));
+    // the PIGA-table reader reads every number back exactly
+    let table = recording::parse_piga_table(text.as_bytes(), Path::new("piga.csv")).unwrap();
+    assert_eq!(table.len(), sim.piga.len());
+    for ((r, y), row) in table
+        .rate_deg_s
+        .iter()
+        .zip(&table.output_rad_s)
+        .zip(&sim.piga)
+    {
+        assert_eq!(*r, row.rate_deg_s);
+        assert_eq!(*y, row.output_rad_s);
     }
     // the noise is added to the exact mean
     for (row, truth) in sim.piga.iter().zip(&sim.truth.rates) {

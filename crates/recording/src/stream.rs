@@ -1,0 +1,93 @@
+//! Streaming a file through one reused buffer into a table parser.
+
+use std::io::Read as _;
+use std::path::Path;
+
+use crate::error::{RecordingError, Result};
+use crate::lines::{BOM, lone_cr_line_ends};
+use crate::table::TableParser;
+
+/// Bytes read from a file at a time.
+pub(crate) const CHUNK_BYTES: usize = 1 << 20;
+
+/// Longest line accepted, bytes (16 MiB): a file without a line end within it is refused
+/// rather than read whole.
+pub(crate) const MAX_LINE_BYTES: usize = 16 << 20;
+
+/// Feeds the file's whole lines to `parser`, a chunk of about a megabyte at a time (a
+/// partial last line waits for the next read). The buffer grows beyond a chunk only while
+/// one line is longer than that, and never beyond [`MAX_LINE_BYTES`] + 1 bytes: a longer
+/// line is [`RecordingError::LineTooLong`].
+pub(crate) fn stream_file(path: &Path, parser: &mut TableParser<'_>) -> Result<()> {
+    let io = |source| RecordingError::Io {
+        path: path.to_owned(),
+        source,
+    };
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let mut buf: Vec<u8> = Vec::with_capacity(CHUNK_BYTES + 64 * 1024);
+    let mut eof = false;
+    let mut start = true;
+    // Whether line ends are lone CRs (decided at the first line end), and how much of the
+    // buffer is known to hold no line end (so that a long line is scanned once).
+    let mut lone_cr = None;
+    let mut scanned: usize = 0;
+    while !eof {
+        // Top the buffer up to a chunk, or double it while one line is longer than that.
+        let target = if scanned > 0 {
+            (2 * buf.len()).clamp(CHUNK_BYTES, MAX_LINE_BYTES + 1)
+        } else {
+            CHUNK_BYTES
+        };
+        while buf.len() < target {
+            let old = buf.len();
+            buf.resize(target, 0);
+            let got = file.read(&mut buf[old..]).map_err(io)?;
+            buf.truncate(old + got);
+            if got == 0 {
+                eof = true;
+                break;
+            }
+        }
+        if start {
+            if buf.starts_with(BOM) {
+                buf.drain(..BOM.len());
+            }
+            start = false;
+        }
+        if lone_cr.is_none() {
+            lone_cr = lone_cr_line_ends(&buf, eof);
+        }
+        // A CR at the end of the part already scanned may just have been found lone.
+        let from = scanned.saturating_sub(1);
+        if lone_cr == Some(true) {
+            for b in &mut buf[from..] {
+                if *b == b'\r' {
+                    *b = b'\n';
+                }
+            }
+        }
+        let last_end = buf[from..]
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map(|i| from + i + 1);
+        if last_end.is_none() && buf.len() > MAX_LINE_BYTES {
+            return Err(RecordingError::LineTooLong {
+                path: path.to_owned(),
+                line: parser.line + 1,
+                max_bytes: MAX_LINE_BYTES,
+            });
+        }
+        let complete = match (eof, last_end) {
+            (true, _) => buf.len(),
+            (false, Some(end)) => end,
+            (false, None) => {
+                scanned = buf.len();
+                continue;
+            }
+        };
+        parser.feed(&buf[..complete])?;
+        buf.drain(..complete);
+        scanned = 0;
+    }
+    Ok(())
+}

@@ -1,0 +1,445 @@
+//! Delimited text tables of named numeric columns: the format, the table read, and the one
+//! parser behind every reader of this crate.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::{RecordingError, Result};
+use crate::format::delimiter_byte;
+use crate::line_table::LineTable;
+use crate::lines::{Lines, normalized, split_fields, trim_quotes};
+use crate::rows::{SKIP, fast_row, parse_row_slowly};
+use crate::stream::{CHUNK_BYTES, stream_file};
+
+/// Most columns a [`TableFormat`] may name.
+pub const MAX_COLUMNS: usize = 8;
+
+/// Pieces of text at least this long are parsed on two threads.
+pub(crate) const PARALLEL_BYTES: usize = 256 * 1024;
+
+/// Most rows reserved before any is read: a chunk's worth (rows are rarely shorter than 16
+/// bytes). Columns then grow with the rows actually read.
+const RESERVED_ROWS: usize = CHUNK_BYTES / 16;
+
+/// A numeric column of a [`TableFormat`], found in the header by name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TableColumn {
+    /// The header's name of the column.
+    pub name: String,
+    /// Whether a header without the column is an error ([`RecordingError::MissingColumn`]);
+    /// an optional column absent from the header is read as absent.
+    pub required: bool,
+}
+
+impl TableColumn {
+    /// A column the header must have.
+    pub fn required(name: impl Into<String>) -> Self {
+        Self {
+            name: name.into(),
+            required: true,
+        }
+    }
+
+    /// A column read when the header has it.
+    pub fn optional(name: impl Into<String>) -> Self {
+        Self {
+            name: name.into(),
+            required: false,
+        }
+    }
+}
+
+/// Layout of a delimited text table: a header line naming the columns, then one row of
+/// fields per line. The columns named here are read as finite numbers; other columns are
+/// skipped.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TableFormat {
+    /// The columns read, 1 to [`MAX_COLUMNS`], at least one required, names distinct.
+    pub columns: Vec<TableColumn>,
+    /// Field delimiter, one ASCII character that cannot occur in a number, a comment or a
+    /// line end. With `' '` or `'\t'`, runs of blanks separate fields.
+    pub delimiter: char,
+    /// Whether a row may have more fields than the header (they are ignored). When false,
+    /// every row has exactly as many fields as the header ([`RecordingError::FieldCount`]).
+    pub flexible: bool,
+}
+
+impl TableFormat {
+    /// The delimiter as a byte, after checking the format.
+    fn check(&self) -> Result<u8> {
+        let delimiter = delimiter_byte(self.delimiter)?;
+        let required = self.columns.iter().filter(|c| c.required).count();
+        if self.columns.len() > MAX_COLUMNS || required == 0 {
+            return Err(RecordingError::InvalidColumns {
+                count: self.columns.len(),
+                required,
+                max: MAX_COLUMNS,
+            });
+        }
+        for (i, c) in self.columns.iter().enumerate() {
+            if self.columns[..i].iter().any(|d| d.name == c.name) {
+                return Err(RecordingError::DuplicateColumn {
+                    field: "columns",
+                    name: c.name.clone(),
+                });
+            }
+        }
+        Ok(delimiter)
+    }
+}
+
+/// A table read from a file: the columns of its [`TableFormat`], each row's line in the
+/// file, at least one row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    pub(crate) path: PathBuf,
+    /// Names of the format's columns.
+    pub(crate) names: Vec<String>,
+    /// Values of the format's columns, in its order; `None` for an optional column the
+    /// header lacks.
+    pub(crate) columns: Vec<Option<Vec<f64>>>,
+    pub(crate) header_line: usize,
+    pub(crate) lines: LineTable,
+}
+
+impl Table {
+    /// The file it was read from (or the name given to [`parse_table`]).
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.columns.iter().flatten().next().map_or(0, Vec::len)
+    }
+
+    /// Whether there are no rows (never true for a table read by [`load_table`] or
+    /// [`parse_table`]).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The values of a column of the format, `None` if the format has no column of that name
+    /// or the header lacked it (an optional column).
+    pub fn column(&self, name: &str) -> Option<&[f64]> {
+        let k = self.names.iter().position(|n| n == name)?;
+        self.columns[k].as_deref()
+    }
+
+    /// The 1-based line of the header.
+    pub fn header_line(&self) -> usize {
+        self.header_line
+    }
+
+    /// The 1-based line of row `row` (0-based) in the file; a row past the last one is
+    /// counted on from it.
+    pub fn line_of_row(&self, row: usize) -> usize {
+        self.lines.line_of(row)
+    }
+}
+
+/// Reads a table from a file, streaming it through one reused buffer of about a megabyte
+/// (a line longer than 16 MiB is [`RecordingError::LineTooLong`]); the columns grow with
+/// the rows read.
+///
+/// Lines end with LF, CRLF, or (in a file whose first line end is one) a lone CR; a
+/// leading UTF-8 byte-order mark is skipped; blank lines and lines starting with `#` are
+/// skipped; the first other line is the header; fields may be quoted and have blanks
+/// around them. Errors name the file and the 1-based line.
+pub fn load_table(path: &Path, format: &TableFormat) -> Result<Table> {
+    let mut parser = TableParser::new(path, format, CHUNK_BYTES)?;
+    stream_file(path, &mut parser)?;
+    parser.finish()
+}
+
+/// Parses a table held in memory (as [`load_table`] reads a file); `path` names it in
+/// errors.
+///
+/// ```
+/// use recording::{TableColumn, TableFormat, parse_table};
+/// let format = TableFormat {
+///     columns: vec![TableColumn::required("rate_deg_s"), TableColumn::optional("temp_c")],
+///     delimiter: ';',
+///     flexible: false,
+/// };
+/// let text = "# run 3\nrate_deg_s;label\n10;a\n\n20;\"b\"\n";
+/// let table = parse_table(text.as_bytes(), "t.csv".as_ref(), &format)?;
+/// assert_eq!(table.column("rate_deg_s"), Some(&[10.0, 20.0][..]));
+/// assert_eq!(table.column("temp_c"), None);
+/// assert_eq!(table.line_of_row(1), 5);
+/// # Ok::<(), recording::RecordingError>(())
+/// ```
+pub fn parse_table(text: &[u8], path: &Path, format: &TableFormat) -> Result<Table> {
+    let text = normalized(text);
+    let mut parser = TableParser::new(path, format, text.len())?;
+    parser.feed(&text)?;
+    parser.finish()
+}
+
+/// Where the format's columns are in the header.
+struct Layout {
+    /// Format index of each column the header has, in format order; a column's place here
+    /// is its slot.
+    present: Vec<usize>,
+    /// `(field, slot)` of those columns, sorted by field.
+    wanted: Vec<(usize, usize)>,
+    /// Slot of each field up to the last one the fast path reads ([`SKIP`] for others).
+    dest_of: Vec<u8>,
+    /// Fields of the header.
+    width: usize,
+}
+
+/// The state of a parse fed with whole lines.
+pub(crate) struct TableParser<'a> {
+    path: &'a Path,
+    format: &'a TableFormat,
+    delimiter: u8,
+    /// Lines seen so far.
+    pub(crate) line: usize,
+    header_line: usize,
+    layout: Option<Layout>,
+    /// Values of the columns present, by slot.
+    data: Vec<Vec<f64>>,
+    /// Rows parsed.
+    rows: usize,
+    lines: LineTable,
+    /// Bytes of text expected, for the first reservation of the columns.
+    size_hint: usize,
+}
+
+impl<'a> TableParser<'a> {
+    pub(crate) fn new(path: &'a Path, format: &'a TableFormat, size_hint: usize) -> Result<Self> {
+        Ok(Self {
+            path,
+            format,
+            delimiter: format.check()?,
+            line: 0,
+            header_line: 0,
+            layout: None,
+            data: Vec::new(),
+            rows: 0,
+            lines: LineTable::default(),
+            size_hint,
+        })
+    }
+
+    fn header(&mut self, line: usize, header: &[u8]) -> Result<Layout> {
+        let names: Vec<String> = split_fields(header, self.delimiter)
+            .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
+            .collect();
+        let mut present = Vec::new();
+        let mut wanted = Vec::new();
+        for (k, column) in self.format.columns.iter().enumerate() {
+            match names.iter().position(|n| *n == column.name) {
+                Some(field) => {
+                    wanted.push((field, present.len()));
+                    present.push(k);
+                }
+                None if column.required => {
+                    return Err(RecordingError::MissingColumn {
+                        path: self.path.to_owned(),
+                        line,
+                        column: column.name.clone(),
+                        header: names,
+                    });
+                }
+                None => {}
+            }
+        }
+        wanted.sort_unstable();
+        let width = names.len();
+        // A flexible table's fast path stops at the last field read; a strict one's reads
+        // every field, so that the row must end there.
+        let last = match self.format.flexible {
+            true => wanted.last().map_or(0, |w| w.0),
+            false => width.saturating_sub(1),
+        };
+        let mut dest_of = vec![SKIP; last + 1];
+        for &(field, slot) in &wanted {
+            // At most MAX_COLUMNS slots, so each fits a byte below SKIP.
+            dest_of[field] = slot as u8;
+        }
+        let reserve = self.size_hint.div_ceil(16).min(RESERVED_ROWS);
+        self.data = present
+            .iter()
+            .map(|_| Vec::with_capacity(reserve))
+            .collect();
+        self.header_line = line;
+        Ok(Layout {
+            present,
+            wanted,
+            dest_of,
+            width,
+        })
+    }
+
+    /// Parses whole lines (the text ends at a line end, or is the file's last piece).
+    pub(crate) fn feed(&mut self, text: &[u8]) -> Result<()> {
+        let mut lines = Lines {
+            text,
+            pos: 0,
+            line: self.line,
+        };
+        let layout = match self.layout.take() {
+            Some(l) => l,
+            None => match lines.next_content() {
+                Some((line, header)) => self.header(line, header)?,
+                None => {
+                    self.line = lines.line;
+                    return Ok(());
+                }
+            },
+        };
+        let result = self.rows_maybe_parallel(&mut lines, &layout);
+        self.layout = Some(layout);
+        self.line = lines.line;
+        result
+    }
+
+    /// A parser for a later piece of the same text: same columns, no rows, lines counted
+    /// from 0 (shifted when the pieces are joined).
+    fn fork(&self, size_hint: usize) -> Self {
+        let reserve = size_hint.div_ceil(16).min(RESERVED_ROWS);
+        Self {
+            path: self.path,
+            format: self.format,
+            delimiter: self.delimiter,
+            line: 0,
+            header_line: self.header_line,
+            layout: None,
+            data: self
+                .data
+                .iter()
+                .map(|_| Vec::with_capacity(reserve))
+                .collect(),
+            rows: 0,
+            lines: LineTable::default(),
+            size_hint,
+        }
+    }
+
+    /// Parses the rows of `lines`; a large piece is cut at a line end near its middle and
+    /// the halves are parsed on two threads (rayon), then joined in order.
+    fn rows_maybe_parallel(&mut self, lines: &mut Lines<'_>, layout: &Layout) -> Result<()> {
+        let text = lines.text;
+        let rest = text.len() - lines.pos;
+        let cut = (rest >= PARALLEL_BYTES)
+            .then(|| {
+                let mid = lines.pos + rest / 2;
+                text[mid..]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                    .map(|o| mid + o + 1)
+            })
+            .flatten()
+            .filter(|&cut| cut < text.len());
+        let Some(cut) = cut else {
+            return self.rows(lines, layout);
+        };
+        let mut first = Lines {
+            text: &text[..cut],
+            pos: lines.pos,
+            line: lines.line,
+        };
+        let mut later = Lines {
+            text: &text[cut..],
+            pos: 0,
+            line: 0,
+        };
+        let mut second = self.fork(text.len() - cut);
+        let (r1, r2) = rayon::join(
+            || self.rows(&mut first, layout),
+            || second.rows(&mut later, layout),
+        );
+        r1?;
+        let offset = first.line;
+        lines.pos = text.len();
+        lines.line = offset + later.line;
+        r2.map_err(|e| e.with_line_offset(offset))?;
+        self.lines.append(&second.lines, self.rows, offset);
+        self.rows += second.rows;
+        for (column, more) in self.data.iter_mut().zip(&second.data) {
+            column.extend_from_slice(more);
+        }
+        Ok(())
+    }
+
+    fn rows(&mut self, lines: &mut Lines<'_>, layout: &Layout) -> Result<()> {
+        let text = lines.text;
+        let flexible = self.format.flexible;
+        let width = (!flexible).then_some(layout.width);
+        let mut values = [0.0_f64; MAX_COLUMNS];
+        let n = self.data.len().min(MAX_COLUMNS);
+        let mut row = self.rows;
+        // The line the next row is on if it follows the previous one directly.
+        let mut expected = self.lines.predicted(row);
+        let result = loop {
+            // Fast path: a plain row parsed in place; else the line is parsed field by field.
+            let line = if let Some(next) = fast_row(
+                text,
+                lines.pos,
+                self.delimiter,
+                &layout.dest_of,
+                flexible,
+                &mut values,
+            ) {
+                lines.pos = next;
+                lines.line += 1;
+                lines.line
+            } else {
+                let Some((line, fields)) = lines.next_content() else {
+                    break Ok(());
+                };
+                if let Err(e) =
+                    parse_row_slowly(fields, self.delimiter, &layout.wanted, width, &mut values)
+                {
+                    let name = |slot: usize| {
+                        layout
+                            .present
+                            .get(slot)
+                            .map(|&k| self.format.columns[k].name.clone())
+                            .unwrap_or_default()
+                    };
+                    break Err(e.located(self.path, line, &name));
+                }
+                line
+            };
+            if line != expected {
+                self.lines.record(row, line);
+            }
+            expected = line + 1;
+            row += 1;
+            for (column, &v) in self.data.iter_mut().zip(&values[..n]) {
+                column.push(v);
+            }
+        };
+        self.rows = row;
+        result
+    }
+
+    /// The table read: an error if there was no header or no row.
+    pub(crate) fn finish(self) -> Result<Table> {
+        let Some(layout) = self.layout else {
+            return Err(RecordingError::Empty {
+                path: self.path.to_owned(),
+            });
+        };
+        if self.rows == 0 {
+            return Err(RecordingError::NoRows {
+                path: self.path.to_owned(),
+                line: self.header_line,
+            });
+        }
+        let mut columns: Vec<Option<Vec<f64>>> = vec![None; self.format.columns.len()];
+        for (&k, mut values) in layout.present.iter().zip(self.data) {
+            values.shrink_to_fit();
+            columns[k] = Some(values);
+        }
+        Ok(Table {
+            path: self.path.to_owned(),
+            names: self.format.columns.iter().map(|c| c.name.clone()).collect(),
+            columns,
+            header_line: self.header_line,
+            lines: self.lines,
+        })
+    }
+}

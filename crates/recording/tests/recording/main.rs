@@ -1,0 +1,4 @@
+//! Behaviour of the readers through the public API.
+
+mod probe;
+mod table;
