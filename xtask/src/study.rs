@@ -63,9 +63,15 @@ impl Study {
         };
         let expected = expected_path.as_deref().map(Expected::load).transpose()?;
         let outcomes = expected.as_ref().map(|e| e.compare(&results)).transpose()?;
-        let files =
-            report::write_outputs(&out, &results, expected.as_ref(), outcomes.as_deref())
-                .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
+        let provenance = report::Provenance::of_study(&study, expected_path.as_deref())?;
+        let files = report::write_outputs(
+            &out,
+            &results,
+            expected.as_ref(),
+            outcomes.as_deref(),
+            Some(&provenance),
+        )
+        .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
         print_summary(&results);
         if let Some(outcomes) = &outcomes {
             let failed = outcomes.iter().filter(|o| !o.passed).count();
