@@ -2,4 +2,5 @@
 
 mod harmonics;
 mod snapshots;
+mod stdout;
 mod workflow;
