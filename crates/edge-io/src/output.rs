@@ -334,13 +334,13 @@ fn recover(resolved: &Path, target: &Path) -> Result<()> {
         }
     }
     old.sort();
-    if fs::symlink_metadata(resolved).is_err() {
-        if let Some(latest) = old.pop() {
-            fs::rename(&latest, resolved).map_err(|source| EdgeIoError::Replace {
-                target: target.to_owned(),
-                source,
-            })?;
-        }
+    if fs::symlink_metadata(resolved).is_err()
+        && let Some(latest) = old.pop()
+    {
+        fs::rename(&latest, resolved).map_err(|source| EdgeIoError::Replace {
+            target: target.to_owned(),
+            source,
+        })?;
     }
     for leftover in old.iter().chain(&stale) {
         let _ = fs::remove_dir_all(leftover);
