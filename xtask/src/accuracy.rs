@@ -7,6 +7,7 @@ use anyhow::Context as _;
 use identify::strd::{self, Accuracy as Scored};
 use identify::{Design, LstsqOptions, lstsq_design};
 
+use crate::console::{Console, ConsoleError};
 use crate::paths::workspace_root;
 
 /// The eleven NIST StRD linear-regression datasets, in NIST's order of difficulty.
@@ -65,10 +66,15 @@ impl Accuracy {
                 .with_context(|| format!("fitting {}", path.display()))?;
             results.push(dataset.score(fit));
         }
+        let mut console = Console::stdout();
         if self.json {
-            println!("{}", serde_json::to_string_pretty(&to_json(&results))?);
+            writeln!(
+                console,
+                "{}",
+                serde_json::to_string_pretty(&to_json(&results))?
+            )?;
         } else {
-            print_table(&results);
+            print_table(&mut console, &results)?;
         }
         Ok(())
     }
@@ -93,19 +99,24 @@ fn to_json(results: &[Scored]) -> serde_json::Value {
     serde_json::json!({ "datasets": datasets })
 }
 
-fn print_table(results: &[Scored]) {
-    println!("NIST StRD linear regression: LRE = correct significant digits (capped at 15)");
-    println!(
+fn print_table(console: &mut Console, results: &[Scored]) -> Result<(), ConsoleError> {
+    writeln!(
+        console,
+        "NIST StRD linear regression: LRE = correct significant digits (capped at 15)"
+    )?;
+    writeln!(
+        console,
         "{:<9} {:>9} {:>9} {:>9} {:>10} {:>6}  path",
         "dataset", "coef min", "s.e. min", "resid sd", "cond", "iters"
-    );
+    )?;
     for a in results {
         let warn = if a.fit.warnings.is_empty() {
             String::new()
         } else {
             format!("  warnings: {:?}", a.fit.warnings)
         };
-        println!(
+        writeln!(
+            console,
             "{:<9} {:>9.1} {:>9.1} {:>9.1} {:>10.2e} {:>6}  {:?}{}",
             a.name,
             a.min_lre_coef,
@@ -115,13 +126,15 @@ fn print_table(results: &[Scored]) {
             a.fit.refinement_iterations,
             a.fit.path,
             warn
-        );
+        )?;
     }
     let worst = |f: fn(&Scored) -> f64| results.iter().map(f).fold(f64::INFINITY, f64::min);
-    println!(
+    writeln!(
+        console,
         "minimum over all datasets: coefficients {:.1}, standard errors {:.1}, residual sd {:.1}",
         worst(|a| a.min_lre_coef),
         worst(|a| a.min_lre_se),
         worst(|a| a.lre_residual_sd)
-    );
+    )?;
+    Ok(())
 }

@@ -4,10 +4,12 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use anyhow::{Context, bail};
+use anyhow::bail;
 use harmonics::{Coefficients, FitConfig, HarmonicAnalysis, ProbeDirection};
 use recording::{AngleUnit, LengthUnit, Recording, RecordingFormat};
 use serde_json::{Value, json};
+
+use crate::console::Console;
 
 /// Fit eq. 20 to every complete revolution of a probe recording and average the coefficients.
 #[derive(Debug, clap::Args)]
@@ -101,11 +103,7 @@ impl Harmonics {
         } else {
             self.table(&recording, &fit, direction)?
         };
-        use std::io::Write as _;
-        std::io::stdout()
-            .lock()
-            .write_all(out.as_bytes())
-            .context("writing to stdout")?;
+        Console::stdout().write_str(&out)?;
         Ok(())
     }
 

@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::console::{Console, ConsoleError};
 use anyhow::Context as _;
 use identify::{
     Calibration, CompensatedCalibration, Compensation, K1Source, identify_calibration,
@@ -70,33 +71,41 @@ impl Identify {
                 None,
             ),
         };
+        let mut console = Console::stdout();
         if self.json {
             let value = to_json(&self.file, &result.0, result.1.as_ref());
-            println!("{}", serde_json::to_string_pretty(&value)?);
+            writeln!(console, "{}", serde_json::to_string_pretty(&value)?)?;
         } else {
-            print_report(&self.file, &result.0, result.1.as_ref());
+            print_report(&mut console, &self.file, &result.0, result.1.as_ref())?;
         }
         Ok(())
     }
 }
 
-fn print_report(path: &Path, cal: &Calibration, comp: Option<&CompensatedCalibration>) {
+fn print_report(
+    console: &mut Console,
+    path: &Path,
+    cal: &Calibration,
+    comp: Option<&CompensatedCalibration>,
+) -> Result<(), ConsoleError> {
     let fit = &cal.fit;
-    println!(
+    writeln!(
+        console,
         "PIGA calibration from {}: {} points at {} distinct rates; R = {} m, g = {} m/s²",
         path.display(),
         fit.residuals.len(),
         cal.distinct_rates,
         cal.radius_m,
         cal.g_m_s2
-    );
-    println!(
+    )?;
+    writeln!(
+        console,
         "design [1, ω, ω², ω³, a², a³], a = R·ω²/g (eq. 18); condition number of the \
          column-scaled design {:.3e}; residual SD {:.4e} rad/s ({} dof); solver {:?}",
         fit.condition_number, fit.residual_sd, fit.dof, fit.path
-    );
+    )?;
     for w in &fit.warnings {
-        println!("warning: {w:?}");
+        writeln!(console, "warning: {w:?}")?;
     }
     let s = &fit.std_errors;
     let rows = [
@@ -118,32 +127,40 @@ fn print_report(path: &Path, cal: &Calibration, comp: Option<&CompensatedCalibra
             cal.k1_implied_sigma_rad_s_g,
         ),
     ];
-    println!("{:<30} {:>16} {:>12}  unit", "coefficient", "value", "σ");
+    writeln!(
+        console,
+        "{:<30} {:>16} {:>12}  unit",
+        "coefficient", "value", "σ"
+    )?;
     for (label, unit, value, sigma) in rows {
-        println!("{label:<30} {value:>16.8e} {sigma:>12.3e}  {unit}");
+        writeln!(console, "{label:<30} {value:>16.8e} {sigma:>12.3e}  {unit}")?;
     }
     if let Some(c) = comp {
         let source = match c.compensation.k1 {
             K1Source::Fitted => "implied by the fit",
             K1Source::Given { .. } => "given",
         };
-        println!(
+        writeln!(
+            console,
             "compensation: C_r = {:.5e} ± {:.3e} m·s², k1 = {:.8} rad/(s·g) ({source})",
             c.compensation.c_r_m_s2, c.compensation.c_r_sigma_m_s2, c.k1_used_rad_s_g
-        );
-        println!(
+        )?;
+        writeln!(
+            console,
             "{:<30} {:>16.8e} {:>12.3e}  rad/(s·g²)",
             "Δk2 = k1·C_r·g/R² (eq. 19)", c.delta_k2.delta_k2_rad_s_g2, c.delta_k2.sigma_rad_s_g2
-        );
-        println!(
+        )?;
+        writeln!(
+            console,
             "{:<30} {:>16.8e} {:>12.3e}  rad/(s·g²)  (σ from the fit {:.3e}, from C_r {:.3e})",
             "compensated k2",
             c.k2_rad_s_g2,
             c.k2_sigma_rad_s_g2,
             c.compensated.k2_apparent_sigma_rad_s_g2,
             c.k2_sigma_from_c_r_rad_s_g2
-        );
+        )?;
     }
+    Ok(())
 }
 
 fn to_json(

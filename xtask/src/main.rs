@@ -1,15 +1,21 @@
 //! `cargo xtask`: the centrifuge-cal command line.
 //!
-//! Each subcommand is a module with a clap-derived argument struct and a `run` method.
-#![allow(clippy::print_stdout, clippy::print_stderr)]
+//! Each subcommand is a module with a clap-derived argument struct and a `run` method. Every
+//! command prints through [`console::Console`], never `println!`: output that cannot be
+//! written is an error (exit status 1 with a message) or, for a pipe closed by its reader, a
+//! quiet exit with status 141; never a panic.
 
 mod accuracy;
+mod console;
 mod harmonics;
 mod identify;
 mod paths;
 mod regress;
 mod simulate;
 mod study;
+
+use std::io::Write as _;
+use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
@@ -41,8 +47,11 @@ enum Command {
     Harmonics(harmonics::Harmonics),
 }
 
-fn main() -> std::process::ExitCode {
-    let cli = Cli::parse();
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_exit(&e),
+    };
     let level = match cli.verbose {
         0 => tracing::Level::WARN,
         1 => tracing::Level::INFO,
@@ -64,11 +73,29 @@ fn main() -> std::process::ExitCode {
         Command::Harmonics(c) => c.run(),
     };
     match outcome {
-        Ok(()) => std::process::ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {}", error_chain(&e));
-            std::process::ExitCode::FAILURE
-        }
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if console::closed_by_reader(&e) => ExitCode::from(console::CLOSED_PIPE_STATUS),
+        Err(e) => fail(&error_chain(&e)),
+    }
+}
+
+/// Prints `error: <message>` on standard error (if it can) and returns status 1.
+fn fail(message: &str) -> ExitCode {
+    // Nothing is left to report a failure of standard error to.
+    let _ = writeln!(std::io::stderr(), "error: {message}");
+    ExitCode::FAILURE
+}
+
+/// Prints clap's help, version or usage error and returns its status; help that cannot be
+/// written to standard output fails as any other output does.
+fn usage_exit(e: &clap::Error) -> ExitCode {
+    match e.print() {
+        Err(io) if !e.use_stderr() => match console::ConsoleError::from(io) {
+            console::ConsoleError::Closed => ExitCode::from(console::CLOSED_PIPE_STATUS),
+            other => fail(&error_chain(&anyhow::Error::new(other))),
+        },
+        // A usage error goes to standard error; if even that fails, the status still tells.
+        _ => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
     }
 }
 

@@ -6,6 +6,7 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use report::Expected;
 
+use crate::console::Console;
 use crate::paths;
 
 /// Arguments of `cargo xtask regress`.
@@ -33,6 +34,7 @@ impl Regress {
         };
         let results = pipeline::run(&pipeline::load_study(&config)?)?;
         let outcomes = Expected::load(&expected_path)?.compare(&results)?;
+        let mut console = Console::stdout();
         let mut failed = 0;
         for o in &outcomes {
             let status = match (o.check.regress, o.passed) {
@@ -44,10 +46,11 @@ impl Regress {
             let actual = o
                 .actual
                 .map_or_else(|| "missing".to_owned(), |a| format!("{a:e}"));
-            println!(
+            writeln!(
+                console,
                 "{status:>5}  {:<48} expected {:e} ± {:e}, got {actual}",
                 o.check.path, o.check.value, o.check.tolerance
-            );
+            )?;
         }
         if failed > 0 {
             bail!(
@@ -56,11 +59,12 @@ impl Regress {
                 expected_path.display()
             );
         }
-        println!(
+        writeln!(
+            console,
             "{} checks pass ({})",
             outcomes.len(),
             expected_path.display()
-        );
+        )?;
         Ok(())
     }
 }

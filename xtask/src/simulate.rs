@@ -6,6 +6,7 @@ use anyhow::Context as _;
 use clap::Args;
 use simulate::Scenario;
 
+use crate::console::Console;
 use crate::paths;
 
 /// Arguments of `cargo xtask simulate`.
@@ -31,18 +32,26 @@ impl Simulate {
             .with_context(|| format!("writing the simulation into {}", out.display()))?;
 
         let t = &sim.truth;
-        println!("scenario {} (seed {})", t.scenario.name, t.scenario.seed);
-        println!(
+        let mut console = Console::stdout();
+        writeln!(
+            console,
+            "scenario {} (seed {})",
+            t.scenario.name, t.scenario.seed
+        )?;
+        writeln!(
+            console,
             "C_r = {:.6e} m·s², Δk2 = k1·C_r·g/R² = {:.6e} rad/(s·g²), apparent k2 = {:.6e}",
             t.c_r_m_s2, t.delta_k2_predicted_rad_s_g2, t.k2_apparent_predicted_rad_s_g2
-        );
-        println!();
-        println!(
+        )?;
+        writeln!(console)?;
+        writeln!(
+            console,
             "{:>10} {:>5} {:>9} {:>10} {:>10} {:>12} {:>18}",
             "rate deg/s", "revs", "samples", "d_c1 µm", "d_s1 µm", "Δr_x µm", "output rad/s"
-        );
+        )?;
         for r in &t.rates {
-            println!(
+            writeln!(
+                console,
                 "{:>10.4} {:>5} {:>9} {:>10.4} {:>10.4} {:>12.6} {:>18.12}",
                 r.rate_deg_s,
                 r.revolutions,
@@ -51,15 +60,16 @@ impl Simulate {
                 r.probe_first_harmonic.ds1_um,
                 r.radius_error_um,
                 r.output_rad_s
-            );
+            )?;
         }
-        println!();
-        println!(
+        writeln!(console)?;
+        writeln!(
+            console,
             "wrote {} recordings, {} and {}",
             files.recordings.len(),
             files.piga_csv.display(),
             files.truth_json.display()
-        );
+        )?;
         Ok(())
     }
 }

@@ -7,6 +7,7 @@ use clap::Args;
 use pipeline::{Progress, StudyResults};
 use report::Expected;
 
+use crate::console::{Console, ConsoleError};
 use crate::paths;
 
 /// Arguments of `cargo xtask study`.
@@ -63,13 +64,21 @@ impl Study {
         };
         let expected = expected_path.as_deref().map(Expected::load).transpose()?;
         let outcomes = expected.as_ref().map(|e| e.compare(&results)).transpose()?;
-        let files =
-            report::write_outputs(&out, &results, expected.as_ref(), outcomes.as_deref())
-                .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
-        print_summary(&results);
+        let provenance = report::Provenance::of_study(&study, expected_path.as_deref())?;
+        let files = report::write_outputs(
+            &out,
+            &results,
+            expected.as_ref(),
+            outcomes.as_deref(),
+            Some(&provenance),
+        )
+        .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
+        let mut console = Console::stdout();
+        print_summary(&mut console, &results)?;
         if let Some(outcomes) = &outcomes {
             let failed = outcomes.iter().filter(|o| !o.passed).count();
-            println!(
+            writeln!(
+                console,
                 "regression: {} of {} checks against {} pass",
                 outcomes.len() - failed,
                 outcomes.len(),
@@ -77,35 +86,38 @@ impl Study {
                     .as_deref()
                     .unwrap_or(config.as_path())
                     .display()
-            );
+            )?;
         }
-        println!(
+        writeln!(
+            console,
             "wrote {}, {}, {}",
             files.results_json.display(),
             files.report_md.display(),
             files.radius_error_svg.display()
-        );
+        )?;
         for svg in &files.probe_signals_svg {
-            println!("wrote {}", svg.display());
+            writeln!(console, "wrote {}", svg.display())?;
         }
         Ok(())
     }
 }
 
 /// Prints the summary table.
-pub(crate) fn print_summary(results: &StudyResults) {
-    println!("study {}", results.study);
+fn print_summary(out: &mut Console, results: &StudyResults) -> Result<(), ConsoleError> {
+    writeln!(out, "study {}", results.study)?;
     let f =
         |x: Option<f64>, prec: usize| x.map_or_else(|| "—".to_owned(), |v| format!("{v:.prec$}"));
     for phase in &results.phases {
-        println!();
-        println!("phase {}", phase.name);
-        println!(
+        writeln!(out)?;
+        writeln!(out, "phase {}", phase.name)?;
+        writeln!(
+            out,
             "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12}",
             "rate deg/s", "d_c1 µm", "d_s1 µm", "ΔR1 µm", "β deg", "Δr µm"
-        );
+        )?;
         for p in &phase.points {
-            println!(
+            writeln!(
+                out,
                 "{:>10} {:>9} {:>9} {:>9} {:>9} {:>12.4}",
                 p.rate_deg_s,
                 f(p.dc1_um, 4),
@@ -113,19 +125,21 @@ pub(crate) fn print_summary(results: &StudyResults) {
                 f(p.amplitude_um, 4),
                 f(p.beta_deg, 3),
                 p.radius_error_um
-            );
+            )?;
         }
     }
-    println!();
-    println!(
+    writeln!(out)?;
+    writeln!(
+        out,
         "{:<13} {:<18} {:>12} {:>11} {:>14} {:>11}",
         "phase", "model", "C_r m·s²", "σ(C_r)", "Δk2 rad/s/g²", "σ(Δk2)"
-    );
+    )?;
     let e = |x: Option<f64>| x.map_or_else(|| "—".to_owned(), |v| format!("{v:.3e}"));
     for phase in &results.phases {
         let name = &phase.name;
         for fit in std::iter::once(&phase.fit).chain(phase.alternative.as_ref()) {
-            println!(
+            writeln!(
+                out,
                 "{:<13} {:<18} {:>12.4e} {:>11} {:>14.3e} {:>11}",
                 name,
                 format!("{:?}", fit.model),
@@ -133,8 +147,9 @@ pub(crate) fn print_summary(results: &StudyResults) {
                 e(fit.c_r_sigma_m_s2),
                 fit.delta_k2_rad_s_g2,
                 e(fit.delta_k2_sigma_rad_s_g2)
-            );
+            )?;
         }
     }
-    println!();
+    writeln!(out)?;
+    Ok(())
 }

@@ -9,14 +9,6 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum PipelineError {
-    /// The file could not be read or written.
-    #[error("{}", path.display())]
-    Io {
-        /// The file concerned.
-        path: PathBuf,
-        /// The underlying I/O error.
-        source: std::io::Error,
-    },
     /// The RON text is malformed, has an unknown field or lacks a required one.
     #[error("{}:{line}:{column}: {message}", path.display())]
     Parse {
@@ -171,22 +163,9 @@ pub enum PipelineError {
         /// The phases the study has.
         known: Vec<String>,
     },
-    /// A file is larger than its format allows; it was not read.
-    #[error("{}: larger than {max_bytes} bytes, the limit for this kind of file", path.display())]
-    TooLarge {
-        /// The file concerned.
-        path: PathBuf,
-        /// The limit.
-        max_bytes: u64,
-    },
-    /// A text file is not UTF-8.
-    #[error("{}: not UTF-8 text (first invalid byte at offset {byte})", path.display())]
-    NotUtf8 {
-        /// The file concerned.
-        path: PathBuf,
-        /// Offset of the first invalid byte.
-        byte: usize,
-    },
+    /// A study file could not be read: missing, too large, or not UTF-8 text.
+    #[error(transparent)]
+    File(#[from] edge_io::EdgeIoError),
     /// Several errors, each complete, in the configuration's order.
     #[error("{} errors:{}", errors.len(), list(errors))]
     Several {

@@ -18,20 +18,23 @@
 //! let text = r#"(
 //!     name: "example", radius_m: 2.5, g_m_s2: 9.8, k1_rad_s_g: 0.56,
 //!     lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0),
-//!     pre_balance: (points: radius_change(from_rate_deg_s: 10.0, to_rate_deg_s: 200.0, change_um: 20.0)),
-//!     post_balance: (points: radius_error([
-//!         (rate_deg_s: 10.0, radius_error_um: 1.0),
-//!         (rate_deg_s: 100.0, radius_error_um: 0.9),
-//!         (rate_deg_s: 200.0, radius_error_um: 0.6),
-//!     ])),
+//!     phases: [
+//!         (name: "before", points: radius_change(from_rate_deg_s: 10.0, to_rate_deg_s: 200.0,
+//!                                                change_um: 20.0)),
+//!         (name: "after", points: radius_error([
+//!             (rate_deg_s: 10.0, radius_error_um: 1.0),
+//!             (rate_deg_s: 100.0, radius_error_um: 0.9),
+//!             (rate_deg_s: 200.0, radius_error_um: 0.6),
+//!         ])),
+//!     ],
 //! )"#;
 //! let path = Path::new("example.ron");
 //! let config = pipeline::StudyConfig::from_ron(text, path)?;
 //! // No recordings here: a loader that is never called.
 //! let inputs = pipeline::Inputs::new(config, path, &|file, _| unreachable!("{file:?}"))?;
 //! let results = pipeline::run(&inputs)?;
-//! assert!(results.post_balance.fit.c_r_m_s2 < 0.0);
-//! assert!(results.pre_balance.fit.c_r_m_s2 > 0.0);
+//! assert!(results.phase("after").unwrap().fit.c_r_m_s2 < 0.0);
+//! assert!(results.phase("before").unwrap().fit.c_r_m_s2 > 0.0);
 //! # Ok::<(), pipeline::PipelineError>(())
 //! ```
 //!

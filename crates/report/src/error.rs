@@ -6,14 +6,10 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ReportError {
-    /// The file could not be read or written.
-    #[error("{}", path.display())]
-    Io {
-        /// The file concerned.
-        path: PathBuf,
-        /// The underlying I/O error.
-        source: std::io::Error,
-    },
+    /// A file could not be read (or is too large, or not UTF-8), or an output could not be
+    /// written or moved into place.
+    #[error(transparent)]
+    File(#[from] edge_io::EdgeIoError),
     /// The RON text is malformed, has an unknown field or lacks a required one.
     #[error("{}:{line}:{column}: {message}", path.display())]
     Parse {
@@ -25,6 +21,59 @@ pub enum ReportError {
         column: usize,
         /// What the parser said.
         message: String,
+    },
+    /// An expected-values file has no check with `regress: true`: a regression against it
+    /// would pass whatever the results.
+    #[error(
+        "{}: `checks`: no check with `regress: true` among {checks}; a regression against this \
+         file would pass whatever the results",
+        path.display()
+    )]
+    NoRegressionChecks {
+        /// The file concerned.
+        path: PathBuf,
+        /// How many checks it has (all with `regress: false`, or none).
+        checks: usize,
+    },
+    /// A check's value or tolerance is not a finite number, or its tolerance is negative.
+    #[error("{}: `{field}` = {value}: {reason}", path.display())]
+    InvalidCheckNumber {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field, e.g. `checks[3].tolerance`.
+        field: String,
+        /// The value given.
+        value: f64,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A check's results path is empty or malformed (an empty segment, a bad `[index]`).
+    #[error("{}: `checks[{index}].path` = {check_path:?}: {reason}", path.display())]
+    InvalidCheckPath {
+        /// The file concerned.
+        path: PathBuf,
+        /// Index of the check.
+        index: usize,
+        /// The path given.
+        check_path: String,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// Two checks of the same kind (published, or not) name the same results path.
+    #[error(
+        "{}: `checks[{index}].path` = {check_path:?}: already checked by `checks[{first}]` \
+         (a path takes at most one published value and one other check)",
+        path.display()
+    )]
+    DuplicateCheckPath {
+        /// The file concerned.
+        path: PathBuf,
+        /// Index of the second check.
+        index: usize,
+        /// Index of the first check with the same path and kind.
+        first: usize,
+        /// The path they share.
+        check_path: String,
     },
     /// A figure could not be drawn.
     #[error("drawing {what}: {message}")]

@@ -55,18 +55,94 @@ pub struct CheckOutcome {
 }
 
 impl Expected {
-    /// Reads an expected-values file.
+    /// Reads and validates an expected-values file of at most
+    /// [`edge_io::CONFIG_MAX_BYTES`] (16 MiB); a leading UTF-8 byte-order mark is ignored.
+    ///
+    /// # Errors
+    /// [`ReportError::File`] when the file cannot be read, is above the cap or is not UTF-8;
+    /// otherwise as [`Expected::parse`].
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| ReportError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        ron::from_str(&text).map_err(|e| ReportError::Parse {
+        let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES)?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses and validates RON text; `path` only names the source in errors.
+    ///
+    /// # Errors
+    /// [`ReportError::Parse`] for malformed RON, an unknown or a missing field; otherwise as
+    /// [`Expected::validate`].
+    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+        let expected: Self = ron::from_str(text).map_err(|e| ReportError::Parse {
             path: path.to_owned(),
             line: e.span.start.line,
             column: e.span.start.col,
             message: e.code.to_string(),
-        })
+        })?;
+        expected.validate(path)?;
+        Ok(expected)
+    }
+
+    /// Checks that a regression against these values means something: every check has a
+    /// well-formed results path, a finite value and a finite, non-negative tolerance; no two
+    /// checks of the same kind (published, or not) share a path; and at least one check has
+    /// `regress: true`. `path` names the file in errors.
+    ///
+    /// # Errors
+    /// [`ReportError::InvalidCheckPath`], [`ReportError::InvalidCheckNumber`] or
+    /// [`ReportError::DuplicateCheckPath`] naming the check by its index;
+    /// [`ReportError::NoRegressionChecks`] when nothing would be checked.
+    pub fn validate(&self, path: &Path) -> Result<()> {
+        for (index, check) in self.checks.iter().enumerate() {
+            if let Some(reason) = path_syntax_error(&check.path) {
+                return Err(ReportError::InvalidCheckPath {
+                    path: path.to_owned(),
+                    index,
+                    check_path: check.path.clone(),
+                    reason,
+                });
+            }
+            let number = |field: &str, value: f64, reason| ReportError::InvalidCheckNumber {
+                path: path.to_owned(),
+                field: format!("checks[{index}].{field}"),
+                value,
+                reason,
+            };
+            if !check.value.is_finite() {
+                return Err(number("value", check.value, "not a finite number"));
+            }
+            if !check.tolerance.is_finite() {
+                return Err(number(
+                    "tolerance",
+                    check.tolerance,
+                    "not a finite number: the check would pass whatever the results",
+                ));
+            }
+            if check.tolerance < 0.0 {
+                return Err(number(
+                    "tolerance",
+                    check.tolerance,
+                    "negative: the check could never pass",
+                ));
+            }
+            if let Some(first) = self.checks[..index]
+                .iter()
+                .position(|c| c.path == check.path && c.published == check.published)
+            {
+                return Err(ReportError::DuplicateCheckPath {
+                    path: path.to_owned(),
+                    index,
+                    first,
+                    check_path: check.path.clone(),
+                });
+            }
+        }
+        if !self.checks.iter().any(|c| c.regress) {
+            return Err(ReportError::NoRegressionChecks {
+                path: path.to_owned(),
+                checks: self.checks.len(),
+            });
+        }
+        Ok(())
     }
 
     /// Compares every check with the results.
@@ -98,6 +174,39 @@ impl Expected {
             .find(|c| c.published && c.path == path)
             .map(|c| c.value)
     }
+}
+
+/// What is wrong with a results path, if anything: it must be dot-separated keys, each
+/// followed by any number of `[index]`es (`post_balance.points[0].amplitude_um`).
+fn path_syntax_error(path: &str) -> Option<&'static str> {
+    if path.is_empty() {
+        return Some("empty");
+    }
+    for part in path.split('.') {
+        let (key, mut indices) = part.split_at(part.find('[').unwrap_or(part.len()));
+        if key.is_empty() {
+            return Some("has a segment without a key");
+        }
+        if key.contains(']') {
+            return Some("has a malformed `[index]`");
+        }
+        while !indices.is_empty() {
+            let Some((index, rest)) = indices.strip_prefix('[').and_then(|r| r.split_once(']'))
+            else {
+                return Some("has a malformed `[index]`");
+            };
+            // A position, or the name of a list element (letters, digits, `_`, `-`).
+            if index.is_empty()
+                || !index
+                    .bytes()
+                    .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-')
+            {
+                return Some("has a malformed `[index]`");
+            }
+            indices = rest;
+        }
+    }
+    None
 }
 
 /// Resolves a dotted path with `[i]` indices in a JSON value to a number.
@@ -150,5 +259,28 @@ mod tests {
         assert_eq!(lookup(&v, "phases[pre].c"), Some(1.0));
         assert_eq!(lookup(&v, "m.phases[post].k"), Some(3.0));
         assert_eq!(lookup(&v, "phases[trial].c"), None);
+    }
+
+    #[test]
+    fn path_syntax() {
+        assert_eq!(path_syntax_error("phases[1].points[0].amplitude_um"), None);
+        assert_eq!(path_syntax_error("a.b[1][2].c"), None);
+        assert_eq!(path_syntax_error(""), Some("empty"));
+        assert_eq!(
+            path_syntax_error("a..b"),
+            Some("has a segment without a key")
+        );
+        assert_eq!(
+            path_syntax_error("a.[0]"),
+            Some("has a segment without a key")
+        );
+        assert_eq!(path_syntax_error("phases[post_balance].c_r_m_s2"), None);
+        for bad in ["a[", "a[]", "a[x y]", "a[0]b", "a[-1.5]", "a]"] {
+            assert_eq!(
+                path_syntax_error(bad),
+                Some("has a malformed `[index]`"),
+                "{bad}"
+            );
+        }
     }
 }

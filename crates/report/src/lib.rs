@@ -2,7 +2,8 @@
 //! paper's Fig. 4 and Fig. 5) and the comparison with expected values.
 //!
 //! This crate renders [`pipeline::StudyResults`]; it computes nothing of the study. It is an
-//! edge crate: [`write_outputs`] and [`Expected::load`] touch files, everything else returns
+//! edge crate: [`write_outputs`] (atomically, through [`edge_io::OutputSet`]),
+//! [`Expected::load`] and [`Provenance::of_study`] touch files, everything else returns
 //! strings.
 //!
 //! # References
@@ -14,9 +15,11 @@ mod expected;
 mod markdown;
 mod output;
 mod plot;
+mod provenance;
 
 pub use error::{ReportError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
 pub use markdown::render;
-pub use output::{WrittenFiles, results_json, write_outputs};
+pub use output::{WrittenFiles, results_json, results_json_with_provenance, write_outputs};
 pub use plot::{probe_signals_svg, radius_error_svg};
+pub use provenance::{FileRecord, Provenance, TOOL};

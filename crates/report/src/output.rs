@@ -1,12 +1,24 @@
-//! Writing a study's outputs into a directory.
+//! Writing a study's outputs into a directory, all at once.
 
 use std::path::{Path, PathBuf};
+
+use edge_io::OutputSet;
+use serde::Serialize;
 
 use crate::error::{ReportError, Result};
 use crate::expected::{CheckOutcome, Expected};
 use crate::markdown::render;
 use crate::plot::{probe_signals_svg as probe_signals_svg_text, radius_error_svg};
+use crate::provenance::Provenance;
 use pipeline::StudyResults;
+
+/// The names a study's output directory may hold: what [`write_outputs`] writes.
+const STUDY_FILES: &[&str] = &[
+    "results.json",
+    "report.md",
+    "radius_error.svg",
+    "probe_signals_*.svg",
+];
 
 /// The files a study wrote.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -22,15 +34,10 @@ pub struct WrittenFiles {
     pub probe_signals_svg: Vec<PathBuf>,
 }
 
-fn write(path: PathBuf, contents: &str) -> Result<PathBuf> {
-    std::fs::write(&path, contents).map_err(|source| ReportError::Io {
-        path: path.clone(),
-        source,
-    })?;
-    Ok(path)
-}
-
-/// Serialises results as pretty JSON.
+/// Serialises results as pretty JSON, without provenance.
+///
+/// # Errors
+/// [`ReportError::Serialize`] if the results cannot be serialised.
 pub fn results_json(results: &StudyResults) -> Result<String> {
     serde_json::to_string_pretty(results).map_err(|e| ReportError::Serialize {
         what: "results.json",
@@ -38,24 +45,59 @@ pub fn results_json(results: &StudyResults) -> Result<String> {
     })
 }
 
-/// Writes `results.json`, `report.md`, `radius_error.svg` and, for phases given as
-/// recordings, `probe_signals_<phase>.svg` into `dir` (created if needed).
+/// Serialises results as pretty JSON with a leading `provenance` object: the text of
+/// `results.json` as [`write_outputs`] writes it.
+///
+/// # Errors
+/// [`ReportError::Serialize`] if the results cannot be serialised.
+pub fn results_json_with_provenance(
+    results: &StudyResults,
+    provenance: &Provenance,
+) -> Result<String> {
+    #[derive(Serialize)]
+    struct WithProvenance<'a> {
+        provenance: &'a Provenance,
+        #[serde(flatten)]
+        results: &'a StudyResults,
+    }
+    serde_json::to_string_pretty(&WithProvenance {
+        provenance,
+        results,
+    })
+    .map_err(|e| ReportError::Serialize {
+        what: "results.json",
+        message: e.to_string(),
+    })
+}
+
+/// Writes `results.json` (with `provenance` when given), `report.md`, `radius_error.svg` and,
+/// for phases given as recordings, `probe_signals_<phase>.svg` into `dir`, atomically: every
+/// file is rendered first, then written through an [`OutputSet`], so `dir` ends up holding
+/// exactly these files, or, on any error, what it held before, byte for byte. Files of an
+/// earlier study that this one does not write (a probe figure) are removed.
+///
+/// # Errors
+/// [`ReportError::Plot`] or [`ReportError::Serialize`] when an output cannot be rendered
+/// (nothing is written); [`ReportError::File`] when `dir` holds files a study does not write,
+/// or a file cannot be written or moved into place.
 pub fn write_outputs(
     dir: &Path,
     results: &StudyResults,
     expected: Option<&Expected>,
     outcomes: Option<&[CheckOutcome]>,
+    provenance: Option<&Provenance>,
 ) -> Result<WrittenFiles> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
-        path: dir.to_owned(),
-        source,
-    })?;
-    let mut probe_signals_svg = Vec::new();
+    let json = match provenance {
+        Some(p) => results_json_with_provenance(results, p)?,
+        None => results_json(results)?,
+    };
+    let report = render(results, expected, outcomes);
+    let mut probe_figures = Vec::new();
     for phase in &results.phases {
         let key = &phase.name;
         let title = format!("{}: probe signal over one revolution, {key}", results.study);
         if let Some(svg) = probe_signals_svg_text(phase, &title)? {
-            probe_signals_svg.push(write(dir.join(format!("probe_signals_{key}.svg")), &svg)?);
+            probe_figures.push((format!("probe_signals_{key}.svg"), svg));
         }
     }
     // Fig. 5: the last phase whose fit has residual degrees of freedom (the paper's: after
@@ -68,13 +110,21 @@ pub fn write_outputs(
         .or(results.phases.last())
         .ok_or(ReportError::NoPhase)?;
     let title = format!("{}: radius error, phase {}", results.study, figure.name);
+    let radius_figure = radius_error_svg(figure, &title)?;
+
+    let mut set = OutputSet::create(dir, STUDY_FILES)?;
+    let results_json = set.write("results.json", json.as_bytes())?;
+    let report_md = set.write("report.md", report.as_bytes())?;
+    let probe_signals_svg = probe_figures
+        .iter()
+        .map(|(name, svg)| set.write(name, svg.as_bytes()))
+        .collect::<edge_io::Result<Vec<_>>>()?;
+    let radius_error_svg = set.write("radius_error.svg", radius_figure.as_bytes())?;
+    set.commit()?;
     Ok(WrittenFiles {
-        results_json: write(dir.join("results.json"), &results_json(results)?)?,
-        report_md: write(dir.join("report.md"), &render(results, expected, outcomes))?,
-        radius_error_svg: write(
-            dir.join("radius_error.svg"),
-            &radius_error_svg(figure, &title)?,
-        )?,
+        results_json,
+        report_md,
+        radius_error_svg,
         probe_signals_svg,
     })
 }

@@ -9,14 +9,10 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SimulateError {
-    /// The file could not be read or written.
-    #[error("{}: {source}", path.display())]
-    Io {
-        /// The file concerned.
-        path: PathBuf,
-        /// The underlying I/O error.
-        source: std::io::Error,
-    },
+    /// The scenario could not be read (or is too large, or not UTF-8), or an output could not
+    /// be written or moved into place.
+    #[error(transparent)]
+    File(#[from] edge_io::EdgeIoError),
     /// The RON text is malformed, has an unknown field or lacks a required one.
     #[error("{}:{line}:{column}: {message}", path.display())]
     Parse {

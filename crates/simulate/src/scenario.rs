@@ -145,12 +145,11 @@ impl Scenario {
     /// Reads and validates a scenario file.
     ///
     /// # Errors
-    /// [`SimulateError::Io`] when the file cannot be read, otherwise as [`Scenario::parse`].
+    /// [`SimulateError::File`] when the file cannot be read, is larger than
+    /// [`edge_io::CONFIG_MAX_BYTES`] (16 MiB) or is not UTF-8 (a leading byte-order mark is
+    /// ignored); otherwise as [`Scenario::parse`].
     pub fn load(path: &Path) -> Result<LoadedScenario> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimulateError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
+        let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES)?;
         Self::parse(&text, path)
     }
 

@@ -1,9 +1,9 @@
 //! Writing a simulation's files: probe recordings, `piga.csv`, `truth.json`.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
+use edge_io::OutputSet;
 use recording::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, ProbeColumns, WriteOptions, write_probe_csv,
 };
@@ -22,31 +22,31 @@ pub struct SimulationFiles {
     pub truth_json: PathBuf,
 }
 
-/// Writes a simulation into `dir` (created if needed): `probe_<rate>deg_s.csv` per rate,
-/// `piga.csv` and `truth.json`. Existing files of the same names are replaced.
+/// The names a simulation's output directory may hold: what [`write_simulation`] writes.
+const SIMULATION_FILES: &[&str] = &["probe_*deg_s.csv", "piga.csv", "truth.json"];
+
+/// Writes a simulation into `dir`, atomically: `probe_<rate>deg_s.csv` per rate, `piga.csv`
+/// and `truth.json` go through an [`OutputSet`], so `dir` ends up holding exactly these files
+/// (recordings of an earlier scenario's other rates are removed) or, on any error, what it
+/// held before, byte for byte.
 ///
 /// # Errors
-/// [`SimulateError::Io`] naming the file that could not be written;
-/// [`SimulateError::Serialize`] if `truth.json` cannot be serialised.
+/// [`SimulateError::File`] when `dir` holds files a simulation does not write, or a file
+/// cannot be written or moved into place (naming it); [`SimulateError::Serialize`] if
+/// `truth.json` cannot be serialised (nothing is written).
 pub fn write_simulation(dir: &Path, sim: &Simulation) -> Result<SimulationFiles> {
-    std::fs::create_dir_all(dir).map_err(|source| SimulateError::Io {
-        path: dir.to_owned(),
-        source,
-    })?;
-    let mut recordings = Vec::with_capacity(sim.recordings.len());
-    for r in &sim.recordings {
-        let path = dir.join(&r.file_name);
-        write_recording(&path, r)?;
-        recordings.push(path);
-    }
-    let piga_csv = dir.join("piga.csv");
-    write_file(&piga_csv, piga_csv_text(&sim.piga).as_bytes())?;
-    let truth_json = dir.join("truth.json");
     let json = serde_json::to_string_pretty(&sim.truth).map_err(|e| SimulateError::Serialize {
         what: "truth.json",
         message: e.to_string(),
     })?;
-    write_file(&truth_json, json.as_bytes())?;
+    let mut set = OutputSet::create(dir, SIMULATION_FILES)?;
+    let mut recordings = Vec::with_capacity(sim.recordings.len());
+    for r in &sim.recordings {
+        recordings.push(set.write_with(&r.file_name, |mut out| r.write_csv(&mut out))?);
+    }
+    let piga_csv = set.write("piga.csv", piga_csv_text(&sim.piga).as_bytes())?;
+    let truth_json = set.write("truth.json", json.as_bytes())?;
+    set.commit()?;
     Ok(SimulationFiles {
         recordings,
         piga_csv,
@@ -71,18 +71,6 @@ pub fn piga_csv_text(rows: &[PigaRow]) -> String {
     text
 }
 
-/// Writes one recording file (see [`SimulatedRecording::write_csv`]).
-fn write_recording(path: &Path, r: &SimulatedRecording) -> Result<()> {
-    let io = |source| SimulateError::Io {
-        path: path.to_owned(),
-        source,
-    };
-    let file = std::fs::File::create(path).map_err(io)?;
-    let mut out = std::io::BufWriter::with_capacity(1 << 16, file);
-    r.write_csv(&mut out).map_err(io)?;
-    out.flush().map_err(io)
-}
-
 impl SimulatedRecording {
     /// Writes the recording as CSV in the probe-recording format
     /// ([`recording::write_probe_csv`]): header `time_s,gap_um[,angle_deg]`, then one row
@@ -102,11 +90,4 @@ impl SimulatedRecording {
         };
         write_probe_csv(out, &columns, &options)
     }
-}
-
-fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
-    std::fs::write(path, bytes).map_err(|source| SimulateError::Io {
-        path: path.to_owned(),
-        source,
-    })
 }

@@ -1,5 +1,7 @@
 //! Command-line behaviour of `cargo xtask` subcommands (one binary, a module per subcommand).
 
 mod harmonics;
+mod outputs;
 mod snapshots;
+mod stdout;
 mod workflow;

@@ -14,7 +14,9 @@ fn parse(text: &str) -> Result<pipeline::Inputs, PipelineError> {
 fn unreadable_file_names_the_file() {
     let missing = PathBuf::from("/nonexistent/study.ron");
     match pipeline::load_study(&missing) {
-        Err(PipelineError::Io { path, .. }) => assert_eq!(path, missing),
+        Err(PipelineError::File(edge_io::EdgeIoError::Read { path, .. })) => {
+            assert_eq!(path, missing)
+        }
         other => panic!("expected Io, got {other:?}"),
     }
 }

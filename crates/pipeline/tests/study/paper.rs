@@ -60,7 +60,8 @@ fn outputs_are_written_and_json_has_the_documented_keys() {
     let dir = std::env::temp_dir().join(format!("centrifuge-cal-test-{}", std::process::id()));
     let expected = Expected::load(&root().join("fixtures/expected/paper-2025.ron")).unwrap();
     let outcomes = expected.compare(&results).unwrap();
-    let files = report::write_outputs(&dir, &results, Some(&expected), Some(&outcomes)).unwrap();
+    let files =
+        report::write_outputs(&dir, &results, Some(&expected), Some(&outcomes), None).unwrap();
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&files.results_json).unwrap()).unwrap();
     for key in [

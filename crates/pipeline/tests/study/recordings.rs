@@ -34,7 +34,7 @@ fn recordings_recover_the_simulated_truth() {
     }
     assert_eq!(results.phase("pre_balance").unwrap().traces.len(), 6);
     let dir = std::env::temp_dir().join(format!("centrifuge-cal-rec-{}", std::process::id()));
-    let files = report::write_outputs(&dir, &results, None, None).unwrap();
+    let files = report::write_outputs(&dir, &results, None, None, None).unwrap();
     assert_eq!(
         files.probe_signals_svg.len(),
         1,

@@ -1,10 +1,32 @@
-//! The report of the paper's study, as a snapshot: a renamed or lost field changes the text
-//! (an em dash where a number was) and fails this test.
+//! Behaviour of the report crate: the report of the paper's study as a snapshot (a renamed or
+//! lost field changes the text, an em dash where a number was, and fails the test), the
+//! expected-value files and the study's output directory.
 
-use std::path::Path;
+mod expected;
+mod outputs;
+
+use std::path::{Path, PathBuf};
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+}
+
+/// A fresh directory under the system temp directory, removed on drop.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("report-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }
 
 #[test]

@@ -1,11 +1,13 @@
 //! Determinism and the written files: recordings in the loader's format, piga.csv, truth.json.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use approx::assert_relative_eq;
+use edge_io::EdgeIoError;
 use harmonics::{FitConfig, analyze};
 use recording::{RecordingFormat, parse_recording};
-use simulate::{Scenario, piga_csv_text, simulate, write_simulation};
+use simulate::{Scenario, SimulateError, piga_csv_text, simulate, write_simulation};
 
 use crate::common::{modified, post_balance, pre_balance};
 
@@ -268,4 +270,60 @@ fn write_simulation_writes_every_file() {
     let rec = recording::load_recording(&files.recordings[7], &RecordingFormat::default()).unwrap();
     assert_eq!(rec.len(), sim.recordings[7].time_s.len());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every file of a directory with its bytes.
+fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                std::fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_failed_write_leaves_the_previous_simulation_and_a_good_one_replaces_it() {
+    let parent = std::env::temp_dir().join(format!("simulate-atomic-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&parent);
+    let dir = parent.join("out");
+    let first = simulate(&post_balance()).unwrap();
+    write_simulation(&dir, &first).unwrap();
+    let before = snapshot(&dir);
+    assert_eq!(before.len(), first.recordings.len() + 2);
+
+    // a scenario without the first rate, failing at its last file
+    let fewer = modified(&post_balance(), |s| {
+        s.rates_deg_s.remove(0);
+    });
+    let second = simulate(&fewer).unwrap();
+    {
+        let _fail = edge_io::fault::fail_writing("truth.json");
+        match write_simulation(&dir, &second) {
+            Err(SimulateError::File(EdgeIoError::Write { path, .. })) => {
+                assert_eq!(path, dir.join("truth.json"));
+            }
+            other => panic!("expected a write error, got {other:?}"),
+        }
+    }
+    assert_eq!(snapshot(&dir), before, "the previous files, byte for byte");
+
+    let files = write_simulation(&dir, &second).unwrap();
+    let after = snapshot(&dir);
+    assert_eq!(after.len(), second.recordings.len() + 2);
+    assert!(
+        !after.contains_key("probe_010.0000deg_s.csv"),
+        "the dropped rate's recording is removed"
+    );
+    assert_eq!(
+        after["truth.json"],
+        std::fs::read(&files.truth_json).unwrap()
+    );
+    let siblings: Vec<_> = std::fs::read_dir(&parent).unwrap().collect();
+    assert_eq!(siblings.len(), 1, "no staging directory is left");
+    std::fs::remove_dir_all(&parent).unwrap();
 }

@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use edge_io::EdgeIoError;
 use simulate::{Scenario, SimulateError};
 
 use crate::common::{POST_BALANCE, PRE_BALANCE, post_balance};
@@ -360,10 +361,62 @@ fn simulate_checks_a_scenario_altered_after_loading() {
 }
 
 #[test]
-fn unreadable_file_is_an_io_error() {
+fn unreadable_file_is_a_read_error() {
     let missing = Path::new("/nonexistent/scenario.ron");
     match Scenario::load(missing) {
-        Err(SimulateError::Io { path, .. }) => assert_eq!(path, missing),
-        other => panic!("expected Io, got {other:?}"),
+        Err(SimulateError::File(EdgeIoError::Read { path, .. })) => assert_eq!(path, missing),
+        other => panic!("expected Read, got {other:?}"),
+    }
+}
+
+/// A fresh directory under the system temp directory, removed on drop.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("simulate-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+#[test]
+fn a_scenario_with_a_byte_order_mark_loads() {
+    let dir = Scratch::new("bom");
+    let path = dir.0.join("post-balance.ron");
+    std::fs::write(&path, format!("\u{FEFF}{POST_BALANCE}")).unwrap();
+    assert_eq!(
+        Scenario::load(&path).unwrap().scenario,
+        post_balance().scenario
+    );
+}
+
+#[test]
+fn a_scenario_above_the_cap_is_refused_unread() {
+    let dir = Scratch::new("huge");
+    let path = dir.0.join("huge.ron");
+    // 2 GiB of holes: read whole, it would be gigabytes of memory before the RON error
+    std::fs::File::create(&path)
+        .unwrap()
+        .set_len(2 << 30)
+        .unwrap();
+    match Scenario::load(&path) {
+        Err(SimulateError::File(EdgeIoError::TooLarge {
+            path: p,
+            limit_bytes,
+            size_bytes,
+        })) => {
+            assert_eq!(p, path);
+            assert_eq!(limit_bytes, edge_io::CONFIG_MAX_BYTES);
+            assert_eq!(size_bytes, Some(2 << 30));
+        }
+        other => panic!("expected TooLarge, got {other:?}"),
     }
 }

@@ -1,0 +1,22 @@
+//! File I/O at the edge of centrifuge-cal, shared by the crates that touch files.
+//!
+//! - [`read_text_capped`]: reads a configuration-like text file (study configuration,
+//!   simulation scenario, expected values) with a size cap, so a wrong or hostile path cannot
+//!   make a command read gigabytes before the parser refuses it. A UTF-8 byte-order mark is
+//!   dropped; text that is not UTF-8 is refused naming the line, column and byte offset.
+//!   [`CONFIG_MAX_BYTES`] (16 MiB) is the cap of every such file in the workspace.
+//! - [`OutputSet`]: writes a set of output files (a study's `results.json`, `report.md` and
+//!   figures; a simulation's recordings) into a staging directory beside the target and swaps
+//!   it into place, so a run leaves either the complete new set or the previous one untouched.
+//!
+//! Errors are one typed enum, [`EdgeIoError`], whose every variant names the file or directory.
+
+mod error;
+#[doc(hidden)]
+pub mod fault;
+mod output;
+mod text;
+
+pub use error::{EdgeIoError, Result};
+pub use output::OutputSet;
+pub use text::{CONFIG_MAX_BYTES, read_text_capped};

@@ -1,0 +1,288 @@
+//! `OutputSet`: a run leaves exactly the new set of files, or the previous set byte for byte.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use edge_io::{EdgeIoError, OutputSet, fault};
+
+const OWNED: &[&str] = &["results.json", "report.md", "probe_*.svg"];
+
+/// A fresh parent directory under the system temp directory, removed on drop.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("edge-io-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Every file of a directory tree with its bytes, and the names of the parent's entries.
+fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    let mut files = BTreeMap::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let entry = entry.unwrap();
+        let name = entry.file_name().to_string_lossy().into_owned();
+        files.insert(name, std::fs::read(entry.path()).unwrap());
+    }
+    files
+}
+
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+fn write_set(target: &Path, files: &[(&str, &str)]) -> edge_io::Result<Vec<PathBuf>> {
+    let mut set = OutputSet::create(target, OWNED)?;
+    let paths = files
+        .iter()
+        .map(|(name, text)| set.write(name, text.as_bytes()))
+        .collect::<edge_io::Result<Vec<_>>>()?;
+    set.commit()?;
+    Ok(paths)
+}
+
+#[test]
+fn a_new_directory_gets_exactly_the_set() {
+    let scratch = Scratch::new("new");
+    let target = scratch.0.join("nested/study");
+    let paths = write_set(&target, &[("results.json", "{}"), ("report.md", "# r")]).unwrap();
+    assert_eq!(
+        paths,
+        vec![target.join("results.json"), target.join("report.md")]
+    );
+    assert_eq!(entries(&target), ["report.md", "results.json"]);
+    assert_eq!(std::fs::read_to_string(&paths[0]).unwrap(), "{}");
+    // nothing is left beside the target
+    assert_eq!(entries(&scratch.0.join("nested")), ["study"]);
+}
+
+#[test]
+fn a_second_run_replaces_the_set_and_drops_files_it_does_not_write() {
+    let scratch = Scratch::new("replace");
+    let target = scratch.0.join("study");
+    write_set(
+        &target,
+        &[("results.json", "1"), ("probe_signals_pre.svg", "<svg/>")],
+    )
+    .unwrap();
+    write_set(&target, &[("results.json", "2"), ("report.md", "r")]).unwrap();
+    let files = snapshot(&target);
+    assert_eq!(
+        files.keys().collect::<Vec<_>>(),
+        ["report.md", "results.json"]
+    );
+    assert_eq!(files["results.json"], b"2");
+    assert_eq!(entries(&scratch.0), ["study"]);
+}
+
+#[test]
+fn a_failure_at_the_last_file_leaves_the_previous_set_byte_identical() {
+    let scratch = Scratch::new("fail-last");
+    let target = scratch.0.join("study");
+    write_set(
+        &target,
+        &[
+            ("results.json", "previous"),
+            ("probe_signals_pre.svg", "<svg>previous</svg>"),
+        ],
+    )
+    .unwrap();
+    let before = snapshot(&target);
+
+    let mut set = OutputSet::create(&target, OWNED).unwrap();
+    set.write("results.json", b"new").unwrap();
+    set.write("report.md", b"new").unwrap();
+    let e = set
+        .write_with("probe_signals_post.svg", |out| {
+            out.write_all(b"<svg>half")?;
+            Err(std::io::Error::other("disk full"))
+        })
+        .unwrap_err();
+    match &e {
+        EdgeIoError::Write { path, source } => {
+            assert_eq!(path, &target.join("probe_signals_post.svg"));
+            assert_eq!(source.to_string(), "disk full");
+        }
+        other => panic!("expected Write, got {other:?}"),
+    }
+    drop(set);
+    assert_eq!(snapshot(&target), before);
+    assert_eq!(
+        entries(&scratch.0),
+        ["study"],
+        "the staging directory is removed"
+    );
+}
+
+#[test]
+fn the_fault_hook_fails_the_named_file_only_while_armed() {
+    let scratch = Scratch::new("fault");
+    let target = scratch.0.join("study");
+    write_set(&target, &[("results.json", "previous")]).unwrap();
+    let before = snapshot(&target);
+    {
+        let _fail = fault::fail_writing("report.md");
+        let e = write_set(&target, &[("results.json", "new"), ("report.md", "new")]).unwrap_err();
+        assert!(
+            matches!(&e, EdgeIoError::Write { path, .. } if path.ends_with("report.md")),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("report.md"), "{e}");
+    }
+    assert_eq!(snapshot(&target), before);
+    write_set(&target, &[("results.json", "new"), ("report.md", "new")]).unwrap();
+    assert_eq!(snapshot(&target)["report.md"], b"new");
+}
+
+#[test]
+fn a_directory_with_foreign_entries_is_refused_and_left_alone() {
+    let scratch = Scratch::new("foreign");
+    let target = scratch.0.join("home");
+    std::fs::create_dir_all(target.join("photos")).unwrap();
+    std::fs::write(target.join("notes.txt"), "keep me").unwrap();
+    std::fs::write(target.join("results.json"), "old").unwrap();
+    match OutputSet::create(&target, OWNED) {
+        Err(EdgeIoError::ForeignEntries {
+            target: t,
+            count,
+            example,
+        }) => {
+            assert_eq!(t, target);
+            assert_eq!(count, 2);
+            assert_eq!(example, "notes.txt");
+        }
+        other => panic!("expected ForeignEntries, got {other:?}"),
+    }
+    assert_eq!(entries(&target), ["notes.txt", "photos", "results.json"]);
+    assert_eq!(entries(&scratch.0), ["home"]);
+}
+
+#[test]
+fn a_foreign_entry_that_appears_before_commit_stops_the_swap() {
+    let scratch = Scratch::new("foreign-late");
+    let target = scratch.0.join("study");
+    write_set(&target, &[("results.json", "previous")]).unwrap();
+    let mut set = OutputSet::create(&target, OWNED).unwrap();
+    set.write("results.json", b"new").unwrap();
+    std::fs::write(target.join("mine.txt"), "x").unwrap();
+    assert!(matches!(
+        set.commit(),
+        Err(EdgeIoError::ForeignEntries { count: 1, .. })
+    ));
+    assert_eq!(snapshot(&target)["results.json"], b"previous");
+    assert_eq!(entries(&scratch.0), ["study"]);
+}
+
+#[test]
+fn bad_names_are_refused() {
+    let scratch = Scratch::new("names");
+    let target = scratch.0.join("study");
+    let mut set = OutputSet::create(&target, OWNED).unwrap();
+    set.write("results.json", b"x").unwrap();
+    for (name, reason) in [
+        ("", "not a file name"),
+        ("..", "not a file name"),
+        ("../results.json", "has a path separator"),
+        ("results.json", "written twice"),
+        (
+            "notes.txt",
+            "matches none of the names this output set may write",
+        ),
+    ] {
+        match set.write(name, b"y") {
+            Err(EdgeIoError::BadFileName {
+                name: n, reason: r, ..
+            }) => {
+                assert_eq!((n.as_str(), r), (name, reason));
+            }
+            other => panic!("{name:?}: expected BadFileName, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn a_file_or_a_root_is_not_an_output_directory() {
+    let scratch = Scratch::new("not-dir");
+    let file = scratch.0.join("results");
+    std::fs::write(&file, "a file").unwrap();
+    assert!(matches!(
+        OutputSet::create(&file, OWNED),
+        Err(EdgeIoError::NotADirectory { .. })
+    ));
+    assert!(matches!(
+        OutputSet::create(Path::new("/"), OWNED),
+        Err(EdgeIoError::NotADirectory { .. })
+    ));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "a file");
+}
+
+#[test]
+fn a_run_killed_between_the_renames_is_restored_by_the_next() {
+    let scratch = Scratch::new("recover");
+    let target = scratch.0.join("study");
+    // As a kill between the two renames leaves it: no target, the previous set as `old`.
+    let old = scratch.0.join("study.old-4000000-7");
+    std::fs::create_dir_all(&old).unwrap();
+    std::fs::write(old.join("results.json"), "previous").unwrap();
+    // and a staging directory of a process that no longer runs (pids stay below 2^22)
+    let stale = scratch.0.join("study.tmp-4000001-0");
+    std::fs::create_dir_all(&stale).unwrap();
+    std::fs::write(stale.join("results.json"), "half").unwrap();
+    // an unrelated sibling is never touched
+    std::fs::create_dir_all(scratch.0.join("study.backup")).unwrap();
+
+    let set = OutputSet::create(&target, OWNED).unwrap();
+    assert_eq!(
+        std::fs::read_to_string(target.join("results.json")).unwrap(),
+        "previous"
+    );
+    drop(set);
+    assert_eq!(entries(&scratch.0), ["study", "study.backup"]);
+}
+
+#[test]
+fn an_old_directory_beside_a_complete_swap_is_removed() {
+    let scratch = Scratch::new("old-after-swap");
+    let target = scratch.0.join("study");
+    write_set(&target, &[("results.json", "new")]).unwrap();
+    std::fs::create_dir_all(scratch.0.join("study.old-4000000-1")).unwrap();
+    write_set(&target, &[("results.json", "newer")]).unwrap();
+    assert_eq!(entries(&scratch.0), ["study"]);
+    assert_eq!(snapshot(&target)["results.json"], b"newer");
+}
+
+#[cfg(unix)]
+#[test]
+fn a_symlinked_target_replaces_the_directory_behind_the_link() {
+    let scratch = Scratch::new("symlink");
+    let real = scratch.0.join("real");
+    write_set(&real, &[("results.json", "1")]).unwrap();
+    let link = scratch.0.join("link");
+    std::os::unix::fs::symlink(&real, &link).unwrap();
+    let paths = write_set(&link, &[("results.json", "2")]).unwrap();
+    assert_eq!(paths, [link.join("results.json")]);
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(
+        std::fs::read_to_string(real.join("results.json")).unwrap(),
+        "2"
+    );
+}
