@@ -258,7 +258,6 @@ impl Inputs {
         self.groups.len() < self.len()
     }
 
-    #[allow(dead_code)] // used by the GUM and Monte Carlo modules, which come next
     pub(crate) fn groups(&self) -> &[Group] {
         &self.groups
     }

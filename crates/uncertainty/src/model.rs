@@ -41,8 +41,7 @@ impl<F> std::fmt::Debug for FnModel<F> {
 }
 
 impl<F> FnModel<F> {
-    /// The same model, declaring that it takes `count` inputs (checked against the inputs
-    /// given).
+    /// The same model, declaring that it takes `count` inputs (checked by [`gum`](crate::gum)).
     pub fn with_input_count(mut self, count: usize) -> Self {
         self.inputs = Some(count);
         self
@@ -103,4 +102,35 @@ impl<M: MeasurementModel + ?Sized> MeasurementModel for &M {
     fn input_count(&self) -> Option<usize> {
         (**self).input_count()
     }
+}
+
+/// The model's output names, checked (at least one, none empty, none repeated), after checking
+/// the model's declared input count against `inputs`.
+pub(crate) fn checked_output_names<M: MeasurementModel + ?Sized>(
+    model: &M,
+    inputs: usize,
+) -> crate::Result<Vec<String>> {
+    use crate::UncertaintyError;
+    if let Some(count) = model.input_count()
+        && count != inputs
+    {
+        return Err(UncertaintyError::InputCount {
+            model: count,
+            given: inputs,
+        });
+    }
+    let names = model.output_names();
+    if names.is_empty() {
+        return Err(UncertaintyError::NoOutputs);
+    }
+    let mut seen = std::collections::HashSet::with_capacity(names.len());
+    for (index, name) in names.iter().enumerate() {
+        if name.is_empty() {
+            return Err(UncertaintyError::EmptyName { index });
+        }
+        if !seen.insert(name.as_str()) {
+            return Err(UncertaintyError::DuplicateName { name: name.clone() });
+        }
+    }
+    Ok(names)
 }

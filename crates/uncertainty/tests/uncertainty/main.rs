@@ -1,0 +1,5 @@
+//! Behaviour tests of the `uncertainty` crate.
+
+mod coverage;
+mod sensitivity;
+mod welch;
