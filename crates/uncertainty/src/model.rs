@@ -41,7 +41,8 @@ impl<F> std::fmt::Debug for FnModel<F> {
 }
 
 impl<F> FnModel<F> {
-    /// The same model, declaring that it takes `count` inputs (checked by [`gum`](crate::gum)).
+    /// The same model, declaring that it takes `count` inputs (checked by [`gum`](crate::gum)
+    /// and [`monte_carlo`](crate::monte_carlo)).
     pub fn with_input_count(mut self, count: usize) -> Self {
         self.inputs = Some(count);
         self

@@ -1,0 +1,743 @@
+//! Propagation of distributions by the Monte Carlo method (JCGM 101:2008 §5–§7), adaptive
+//! (§7.9), seeded and parallel.
+
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use rand_distr::{ChiSquared, StandardNormal, StudentT};
+use rayon::prelude::*;
+
+use crate::error::{ModelError, Result, Statistic, UncertaintyError};
+use crate::input::{Distribution, Dof, Inputs};
+use crate::model::{MeasurementModel, checked_output_names};
+use crate::tolerance::numerical_tolerance;
+
+/// How many trials to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Trials {
+    /// The adaptive procedure of JCGM 101 §7.9.4: batches of `h` trials until twice the
+    /// standard deviation of the batch results of the estimate, the standard uncertainty and
+    /// both coverage limits is within the numerical tolerance (§7.9.2) of every output, or
+    /// the cap `max_trials` is reached (an error).
+    Adaptive {
+        /// The cap on the number of trials (at least two batches).
+        max_trials: u64,
+    },
+    /// Exactly this many trials (§7.2), at least `100/(1 − p)`, in batches of `h` trials (the
+    /// last one takes the remainder, fewer than `2h`).
+    Fixed(u64),
+}
+
+/// Options of [`monte_carlo`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct McOptions {
+    /// Seed of the random streams: the same seed gives the same result bit for bit, on any
+    /// number of threads.
+    pub seed: u64,
+    /// Coverage probability `p` of the coverage intervals (default 0.95).
+    pub coverage_probability: f64,
+    /// Significant decimal digits `n_dig` of the standard uncertainty for the numerical
+    /// tolerance (§7.9.2; default 2).
+    pub n_dig: u32,
+    /// Adaptive (default, capped at 10⁷ trials) or fixed.
+    pub trials: Trials,
+    /// Largest fraction of trials allowed to fail (the model returns an error or a non-finite
+    /// output); default 10⁻³, at most ½. Failed trials are left out of every statistic.
+    pub max_failed_fraction: f64,
+}
+
+impl Default for McOptions {
+    fn default() -> Self {
+        McOptions {
+            seed: 0x5EED_CA1B,
+            coverage_probability: 0.95,
+            n_dig: 2,
+            trials: Trials::Adaptive {
+                max_trials: 10_000_000,
+            },
+            max_failed_fraction: 1e-3,
+        }
+    }
+}
+
+/// Twice the standard deviations of the batch results (JCGM 101 §7.9.4 f, i): each is at
+/// most the numerical tolerance when the adaptive procedure has converged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stability {
+    /// `2·s_y` of the batch estimates.
+    pub estimate: f64,
+    /// `2·s_u(y)` of the batch standard uncertainties.
+    pub standard_uncertainty: f64,
+    /// `2·s_ylow` of the batch lower coverage limits.
+    pub coverage_low: f64,
+    /// `2·s_yhigh` of the batch upper coverage limits.
+    pub coverage_high: f64,
+}
+
+/// The Monte Carlo evaluation of one output quantity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct McOutput {
+    /// The output.
+    pub name: String,
+    /// Estimate: the mean of the model values (§7.6).
+    pub estimate: f64,
+    /// Standard uncertainty: their standard deviation (§7.6).
+    pub standard_uncertainty: f64,
+    /// The probabilistically symmetric coverage interval `[y_low, y_high]` (§7.7).
+    pub coverage_interval: (f64, f64),
+    /// The numerical tolerance δ of the standard uncertainty with `n_dig` digits (§7.9.2).
+    pub tolerance: f64,
+    /// The batch spread at the end, when there was more than one batch.
+    pub stability: Option<Stability>,
+}
+
+/// The Monte Carlo evaluation of all output quantities.
+#[derive(Debug, Clone, PartialEq)]
+pub struct McResult {
+    /// The coverage probability of the coverage intervals.
+    pub coverage_probability: f64,
+    /// One per output, in model order.
+    pub outputs: Vec<McOutput>,
+    /// Covariance matrix of the outputs from the model values (row-major, `m × m`; JCGM 102
+    /// §7.6).
+    pub covariance: Vec<f64>,
+    /// All trials run, failed ones included (the same for every output).
+    pub trials: u64,
+    /// Failed trials (the model returned an error or a non-finite output), left out of every
+    /// statistic.
+    pub failed_trials: u64,
+    /// The first failure, in trial order.
+    pub first_failure: Option<ModelError>,
+    /// Batches run.
+    pub batches: u64,
+    /// Trials per batch: `max(⌈100/(1 − p)⌉, 10⁴)` (§7.9.4 b).
+    pub batch_size: u64,
+}
+
+impl McResult {
+    /// The output named `name`.
+    pub fn output(&self, name: &str) -> Option<&McOutput> {
+        self.outputs.iter().find(|o| o.name == name)
+    }
+}
+
+/// Trials per random stream. Fixed, so that the streams, and therefore the results, do not
+/// depend on the number of threads.
+const CHUNK: usize = 1000;
+/// Trials per sub-block of a chunk: the inputs are drawn a column (one input, `SUB` trials)
+/// at a time, then the model runs trial by trial over the sub-block.
+const SUB: usize = 250;
+
+/// How one input, or one group of correlated inputs, is drawn.
+#[derive(Debug, Clone)]
+enum Draw {
+    Constant {
+        index: usize,
+        value: f64,
+    },
+    Normal {
+        index: usize,
+        mean: f64,
+        scale: f64,
+    },
+    Rectangular {
+        index: usize,
+        mean: f64,
+        half_width: f64,
+    },
+    StudentT {
+        index: usize,
+        mean: f64,
+        scale: f64,
+        t: StudentT<f64>,
+    },
+    /// `x = μ + diag(u)·L·z·√(ν/w)` (multivariate normal, or t when `chi` is present;
+    /// JCGM 101 §6.4.8, JCGM 102 §6.5.3).
+    Group {
+        members: Vec<usize>,
+        means: Vec<f64>,
+        scales: Vec<f64>,
+        factor: Vec<f64>,
+        chi: Option<(ChiSquared<f64>, f64)>,
+    },
+}
+
+impl Draw {
+    /// Fills this draw's column(s) of `cols` (column-major, `SUB` rows per input) for the
+    /// first `len` trials of a sub-block. `z` holds at least as many values as the largest
+    /// group has members.
+    fn fill(&self, rng: &mut StdRng, cols: &mut [f64], len: usize, z: &mut [f64]) {
+        let col = |index: usize| index * SUB..index * SUB + len;
+        match self {
+            Draw::Constant { index, value } => {
+                let r = col(*index);
+                cols[r].fill(*value);
+            }
+            Draw::Normal { index, mean, scale } => {
+                let r = col(*index);
+                for v in &mut cols[r] {
+                    let n: f64 = rng.sample(StandardNormal);
+                    *v = mean + scale * n;
+                }
+            }
+            Draw::Rectangular {
+                index,
+                mean,
+                half_width,
+            } => {
+                let r = col(*index);
+                for v in &mut cols[r] {
+                    let u: f64 = rng.random();
+                    *v = mean + half_width * (2.0 * u - 1.0);
+                }
+            }
+            Draw::StudentT {
+                index,
+                mean,
+                scale,
+                t,
+            } => {
+                let r = col(*index);
+                for v in &mut cols[r] {
+                    *v = mean + scale * rng.sample(t);
+                }
+            }
+            Draw::Group {
+                members,
+                means,
+                scales,
+                factor,
+                chi,
+            } => {
+                let k = members.len();
+                let z = &mut z[..k];
+                for trial in 0..len {
+                    for zi in z.iter_mut() {
+                        *zi = rng.sample(StandardNormal);
+                    }
+                    let s = match chi {
+                        Some((chi, nu)) => (nu / rng.sample(chi)).sqrt(),
+                        None => 1.0,
+                    };
+                    for (r, &index) in members.iter().enumerate() {
+                        let lz: f64 = factor[r * k..r * k + r + 1]
+                            .iter()
+                            .zip(z.iter())
+                            .map(|(l, z)| l * z)
+                            .sum();
+                        cols[index * SUB + trial] = means[r] + scales[r] * lz * s;
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn draws(inputs: &Inputs) -> Result<Vec<Draw>> {
+    let q = inputs.quantities();
+    let mut out = Vec::with_capacity(inputs.groups().len());
+    for group in inputs.groups() {
+        if let [index] = group.members[..] {
+            let (mean, u) = (q[index].value, q[index].standard_uncertainty);
+            out.push(if u == 0.0 {
+                Draw::Constant { index, value: mean }
+            } else {
+                match (q[index].distribution, q[index].dof) {
+                    (Distribution::Normal, _) => Draw::Normal {
+                        index,
+                        mean,
+                        scale: u,
+                    },
+                    (Distribution::Rectangular, _) => Draw::Rectangular {
+                        index,
+                        mean,
+                        half_width: u * 3f64.sqrt(),
+                    },
+                    (Distribution::StudentT, Dof::Finite(nu)) => Draw::StudentT {
+                        index,
+                        mean,
+                        scale: u,
+                        t: StudentT::new(nu).map_err(|_| UncertaintyError::InvalidDof {
+                            input: q[index].name.clone(),
+                            dof: nu,
+                        })?,
+                    },
+                    (Distribution::StudentT, Dof::Infinite) => {
+                        return Err(UncertaintyError::StudentTNeedsFiniteDof {
+                            input: q[index].name.clone(),
+                        });
+                    }
+                }
+            });
+            continue;
+        }
+        let first = group.members[0];
+        for &m in &group.members {
+            let d = q[m].distribution;
+            if d == Distribution::Rectangular || d != q[first].distribution {
+                return Err(UncertaintyError::CorrelatedDistribution {
+                    input: q[m].name.clone(),
+                    distribution: d,
+                });
+            }
+        }
+        let chi = match (q[first].distribution, group.dof) {
+            (Distribution::StudentT, Dof::Finite(nu)) => Some((
+                ChiSquared::new(nu).map_err(|_| UncertaintyError::InvalidDof {
+                    input: q[first].name.clone(),
+                    dof: nu,
+                })?,
+                nu,
+            )),
+            _ => None,
+        };
+        out.push(Draw::Group {
+            members: group.members.clone(),
+            means: group.members.iter().map(|&i| q[i].value).collect(),
+            scales: group
+                .members
+                .iter()
+                .map(|&i| q[i].standard_uncertainty)
+                .collect(),
+            factor: group.factor.clone(),
+            chi,
+        });
+    }
+    Ok(out)
+}
+
+/// An independent random stream per (seed, batch, chunk): a SplitMix64 finaliser over the
+/// three numbers gives unrelated seeds for `StdRng`.
+fn stream(seed: u64, batch: u64, chunk: u64) -> StdRng {
+    let mut z = seed
+        ^ batch.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ chunk.wrapping_mul(0xD1B5_4A32_D192_ED03);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    StdRng::seed_from_u64(z ^ (z >> 31))
+}
+
+/// The failures of one chunk: how many, and the first (trial index in the batch, error).
+type ChunkFailures = (u64, Option<(usize, ModelError)>);
+
+/// Runs one batch of `trials` trials into `rows` (row-major `trials × m`); a failed trial's
+/// row is NaN. Chunks of [`CHUNK`] trials run in parallel, each on its own stream.
+fn run_batch<M: MeasurementModel + ?Sized>(
+    model: &M,
+    draws: &[Draw],
+    n: usize,
+    m: usize,
+    seed: u64,
+    batch: u64,
+    rows: &mut [f64],
+) -> ChunkFailures {
+    let max_group = draws
+        .iter()
+        .map(|d| match d {
+            Draw::Group { members, .. } => members.len(),
+            _ => 0,
+        })
+        .max()
+        .unwrap_or(0);
+    let per_chunk: Vec<ChunkFailures> = rows
+        .par_chunks_mut(CHUNK * m)
+        .enumerate()
+        .map(|(chunk, rows)| {
+            let mut rng = stream(seed, batch, chunk as u64);
+            let mut cols = vec![0.0; n * SUB];
+            let mut x = vec![0.0; n];
+            let mut z = vec![0.0; max_group];
+            let mut failed = 0;
+            let mut first = None;
+            for (sub, rows) in rows.chunks_mut(SUB * m).enumerate() {
+                let len = rows.len() / m;
+                for d in draws {
+                    d.fill(&mut rng, &mut cols, len, &mut z);
+                }
+                for (t, y) in rows.chunks_exact_mut(m).enumerate() {
+                    for (i, xi) in x.iter_mut().enumerate() {
+                        *xi = cols[i * SUB + t];
+                    }
+                    let outcome = match model.evaluate(&x, y) {
+                        Ok(()) if y.iter().all(|v| v.is_finite()) => None,
+                        Ok(()) => Some(ModelError::Failed {
+                            reason: "non-finite output",
+                        }),
+                        Err(e) => Some(e),
+                    };
+                    if let Some(e) = outcome {
+                        y.fill(f64::NAN);
+                        failed += 1;
+                        first.get_or_insert((chunk * CHUNK + sub * SUB + t, e));
+                    }
+                }
+            }
+            (failed, first)
+        })
+        .collect();
+    per_chunk
+        .into_iter()
+        .fold((0, None), |(n, first), (f, fst)| (n + f, first.or(fst)))
+}
+
+/// Index `(r, r + q)` (0-based) of the probabilistically symmetric 100p % coverage interval
+/// among `count` sorted values (JCGM 101 §7.7.1 and §7.7.2, with 1-based `r`).
+fn coverage_indices(count: usize, p: f64) -> (usize, usize) {
+    let q = ((p * count as f64) + 0.5).floor() as usize;
+    let q = q.min(count - 1);
+    // r = (M − q)/2 when that is an integer, (M − q + 1)/2 otherwise: ⌈(M − q)/2⌉, at least 1.
+    let r = (count - q).div_ceil(2).max(1);
+    (r - 1, (r + q - 1).min(count - 1))
+}
+
+/// The coverage interval of `values` (reordered in place by selection).
+fn coverage_interval(values: &mut [f64], p: f64) -> (f64, f64) {
+    let (lo, hi) = coverage_indices(values.len(), p);
+    let (_, low, upper) = values.select_nth_unstable_by(lo, f64::total_cmp);
+    let low = *low;
+    let high = if hi == lo {
+        low
+    } else {
+        *upper.select_nth_unstable_by(hi - lo - 1, f64::total_cmp).1
+    };
+    (low, high)
+}
+
+/// The running state of one output.
+#[derive(Debug, Default)]
+struct Accumulator {
+    values: Vec<f64>,
+    mean: f64,
+    m2: f64,
+    batch: [Vec<f64>; 4],
+    scratch: Vec<f64>,
+}
+
+impl Accumulator {
+    /// Adds the batch's column `k` of `rows` (skipping failed trials) and records the batch's
+    /// estimate, standard uncertainty and coverage limits.
+    fn add_batch(&mut self, rows: &[f64], m: usize, k: usize, p: f64) {
+        self.scratch.clear();
+        self.scratch
+            .extend(rows.chunks_exact(m).map(|r| r[k]).filter(|v| !v.is_nan()));
+        let c = self.scratch.len();
+        let mean = self.scratch.iter().sum::<f64>() / c as f64;
+        let m2: f64 = self.scratch.iter().map(|v| (v - mean) * (v - mean)).sum();
+        // Chan et al.'s update of the running mean and sum of squares.
+        let n0 = self.values.len() as f64;
+        let total = n0 + c as f64;
+        let delta = mean - self.mean;
+        self.mean += delta * c as f64 / total;
+        self.m2 += m2 + delta * delta * n0 * c as f64 / total;
+        self.values.extend_from_slice(&self.scratch);
+        let (low, high) = coverage_interval(&mut self.scratch, p);
+        for (series, v) in
+            self.batch
+                .iter_mut()
+                .zip([mean, (m2 / (c - 1) as f64).sqrt(), low, high])
+        {
+            series.push(v);
+        }
+    }
+
+    fn standard_uncertainty(&self) -> f64 {
+        (self.m2 / (self.values.len() - 1) as f64).sqrt()
+    }
+
+    /// Twice the standard deviation of the average of the batch results (§7.9.4 f).
+    fn stability(&self) -> Option<Stability> {
+        let h = self.batch[0].len();
+        if h < 2 {
+            return None;
+        }
+        let two_s = |series: &[f64]| {
+            let mean = series.iter().sum::<f64>() / h as f64;
+            let ss: f64 = series.iter().map(|v| (v - mean) * (v - mean)).sum();
+            2.0 * (ss / (h * (h - 1)) as f64).sqrt()
+        };
+        Some(Stability {
+            estimate: two_s(&self.batch[0]),
+            standard_uncertainty: two_s(&self.batch[1]),
+            coverage_low: two_s(&self.batch[2]),
+            coverage_high: two_s(&self.batch[3]),
+        })
+    }
+}
+
+/// The first statistic of `s` above `tolerance`, if any.
+fn unstable(s: &Stability, tolerance: f64) -> Option<Statistic> {
+    [
+        (s.estimate, Statistic::Estimate),
+        (s.standard_uncertainty, Statistic::StandardUncertainty),
+        (s.coverage_low, Statistic::CoverageLow),
+        (s.coverage_high, Statistic::CoverageHigh),
+    ]
+    .into_iter()
+    .find(|(v, _)| v.is_nan() || *v > tolerance)
+    .map(|(_, s)| s)
+}
+
+fn check_options(options: &McOptions, batch_size: u64) -> Result<()> {
+    let invalid = |name, value, requirement| {
+        Err(UncertaintyError::InvalidOption {
+            name,
+            value,
+            requirement,
+        })
+    };
+    let p = options.coverage_probability;
+    if !(p > 0.0 && p < 1.0) {
+        return invalid(
+            "coverage_probability",
+            p,
+            "must lie strictly between 0 and 1",
+        );
+    }
+    let f = options.max_failed_fraction;
+    if !(0.0..=0.5).contains(&f) {
+        return invalid("max_failed_fraction", f, "must lie in [0, 0.5]");
+    }
+    if options.n_dig == 0 || options.n_dig > 6 {
+        return invalid("n_dig", options.n_dig as f64, "must be 1 to 6");
+    }
+    match options.trials {
+        Trials::Adaptive { max_trials } if max_trials < 2 * batch_size => invalid(
+            "max_trials",
+            max_trials as f64,
+            "must allow two batches of max(100/(1 - p), 10^4) trials",
+        ),
+        Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 => {
+            invalid("trials", n as f64, "must be at least 100/(1 - p)")
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The Monte Carlo method of JCGM 101:2008 applied to `model` at `inputs`.
+///
+/// Each trial draws every input from its distribution (§6.4: normal §6.4.7, rectangular
+/// §6.4.2, scaled-and-shifted t §6.4.9; a group of correlated inputs from the multivariate
+/// normal of §6.4.8 through the Cholesky factor of its correlation matrix, or from the
+/// multivariate t with the group's common ν) and evaluates the model. Trials run in batches
+/// of `h = max(⌈100/(1 − p)⌉, 10⁴)` (§7.9.4 b), each batch in chunks of 1000 trials on their
+/// own random streams, in parallel (rayon); the streams depend only on the seed, the batch
+/// and the chunk, so the result is the same on any number of threads.
+///
+/// With [`Trials::Adaptive`], batches are added until, for every output, twice the standard
+/// deviation of the average of the batch estimates, standard uncertainties and both
+/// coverage limits is at most the numerical tolerance δ of the standard uncertainty from all
+/// trials (§7.9.4 f–i, §7.9.2 with `n_dig` digits). The results then come from all trials
+/// (§7.9.4 j): estimate and standard uncertainty (§7.6) and the probabilistically symmetric
+/// coverage interval (§7.7).
+///
+/// Memory: all model values are kept for the coverage intervals, 8 bytes per output and
+/// trial (80 MB per output at the default cap of 10⁷ trials).
+///
+/// Errors: invalid options; a correlated input that is not Normal or StudentT (or a group
+/// mixing them); more failed trials than `max_failed_fraction` of all trials (or a batch with
+/// fewer than two successful trials); not converged within `max_trials`, naming the first
+/// output and statistic that had not stabilised; an overflowing statistic.
+pub fn monte_carlo<M: MeasurementModel + ?Sized>(
+    model: &M,
+    inputs: &Inputs,
+    options: &McOptions,
+) -> Result<McResult> {
+    let p = options.coverage_probability;
+    let batch_size = ((100.0 / (1.0 - p)).ceil() as u64).max(10_000);
+    check_options(options, batch_size)?;
+    let names = checked_output_names(model, inputs.len())?;
+    let draws = draws(inputs)?;
+    let (n, m) = (inputs.len(), names.len());
+    let mut accumulators: Vec<Accumulator> = (0..m).map(|_| Accumulator::default()).collect();
+    // A fixed run's last batch takes the remainder (fewer than 2h trials), so that no batch
+    // is too small for its own statistics.
+    let largest = match options.trials {
+        Trials::Fixed(total) => total.min(2 * batch_size - 1),
+        Trials::Adaptive { .. } => batch_size,
+    };
+    let mut rows = vec![0.0; largest as usize * m];
+    let (mut trials, mut failed, mut first_failure, mut batches) = (0u64, 0u64, None, 0u64);
+    loop {
+        let this = match options.trials {
+            Trials::Fixed(total) if total - trials < 2 * batch_size => total - trials,
+            _ => batch_size,
+        } as usize;
+        let rows = &mut rows[..this * m];
+        let (f, first) = run_batch(model, &draws, n, m, options.seed, batches, rows);
+        batches += 1;
+        trials += this as u64;
+        failed += f;
+        if first_failure.is_none() {
+            first_failure = first.map(|(_, e)| e);
+        }
+        if let Some(first) = first_failure
+            && (failed as f64 > options.max_failed_fraction * trials as f64 || this as u64 - f < 2)
+        {
+            return Err(UncertaintyError::TooManyFailedTrials {
+                failed,
+                trials,
+                max_fraction: options.max_failed_fraction,
+                first,
+            });
+        }
+        let rows = &*rows;
+        accumulators
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(k, acc)| acc.add_batch(rows, m, k, p));
+        match options.trials {
+            Trials::Fixed(total) => {
+                if trials >= total {
+                    break;
+                }
+            }
+            Trials::Adaptive { max_trials } => {
+                if batches < 2 {
+                    continue;
+                }
+                let first_unstable = accumulators.iter().enumerate().find_map(|(k, acc)| {
+                    let tolerance = numerical_tolerance(acc.standard_uncertainty(), options.n_dig);
+                    let s = acc.stability()?;
+                    unstable(&s, tolerance).map(|stat| (k, stat))
+                });
+                match first_unstable {
+                    None => break,
+                    Some((k, statistic)) if trials + batch_size > max_trials => {
+                        return Err(UncertaintyError::NotConverged {
+                            output: names[k].clone(),
+                            statistic,
+                            trials,
+                            max_trials,
+                        });
+                    }
+                    Some(_) => {}
+                }
+            }
+        }
+    }
+    finish(
+        accumulators,
+        names,
+        options,
+        p,
+        trials,
+        failed,
+        first_failure,
+        batches,
+        batch_size,
+    )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    mut accumulators: Vec<Accumulator>,
+    names: Vec<String>,
+    options: &McOptions,
+    p: f64,
+    trials: u64,
+    failed: u64,
+    first_failure: Option<ModelError>,
+    batches: u64,
+    batch_size: u64,
+) -> Result<McResult> {
+    let m = names.len();
+    // Covariance from the aligned columns (before the selections reorder them).
+    let pairs: Vec<(usize, usize)> = (0..m).flat_map(|a| (0..=a).map(move |b| (a, b))).collect();
+    let cov: Vec<f64> = pairs
+        .par_iter()
+        .map(|&(a, b)| {
+            let (va, vb) = (&accumulators[a].values, &accumulators[b].values);
+            let (ma, mb) = (accumulators[a].mean, accumulators[b].mean);
+            let s: f64 = va.iter().zip(vb).map(|(x, y)| (x - ma) * (y - mb)).sum();
+            s / (va.len() - 1) as f64
+        })
+        .collect();
+    let mut covariance = vec![0.0; m * m];
+    for (&(a, b), c) in pairs.iter().zip(cov) {
+        covariance[a * m + b] = c;
+        covariance[b * m + a] = c;
+    }
+    let outputs: Vec<McOutput> = accumulators
+        .par_iter_mut()
+        .zip(names)
+        .map(|(acc, name)| {
+            let u = acc.standard_uncertainty();
+            let stability = acc.stability();
+            let interval = coverage_interval(&mut acc.values, p);
+            McOutput {
+                name,
+                estimate: acc.mean,
+                standard_uncertainty: u,
+                coverage_interval: interval,
+                tolerance: numerical_tolerance(u, options.n_dig),
+                stability,
+            }
+        })
+        .collect();
+    for (k, o) in outputs.iter().enumerate() {
+        let finite = o.estimate.is_finite()
+            && o.standard_uncertainty.is_finite()
+            && o.stability.is_none_or(|s| {
+                [
+                    s.estimate,
+                    s.standard_uncertainty,
+                    s.coverage_low,
+                    s.coverage_high,
+                ]
+                .iter()
+                .all(|v| v.is_finite())
+            })
+            && covariance[k * m..(k + 1) * m].iter().all(|v| v.is_finite());
+        if !finite {
+            return Err(UncertaintyError::NonFiniteResult {
+                output: o.name.clone(),
+                what: "standard uncertainty or covariance",
+            });
+        }
+    }
+    Ok(McResult {
+        coverage_probability: p,
+        outputs,
+        covariance,
+        trials,
+        failed_trials: failed,
+        first_failure,
+        batches,
+        batch_size,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coverage_indices_follow_jcgm_101_7_7() {
+        // M = 10⁴, p = 0.95: q = 9500, r = 250: [y_(250), y_(9750)] (1-based).
+        assert_eq!(coverage_indices(10_000, 0.95), (249, 9749));
+        // M = 10⁴ + 1: q = int(9500.95 + ½) = 9501, (M − q)/2 = 250: [y_(250), y_(9751)].
+        assert_eq!(coverage_indices(10_001, 0.95), (249, 9750));
+        // M = 10⁴ + 2: q = int(9501.9 + ½) = 9502, (M − q)/2 = 250.
+        assert_eq!(coverage_indices(10_002, 0.95), (249, 9751));
+        // M = 10⁴ + 3: q = int(9502.85 + ½) = 9503, (M − q)/2 = 250.
+        assert_eq!(coverage_indices(10_003, 0.95), (249, 9752));
+        // M = 10⁴ + 10: q = 9510 (pM = 9509.5 → int(9510)), (M − q)/2 = 250.
+        assert_eq!(coverage_indices(10_010, 0.95), (249, 9759));
+        // M = 10⁴ + 20: q = int(9519 + ½) = 9519, (M − q)/2 = 250.5 → r = 251.
+        assert_eq!(coverage_indices(10_020, 0.95), (250, 9769));
+    }
+
+    #[test]
+    fn coverage_interval_selects_order_statistics() {
+        let mut v: Vec<f64> = (1..=10_000).rev().map(f64::from).collect();
+        assert_eq!(coverage_interval(&mut v, 0.95), (250.0, 9750.0));
+    }
+
+    #[test]
+    fn streams_differ_by_batch_and_chunk() {
+        let a: u64 = stream(1, 0, 0).random();
+        let b: u64 = stream(1, 1, 0).random();
+        let c: u64 = stream(1, 0, 1).random();
+        let d: u64 = stream(2, 0, 0).random();
+        assert!(a != b && a != c && b != c && a != d);
+    }
+}
