@@ -33,7 +33,7 @@ pub struct McOptions {
     /// Seed of the random streams: the same seed gives the same result bit for bit, on any
     /// number of threads.
     pub seed: u64,
-    /// Coverage probability `p` of the coverage intervals (default 0.95).
+    /// Coverage probability `p` of the coverage intervals (default 0.95, at most 0.9999).
     pub coverage_probability: f64,
     /// Significant decimal digits `n_dig` of the standard uncertainty for the numerical
     /// tolerance (§7.9.2; default 2).
@@ -119,6 +119,10 @@ impl McResult {
         self.outputs.iter().find(|o| o.name == name)
     }
 }
+
+/// The largest coverage probability the Monte Carlo method takes: its batches hold
+/// `100/(1 − p)` trials, 10⁶ here.
+const MAX_COVERAGE_PROBABILITY: f64 = 0.9999;
 
 /// Trials per random stream. Fixed, so that the streams, and therefore the results, do not
 /// depend on the number of threads.
@@ -485,11 +489,11 @@ fn check_options(options: &McOptions, batch_size: u64) -> Result<()> {
         })
     };
     let p = options.coverage_probability;
-    if !(p > 0.0 && p < 1.0) {
+    if !(p > 0.0 && p <= MAX_COVERAGE_PROBABILITY) {
         return invalid(
             "coverage_probability",
             p,
-            "must lie strictly between 0 and 1",
+            "must lie in (0, 0.9999] for the Monte Carlo method (batches of up to 10^6 trials)",
         );
     }
     let f = options.max_failed_fraction;

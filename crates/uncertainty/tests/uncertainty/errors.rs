@@ -266,6 +266,13 @@ fn invalid_options() {
         ),
         (
             McOptions {
+                coverage_probability: 0.99999,
+                ..McOptions::default()
+            },
+            "coverage_probability",
+        ),
+        (
+            McOptions {
                 max_failed_fraction: 0.6,
                 ..McOptions::default()
             },
