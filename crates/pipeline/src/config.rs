@@ -36,6 +36,123 @@ pub struct StudyConfig {
     /// without compensation (absent: not run).
     #[serde(default)]
     pub mechanism: Option<MechanismConfig>,
+    /// The PIGA's calibration on measured data, compensated with a phase's C_r (absent: none).
+    #[serde(default)]
+    pub calibration: Option<CalibrationConfig>,
+    /// Type B standard uncertainties of the calibration's inputs (absent: all zero, and the
+    /// budget says so).
+    #[serde(default)]
+    pub uncertainty: Option<UncertaintyConfig>,
+}
+
+/// The calibration section: the PIGA's mean output at several rates, identified by eq. 18
+/// with and without the compensation of eq. 19.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CalibrationConfig {
+    /// The PIGA table: one row per measurement, the rate and the mean output.
+    pub table: PigaTableConfig,
+    /// The phase whose C_r is removed (eq. 19), by name.
+    pub compensate_with: String,
+    /// Where k1 comes from (default: fitted, from the ω² coefficient).
+    #[serde(default)]
+    pub k1: K1Config,
+    /// Seed of the Monte Carlo evaluation (default 1).
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Number of Monte Carlo trials: `adaptive` (default, JCGM 101 §7.9, two significant
+    /// digits) or `fixed(N)` (at least 2000).
+    #[serde(default)]
+    pub trials: TrialsConfig,
+}
+
+/// How many Monte Carlo trials the uncertainty evaluation draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TrialsConfig {
+    /// Until the results are stable to two significant digits (JCGM 101 §7.9).
+    #[default]
+    Adaptive,
+    /// Exactly this many (at least 2000: JCGM 101 §7.2 asks for 100/(1 − p)).
+    Fixed(u64),
+}
+
+const fn default_seed() -> u64 {
+    1
+}
+
+/// A PIGA table file and its columns.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PigaTableConfig {
+    /// The file, relative to the study file's folder unless absolute.
+    pub file: PathBuf,
+    /// Header name of the rate column, deg/s (default `rate_deg_s`).
+    #[serde(default = "default_rate_column")]
+    pub rate_column: String,
+    /// Header name of the mean-output column, rad/s (default `output_rad_s`).
+    #[serde(default = "default_output_column")]
+    pub output_column: String,
+    /// Field delimiter (default `,`).
+    #[serde(default = "default_delimiter")]
+    pub delimiter: char,
+}
+
+fn default_rate_column() -> String {
+    "rate_deg_s".to_owned()
+}
+
+fn default_output_column() -> String {
+    "output_rad_s".to_owned()
+}
+
+const fn default_delimiter() -> char {
+    ','
+}
+
+/// Where the calibration's k1 comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum K1Config {
+    /// From the fit's ω² coefficient, `c₂·g/R`, with its uncertainty and correlations.
+    #[default]
+    Fitted,
+    /// Known from elsewhere, e.g. a static multi-position test.
+    Given {
+        /// k1, rad/(s·g).
+        k1_rad_s_g: f64,
+        /// Its standard uncertainty, rad/(s·g) (Type B; default 0).
+        #[serde(default)]
+        u_rad_s_g: f64,
+    },
+}
+
+/// Type B standard uncertainties of the calibration's inputs (JCGM 100 §4.3). Each is a
+/// standard uncertainty (one standard deviation), not a tolerance or a bound.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UncertaintyConfig {
+    /// u(R), m.
+    #[serde(default)]
+    pub radius_u_m: f64,
+    /// u(g), m/s².
+    #[serde(default)]
+    pub g_u_m_s2: f64,
+    /// Where the study's value of g comes from (shown beside it in the report).
+    #[serde(default)]
+    pub g_source: String,
+    /// Relative standard uncertainty of the rate (a scale error common to every rate).
+    #[serde(default)]
+    pub rate_u_relative: f64,
+    /// u of the height from the tilt pivot to the probe plane, mm.
+    #[serde(default)]
+    pub pivot_to_probe_u_mm: f64,
+    /// u of the height from the probe plane to the PIGA plane, mm.
+    #[serde(default)]
+    pub probe_to_piga_u_mm: f64,
+    /// Relative standard uncertainty of the probe's gain (sensitivity).
+    #[serde(default)]
+    pub probe_gain_u_relative: f64,
 }
 
 /// The probe's lever geometry (eq. 22): heights in mm and the measuring direction.

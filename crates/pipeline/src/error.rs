@@ -70,6 +70,16 @@ pub enum PipelineError {
         /// The solver's error.
         source: identify::IdentifyError,
     },
+    /// The uncertainty evaluation failed.
+    #[error("{}: `{field}`", path.display())]
+    Uncertainty {
+        /// The file concerned.
+        path: PathBuf,
+        /// The section.
+        field: String,
+        /// The evaluation's error (boxed: it is large).
+        source: Box<uncertainty::UncertaintyError>,
+    },
     /// The harmonic geometry was refused.
     #[error("{}: `{field}`", path.display())]
     Harmonics {
@@ -128,6 +138,38 @@ pub enum PipelineError {
         field: String,
         /// Why it cannot be used.
         reason: UnsupportedReason,
+    },
+    /// A value in a data table is outside its domain.
+    #[error("{}: `{field}`: {}:{line}: {column} = {value}: {reason}", path.display(), file.display())]
+    TableValue {
+        /// The configuration file.
+        path: PathBuf,
+        /// The field naming the table.
+        field: String,
+        /// The table file.
+        file: PathBuf,
+        /// The line of the value.
+        line: usize,
+        /// The column.
+        column: String,
+        /// The value.
+        value: f64,
+        /// What is wrong with it.
+        reason: InvalidReason,
+    },
+    /// A calibration table has too few distinct rates for the eq. 18 design.
+    #[error("{}: `{field}`: {} has {distinct} distinct rate(s); the eq. 18 calibration needs at least {need} (six unknowns and one degree of freedom)", path.display(), file.display())]
+    TooFewRates {
+        /// The configuration file.
+        path: PathBuf,
+        /// The field naming the table.
+        field: String,
+        /// The table file.
+        file: PathBuf,
+        /// Distinct rates found.
+        distinct: usize,
+        /// Distinct rates needed.
+        need: usize,
     },
     /// Two items of a list share a name.
     #[error("{}: field `{field}`: the name `{name}` is already used at `{first}`", path.display())]
@@ -190,6 +232,9 @@ pub enum InvalidReason {
     /// A rate must be finite and positive.
     #[error("a rate must be finite and > 0")]
     RateNotPositive,
+    /// Too few Monte Carlo trials for a 95 % interval.
+    #[error("must be at least 2000 (JCGM 101 §7.2: 100/(1 − p) for p = 95 %)")]
+    TooFewTrials,
     /// A latitude must be finite and within ±90°.
     #[error("must be finite and within ±90")]
     NotALatitude,

@@ -12,18 +12,36 @@ use accel_model::PigaCoefficients;
 use harmonics::{FitConfig, LeverGeometry, ProbeDirection};
 use identify::RadiusModel;
 use rayon::prelude::*;
-use recording::{Recording, RecordingError, RecordingFormat};
+use recording::{Recording, RecordingError, RecordingFormat, Table, TableColumn, TableFormat};
 
+use crate::calibration::{CalibrationInputs, K1Choice, TypeB};
 use crate::config::{
-    FitSettings, HarmonicPoint, LeverConfig, MechanismConfig, PhaseConfig, Points,
-    ProbeDirectionName, RadiusModelName, RadiusPoint, StudyConfig, Weighting,
+    CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
+    PhaseConfig, Points, ProbeDirectionName, RadiusModelName, RadiusPoint, StudyConfig,
+    TrialsConfig, UncertaintyConfig, Weighting,
 };
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 
-/// Reads the recording at a path in a format: the caller's access to recordings (files at the
-/// edge, or recordings held in memory in a test).
-pub type RecordingLoader<'a> =
-    dyn Fn(&Path, &RecordingFormat) -> std::result::Result<Recording, RecordingError> + Sync + 'a;
+/// The caller's access to the data files a study names: files at the edge
+/// ([`crate::load_study`]), or data held in memory (a test, another program).
+pub trait DataSource: Sync {
+    /// The probe recording at `path`, read in `format`.
+    fn recording(
+        &self,
+        path: &Path,
+        format: &RecordingFormat,
+    ) -> std::result::Result<Recording, RecordingError>;
+
+    /// The table at `path`, read in `format`.
+    fn table(
+        &self,
+        path: &Path,
+        format: &TableFormat,
+    ) -> std::result::Result<Table, RecordingError>;
+}
+
+/// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2: 100/(1 − p)).
+const MIN_TRIALS: u64 = 2000;
 
 /// Least number of distinct mechanism calibration rates: six unknowns plus one degree of
 /// freedom.
@@ -42,6 +60,11 @@ pub struct Inputs {
     pub(crate) radius_model: RadiusModelName,
     pub(crate) phases: Vec<Phase>,
     pub(crate) mechanism: Option<Mechanism>,
+    pub(crate) calibration: Option<CalibrationInputs>,
+    /// Type B uncertainties (all zero when the study has no `uncertainty` section).
+    pub(crate) type_b: TypeB,
+    /// Whether the study has an `uncertainty` section.
+    pub(crate) type_b_given: bool,
 }
 
 /// One validated phase.
@@ -107,7 +130,7 @@ impl Inputs {
     /// The first invalid field in the file's order; for recordings, every recording that could
     /// not be loaded, in the configuration's order ([`PipelineError::Several`] when more than
     /// one).
-    pub fn new(config: StudyConfig, source: &Path, load: &RecordingLoader<'_>) -> Result<Self> {
+    pub fn new(config: StudyConfig, source: &Path, load: &dyn DataSource) -> Result<Self> {
         let check = Check { path: source };
         check.positive("radius_m", config.radius_m)?;
         check.positive("g_m_s2", config.g_m_s2)?;
@@ -148,7 +171,23 @@ impl Inputs {
             .map(|m| check.mechanism(m, config.k1_rad_s_g, &names))
             .transpose()?;
         let base = source.parent().unwrap_or_else(|| Path::new("."));
+        let type_b = config
+            .uncertainty
+            .as_ref()
+            .map(|u| check.type_b(u))
+            .transpose()?;
+        let calibration_config = config
+            .calibration
+            .as_ref()
+            .map(|c| check.calibration(c, &names))
+            .transpose()?;
         let phases = load_phases(&config.phases, checked, base, source, load)?;
+        let calibration = match (config.calibration.as_ref(), calibration_config) {
+            (Some(c), Some((phase, k1))) => {
+                Some(load_calibration(c, phase, k1, base, source, load)?)
+            }
+            _ => None,
+        };
         Ok(Self {
             source: source.to_owned(),
             name: config.name,
@@ -160,6 +199,9 @@ impl Inputs {
             radius_model: model,
             phases,
             mechanism,
+            calibration,
+            type_b_given: type_b.is_some(),
+            type_b: type_b.unwrap_or_default(),
         })
     }
 
@@ -231,7 +273,7 @@ fn load_phases(
     checked: Vec<(Weighting, Checked)>,
     base: &Path,
     source: &Path,
-    load: &RecordingLoader<'_>,
+    load: &dyn DataSource,
 ) -> Result<Vec<Phase>> {
     // (phase index, file index, rate, resolved path, format)
     let mut jobs = Vec::new();
@@ -246,7 +288,7 @@ fn load_phases(
         .par_iter()
         .map(|(_, _, _, file, format)| {
             let _span = tracing::info_span!("load", file = %file.display()).entered();
-            load(file, format)
+            load.recording(file, format)
         })
         .collect();
     let mut errors = Vec::new();
@@ -288,6 +330,81 @@ fn load_phases(
             },
         })
         .collect())
+}
+
+/// Reads the calibration's PIGA table and checks its rows: rates > 0, at least
+/// [`MIN_MECHANISM_RATES`] distinct (six unknowns and a residual degree of freedom).
+fn load_calibration(
+    config: &CalibrationConfig,
+    phase: usize,
+    k1: K1Choice,
+    base: &Path,
+    source: &Path,
+    load: &dyn DataSource,
+) -> Result<CalibrationInputs> {
+    let file = base.join(&config.table.file);
+    let format = TableFormat {
+        columns: vec![
+            TableColumn::required(config.table.rate_column.clone()),
+            TableColumn::required(config.table.output_column.clone()),
+        ],
+        delimiter: config.table.delimiter,
+        flexible: true,
+    };
+    let table = load
+        .table(&file, &format)
+        .map_err(|e| PipelineError::Recording {
+            path: source.to_owned(),
+            field: "calibration.table".to_owned(),
+            source: Box::new(e),
+        })?;
+    let rates = table
+        .column(&config.table.rate_column)
+        .unwrap_or(&[])
+        .to_vec();
+    let outputs = table
+        .column(&config.table.output_column)
+        .unwrap_or(&[])
+        .to_vec();
+    let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
+    for (i, &rate) in rates.iter().enumerate() {
+        if !(rate.is_finite() && rate > 0.0) {
+            return Err(PipelineError::TableValue {
+                path: source.to_owned(),
+                field: "calibration.table".to_owned(),
+                file: file.clone(),
+                line: lines[i],
+                column: config.table.rate_column.clone(),
+                value: rate,
+                reason: InvalidReason::RateNotPositive,
+            });
+        }
+    }
+    let mut distinct: Vec<u64> = rates.iter().map(|r| r.to_bits()).collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    if distinct.len() < MIN_MECHANISM_RATES {
+        return Err(PipelineError::TooFewRates {
+            path: source.to_owned(),
+            field: "calibration.table".to_owned(),
+            file,
+            distinct: distinct.len(),
+            need: MIN_MECHANISM_RATES,
+        });
+    }
+    Ok(CalibrationInputs {
+        table_file: file,
+        rates_deg_s: rates,
+        outputs_rad_s: outputs,
+        lines,
+        phase,
+        k1,
+        seed: config.seed,
+        trials: match config.trials {
+            TrialsConfig::Adaptive => None,
+            TrialsConfig::Fixed(n) => Some(n),
+        },
+    })
 }
 
 /// Field checks that name the configuration file.
@@ -467,6 +584,77 @@ impl Check<'_> {
             });
         }
         Ok((phase.weighting, checked))
+    }
+
+    /// The calibration's references and numbers: the phase it compensates with, and k1.
+    fn calibration(
+        &self,
+        c: &CalibrationConfig,
+        names: &HashMap<&str, usize>,
+    ) -> Result<(usize, K1Choice)> {
+        let Some(&phase) = names.get(c.compensate_with.as_str()) else {
+            return Err(PipelineError::UnknownPhase {
+                path: self.path.to_owned(),
+                field: "calibration.compensate_with".to_owned(),
+                name: c.compensate_with.clone(),
+                known: sorted_names(names),
+            });
+        };
+        if let TrialsConfig::Fixed(n) = c.trials
+            && n < MIN_TRIALS
+        {
+            return Err(self.invalid(
+                "calibration.trials".to_owned(),
+                n as f64,
+                InvalidReason::TooFewTrials,
+            ));
+        }
+        let k1 = match c.k1 {
+            K1Config::Fitted => K1Choice::Fitted,
+            K1Config::Given {
+                k1_rad_s_g,
+                u_rad_s_g,
+            } => {
+                self.positive("calibration.k1.k1_rad_s_g", k1_rad_s_g)?;
+                self.non_negative("calibration.k1.u_rad_s_g", u_rad_s_g)?;
+                K1Choice::Given {
+                    k1_rad_s_g,
+                    u_rad_s_g,
+                }
+            }
+        };
+        Ok((phase, k1))
+    }
+
+    /// The Type B uncertainties: each finite and ≥ 0.
+    fn type_b(&self, u: &UncertaintyConfig) -> Result<TypeB> {
+        for (field, value) in [
+            ("uncertainty.radius_u_m", u.radius_u_m),
+            ("uncertainty.g_u_m_s2", u.g_u_m_s2),
+            ("uncertainty.rate_u_relative", u.rate_u_relative),
+            ("uncertainty.pivot_to_probe_u_mm", u.pivot_to_probe_u_mm),
+            ("uncertainty.probe_to_piga_u_mm", u.probe_to_piga_u_mm),
+            ("uncertainty.probe_gain_u_relative", u.probe_gain_u_relative),
+        ] {
+            self.non_negative(field, value)?;
+        }
+        Ok(TypeB {
+            radius_u_m: u.radius_u_m,
+            g_u_m_s2: u.g_u_m_s2,
+            g_source: u.g_source.clone(),
+            rate_u_relative: u.rate_u_relative,
+            pivot_to_probe_u_mm: u.pivot_to_probe_u_mm,
+            probe_to_piga_u_mm: u.probe_to_piga_u_mm,
+            probe_gain_u_relative: u.probe_gain_u_relative,
+        })
+    }
+
+    fn non_negative(&self, field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(())
+        } else {
+            Err(self.invalid(field.to_owned(), value, InvalidReason::Negative))
+        }
     }
 
     fn mechanism(

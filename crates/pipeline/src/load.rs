@@ -5,7 +5,29 @@ use std::path::Path;
 
 use crate::config::StudyConfig;
 use crate::error::Result;
-use crate::inputs::Inputs;
+use crate::inputs::{DataSource, Inputs};
+
+/// The data files of a study, read from disk.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Files;
+
+impl DataSource for Files {
+    fn recording(
+        &self,
+        path: &Path,
+        format: &recording::RecordingFormat,
+    ) -> std::result::Result<recording::Recording, recording::RecordingError> {
+        recording::load_recording(path, format)
+    }
+
+    fn table(
+        &self,
+        path: &Path,
+        format: &recording::TableFormat,
+    ) -> std::result::Result<recording::Table, recording::RecordingError> {
+        recording::load_table(path, format)
+    }
+}
 
 /// Largest study file read, bytes (16 MiB): a larger file is refused before it is read.
 pub const MAX_STUDY_BYTES: u64 = edge_io::CONFIG_MAX_BYTES;
@@ -24,7 +46,5 @@ pub fn load_study(path: &Path) -> Result<Inputs> {
 /// `path`'s folder); `path` names the source in errors.
 pub fn parse_study(text: &str, path: &Path) -> Result<Inputs> {
     let config = StudyConfig::from_ron(text.strip_prefix('\u{feff}').unwrap_or(text), path)?;
-    Inputs::new(config, path, &|file, format| {
-        recording::load_recording(file, format)
-    })
+    Inputs::new(config, path, &Files)
 }

@@ -16,6 +16,9 @@ pub struct StudyResults {
     pub phases: Vec<PhaseResults>,
     /// The simulated calibration with and without compensation (when configured).
     pub mechanism: Option<MechanismResults>,
+    /// The PIGA's calibration on measured data (when configured).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub calibration: Option<CalibrationResults>,
 }
 
 /// Scalar inputs of the study.
@@ -192,4 +195,210 @@ impl StudyResults {
     pub fn phase(&self, name: &str) -> Option<&PhaseResults> {
         self.phases.iter().find(|p| p.name == name)
     }
+}
+
+/// Degrees of freedom of an uncertainty: a number, or `"infinite"` (Type B, or a combination
+/// dominated by Type B contributions) — never a JSON `null` standing for infinity.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum DegreesOfFreedom {
+    /// A finite number of degrees of freedom.
+    Finite(f64),
+    /// Infinitely many, written as the string `"infinite"`.
+    Infinite(InfiniteDof),
+}
+
+/// The marker `"infinite"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InfiniteDof {
+    /// Infinitely many degrees of freedom.
+    Infinite,
+}
+
+/// An estimate and its standard uncertainty.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    /// The value.
+    pub value: f64,
+    /// Its standard uncertainty.
+    pub u: f64,
+}
+
+/// A calibrated coefficient with its uncertainty per JCGM 100.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Coefficient {
+    /// The value.
+    pub value: f64,
+    /// Combined standard uncertainty.
+    pub u: f64,
+    /// Expanded uncertainty at 95 % coverage, `k·u`.
+    #[serde(rename = "U95")]
+    pub u95: f64,
+    /// Coverage factor (Student t at the effective degrees of freedom).
+    pub k: f64,
+    /// Effective degrees of freedom (Welch–Satterthwaite).
+    pub dof: DegreesOfFreedom,
+}
+
+/// The four PIGA coefficients.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PigaCoefficients<T> {
+    /// Bias k0 (with k1·Δφ_ys), rad/s.
+    pub k0: T,
+    /// Scale factor k1, rad/(s·g).
+    pub k1: T,
+    /// Second-order coefficient k2, rad/(s·g²).
+    pub k2: T,
+    /// Third-order coefficient k3, rad/(s·g³).
+    pub k3: T,
+}
+
+/// The coefficients in the conventional units of IEEE Std 836/1293 users, relative to k1.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Conventional {
+    /// The g used, m/s².
+    pub g_m_s2: f64,
+    /// k0/k1, µg.
+    pub k0_ug: Estimate,
+    /// k2/k1, µg/g².
+    pub k2_ug_per_g2: Estimate,
+    /// k3/k1, µg/g³.
+    pub k3_ug_per_g3: Estimate,
+}
+
+/// One line of an uncertainty budget.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BudgetLine {
+    /// The input quantity.
+    pub quantity: String,
+    /// Type A or B.
+    pub evaluation: String,
+    /// Its value (for a group of inputs such as the mean outputs: absent).
+    pub value: Option<f64>,
+    /// Its standard uncertainty (for a group: the common one).
+    pub u: f64,
+    /// Sensitivity coefficient ∂y/∂x through the computation (for a group: the root sum of
+    /// squares of its members').
+    pub sensitivity: f64,
+    /// Contribution |c|·u to the output's standard uncertainty.
+    pub contribution: f64,
+    /// Share of the combined variance, %.
+    pub percent: f64,
+    /// Degrees of freedom.
+    pub dof: DegreesOfFreedom,
+}
+
+/// One row of the calibration table with its fitted value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CalibrationRow {
+    /// Rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Mean output, rad/s.
+    pub output_rad_s: f64,
+    /// Output minus the fitted eq. 18 model, rad/s.
+    pub residual_rad_s: f64,
+    /// The row's line in the table file.
+    pub line: usize,
+}
+
+/// Monte Carlo results for one output (JCGM 101).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MonteCarloOutput {
+    /// Mean of the output's distribution.
+    pub mean: f64,
+    /// Its standard deviation: the standard uncertainty.
+    pub u: f64,
+    /// Lower end of the probabilistically symmetric 95 % coverage interval.
+    pub low95: f64,
+    /// Upper end.
+    pub high95: f64,
+    /// §8 validation of the GUM result against this one.
+    pub gum_agrees: bool,
+    /// The numerical tolerance δ of the validation.
+    pub tolerance: f64,
+    /// |y − U95 − y_low| of the validation.
+    pub d_low: f64,
+    /// |y + U95 − y_high| of the validation.
+    pub d_high: f64,
+}
+
+/// The Monte Carlo evaluation of the calibration's measurement model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MonteCarlo {
+    /// Trials drawn (adaptive, JCGM 101 §7.9).
+    pub trials: u64,
+    /// The seed.
+    pub seed: u64,
+    /// Whether every coefficient's GUM result agrees with the Monte Carlo one (§8).
+    pub gum_agrees: bool,
+    /// Per coefficient.
+    pub k0: MonteCarloOutput,
+    /// k1.
+    pub k1: MonteCarloOutput,
+    /// k2 (compensated).
+    pub k2: MonteCarloOutput,
+    /// k3.
+    pub k3: MonteCarloOutput,
+}
+
+/// The calibration on measured data.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CalibrationResults {
+    /// The PIGA table read.
+    pub table: String,
+    /// The phase whose C_r was removed.
+    pub compensate_with: String,
+    /// `fitted` or `given`.
+    pub k1_source: String,
+    /// The g used, m/s², and where it comes from.
+    pub g_m_s2: f64,
+    /// Where g comes from (the `uncertainty` section's `g_source`).
+    pub g_source: String,
+    /// Rows of the table.
+    pub points: usize,
+    /// Distinct rates.
+    pub distinct_rates: usize,
+    /// Residual degrees of freedom of the eq. 18 fit.
+    pub dof: usize,
+    /// The compensated coefficients with their uncertainties (JCGM 100).
+    pub coefficients: PigaCoefficients<Coefficient>,
+    /// The coefficients of the fit as measured (a² coefficient = k2 + Δk2), with the fit's
+    /// standard errors.
+    pub uncompensated: PigaCoefficients<Estimate>,
+    /// Δk2 = k1·C_r·g/R² removed (eq. 19), with its standard uncertainty.
+    pub delta_k2: Estimate,
+    /// The C_r used, m·s², and its standard uncertainty.
+    pub c_r_m_s2: Estimate,
+    /// k0, k2, k3 relative to k1 in µg, µg/g², µg/g³.
+    pub conventional: Conventional,
+    /// The nuisance coefficients of ω (1) and ω³ (s²).
+    pub nuisance: Nuisance,
+    /// Residual standard deviation of the fit, rad/s.
+    pub residual_sd_rad_s: f64,
+    /// Each row with its residual.
+    pub residuals: Vec<CalibrationRow>,
+    /// Correlation matrix of the six fitted coefficients, in the order of `terms`.
+    pub correlation: Vec<Vec<f64>>,
+    /// The design's terms: `1, ω, ω², ω³, a², a³`.
+    pub terms: Vec<String>,
+    /// Variance inflation factor of each non-constant term.
+    pub variance_inflation: Vec<f64>,
+    /// Condition number of the column-scaled design.
+    pub condition_number: f64,
+    /// Uncertainty budgets per coefficient (JCGM 100): k2's is `budget.k2`.
+    pub budget: PigaCoefficients<Vec<BudgetLine>>,
+    /// The same model by Monte Carlo (JCGM 101).
+    pub monte_carlo: MonteCarlo,
+    /// Warnings in plain words (terms hard to separate, a budget without Type B inputs...).
+    pub warnings: Vec<String>,
+}
+
+/// The nuisance coefficients of the eq. 18 design.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Nuisance {
+    /// Coefficient of ω (dimensionless: −Δφ_ys and the Coriolis term).
+    pub omega: Estimate,
+    /// Coefficient of ω³, s² (−C_φ).
+    pub omega3_s2: Estimate,
 }

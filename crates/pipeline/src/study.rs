@@ -8,6 +8,7 @@ use harmonics::FirstHarmonic;
 use identify::RadiusModel;
 use units::{deg_s_to_rad_s, m_to_um, um_to_m};
 
+use crate::calibration::{self, CalibrationFailure, Nominal, Setting};
 use crate::config::{RadiusModelName, Weighting};
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Inputs, Phase, PhaseData, radius_model};
@@ -92,6 +93,44 @@ pub fn run_with_progress(
             })
         })
         .transpose()?;
+    let calibration = inputs
+        .calibration
+        .as_ref()
+        .map(|c| {
+            let _span = tracing::info_span!("calibration").entered();
+            let phase = &phases[c.phase];
+            let setting = Setting {
+                nominal: Nominal {
+                    radius_m: inputs.radius_m,
+                    g_m_s2: inputs.g_m_s2,
+                    pivot_to_probe_mm: inputs.lever.pivot_to_probe_mm,
+                    probe_to_piga_mm: inputs.lever.probe_to_piga_mm,
+                    c_r_m_s2: phase.fit.c_r_m_s2,
+                },
+                type_b: &inputs.type_b,
+                c_r_sigma: phase.fit.c_r_sigma_m_s2.map(|s| (s, phase.fit.dof)),
+            };
+            let evaluated = calibration::evaluate(c, &setting).map_err(|e| match e {
+                CalibrationFailure::Identify(source) => PipelineError::Identify {
+                    path: inputs.source.clone(),
+                    field: "calibration".to_owned(),
+                    source,
+                },
+                CalibrationFailure::Uncertainty(source) => PipelineError::Uncertainty {
+                    path: inputs.source.clone(),
+                    field: "calibration".to_owned(),
+                    source: Box::new(source),
+                },
+            })?;
+            Ok::<_, PipelineError>(calibration::results(
+                c,
+                &setting,
+                &phase.name,
+                inputs.type_b_given,
+                &evaluated,
+            ))
+        })
+        .transpose()?;
     Ok(StudyResults {
         study: inputs.name.clone(),
         inputs: StudyInputs {
@@ -102,6 +141,7 @@ pub fn run_with_progress(
         },
         phases,
         mechanism,
+        calibration,
     })
 }
 

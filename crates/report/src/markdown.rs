@@ -66,6 +66,9 @@ pub fn render(
     if let Some(m) = &results.mechanism {
         mechanism_table(&mut out, m);
     }
+    if let Some(c) = &results.calibration {
+        crate::calibration::section(&mut out, c);
+    }
 
     if let Some(outcomes) = outcomes {
         let _ = writeln!(out, "## Regression checks\n");

@@ -3,8 +3,8 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use pipeline::{Inputs, StudyConfig};
-use recording::{Recording, RecordingFormat};
+use pipeline::{DataSource, Inputs, StudyConfig};
+use recording::{Recording, RecordingError, RecordingFormat, Table, TableFormat};
 use simulate::Scenario;
 
 use crate::root;
@@ -30,6 +30,24 @@ fn recordings_in_memory() -> HashMap<PathBuf, Recording> {
         .collect()
 }
 
+/// Recordings held in memory, counting the reads; no tables.
+struct Memory {
+    recordings: HashMap<PathBuf, Recording>,
+    reads: std::sync::atomic::AtomicUsize,
+}
+
+impl DataSource for Memory {
+    fn recording(&self, path: &Path, _: &RecordingFormat) -> Result<Recording, RecordingError> {
+        self.reads
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Ok(self.recordings[path].clone())
+    }
+
+    fn table(&self, path: &Path, _: &TableFormat) -> Result<Table, RecordingError> {
+        unreachable!("the study names no table, yet {path:?} was asked for")
+    }
+}
+
 #[test]
 fn a_study_runs_on_recordings_in_memory() {
     let memory = recordings_in_memory();
@@ -38,13 +56,12 @@ fn a_study_runs_on_recordings_in_memory() {
         .replace("../recordings/pre-balance-small/", "in-memory/");
     let source = Path::new("/nonexistent/study.ron");
     let config = StudyConfig::from_ron(&text, source).unwrap();
-    let loads = std::sync::atomic::AtomicUsize::new(0);
-    let inputs = Inputs::new(config, source, &|path, _format| {
-        loads.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        Ok(memory[path].clone())
-    })
-    .unwrap();
-    assert_eq!(loads.into_inner(), 6);
+    let source_data = Memory {
+        recordings: memory,
+        reads: std::sync::atomic::AtomicUsize::new(0),
+    };
+    let inputs = Inputs::new(config, source, &source_data).unwrap();
+    assert_eq!(source_data.reads.into_inner(), 6);
     let in_memory = pipeline::run(&inputs).unwrap();
 
     // The same study from the committed files, which the simulator wrote from the same

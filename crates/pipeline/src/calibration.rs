@@ -1,0 +1,708 @@
+//! The PIGA's calibration on measured data (eq. 17–19) and its measurement model.
+//!
+//! The mean PIGA outputs of the table are fitted by the eq. 18 design `[1, ω, ω², ω³, a², a³]`,
+//! `a = R·ω²/g` (`identify::identify_compensated`), as measured and after removing the
+//! pseudo-second-order term of a named phase's C_r.
+//!
+//! [`CalibrationModel`] is the same computation as a function of every input quantity —
+//! R, g, a common rate scale, the lever heights, the probe gain, the phase's C_r, k1 when
+//! given, and the six coefficients of the fit at the nominal R, g and rates — for the
+//! uncertainty evaluation. The fit's coefficients are one Type A input group: their
+//! covariance from the residuals, ν = n − 6 degrees of freedom (JCGM 100 G.4 treats the
+//! group as one term; JCGM 101 draws it from a multivariate t). Scaling R, g or the rates
+//! multiplies each column of the design by a number, `X' = X·D`, so the coefficients become
+//! `D⁻¹·β` exactly; a test checks that the model at the nominal inputs equals
+//! `identify_compensated`'s result.
+
+use std::path::PathBuf;
+
+use identify::{CompensatedCalibration, Compensation, K1Source};
+
+/// Number of coefficients of the eq. 18 design.
+pub(crate) const TERMS: usize = 6;
+
+/// Names of the model's outputs, in order.
+pub(crate) const OUTPUTS: [&str; 6] = ["k0", "k1", "k2", "k3", "k2_uncompensated", "delta_k2"];
+
+/// Index of the first fit coefficient among the model's inputs.
+pub(crate) const FIRST_COEFFICIENT: usize = 8;
+
+/// The validated calibration section.
+#[derive(Debug, Clone)]
+pub(crate) struct CalibrationInputs {
+    pub(crate) table_file: PathBuf,
+    pub(crate) rates_deg_s: Vec<f64>,
+    pub(crate) outputs_rad_s: Vec<f64>,
+    /// The line of each row in the table file.
+    pub(crate) lines: Vec<usize>,
+    /// Index of the phase whose C_r compensates.
+    pub(crate) phase: usize,
+    pub(crate) k1: K1Choice,
+    pub(crate) seed: u64,
+    /// `None`: adaptive; `Some(n)`: exactly n trials.
+    pub(crate) trials: Option<u64>,
+}
+
+/// Where k1 comes from, validated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum K1Choice {
+    Fitted,
+    Given { k1_rad_s_g: f64, u_rad_s_g: f64 },
+}
+
+/// Type B standard uncertainties, validated (all finite and ≥ 0).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct TypeB {
+    pub(crate) radius_u_m: f64,
+    pub(crate) g_u_m_s2: f64,
+    pub(crate) g_source: String,
+    pub(crate) rate_u_relative: f64,
+    pub(crate) pivot_to_probe_u_mm: f64,
+    pub(crate) probe_to_piga_u_mm: f64,
+    pub(crate) probe_gain_u_relative: f64,
+}
+
+/// The nominal values the model is linearised around and scales from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Nominal {
+    pub(crate) radius_m: f64,
+    pub(crate) g_m_s2: f64,
+    pub(crate) pivot_to_probe_mm: f64,
+    pub(crate) probe_to_piga_mm: f64,
+    pub(crate) c_r_m_s2: f64,
+}
+
+/// The calibration as a function of its input quantities, in this order: R (m), g (m/s²),
+/// rate scale s (1), pivot-to-probe height (mm), probe-to-PIGA height (mm), probe gain (1),
+/// C_r (m·s²), k1 given (rad/(s·g); ignored when k1 is fitted), then the six coefficients
+/// of the eq. 18 fit at the nominal R, g and rates (order `1, ω, ω², ω³, a², a³`).
+/// Outputs: k0, k1, k2 (compensated), k3, k2 uncompensated, Δk2.
+#[derive(Debug, Clone, Copy)]
+pub struct CalibrationModel {
+    nominal: Nominal,
+    k1_fitted: bool,
+}
+
+impl CalibrationModel {
+    /// The model around `nominal`.
+    pub(crate) fn new(nominal: Nominal, k1_fitted: bool) -> Self {
+        Self { nominal, k1_fitted }
+    }
+
+    /// Number of input quantities.
+    pub const fn inputs(&self) -> usize {
+        FIRST_COEFFICIENT + TERMS
+    }
+
+    /// Evaluates the six outputs at the inputs `x`.
+    pub fn evaluate(&self, x: &[f64], out: &mut [f64]) {
+        let n = self.nominal;
+        let (radius, g, s) = (x[0], x[1], x[2]);
+        let (h_p, h_a, gain, c_r, k1_given) = (x[3], x[4], x[5], x[6], x[7]);
+        let mut beta = [0.0; TERMS];
+        beta.copy_from_slice(&x[FIRST_COEFFICIENT..FIRST_COEFFICIENT + TERMS]);
+        // X' = X·D with D = diag(1, s, s², s³, ρ², ρ³), ρ = (R s²/g)/(R₀/g₀): β' = D⁻¹β.
+        let rho = (radius * s * s / g) / (n.radius_m / n.g_m_s2);
+        let d = [1.0, s, s * s, s * s * s, rho * rho, rho * rho * rho];
+        for (b, d) in beta.iter_mut().zip(d) {
+            *b /= d;
+        }
+        let k1 = if self.k1_fitted {
+            beta[2] * g / radius
+        } else {
+            k1_given
+        };
+        let lever = (h_p + h_a) / h_p;
+        let lever0 = (n.pivot_to_probe_mm + n.probe_to_piga_mm) / n.pivot_to_probe_mm;
+        let c_r_true = c_r * gain * (lever / lever0) / (s * s);
+        let delta_k2 = k1 * c_r_true * g / (radius * radius);
+        out[0] = beta[0];
+        out[1] = k1;
+        out[2] = beta[4] - delta_k2;
+        out[3] = beta[5];
+        out[4] = beta[4];
+        out[5] = delta_k2;
+    }
+}
+
+/// The compensation of a phase's C_r, for `identify`.
+pub(crate) fn compensation(c_r_m_s2: f64, c_r_sigma_m_s2: f64, k1: K1Choice) -> Compensation {
+    Compensation {
+        c_r_m_s2,
+        c_r_sigma_m_s2,
+        k1: match k1 {
+            K1Choice::Fitted => K1Source::Fitted,
+            K1Choice::Given { k1_rad_s_g, .. } => K1Source::Given { k1_rad_s_g },
+        },
+    }
+}
+
+/// Variance inflation factors of the five non-constant columns, from the fit's unscaled
+/// covariance `(XᵀX)⁻¹` and the columns' sums of squares about their means
+/// (`VIF_j = [(XᵀX)⁻¹]_jj · Σᵢ(x_ij − x̄_j)²`, valid with an intercept column).
+pub(crate) fn variance_inflation(cal: &CompensatedCalibration, rates_rad_s: &[f64]) -> [f64; 5] {
+    let fit = &cal.uncompensated.fit;
+    let k = cal.uncompensated.radius_m / cal.uncompensated.g_m_s2;
+    let columns: [Box<dyn Fn(f64) -> f64>; 5] = [
+        Box::new(|w| w),
+        Box::new(|w| w * w),
+        Box::new(|w| w * w * w),
+        Box::new(move |w| (k * w * w).powi(2)),
+        Box::new(move |w| (k * w * w).powi(3)),
+    ];
+    let mut vif = [0.0; 5];
+    for (j, column) in columns.iter().enumerate() {
+        let values: Vec<f64> = rates_rad_s.iter().map(|&w| column(w)).collect();
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let ss: f64 = values.iter().map(|v| (v - mean) * (v - mean)).sum();
+        vif[j] = fit.unscaled_covariance[(j + 1, j + 1)] * ss;
+    }
+    vif
+}
+
+/// Input quantities of [`CalibrationModel`] beyond the mean outputs, in order.
+const NAMED_INPUTS: [&str; 8] = [
+    "R (working radius)",
+    "g (gravity)",
+    "rate scale (common to every rate)",
+    "pivot-to-probe height",
+    "probe-to-PIGA height",
+    "probe gain",
+    "C_r of the compensating phase",
+    "k1 (given)",
+];
+
+/// Terms of the eq. 18 design, in coefficient order.
+pub(crate) const TERM_NAMES: [&str; TERMS] = ["1", "ω", "ω²", "ω³", "a²", "a³"];
+
+/// A variance inflation factor above which terms are reported as hard to separate.
+pub(crate) const VIF_LIMIT: f64 = 1e3;
+
+/// Everything the calibration computes, before it becomes results.
+pub(crate) struct Evaluated {
+    pub(crate) cal: CompensatedCalibration,
+    /// The measurement model (its check against the fit is a unit test).
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub(crate) model: CalibrationModel,
+    pub(crate) vif: [f64; 5],
+    pub(crate) gum: uncertainty::GumResult,
+    pub(crate) mc: uncertainty::McResult,
+    pub(crate) validation: uncertainty::Validation,
+    /// The inputs of the uncertainty evaluation.
+    pub(crate) quantities: Vec<uncertainty::InputQuantity>,
+    /// Residual degrees of freedom of the fit.
+    pub(crate) noise_dof: usize,
+}
+
+/// Where a calibration failed.
+#[derive(Debug)]
+pub(crate) enum CalibrationFailure {
+    Identify(identify::IdentifyError),
+    Uncertainty(uncertainty::UncertaintyError),
+}
+
+/// The nominal values and uncertainties the evaluation starts from.
+pub(crate) struct Setting<'a> {
+    pub(crate) nominal: Nominal,
+    pub(crate) type_b: &'a TypeB,
+    /// σ(C_r) and the degrees of freedom of the phase's fit (`None`: C_r exact).
+    pub(crate) c_r_sigma: Option<(f64, usize)>,
+}
+
+/// Fits, builds the measurement model and evaluates its uncertainty (GUM and Monte Carlo).
+pub(crate) fn evaluate(
+    inputs: &CalibrationInputs,
+    setting: &Setting<'_>,
+) -> Result<Evaluated, CalibrationFailure> {
+    use uncertainty::{
+        Dof, Evaluation, GumOptions, InputQuantity, McOptions, gum, monte_carlo, validate,
+    };
+    let n = setting.nominal;
+    let rates_rad_s: Vec<f64> = inputs
+        .rates_deg_s
+        .iter()
+        .map(|&r| units::deg_s_to_rad_s(r))
+        .collect();
+    let sigma_c_r = setting.c_r_sigma.map_or(0.0, |(s, _)| s);
+    let cal = identify::identify_compensated(
+        &rates_rad_s,
+        &inputs.outputs_rad_s,
+        n.radius_m,
+        n.g_m_s2,
+        &compensation(n.c_r_m_s2, sigma_c_r, inputs.k1),
+    )
+    .map_err(CalibrationFailure::Identify)?;
+    let model = CalibrationModel::new(n, inputs.k1 == K1Choice::Fitted);
+    let vif = variance_inflation(&cal, &rates_rad_s);
+
+    let tb = setting.type_b;
+    let noise_dof = cal.uncompensated.fit.dof;
+    let (k1_value, k1_u) = match inputs.k1 {
+        K1Choice::Given {
+            k1_rad_s_g,
+            u_rad_s_g,
+        } => (k1_rad_s_g, u_rad_s_g),
+        K1Choice::Fitted => (0.0, 0.0),
+    };
+    let c_r_input = match setting.c_r_sigma {
+        Some((sigma, dof)) if dof > 0 => {
+            InputQuantity::type_a(NAMED_INPUTS[6], n.c_r_m_s2, sigma, Dof::Finite(dof as f64))
+        }
+        _ => InputQuantity {
+            kind: Evaluation::TypeA,
+            ..InputQuantity::normal(NAMED_INPUTS[6], n.c_r_m_s2, 0.0)
+        },
+    };
+    let mut quantities = vec![
+        InputQuantity::normal(NAMED_INPUTS[0], n.radius_m, tb.radius_u_m),
+        InputQuantity::normal(NAMED_INPUTS[1], n.g_m_s2, tb.g_u_m_s2),
+        InputQuantity::normal(NAMED_INPUTS[2], 1.0, tb.rate_u_relative),
+        InputQuantity::normal(NAMED_INPUTS[3], n.pivot_to_probe_mm, tb.pivot_to_probe_u_mm),
+        InputQuantity::normal(NAMED_INPUTS[4], n.probe_to_piga_mm, tb.probe_to_piga_u_mm),
+        InputQuantity::normal(NAMED_INPUTS[5], 1.0, tb.probe_gain_u_relative),
+        c_r_input,
+        InputQuantity::normal(NAMED_INPUTS[7], k1_value, k1_u),
+    ];
+    // The fit's coefficients: one Type A group, correlated through the fit's covariance, with
+    // the fit's residual degrees of freedom.
+    let fit = &cal.uncompensated.fit;
+    for (t, term) in TERM_NAMES.iter().enumerate() {
+        quantities.push(InputQuantity::type_a(
+            format!("fit coefficient of {term}"),
+            fit.coefficients[t],
+            fit.std_errors[t],
+            Dof::Finite(noise_dof as f64),
+        ));
+    }
+    let m = quantities.len();
+    let mut correlation = vec![0.0; m * m];
+    for i in 0..m {
+        correlation[i * m + i] = 1.0;
+    }
+    for a in 0..TERMS {
+        for b in 0..TERMS {
+            let d = fit.std_errors[a] * fit.std_errors[b];
+            if a != b && d > 0.0 {
+                correlation[(FIRST_COEFFICIENT + a) * m + FIRST_COEFFICIENT + b] =
+                    fit.covariance[(a, b)] / d;
+            }
+        }
+    }
+    let set = uncertainty::Inputs::with_correlation(quantities.clone(), &correlation)
+        .map_err(CalibrationFailure::Uncertainty)?;
+    let measurement = uncertainty::model_fn(OUTPUTS, |x: &[f64], y: &mut [f64]| {
+        model.evaluate(x, y);
+        Ok(())
+    })
+    .with_input_count(quantities.len());
+    let gum_result =
+        gum(&measurement, &set, &GumOptions::default()).map_err(CalibrationFailure::Uncertainty)?;
+    let mc = monte_carlo(
+        &measurement,
+        &set,
+        &McOptions {
+            seed: inputs.seed,
+            trials: match inputs.trials {
+                None => McOptions::default().trials,
+                Some(n) => uncertainty::Trials::Fixed(n),
+            },
+            ..McOptions::default()
+        },
+    )
+    .map_err(CalibrationFailure::Uncertainty)?;
+    let validation = validate(&gum_result, &mc, 2).map_err(CalibrationFailure::Uncertainty)?;
+    Ok(Evaluated {
+        cal,
+        model,
+        vif,
+        gum: gum_result,
+        mc,
+        validation,
+        quantities,
+        noise_dof,
+    })
+}
+
+/// The results of an evaluated calibration.
+pub(crate) fn results(
+    inputs: &CalibrationInputs,
+    setting: &Setting<'_>,
+    phase_name: &str,
+    type_b_given: bool,
+    e: &Evaluated,
+) -> crate::results::CalibrationResults {
+    use crate::results::{
+        CalibrationResults, CalibrationRow, Coefficient, Conventional, Estimate, MonteCarlo,
+        MonteCarloOutput, Nuisance, PigaCoefficients,
+    };
+    let unc = &e.cal.uncompensated;
+    let fit = &unc.fit;
+    let out = |name: &str| {
+        e.gum
+            .output(name)
+            .expect("the model names its outputs")
+            .clone()
+    };
+    let coefficient = |name: &str, value: f64| {
+        let o = out(name);
+        Coefficient {
+            value,
+            u: o.standard_uncertainty,
+            u95: o.expanded_uncertainty,
+            k: o.coverage_factor,
+            dof: dof_value(o.dof),
+        }
+    };
+    let k1_value = e.cal.k1_used_rad_s_g;
+    let coefficients = PigaCoefficients {
+        k0: coefficient("k0", out("k0").estimate),
+        k1: coefficient("k1", k1_value),
+        k2: coefficient("k2", out("k2").estimate),
+        k3: coefficient("k3", out("k3").estimate),
+    };
+    let se = &fit.std_errors;
+    let uncompensated = PigaCoefficients {
+        k0: Estimate {
+            value: unc.bias_rad_s,
+            u: se[0],
+        },
+        k1: Estimate {
+            value: unc.k1_implied_rad_s_g,
+            u: unc.k1_implied_sigma_rad_s_g,
+        },
+        k2: Estimate {
+            value: unc.k2_apparent_rad_s_g2,
+            u: se[4],
+        },
+        k3: Estimate {
+            value: unc.k3_rad_s_g3,
+            u: se[5],
+        },
+    };
+    // Ratios to k1 with the GUM covariance of the outputs (k0, k1, k2, k3 are outputs 0–3).
+    let m = OUTPUTS.len();
+    let cov = |i: usize, j: usize| e.gum.covariance[i * m + j];
+    let ratio = |i: usize, value: f64| {
+        let k1 = k1_value;
+        let r = value / k1;
+        let var =
+            cov(i, i) / (k1 * k1) + (r / k1).powi(2) * cov(1, 1) - 2.0 * r / (k1 * k1) * cov(i, 1);
+        Estimate {
+            value: r * 1e6,
+            u: var.max(0.0).sqrt() * 1e6,
+        }
+    };
+    let conventional = Conventional {
+        g_m_s2: setting.nominal.g_m_s2,
+        k0_ug: ratio(0, coefficients.k0.value),
+        k2_ug_per_g2: ratio(2, coefficients.k2.value),
+        k3_ug_per_g3: ratio(3, coefficients.k3.value),
+    };
+    let correlation = (0..TERMS)
+        .map(|i| {
+            (0..TERMS)
+                .map(|j| {
+                    let d = (fit.covariance[(i, i)] * fit.covariance[(j, j)]).sqrt();
+                    if d > 0.0 {
+                        fit.covariance[(i, j)] / d
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let residuals = inputs
+        .rates_deg_s
+        .iter()
+        .zip(&inputs.outputs_rad_s)
+        .zip(&fit.residuals)
+        .zip(&inputs.lines)
+        .map(
+            |(((&rate_deg_s, &output_rad_s), &residual_rad_s), &line)| CalibrationRow {
+                rate_deg_s,
+                output_rad_s,
+                residual_rad_s,
+                line,
+            },
+        )
+        .collect();
+    let budget_of = |name: &str| budget(&out(name), &e.quantities, e.noise_dof, inputs.k1);
+    let budget = PigaCoefficients {
+        k0: budget_of("k0"),
+        k1: budget_of("k1"),
+        k2: budget_of("k2"),
+        k3: budget_of("k3"),
+    };
+    let mc_output = |name: &str| {
+        let o = e.mc.output(name).expect("the model names its outputs");
+        let v = e.validation.output(name).expect("validated per output");
+        MonteCarloOutput {
+            mean: o.estimate,
+            u: o.standard_uncertainty,
+            low95: o.coverage_interval.0,
+            high95: o.coverage_interval.1,
+            gum_agrees: v.agrees,
+            tolerance: v.tolerance,
+            d_low: v.d_low,
+            d_high: v.d_high,
+        }
+    };
+    let monte_carlo = MonteCarlo {
+        trials: e.mc.trials,
+        seed: inputs.seed,
+        gum_agrees: ["k0", "k1", "k2", "k3"]
+            .iter()
+            .all(|n| e.validation.output(n).is_some_and(|v| v.agrees)),
+        k0: mc_output("k0"),
+        k1: mc_output("k1"),
+        k2: mc_output("k2"),
+        k3: mc_output("k3"),
+    };
+    let mut warnings = Vec::new();
+    let worst =
+        e.vif.iter().enumerate().fold(
+            (0, 0.0_f64),
+            |acc, (j, &v)| if v > acc.1 { (j + 1, v) } else { acc },
+        );
+    if worst.1 > VIF_LIMIT {
+        warnings.push(format!(
+            "terms hard to separate: the {} term's variance inflation factor is {:.3e} (above {VIF_LIMIT:e}); \
+             its coefficient is strongly correlated with the others' — more, and more widely spread, rates separate them",
+            TERM_NAMES[worst.0], worst.1
+        ));
+    }
+    if !type_b_given {
+        warnings.push(
+            "the study has no `uncertainty` section: R, g, the rate scale, the lever heights and the probe \
+             gain are taken as exact, so the budget holds only the Type A inputs"
+                .to_owned(),
+        );
+    }
+    if setting.c_r_sigma.is_none_or(|(_, dof)| dof == 0) {
+        warnings.push(format!(
+            "the C_r of phase `{phase_name}` has no standard uncertainty (an exact fit); it is taken as exact"
+        ));
+    }
+    if !monte_carlo.gum_agrees {
+        warnings.push(
+            "the GUM result does not agree with the Monte Carlo one (JCGM 101 §8): the Monte Carlo \
+             interval is the one to use"
+                .to_owned(),
+        );
+    }
+    CalibrationResults {
+        table: inputs.table_file.display().to_string(),
+        compensate_with: phase_name.to_owned(),
+        k1_source: match inputs.k1 {
+            K1Choice::Fitted => "fitted".to_owned(),
+            K1Choice::Given { .. } => "given".to_owned(),
+        },
+        g_m_s2: setting.nominal.g_m_s2,
+        g_source: setting.type_b.g_source.clone(),
+        points: inputs.rates_deg_s.len(),
+        distinct_rates: unc.distinct_rates,
+        dof: fit.dof,
+        coefficients,
+        uncompensated,
+        delta_k2: Estimate {
+            value: e.cal.delta_k2.delta_k2_rad_s_g2,
+            u: out("delta_k2").standard_uncertainty,
+        },
+        c_r_m_s2: Estimate {
+            value: setting.nominal.c_r_m_s2,
+            u: setting.c_r_sigma.map_or(0.0, |(s, _)| s),
+        },
+        conventional,
+        nuisance: Nuisance {
+            omega: Estimate {
+                value: unc.omega_coeff,
+                u: se[1],
+            },
+            omega3_s2: Estimate {
+                value: unc.omega3_coeff_s2,
+                u: se[3],
+            },
+        },
+        residual_sd_rad_s: fit.residual_sd,
+        residuals,
+        correlation,
+        terms: TERM_NAMES.iter().map(|t| (*t).to_owned()).collect(),
+        variance_inflation: e.vif.to_vec(),
+        condition_number: fit.condition_number,
+        budget,
+        monte_carlo,
+        warnings,
+    }
+}
+
+fn dof_value(dof: uncertainty::Dof) -> crate::results::DegreesOfFreedom {
+    use crate::results::{DegreesOfFreedom, InfiniteDof};
+    match dof {
+        uncertainty::Dof::Finite(nu) => DegreesOfFreedom::Finite(nu),
+        uncertainty::Dof::Infinite => DegreesOfFreedom::Infinite(InfiniteDof::Infinite),
+    }
+}
+
+/// One output's budget: the named inputs that apply, and the mean outputs' noise as one line.
+fn budget(
+    output: &uncertainty::GumOutput,
+    quantities: &[uncertainty::InputQuantity],
+    noise_dof: usize,
+    k1: K1Choice,
+) -> Vec<crate::results::BudgetLine> {
+    use crate::results::BudgetLine;
+    let mut lines = Vec::new();
+    for (i, (c, q)) in output
+        .contributions
+        .iter()
+        .zip(quantities)
+        .enumerate()
+        .take(FIRST_COEFFICIENT)
+    {
+        if i == 7 && k1 == K1Choice::Fitted {
+            continue;
+        }
+        lines.push(BudgetLine {
+            quantity: q.name.clone(),
+            evaluation: match q.kind {
+                uncertainty::Evaluation::TypeA => "A".to_owned(),
+                uncertainty::Evaluation::TypeB => "B".to_owned(),
+            },
+            value: Some(q.value),
+            u: q.standard_uncertainty,
+            sensitivity: c.sensitivity,
+            contribution: c.uncertainty,
+            percent: c.variance_percent,
+            dof: dof_value(q.dof),
+        });
+    }
+    // The fit's coefficients as one line: their correlated contribution (the shares of the
+    // group, which may be negative one by one, sum to the group's share).
+    let group = &output.contributions[FIRST_COEFFICIENT..];
+    let share: f64 = group.iter().map(|c| c.variance_percent).sum();
+    let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
+    lines.push(BudgetLine {
+        quantity: "PIGA mean outputs: the eq. 18 fit (noise, from its residuals)".to_owned(),
+        evaluation: "A".to_owned(),
+        value: None,
+        u: contribution,
+        sensitivity: 1.0,
+        contribution,
+        percent: share,
+        dof: dof_value(uncertainty::Dof::Finite(noise_dof as f64)),
+    });
+    lines
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Outputs of eq. 18 with given coefficients at `n` rates, plus a small deterministic
+    /// wiggle so that the fit has residuals.
+    fn table(n: usize, k: [f64; 6], nominal: &Nominal) -> CalibrationInputs {
+        let rates_deg_s: Vec<f64> = (1..=n).map(|i| 200.0 * i as f64 / n as f64).collect();
+        let outputs_rad_s = rates_deg_s
+            .iter()
+            .enumerate()
+            .map(|(i, &r)| {
+                let w = units::deg_s_to_rad_s(r);
+                let a = nominal.radius_m * w * w / nominal.g_m_s2;
+                let wiggle = 1e-9 * ((i * 7919) % 13) as f64 / 13.0;
+                k[0] + k[1] * w
+                    + k[2] * w * w
+                    + k[3] * w.powi(3)
+                    + k[4] * a * a
+                    + k[5] * a.powi(3)
+                    + wiggle
+            })
+            .collect();
+        CalibrationInputs {
+            table_file: PathBuf::from("t.csv"),
+            lines: (2..n + 2).collect(),
+            rates_deg_s,
+            outputs_rad_s,
+            phase: 0,
+            k1: K1Choice::Fitted,
+            seed: 3,
+            trials: Some(2000),
+        }
+    }
+
+    #[test]
+    fn the_model_at_the_estimates_is_the_certified_fit() {
+        let nominal = Nominal {
+            radius_m: 2.5,
+            g_m_s2: 9.8,
+            pivot_to_probe_mm: 700.0,
+            probe_to_piga_mm: 510.0,
+            c_r_m_s2: 1.6e-6,
+        };
+        for k1 in [
+            K1Choice::Fitted,
+            K1Choice::Given {
+                k1_rad_s_g: 0.5601,
+                u_rad_s_g: 1e-5,
+            },
+        ] {
+            let inputs = CalibrationInputs {
+                k1,
+                ..table(
+                    12,
+                    [1e-5, 2e-6, 0.56 * 2.5 / 9.8, -3e-9, 5e-7, 2e-8],
+                    &nominal,
+                )
+            };
+            let tb = TypeB::default();
+            let setting = Setting {
+                nominal,
+                type_b: &tb,
+                c_r_sigma: Some((4e-10, 10)),
+            };
+            let e = evaluate(&inputs, &setting).unwrap();
+            let x: Vec<f64> = e.quantities.iter().map(|q| q.value).collect();
+            let mut y = [0.0; 6];
+            e.model.evaluate(&x, &mut y);
+            let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+            // At the estimates the model is the uncompensated fit with Δk2 removed from the a²
+            // coefficient: the same numbers.
+            let unc = &e.cal.uncompensated;
+            assert_eq!(y[0], unc.bias_rad_s);
+            assert_eq!(y[3], unc.k3_rad_s_g3);
+            assert_eq!(y[4], unc.k2_apparent_rad_s_g2);
+            assert!(rel(y[1], e.cal.k1_used_rad_s_g) < 1e-14, "k1");
+            assert!(rel(y[5], e.cal.delta_k2.delta_k2_rad_s_g2) < 1e-14, "Δk2");
+            // identify's refit of the compensated outputs agrees far below the uncertainty.
+            let se = &unc.fit.std_errors;
+            assert!(
+                (y[0] - e.cal.compensated.bias_rad_s).abs() < 1e-4 * se[0],
+                "k0"
+            );
+            assert!((y[2] - e.cal.k2_rad_s_g2).abs() < 1e-4 * se[4], "k2");
+            assert!(
+                (y[3] - e.cal.compensated.k3_rad_s_g3).abs() < 1e-4 * se[5],
+                "k3"
+            );
+            // Scaling every rate by s is the same as fitting the scaled rates.
+            let s = 1.001;
+            let mut scaled = x.clone();
+            scaled[2] = s;
+            e.model.evaluate(&scaled, &mut y);
+            let rates: Vec<f64> = inputs
+                .rates_deg_s
+                .iter()
+                .map(|r| units::deg_s_to_rad_s(r * s))
+                .collect();
+            let direct =
+                identify::identify_calibration(&rates, &inputs.outputs_rad_s, 2.5, 9.8).unwrap();
+            let se = &direct.fit.std_errors;
+            assert!((y[4] - direct.k2_apparent_rad_s_g2).abs() < 1e-4 * se[4]);
+            assert!((y[0] - direct.bias_rad_s).abs() < 1e-4 * se[0]);
+            assert!(
+                (y[4] - unc.k2_apparent_rad_s_g2).abs() > 1e-2 * se[4],
+                "the scale matters"
+            );
+        }
+    }
+}

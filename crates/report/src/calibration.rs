@@ -1,0 +1,173 @@
+//! The report's calibration section: what a lab attaches to a calibration record.
+
+use std::fmt::Write as _;
+
+use pipeline::{BudgetLine, CalibrationResults, Coefficient, DegreesOfFreedom};
+
+fn dof(d: DegreesOfFreedom) -> String {
+    match d {
+        DegreesOfFreedom::Finite(nu) => format!("{nu:.1}"),
+        DegreesOfFreedom::Infinite(_) => "∞".to_owned(),
+    }
+}
+
+fn row(out: &mut String, name: &str, unit: &str, c: &Coefficient) {
+    let _ = writeln!(
+        out,
+        "| {name} | {:.6e} | {:.2e} | {:.3} | {} | {:.2e} | [{:.6e}, {:.6e}] | {unit} |",
+        c.value,
+        c.u,
+        c.k,
+        dof(c.dof),
+        c.u95,
+        c.value - c.u95,
+        c.value + c.u95,
+    );
+}
+
+fn budget_table(out: &mut String, lines: &[BudgetLine]) {
+    let _ = writeln!(
+        out,
+        "| input quantity | type | value | standard uncertainty | sensitivity ∂k2/∂x | contribution | % of u² | dof |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    for l in lines {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.2} | {} |",
+            l.quantity,
+            l.evaluation,
+            l.value
+                .map_or_else(|| "—".to_owned(), |v| format!("{v:.6e}")),
+            l.u,
+            l.sensitivity,
+            l.contribution,
+            l.percent,
+            dof(l.dof),
+        );
+    }
+    let _ = writeln!(out);
+}
+
+/// Appends the calibration section.
+pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
+    let _ = writeln!(
+        out,
+        "## PIGA calibration (eq. 18), compensated with phase `{}`\n",
+        c.compensate_with
+    );
+    let _ = writeln!(
+        out,
+        "Table `{}`: {} points at {} distinct rates, {} residual degrees of freedom, residual SD {:.3e} rad/s. \
+         k1 {}; g = {} m/s²{}. C_r = {:.4e} ± {:.2e} m·s² (phase `{}`), Δk2 = k1·C_r·g/R² = {:.4e} ± {:.2e} rad/(s·g²) removed.\n",
+        c.table,
+        c.points,
+        c.distinct_rates,
+        c.dof,
+        c.residual_sd_rad_s,
+        if c.k1_source == "fitted" {
+            "fitted (c₂·g/R)"
+        } else {
+            "given"
+        },
+        c.g_m_s2,
+        if c.g_source.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", c.g_source)
+        },
+        c.c_r_m_s2.value,
+        c.c_r_m_s2.u,
+        c.compensate_with,
+        c.delta_k2.value,
+        c.delta_k2.u,
+    );
+    let _ = writeln!(out, "### Coefficients (GUM, 95 % coverage)\n");
+    let _ = writeln!(
+        out,
+        "| coefficient | value | u | k | ν_eff | U95 | interval | unit |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    row(out, "k0", "rad/s", &c.coefficients.k0);
+    row(out, "k1", "rad/(s·g)", &c.coefficients.k1);
+    row(out, "k2", "rad/(s·g²)", &c.coefficients.k2);
+    row(out, "k3", "rad/(s·g³)", &c.coefficients.k3);
+    let conv = &c.conventional;
+    let _ = writeln!(
+        out,
+        "\nIn the conventional units (relative to k1, g = {} m/s²): k0/k1 = {:.3} ± {:.3} µg, \
+         k2/k1 = {:.4} ± {:.4} µg/g², k3/k1 = {:.4} ± {:.4} µg/g³.\n",
+        conv.g_m_s2,
+        conv.k0_ug.value,
+        conv.k0_ug.u,
+        conv.k2_ug_per_g2.value,
+        conv.k2_ug_per_g2.u,
+        conv.k3_ug_per_g3.value,
+        conv.k3_ug_per_g3.u,
+    );
+    let _ = writeln!(
+        out,
+        "Uncompensated (as measured): k2 + Δk2 = {:.6e} ± {:.2e} rad/(s·g²) (fit only).\n",
+        c.uncompensated.k2.value, c.uncompensated.k2.u
+    );
+    let _ = writeln!(out, "### Uncertainty budget of k2 (JCGM 100)\n");
+    budget_table(out, &c.budget.k2);
+    let mc = &c.monte_carlo;
+    let _ = writeln!(
+        out,
+        "### GUM and Monte Carlo (JCGM 101), {} trials, seed {}\n",
+        mc.trials, mc.seed
+    );
+    let _ = writeln!(
+        out,
+        "| coefficient | MC mean | MC u | MC 95 % interval | GUM interval | δ | agree |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    for (name, m, g) in [
+        ("k0", &mc.k0, &c.coefficients.k0),
+        ("k1", &mc.k1, &c.coefficients.k1),
+        ("k2", &mc.k2, &c.coefficients.k2),
+        ("k3", &mc.k3, &c.coefficients.k3),
+    ] {
+        let _ = writeln!(
+            out,
+            "| {name} | {:.6e} | {:.2e} | [{:.6e}, {:.6e}] | [{:.6e}, {:.6e}] | {:.1e} | {} |",
+            m.mean,
+            m.u,
+            m.low95,
+            m.high95,
+            g.value - g.u95,
+            g.value + g.u95,
+            m.tolerance,
+            if m.gum_agrees { "yes" } else { "**no**" },
+        );
+    }
+    let _ = writeln!(out);
+    let _ = writeln!(out, "### Residuals\n");
+    let _ = writeln!(
+        out,
+        "| rate (deg/s) | output (rad/s) | residual (rad/s) | line |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|");
+    for r in &c.residuals {
+        let _ = writeln!(
+            out,
+            "| {} | {:.9e} | {:+.2e} | {} |",
+            r.rate_deg_s, r.output_rad_s, r.residual_rad_s, r.line
+        );
+    }
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "Design: condition number {:.3e}; variance inflation of ω, ω², ω³, a², a³: {}.\n",
+        c.condition_number,
+        c.variance_inflation
+            .iter()
+            .map(|v| format!("{v:.3e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    for w in &c.warnings {
+        let _ = writeln!(out, "> **Warning:** {w}\n");
+    }
+}
