@@ -39,7 +39,7 @@ pub(crate) struct Geometry {
 /// A failure inside one phase, located by the caller.
 #[derive(Debug)]
 pub(crate) enum PhaseFailure {
-    Model(accel_model::Error),
+    Model(accel_model::AccelModelError),
     Identify(identify::IdentifyError),
 }
 

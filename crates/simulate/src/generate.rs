@@ -422,7 +422,7 @@ pub fn piga_table(
     piga: &PigaCoefficients,
     rates_deg_s: &[f64],
     noise: &OutputNoise,
-) -> std::result::Result<Vec<PigaRow>, accel_model::Error> {
+) -> std::result::Result<Vec<PigaRow>, accel_model::AccelModelError> {
     let rates_rad_s: Vec<f64> = rates_deg_s.iter().map(|d| d.to_radians()).collect();
     let points = rate_points(centrifuge, piga, &rates_rad_s)?;
     Ok(points
