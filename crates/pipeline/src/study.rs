@@ -220,8 +220,12 @@ fn phase_points(
         residual_rms_um: None,
     };
     let harmonic_point = |i: usize, rate_deg_s: f64, dc1_um: f64, ds1_um: f64| {
-        let drift = FirstHarmonic::new(dc1_um, ds1_um)
-            .and_then(|h| inputs.lever.project(h))
+        let drift = inputs
+            .lever
+            .project(FirstHarmonic {
+                c1: dc1_um,
+                s1: ds1_um,
+            })
             .map_err(|source| PipelineError::Harmonics {
                 path: path.to_owned(),
                 field: format!("{section}.points[{i}]"),

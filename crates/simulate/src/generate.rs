@@ -288,7 +288,7 @@ impl Lever {
         // Eq. 21–22 as `harmonics` reads them: a unit d_c1 stands for a radius error of
         // ±ratio at the PIGA plane, + along O1X1 and − against it.
         let sign = lever
-            .project(FirstHarmonic::new(1.0, 0.0)?)?
+            .project(FirstHarmonic { c1: 1.0, s1: 0.0 })?
             .radius_error
             .signum();
         Ok(Self { ratio, sign })
