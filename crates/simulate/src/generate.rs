@@ -4,7 +4,7 @@ use std::f64::consts::TAU;
 
 use accel_model::{PigaCoefficients, rate_points};
 use harmonics::{FirstHarmonic, LeverGeometry};
-use identify::pseudo_second_order;
+use identify::{CrEstimate, Geometry, pseudo_second_order};
 use kinematics::{
     Centrifuge, Chain, ErrorMotion, Point, Spindle, SpindleOffsets, spindle_transform,
 };
@@ -250,7 +250,15 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
 
     let c_r = error_motion.c_r_m_s2;
     // σ(C_r) = 0: the truth is exact
-    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, c_r, 0.0, g, radius)
+    let exact_c_r = CrEstimate {
+        c_r_m_s2: c_r,
+        c_r_sigma_m_s2: 0.0,
+    };
+    let geometry = Geometry {
+        radius_m: radius,
+        g_m_s2: g,
+    };
+    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, exact_c_r, geometry)
         .map_err(|source| SimulateError::Identify {
             path: loaded.path.clone(),
             field: "piga".to_owned(),
