@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use crate::console::{Console, ConsoleError};
 use anyhow::Context as _;
 use identify::{
-    Calibration, CompensatedCalibration, Compensation, K1Source, identify_calibration,
-    identify_compensated,
+    Calibration, CompensatedCalibration, Compensation, CrEstimate, Geometry, K1Source,
+    identify_calibration, identify_compensated,
 };
 
 /// Identify k0…k3 from a PIGA output table (CSV with header `rate_deg_s,output_rad_s`).
@@ -44,30 +44,29 @@ impl Identify {
         let rate_rad_s: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
         let output_rad_s = &table.output_rad_s;
         let context = || format!("identifying {}", self.file.display());
+        let geometry = Geometry {
+            radius_m: self.radius_m,
+            g_m_s2: self.g,
+        };
         let result = match (self.c_r_m_s2, self.c_r_sigma_m_s2) {
             (Some(c_r_m_s2), Some(c_r_sigma_m_s2)) => {
                 let compensation = Compensation {
-                    c_r_m_s2,
-                    c_r_sigma_m_s2,
+                    c_r: CrEstimate {
+                        c_r_m_s2,
+                        c_r_sigma_m_s2,
+                    },
                     k1: self
                         .k1
                         .map_or(K1Source::Fitted, |k1_rad_s_g| K1Source::Given {
                             k1_rad_s_g,
                         }),
                 };
-                let c = identify_compensated(
-                    &rate_rad_s,
-                    output_rad_s,
-                    self.radius_m,
-                    self.g,
-                    &compensation,
-                )
-                .with_context(context)?;
+                let c = identify_compensated(&rate_rad_s, output_rad_s, geometry, &compensation)
+                    .with_context(context)?;
                 (c.uncompensated.clone(), Some(c))
             }
             _ => (
-                identify_calibration(&rate_rad_s, output_rad_s, self.radius_m, self.g)
-                    .with_context(context)?,
+                identify_calibration(&rate_rad_s, output_rad_s, geometry).with_context(context)?,
                 None,
             ),
         };
@@ -95,8 +94,8 @@ fn print_report(
         path.display(),
         fit.residuals.len(),
         cal.distinct_rates,
-        cal.radius_m,
-        cal.g_m_s2
+        cal.geometry.radius_m,
+        cal.geometry.g_m_s2
     )?;
     writeln!(
         console,
@@ -143,7 +142,7 @@ fn print_report(
         writeln!(
             console,
             "compensation: C_r = {:.5e} ± {:.3e} m·s², k1 = {:.8} rad/(s·g) ({source})",
-            c.compensation.c_r_m_s2, c.compensation.c_r_sigma_m_s2, c.k1_used_rad_s_g
+            c.compensation.c_r.c_r_m_s2, c.compensation.c_r.c_r_sigma_m_s2, c.k1_used_rad_s_g
         )?;
         writeln!(
             console,
@@ -176,8 +175,8 @@ fn to_json(
         .collect();
     let compensated = comp.map(|c| {
         serde_json::json!({
-            "c_r_m_s2": c.compensation.c_r_m_s2,
-            "c_r_sigma_m_s2": c.compensation.c_r_sigma_m_s2,
+            "c_r_m_s2": c.compensation.c_r.c_r_m_s2,
+            "c_r_sigma_m_s2": c.compensation.c_r.c_r_sigma_m_s2,
             "k1_source": c.compensation.k1,
             "k1_used_rad_s_g": c.k1_used_rad_s_g,
             "delta_k2_rad_s_g2": c.delta_k2.delta_k2_rad_s_g2,
@@ -192,8 +191,8 @@ fn to_json(
         "file": path.display().to_string(),
         "points": fit.residuals.len(),
         "distinct_rates": cal.distinct_rates,
-        "radius_m": cal.radius_m,
-        "g_m_s2": cal.g_m_s2,
+        "radius_m": cal.geometry.radius_m,
+        "g_m_s2": cal.geometry.g_m_s2,
         "columns": ["1", "omega", "omega^2", "omega^3", "a^2", "a^3"],
         "coefficients": {
             "bias_rad_s": coefficient(cal.bias_rad_s, s[0]),
@@ -278,11 +277,17 @@ mod tests {
         let rates: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
         let outputs = table.output_rad_s;
         let comp = Compensation {
-            c_r_m_s2: c_r,
-            c_r_sigma_m_s2: 1e-8,
+            c_r: CrEstimate {
+                c_r_m_s2: c_r,
+                c_r_sigma_m_s2: 1e-8,
+            },
             k1: K1Source::Fitted,
         };
-        let c = identify_compensated(&rates, &outputs, r, g, &comp).unwrap();
+        let geometry = Geometry {
+            radius_m: r,
+            g_m_s2: g,
+        };
+        let c = identify_compensated(&rates, &outputs, geometry, &comp).unwrap();
         assert!((c.k2_rad_s_g2 - k2).abs() < 1e-3 * k2, "{}", c.k2_rad_s_g2);
         let json = to_json(&args.file, &c.uncompensated, Some(&c));
         assert_eq!(json["distinct_rates"], 8);

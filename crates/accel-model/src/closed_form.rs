@@ -1,21 +1,23 @@
 //! The paper's closed-form input/output equation (eq. 17).
 
 use kinematics::Centrifuge;
-use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::error::{AccelModelError, Result};
 use crate::piga::PigaCoefficients;
 
 /// The terms of eq. 17 at one rate, rad/s, each named after its origin:
 ///
-/// $$ \dot\lambda = (k_0 + k_1\Delta\varphi_{ys}) - \Delta\varphi_{ys}\,\omega - C_\varphi\,\omega^3
-///   + \left[\frac{k_1(R + \Delta r_{xs})\,\omega^2}{g} + k_1 C_\varphi\,\omega^2\right]
-///   + \left(\frac{k_2R^2\omega^4}{g^2} + \frac{k_1C_r\,\omega^4}{g}\right) + \frac{k_3R^3\omega^6}{g^3} $$
+/// ```text
+/// λ̇ = (k0 + k1·Δφ_ys) − Δφ_ys·ω − C_φ·ω³
+///     + [k1·(R + Δr_xs)·ω²/g + k1·C_φ·ω²]
+///     + (k2·R²·ω⁴/g² + k1·C_r·ω⁴/g) + k3·R³·ω⁶/g³
+/// ```
 ///
 /// Eq. 17 follows from eq. 14 in eq. 15 with `a_x` taken at its nominal value `Rω²/g` inside
 /// the `k2` and `k3` terms. It omits the Earth-rate terms of the mean inputs; they are given
 /// separately in [`Eq17Terms::earth_rate_rad_s`] (see [`kinematics::FirstOrderInputs`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Eq17Terms {
     /// `k0 + k1·Δφ_ys`: bias and gravity through the static tilt.
     pub bias_rad_s: f64,
@@ -68,7 +70,12 @@ impl Eq17Terms {
 /// use kinematics::{Centrifuge, ErrorMotion, Site, EARTH_RATE_RAD_S};
 /// let c = Centrifuge {
 ///     radius_m: 2.5,
-///     site: Site::new(45.0, EARTH_RATE_RAD_S, 9.8)?,
+///     site: Site {
+///         latitude_deg: 45.0,
+///         earth_rate_rad_s: EARTH_RATE_RAD_S,
+///         gravity_m_s2: 9.8,
+///     }
+///     .validated()?,
 ///     error_motion: ErrorMotion { c_r_m_s2: 1.6e-6, ..ErrorMotion::ZERO },
 /// };
 /// let piga = PigaCoefficients { k0_rad_s: 0.0, k1_rad_s_g: 0.56, k2_rad_s_g2: 0.0, k3_rad_s_g3: 0.0 };
@@ -80,7 +87,7 @@ impl Eq17Terms {
 ///
 /// # Errors
 /// As [`kinematics::Centrifuge::validate`] and [`PigaCoefficients::validate`];
-/// [`Error::NonFiniteRate`] for a non-finite rate.
+/// [`AccelModelError::NonFiniteRate`] for a non-finite rate.
 pub fn eq17(
     centrifuge: &Centrifuge,
     piga: &PigaCoefficients,
@@ -89,7 +96,7 @@ pub fn eq17(
     centrifuge.validate()?;
     piga.validate()?;
     if !rate_rad_s.is_finite() {
-        return Err(Error::NonFiniteRate {
+        return Err(AccelModelError::NonFiniteRate {
             index: 0,
             value: rate_rad_s,
         });
@@ -136,7 +143,13 @@ mod tests {
         };
         let c = Centrifuge {
             radius_m: 2.5,
-            site: Site::new(40.0, 7.292_115e-5, 9.8).unwrap(),
+            site: Site {
+                latitude_deg: 40.0,
+                earth_rate_rad_s: 7.292_115e-5,
+                gravity_m_s2: 9.8,
+            }
+            .validated()
+            .unwrap(),
             error_motion: e,
         };
         let p = PigaCoefficients {
@@ -157,7 +170,7 @@ mod tests {
         assert_relative_eq!(t.total_rad_s(), expect, max_relative = 1e-14);
         assert!(matches!(
             eq17(&c, &p, f64::NAN),
-            Err(Error::NonFiniteRate { .. })
+            Err(AccelModelError::NonFiniteRate { .. })
         ));
     }
 }

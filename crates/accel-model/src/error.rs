@@ -3,10 +3,10 @@
 /// Everything that can go wrong when evaluating the PIGA model.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
-pub enum Error {
+pub enum AccelModelError {
     /// The centrifuge, site, error motion or quadrature was rejected by `kinematics`.
     #[error(transparent)]
-    Kinematics(#[from] kinematics::Error),
+    Kinematics(#[from] kinematics::KinematicsError),
     /// A PIGA coefficient is NaN or infinite.
     #[error("{field} must be finite, got {value}")]
     NonFinite {
@@ -28,5 +28,5 @@ pub enum Error {
     NoRates,
 }
 
-/// `Result` with this crate's [`Error`].
-pub type Result<T> = core::result::Result<T, Error>;
+/// `Result` with this crate's [`AccelModelError`].
+pub type Result<T> = core::result::Result<T, AccelModelError>;

@@ -2,7 +2,7 @@
 //! input/output model of eq. 15 driven by the exact inputs of [`kinematics`], averaged over
 //! whole revolutions, and the paper's closed form eq. 17 for comparison.
 //!
-//! * **Model** (eq. 15): [`PigaCoefficients::output_rad_s`] gives
+//! * **Model** (eq. 15): [`PigaCoefficients::output_rad_s`] of the [`AxisInputs`] gives
 //!   `λ̇ = k0 + k1·a_x + k2·a_x² + k3·a_x³ − ω_I` (rad/s; `a_x` in g along the input axis,
 //!   `ω_I` in rad/s about it; the random error ε is left to a simulator).
 //! * **Means over whole revolutions**: [`mean_output_rad_s`] and [`rate_point`] average eq. 15
@@ -24,6 +24,10 @@
 //!   (mainly the Coriolis term `2k1(R + Δr_x)·ω·ω_ie sin L/g`, reported separately) and by
 //!   products of `k2`, `k3` with the error motion (tested).
 //!
+//! Feature `serde`: `Serialize`/`Deserialize` on [`PigaCoefficients`], [`AxisInputs`],
+//! [`RatePoint`] and [`Eq17Terms`] (and on `kinematics`' types through its own feature), off
+//! by default.
+//!
 //! # Example
 //!
 //! ```
@@ -32,7 +36,12 @@
 //! use kinematics::{Centrifuge, ErrorMotion, Site, EARTH_RATE_RAD_S};
 //!
 //! let piga = PigaCoefficients { k0_rad_s: 1e-5, k1_rad_s_g: 0.56, k2_rad_s_g2: 2e-6, k3_rad_s_g3: 1e-7 };
-//! let site = Site::new(45.0, EARTH_RATE_RAD_S, 9.8)?;
+//! let site = Site {
+//!     latitude_deg: 45.0,
+//!     earth_rate_rad_s: EARTH_RATE_RAD_S,
+//!     gravity_m_s2: 9.8,
+//! }
+//! .validated()?;
 //! let balanced = Centrifuge { radius_m: 2.5, site, error_motion: ErrorMotion::ZERO };
 //! let imbalanced = Centrifuge {
 //!     error_motion: ErrorMotion { c_r_m_s2: 1.6e-6, ..ErrorMotion::ZERO },
@@ -63,8 +72,8 @@ mod error;
 mod piga;
 
 pub use closed_form::{Eq17Terms, eq17};
-pub use error::{Error, Result};
+pub use error::{AccelModelError, Result};
 pub use piga::{
-    OUTPUT_HIGHEST_HARMONIC, PigaCoefficients, RatePoint, mean_output_rad_s, rate_point,
-    rate_points,
+    AxisInputs, OUTPUT_HIGHEST_HARMONIC, PigaCoefficients, RatePoint, mean_output_rad_s,
+    rate_point, rate_points,
 };

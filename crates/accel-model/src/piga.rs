@@ -1,9 +1,8 @@
 //! The PIGA input/output model (eq. 15) and its mean over whole revolutions.
 
-use kinematics::{Centrifuge, Chain, INPUT_HIGHEST_HARMONIC, RevolutionQuadrature};
-use serde::{Deserialize, Serialize};
+use kinematics::{Centrifuge, Chain, INPUT_HIGHEST_HARMONIC, PigaInputs, RevolutionQuadrature};
 
-use crate::error::{Error, Result};
+use crate::error::{AccelModelError, Result};
 
 /// Highest harmonic of the spindle angle in the instantaneous PIGA output: the output is a
 /// cubic polynomial in `a_x`, whose highest harmonic is
@@ -12,20 +11,23 @@ pub const OUTPUT_HIGHEST_HARMONIC: usize = 3 * INPUT_HIGHEST_HARMONIC;
 
 /// Coefficients of the PIGA model, eq. 15:
 ///
-/// $$ \dot\lambda = k_0 + k_1 a_x + k_2 a_x^2 + k_3 a_x^3 - \omega_I \;(+\;\epsilon) $$
+/// ```text
+/// λ̇ = k0 + k1·a_x + k2·a_x² + k3·a_x³ − ω_I  (+ ε)
+/// ```
 ///
 /// with `a_x` in g along the input axis and `ω_I` the angular rate about it. The random error ε
 /// is not part of this crate (a simulator adds it).
 ///
 /// ```
 /// use approx::assert_relative_eq;
-/// use accel_model::PigaCoefficients;
+/// use accel_model::{AxisInputs, PigaCoefficients};
 /// let piga = PigaCoefficients { k0_rad_s: 1e-5, k1_rad_s_g: 0.56, k2_rad_s_g2: 2e-6, k3_rad_s_g3: 1e-7 };
-/// let out = piga.output_rad_s(2.0, 3e-6);
+/// let out = piga.output_rad_s(AxisInputs { a_x_g: 2.0, omega_i_rad_s: 3e-6 });
 /// assert_relative_eq!(out, 1e-5 + 0.56 * 2.0 + 2e-6 * 4.0 + 1e-7 * 8.0 - 3e-6, max_relative = 1e-15);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct PigaCoefficients {
     /// Bias k0, rad/s.
     pub k0_rad_s: f64,
@@ -41,7 +43,7 @@ impl PigaCoefficients {
     /// Checks that every coefficient is finite.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] naming the first bad coefficient.
+    /// [`AccelModelError::NonFinite`] naming the first bad coefficient.
     pub fn validate(&self) -> Result<()> {
         for (field, value) in [
             ("k0_rad_s", self.k0_rad_s),
@@ -50,7 +52,7 @@ impl PigaCoefficients {
             ("k3_rad_s_g3", self.k3_rad_s_g3),
         ] {
             if !value.is_finite() {
-                return Err(Error::NonFinite { field, value });
+                return Err(AccelModelError::NonFinite { field, value });
             }
         }
         Ok(())
@@ -58,24 +60,47 @@ impl PigaCoefficients {
 
     /// Eq. 15 without the random error: the output rate `λ̇`, rad/s.
     #[must_use]
-    pub fn output_rad_s(&self, a_x_g: f64, omega_i_rad_s: f64) -> f64 {
-        let a = a_x_g;
+    pub fn output_rad_s(&self, inputs: AxisInputs) -> f64 {
+        let a = inputs.a_x_g;
         self.k0_rad_s + a * (self.k1_rad_s_g + a * (self.k2_rad_s_g2 + a * self.k3_rad_s_g3))
-            - omega_i_rad_s
+            - inputs.omega_i_rad_s
     }
 
     /// The output at time `t_s` from the chain's exact instantaneous inputs.
     #[must_use]
     pub fn instantaneous_output_rad_s(&self, chain: &Chain, t_s: f64) -> f64 {
-        let i = chain.inputs_at(t_s);
-        self.output_rad_s(i.a_x_g(), i.omega_i_rad_s())
+        self.output_rad_s(AxisInputs::of(&chain.inputs_at(t_s)))
+    }
+}
+
+/// The two inputs of eq. 15: the specific force along the PIGA's input axis (IA) and the
+/// angular rate about it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+pub struct AxisInputs {
+    /// Specific force along the input axis `a_x`, g.
+    pub a_x_g: f64,
+    /// Angular rate about the input axis `ω_I`, rad/s.
+    pub omega_i_rad_s: f64,
+}
+
+impl AxisInputs {
+    /// The input-axis components of the full inputs of eq. 12 and 13.
+    #[must_use]
+    pub fn of(inputs: &PigaInputs) -> Self {
+        Self {
+            a_x_g: inputs.a_x_g(),
+            omega_i_rad_s: inputs.omega_i_rad_s(),
+        }
     }
 }
 
 /// One rate point of a calibration: the PIGA output and the exact inputs, each averaged over
 /// whole revolutions. This is what a simulator writes to `piga.csv` (rate, output) and
 /// `truth.json` (all fields).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RatePoint {
     /// Spindle rate ω, rad/s.
     pub rate_rad_s: f64,
@@ -88,6 +113,15 @@ pub struct RatePoint {
 }
 
 impl RatePoint {
+    /// The mean inputs `⟨a_x⟩`, `⟨ω_I⟩`.
+    #[must_use]
+    pub fn inputs(&self) -> AxisInputs {
+        AxisInputs {
+            a_x_g: self.a_x_g,
+            omega_i_rad_s: self.omega_i_rad_s,
+        }
+    }
+
     /// Spindle rate in degrees per second.
     #[must_use]
     pub fn rate_deg_s(&self) -> f64 {
@@ -101,8 +135,8 @@ impl RatePoint {
 /// average is taken of eq. 15 evaluated at each node, not of its inputs.
 ///
 /// # Errors
-/// [`Error::Kinematics`] (`TooFewQuadraturePoints`) for `points < 2·OUTPUT_HIGHEST_HARMONIC + 1`;
-/// [`Error::NonFinite`] for a bad coefficient.
+/// [`AccelModelError::Kinematics`] (`TooFewQuadraturePoints`) for `points < 2·OUTPUT_HIGHEST_HARMONIC + 1`;
+/// [`AccelModelError::NonFinite`] for a bad coefficient.
 pub fn mean_output_rad_s(chain: &Chain, piga: &PigaCoefficients, points: usize) -> Result<f64> {
     piga.validate()?;
     let q = RevolutionQuadrature::new(points, OUTPUT_HIGHEST_HARMONIC)?;
@@ -113,9 +147,8 @@ pub fn mean_output_rad_s(chain: &Chain, piga: &PigaCoefficients, points: usize) 
 /// at each node, then averaged.
 fn revolution_means(chain: &Chain, piga: &PigaCoefficients, q: &RevolutionQuadrature) -> [f64; 3] {
     q.mean_array(chain.rate_rad_s(), |t| {
-        let i = chain.inputs_at(t);
-        let (a, w) = (i.a_x_g(), i.omega_i_rad_s());
-        [piga.output_rad_s(a, w), a, w]
+        let i = AxisInputs::of(&chain.inputs_at(t));
+        [piga.output_rad_s(i), i.a_x_g, i.omega_i_rad_s]
     })
 }
 
@@ -151,7 +184,12 @@ pub fn rate_point(
 /// use kinematics::{Centrifuge, ErrorMotion, Site, EARTH_RATE_RAD_S};
 /// let centrifuge = Centrifuge {
 ///     radius_m: 2.5,
-///     site: Site::new(45.0, EARTH_RATE_RAD_S, 9.8)?,
+///     site: Site {
+///         latitude_deg: 45.0,
+///         earth_rate_rad_s: EARTH_RATE_RAD_S,
+///         gravity_m_s2: 9.8,
+///     }
+///     .validated()?,
 ///     error_motion: ErrorMotion { c_r_m_s2: 1.6e-6, ..ErrorMotion::ZERO },
 /// };
 /// let piga = PigaCoefficients { k0_rad_s: 0.0, k1_rad_s_g: 0.56, k2_rad_s_g2: 0.0, k3_rad_s_g3: 0.0 };
@@ -165,7 +203,7 @@ pub fn rate_point(
 /// ```
 ///
 /// # Errors
-/// [`Error::NoRates`] for an empty list, [`Error::NonFiniteRate`] naming a bad rate, otherwise
+/// [`AccelModelError::NoRates`] for an empty list, [`AccelModelError::NonFiniteRate`] naming a bad rate, otherwise
 /// as [`rate_point`].
 pub fn rate_points(
     centrifuge: &Centrifuge,
@@ -173,10 +211,10 @@ pub fn rate_points(
     rates_rad_s: &[f64],
 ) -> Result<Vec<RatePoint>> {
     if rates_rad_s.is_empty() {
-        return Err(Error::NoRates);
+        return Err(AccelModelError::NoRates);
     }
     if let Some((index, &value)) = rates_rad_s.iter().enumerate().find(|(_, w)| !w.is_finite()) {
-        return Err(Error::NonFiniteRate { index, value });
+        return Err(AccelModelError::NonFiniteRate { index, value });
     }
     rates_rad_s
         .iter()
@@ -202,11 +240,19 @@ mod tests {
             let expect =
                 P.k0_rad_s + P.k1_rad_s_g * a + P.k2_rad_s_g2 * a * a + P.k3_rad_s_g3 * a * a * a
                     - 4e-6;
-            assert_relative_eq!(P.output_rad_s(a, 4e-6), expect, max_relative = 1e-15);
+            let inputs = AxisInputs {
+                a_x_g: a,
+                omega_i_rad_s: 4e-6,
+            };
+            assert_relative_eq!(P.output_rad_s(inputs), expect, max_relative = 1e-15);
         }
         // the −ω_I term: a rate about IA lowers the output one for one
+        let at = |omega_i_rad_s| AxisInputs {
+            a_x_g: 1.0,
+            omega_i_rad_s,
+        };
         assert_relative_eq!(
-            P.output_rad_s(1.0, 0.0) - P.output_rad_s(1.0, 1e-3),
+            P.output_rad_s(at(0.0)) - P.output_rad_s(at(1e-3)),
             1e-3,
             max_relative = 1e-12
         );
@@ -220,7 +266,7 @@ mod tests {
         };
         assert!(matches!(
             bad.validate(),
-            Err(Error::NonFinite {
+            Err(AccelModelError::NonFinite {
                 field: "k1_rad_s_g",
                 ..
             })

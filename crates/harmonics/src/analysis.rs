@@ -6,9 +6,7 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
-use serde::{Deserialize, Serialize};
-
-use crate::error::{HarmonicsError, Result};
+use crate::error::{HarmonicsError, Requirement, Result};
 use crate::geometry::FirstHarmonic;
 use crate::kernel::{AngleMap, Centring, MAX_ORDER, accumulate};
 use crate::signal::{
@@ -20,8 +18,9 @@ use crate::solve::{parameter_count, solve};
 pub const DEFAULT_ORDER: usize = 4;
 
 /// Settings of the harmonic fit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct FitConfig {
     /// Highest Fourier order `N` fitted (1 to [`MAX_ORDER`]; the paper uses 4).
     pub order: usize,
@@ -58,7 +57,7 @@ impl FitConfig {
             return Err(HarmonicsError::InvalidSetting {
                 field: "revolutions",
                 value: 0.0,
-                reason: "must be at least 1",
+                requirement: Requirement::AtLeastOne,
             });
         }
         crate::signal::check_setting_gap(self.max_gap_intervals)
@@ -75,7 +74,8 @@ impl FitConfig {
 
 /// Fourier coefficients of the gap (eq. 20),
 /// `Δd(θ) = l0 + Σₖ (c[k−1] cos kθ + s[k−1] sin kθ)` (+ drift), in the gap's unit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Coefficients {
     /// Constant term `l0` (with drift: its value at the revolution's middle time).
     pub l0: f64,
@@ -112,7 +112,11 @@ impl Coefficients {
 
     /// The first harmonic `(d_c1, d_s1)` (eq. 21).
     pub fn first_harmonic(&self) -> Result<FirstHarmonic> {
-        FirstHarmonic::new(self.c[0], self.s[0])
+        FirstHarmonic {
+            c1: self.c[0],
+            s1: self.s[0],
+        }
+        .validated()
     }
 
     /// Every coefficient multiplied by `k`, e.g. to change the gap's unit.
@@ -161,7 +165,8 @@ impl Coefficients {
 }
 
 /// The fit of one revolution.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RevolutionFit {
     /// Index of its first sample.
     pub first_sample: usize,
@@ -177,7 +182,8 @@ pub struct RevolutionFit {
 }
 
 /// The harmonic analysis of a recording: per-revolution fits and their statistics.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HarmonicAnalysis {
     /// Fourier order `N`.
     pub order: usize,

@@ -25,14 +25,14 @@ pub enum HarmonicsError {
         value: f64,
     },
     /// A fit setting is out of its domain.
-    #[error("invalid fit setting: `{field}` = {value} ({reason})")]
+    #[error("invalid fit setting: `{field}` = {value} ({requirement})")]
     InvalidSetting {
         /// Name of the offending setting.
         field: &'static str,
         /// The value given.
         value: f64,
         /// What the value must satisfy.
-        reason: &'static str,
+        requirement: Requirement,
     },
     /// The Fourier order is outside `1..=MAX_ORDER`.
     #[error("Fourier order {order} is not supported (1 to {max})")]
@@ -205,6 +205,28 @@ pub enum HarmonicsError {
         /// The largest condition accepted.
         limit: f64,
     },
+}
+
+/// What a setting must satisfy ([`HarmonicsError::InvalidSetting`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Requirement {
+    /// A finite number.
+    Finite,
+    /// A finite number, 1 or more.
+    AtLeastOne,
+    /// A finite number, 0 or more.
+    NonNegative,
+}
+
+impl core::fmt::Display for Requirement {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Self::Finite => "must be finite",
+            Self::AtLeastOne => "must be finite and at least 1",
+            Self::NonNegative => "must be finite and not negative",
+        })
+    }
 }
 
 /// Result alias of this crate.

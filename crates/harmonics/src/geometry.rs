@@ -1,13 +1,12 @@
 //! First-harmonic geometry of the probe measurement (eq. 21–22).
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::{HarmonicsError, Result};
 
 /// First-harmonic coefficients of the probe gap, `d1 = c1·cos ωt + s1·sin ωt` (eq. 21).
 ///
 /// Both coefficients are in the unit of the gap they were fitted from (µm in the paper).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FirstHarmonic {
     /// Cosine coefficient `d_c1`.
     pub c1: f64,
@@ -16,21 +15,24 @@ pub struct FirstHarmonic {
 }
 
 impl FirstHarmonic {
-    /// Builds the first harmonic, refusing non-finite coefficients.
-    pub fn new(c1: f64, s1: f64) -> Result<Self> {
-        for (field, value) in [("d_c1", c1), ("d_s1", s1)] {
+    /// The first harmonic itself once both coefficients are finite.
+    ///
+    /// # Errors
+    /// [`HarmonicsError::NonFiniteCoefficient`] naming `d_c1` or `d_s1`.
+    pub fn validated(self) -> Result<Self> {
+        for (field, value) in [("d_c1", self.c1), ("d_s1", self.s1)] {
             if !value.is_finite() {
                 return Err(HarmonicsError::NonFiniteCoefficient { field, value });
             }
         }
-        Ok(Self { c1, s1 })
+        Ok(self)
     }
 
     /// Amplitude `ΔR1 = √(d_c1² + d_s1²)` of the first harmonic in the probe plane.
     ///
     /// ```
     /// # use harmonics::FirstHarmonic;
-    /// let h = FirstHarmonic::new(-3.0, 4.0).unwrap();
+    /// let h = FirstHarmonic { c1: -3.0, s1: 4.0 }.validated().unwrap();
     /// approx::assert_relative_eq!(h.amplitude(), 5.0, max_relative = 1e-15);
     /// ```
     pub fn amplitude(&self) -> f64 {
@@ -39,8 +41,9 @@ impl FirstHarmonic {
 }
 
 /// Direction in which the displacement probe measures, relative to the sleeve axis O1X1.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum ProbeDirection {
     /// The probe measures against O1X1 (the paper's set-up, Fig. 3):
     /// `d1 = ΔR1·cos(ωt + β + 180°)`, so `d_c1 = −ΔR1 cos β`, `d_s1 = ΔR1 sin β`.
@@ -65,7 +68,7 @@ impl ProbeDirection {
     ///
     /// ```
     /// # use harmonics::{FirstHarmonic, ProbeDirection};
-    /// let h = FirstHarmonic::new(-3.0, 0.0).unwrap();
+    /// let h = FirstHarmonic { c1: -3.0, s1: 0.0 }.validated().unwrap();
     /// approx::assert_relative_eq!(ProbeDirection::AgainstO1X1.beta_rad(h), 0.0);
     /// ```
     pub fn beta_rad(self, h: FirstHarmonic) -> f64 {
@@ -81,20 +84,22 @@ impl ProbeDirection {
 /// `x` measured in the probe plane is `x·(h_probe + h_piga)/h_probe` in the PIGA plane, where
 /// `h_probe` is the height from the pivot to the probe plane and `h_piga` from the probe plane
 /// to the PIGA plane (700 mm and 510 mm in the paper).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct LeverGeometry {
     /// Height from the tilt pivot (spindle centre of mass plane) to the probe plane, mm.
     pub pivot_to_probe_mm: f64,
     /// Height from the probe plane to the PIGA centre-of-mass plane, mm.
     pub probe_to_piga_mm: f64,
     /// The probe's measuring direction.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub probe_direction: ProbeDirection,
 }
 
 /// The first harmonic carried to the PIGA plane (eq. 22, corrected form of NOTES.md).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PigaPlaneDrift {
     /// Amplitude of the first harmonic in the probe plane, `ΔR1`, in the gap's unit.
     pub probe_amplitude: f64,
@@ -150,13 +155,13 @@ impl LeverGeometry {
     /// # use harmonics::{FirstHarmonic, LeverGeometry, ProbeDirection};
     /// let g = LeverGeometry { pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0,
     ///                         probe_direction: ProbeDirection::AgainstO1X1 };
-    /// let d = g.project(FirstHarmonic::new(-3.5, 0.0).unwrap()).unwrap();
+    /// let d = g.project(FirstHarmonic { c1: -3.5, s1: 0.0 }).unwrap();
     /// approx::assert_relative_eq!(d.radius_error, 3.5 * 1210.0 / 700.0, max_relative = 1e-15);
     /// approx::assert_relative_eq!(d.beta_rad, 0.0);
     /// ```
     pub fn project(&self, h: FirstHarmonic) -> Result<PigaPlaneDrift> {
         let ratio = self.lever_ratio()?;
-        let h = FirstHarmonic::new(h.c1, h.s1)?;
+        let h = h.validated()?;
         let probe_amplitude = h.amplitude();
         Ok(PigaPlaneDrift {
             probe_amplitude,
@@ -184,7 +189,7 @@ mod tests {
     #[test]
     fn harmonic_rebuilt_from_amplitude_and_azimuth() {
         // d1 = ΔR1 cos(ωt + β + π) must equal c1 cos ωt + s1 sin ωt at every angle.
-        let h = FirstHarmonic::new(-1.2, 0.7).unwrap();
+        let h = FirstHarmonic { c1: -1.2, s1: 0.7 }.validated().unwrap();
         let d = paper().project(h).unwrap();
         for k in 0..16 {
             let t = k as f64 * PI / 8.0;
@@ -196,7 +201,7 @@ mod tests {
 
     #[test]
     fn along_direction_flips_the_sign_and_keeps_the_motion() {
-        let h = FirstHarmonic::new(-1.2, 0.7).unwrap();
+        let h = FirstHarmonic { c1: -1.2, s1: 0.7 }.validated().unwrap();
         let against = paper().project(h).unwrap();
         let along = LeverGeometry {
             probe_direction: ProbeDirection::AlongO1X1,
@@ -204,7 +209,10 @@ mod tests {
         };
         // The same spindle motion seen by a probe facing the other way has the negated signal.
         let flipped = along
-            .project(FirstHarmonic::new(-h.c1, -h.s1).unwrap())
+            .project(FirstHarmonic {
+                c1: -h.c1,
+                s1: -h.s1,
+            })
             .unwrap();
         assert_relative_eq!(flipped.radius_error, against.radius_error, epsilon = 1e-15);
         assert_relative_eq!(flipped.beta_rad, against.beta_rad, epsilon = 1e-15);
@@ -214,7 +222,7 @@ mod tests {
     fn hand_computed_case() {
         // c1 = −3, s1 = 4 → ΔR1 = 5, β = atan2(4, 3), radius error = 3·1210/700.
         let d = paper()
-            .project(FirstHarmonic::new(-3.0, 4.0).unwrap())
+            .project(FirstHarmonic { c1: -3.0, s1: 4.0 })
             .unwrap();
         assert_relative_eq!(d.probe_amplitude, 5.0, max_relative = 1e-15);
         assert_relative_eq!(d.beta_rad, 4.0_f64.atan2(3.0), max_relative = 1e-15);
@@ -252,7 +260,11 @@ mod tests {
             })
         ));
         assert!(matches!(
-            FirstHarmonic::new(f64::INFINITY, 0.0),
+            FirstHarmonic {
+                c1: f64::INFINITY,
+                s1: 0.0
+            }
+            .validated(),
             Err(HarmonicsError::NonFiniteCoefficient { field: "d_c1", .. })
         ));
     }

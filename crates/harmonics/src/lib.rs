@@ -1,7 +1,11 @@
 //! Harmonic analysis of a centrifuge spindle's displacement-probe signal.
 //!
 //! A probe fixed to the spindle sleeve sees the gap
-//! $$\Delta d(\theta) = l_0 + \sum_{i=1}^{N} \left(d_{ci}\cos i\theta + d_{si}\sin i\theta\right)$$
+//!
+//! ```text
+//! Δd(θ) = l0 + Σᵢ₌₁ᴺ (d_ci·cos iθ + d_si·sin iθ)
+//! ```
+//!
 //! with `θ = ωt` the spindle angle from the O1X1 reference (eq. 20). The first harmonic is the
 //! spindle's once-per-revolution motion, `d1 = ΔR1·cos(ωt + β + 180°)` (eq. 21); carried to
 //! the PIGA plane by the lever ratio of the heights it gives the working-radius error
@@ -35,15 +39,24 @@
 //!   turns `π/N` or more in the nominal interval, or an angular gap of `π/N` or more inside a
 //!   revolution (including the gap that closes it).
 //! - **Declared rate** ([`check_encoder_rate`]): with an encoder, its mean rate can be
-//!   compared with the rate a study declares (within [`ENCODER_RATE_TOLERANCE`]).
+//!   compared with the rate a study declares ([`DeclaredRate`], by default within
+//!   [`ENCODER_RATE_TOLERANCE`]).
 //!
-//! This crate works on numbers and slices only; reading files is the `pipeline` crate's job.
+//! This crate works on numbers and slices only; reading and writing files is the edge crates'
+//! job.
+//!
+//! # Features
+//! - `serde`: `Serialize`/`Deserialize` on the settings and results ([`FitConfig`],
+//!   [`LeverGeometry`], [`HarmonicAnalysis`], …).
+//! - `synthetic`: `SyntheticRecording`, deterministic recordings of eq. 20 with known
+//!   coefficients, drift, a non-uniform spindle and seeded Gaussian noise, for tests,
+//!   benchmarks and fixtures.
 //!
 //! ```
 //! use harmonics::{FirstHarmonic, LeverGeometry, ProbeDirection};
 //! let geometry = LeverGeometry { pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0,
 //!                                probe_direction: ProbeDirection::AgainstO1X1 };
-//! let drift = geometry.project(FirstHarmonic::new(-3.2385, -1.1406)?)?;
+//! let drift = geometry.project(FirstHarmonic { c1: -3.2385, s1: -1.1406 })?;
 //! approx::assert_relative_eq!(drift.radius_error, 3.2385 * 1210.0 / 700.0, max_relative = 1e-12);
 //! # Ok::<(), harmonics::HarmonicsError>(())
 //! ```
@@ -60,17 +73,19 @@ mod kernel;
 mod signal;
 mod sincos;
 mod solve;
+#[cfg(feature = "synthetic")]
 mod synth;
 
 pub use analysis::{
     Coefficients, DEFAULT_ORDER, FitConfig, HarmonicAnalysis, RevolutionFit, analyze,
 };
-pub use error::{HarmonicsError, Result};
+pub use error::{HarmonicsError, Requirement, Result};
 pub use geometry::{FirstHarmonic, LeverGeometry, PigaPlaneDrift, ProbeDirection};
 pub use kernel::MAX_ORDER;
 pub use signal::{
-    ENCODER_RATE_TOLERANCE, IncompleteRevolution, ProbeSignal, SpindleAngle, TimeAxis,
-    check_encoder_rate, check_time_axis,
+    DeclaredRate, ENCODER_RATE_TOLERANCE, IncompleteRevolution, ProbeSignal, SpindleAngle,
+    TimeAxis, check_encoder_rate, check_time_axis,
 };
 pub use solve::CONDITION_LIMIT;
+#[cfg(feature = "synthetic")]
 pub use synth::{SyntheticRecording, SyntheticSamples};

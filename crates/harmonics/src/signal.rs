@@ -6,9 +6,7 @@
 use std::f64::consts::TAU;
 use std::ops::Range;
 
-use serde::{Deserialize, Serialize};
-
-use crate::error::{HarmonicsError, Result};
+use crate::error::{HarmonicsError, Requirement, Result};
 
 /// Where each sample's spindle angle comes from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,7 +46,8 @@ pub struct TimeAxis {
 }
 
 /// The trailing revolution that the recording does not complete, dropped from the fit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct IncompleteRevolution {
     /// Its samples.
     pub samples: Range<usize>,
@@ -266,7 +265,7 @@ pub(crate) fn check_setting_gap(max_gap_intervals: f64) -> Result<()> {
         return Err(HarmonicsError::InvalidSetting {
             field: "max_gap_intervals",
             value: max_gap_intervals,
-            reason: "must be finite and at least 1",
+            requirement: Requirement::AtLeastOne,
         });
     }
     Ok(())
@@ -324,7 +323,7 @@ pub(crate) fn segment(
                 return Err(HarmonicsError::InvalidSetting {
                     field: "start_angle_rad",
                     value: start_angle_rad,
-                    reason: "must be finite",
+                    requirement: Requirement::Finite,
                 });
             }
             check_rate_resolves(signal.time_s, rate_rad_s, time_axis, order)?;
@@ -575,31 +574,60 @@ fn segment_encoder(a: &[f64], time_axis: TimeAxis, max_gap_intervals: f64) -> Re
 /// at another rate point of a study (10 % apart or more) is far outside.
 pub const ENCODER_RATE_TOLERANCE: f64 = 0.02;
 
-/// Checks that an encoder recording's mean rate — its unwrapped angle span over its time
-/// span — matches the declared rate `ω` within a relative `tolerance`:
+/// A spindle rate declared by a study, and how closely an encoder recording's mean rate must
+/// match it ([`check_encoder_rate`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeclaredRate {
+    /// The declared rate `ω`, rad/s (finite and > 0).
+    pub rate_rad_s: f64,
+    /// Largest accepted `|ω_enc − ω|/ω` (finite and not negative).
+    pub relative_tolerance: f64,
+}
+
+impl DeclaredRate {
+    /// `rate_rad_s` with the tolerance [`ENCODER_RATE_TOLERANCE`].
+    #[must_use]
+    pub const fn new(rate_rad_s: f64) -> Self {
+        Self {
+            rate_rad_s,
+            relative_tolerance: ENCODER_RATE_TOLERANCE,
+        }
+    }
+}
+
+/// Checks that an encoder recording's mean rate `ω_enc` — its unwrapped angle span over its
+/// time span — matches the declared rate `ω` within the relative tolerance:
 /// `|ω_enc − ω| ≤ tolerance·ω`. A rate-mode signal passes. Meant for a signal that
 /// [`analyze`](crate::analyze) accepted (steps below `π`, so the unwrapping is sound).
 ///
 /// ```
-/// # use harmonics::{check_encoder_rate, HarmonicsError, ProbeSignal, SpindleAngle};
+/// # use harmonics::{check_encoder_rate, DeclaredRate, HarmonicsError, ProbeSignal, SpindleAngle};
 /// let time_s = [0.0, 1.0, 2.0];
 /// let angle = [0.0, 3.0, 6.0]; // 3 rad/s, wrapping past 2π
 /// let signal = ProbeSignal { time_s: &time_s, gap: &[0.0; 3], angle: SpindleAngle::Encoder(&angle) };
-/// assert!(check_encoder_rate(&signal, 3.05, 0.02).is_ok());
-/// assert!(matches!(check_encoder_rate(&signal, 2.0, 0.02),
+/// assert!(check_encoder_rate(&signal, DeclaredRate::new(3.05)).is_ok());
+/// let strict = DeclaredRate { rate_rad_s: 3.05, relative_tolerance: 0.01 };
+/// assert!(matches!(check_encoder_rate(&signal, strict),
 ///                  Err(HarmonicsError::RateMismatch { .. })));
 /// # Ok::<(), HarmonicsError>(())
 /// ```
-pub fn check_encoder_rate(
-    signal: &ProbeSignal<'_>,
-    declared_rate_rad_s: f64,
-    tolerance: f64,
-) -> Result<()> {
+///
+/// # Errors
+/// [`HarmonicsError::InvalidSetting`] for a bad tolerance, [`HarmonicsError::InvalidRate`]
+/// for a declared rate that is not finite and positive (with an encoder),
+/// [`HarmonicsError::LengthMismatch`] and [`HarmonicsError::NoCompleteRevolution`] for a
+/// signal that `analyze` would refuse, and [`HarmonicsError::RateMismatch`] for a rate
+/// outside the tolerance.
+pub fn check_encoder_rate(signal: &ProbeSignal<'_>, declared: DeclaredRate) -> Result<()> {
+    let DeclaredRate {
+        rate_rad_s: declared_rate_rad_s,
+        relative_tolerance: tolerance,
+    } = declared;
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(HarmonicsError::InvalidSetting {
-            field: "tolerance",
+            field: "relative_tolerance",
             value: tolerance,
-            reason: "must be finite and not negative",
+            requirement: Requirement::NonNegative,
         });
     }
     let SpindleAngle::Encoder(a) = signal.angle else {

@@ -1,7 +1,11 @@
 //! Deterministic synthetic probe recordings with known coefficients, for tests, benchmarks
-//! and fixtures.
+//! and fixtures (feature `synthetic`).
 
 use std::f64::consts::TAU;
+
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+use rand_distr::{Distribution, Normal};
 
 use crate::analysis::Coefficients;
 
@@ -25,11 +29,12 @@ pub struct SyntheticRecording {
     pub start_angle_rad: f64,
     /// The coefficients of eq. 20 (`drift_per_s` adds `drift·(t − start_time_s)`).
     pub coefficients: Coefficients,
-    /// Standard deviation of white Gaussian noise added to the gap.
+    /// Standard deviation of white Gaussian noise added to the gap, in the gap's unit (finite
+    /// and not negative; zero adds none).
     pub noise_std: f64,
     /// Amplitude `A` of the non-uniform part of the angle, rad.
     pub wobble_rad: f64,
-    /// Seed of the noise.
+    /// Seed of the noise (`rand`'s `StdRng::seed_from_u64`).
     pub seed: u64,
 }
 
@@ -52,8 +57,20 @@ impl SyntheticRecording {
     }
 
     /// Generates the samples.
+    ///
+    /// # Panics
+    /// When `noise_std` is negative or not finite.
     pub fn generate(&self) -> SyntheticSamples {
-        let mut rng = SplitMix64(self.seed);
+        assert!(
+            self.noise_std.is_finite() && self.noise_std >= 0.0,
+            "noise_std must be finite and not negative, got {}",
+            self.noise_std
+        );
+        let mut rng = StdRng::seed_from_u64(self.seed);
+        // Without noise, no draws at all.
+        let noise = (self.noise_std > 0.0).then(|| {
+            Normal::new(0.0, self.noise_std).expect("a finite standard deviation is accepted")
+        });
         let mut time_s = Vec::with_capacity(self.samples);
         let mut gap = Vec::with_capacity(self.samples);
         let mut angle_rad = Vec::with_capacity(self.samples);
@@ -61,13 +78,9 @@ impl SyntheticRecording {
             let t = self.start_time_s + i as f64 / self.sample_rate_hz;
             let theta = self.angle_at(t);
             let drift = self.coefficients.drift_per_s.unwrap_or(0.0) * (t - self.start_time_s);
-            let noise = if self.noise_std > 0.0 {
-                self.noise_std * rng.normal()
-            } else {
-                0.0
-            };
+            let e = noise.map_or(0.0, |n| n.sample(&mut rng));
             time_s.push(t);
-            gap.push(self.coefficients.evaluate(theta) + drift + noise);
+            gap.push(self.coefficients.evaluate(theta) + drift + e);
             angle_rad.push(theta.rem_euclid(TAU));
         }
         SyntheticSamples {
@@ -78,41 +91,46 @@ impl SyntheticRecording {
     }
 }
 
-/// SplitMix64 generator with Box–Muller normals: small, deterministic, dependency-free.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in (0, 1].
-    fn uniform(&mut self) -> f64 {
-        ((self.next_u64() >> 11) as f64 + 1.0) / (1_u64 << 53) as f64
-    }
-
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn recording(noise_std: f64, seed: u64) -> SyntheticRecording {
+        SyntheticRecording {
+            rate_rad_s: 1.0,
+            sample_rate_hz: 100.0,
+            samples: 200_000,
+            start_time_s: 0.0,
+            start_angle_rad: 0.0,
+            coefficients: Coefficients {
+                l0: 5.0,
+                c: vec![0.0],
+                s: vec![0.0],
+                drift_per_s: None,
+            },
+            noise_std,
+            wobble_rad: 0.0,
+            seed,
+        }
+    }
+
     #[test]
-    fn normals_have_unit_variance() {
-        let mut g = SplitMix64(7);
-        let n = 200_000;
-        let xs: Vec<f64> = (0..n).map(|_| g.normal()).collect();
-        let mean = xs.iter().sum::<f64>() / n as f64;
-        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
-        assert!(mean.abs() < 0.01, "mean {mean}");
-        assert!((var - 1.0).abs() < 0.01, "variance {var}");
+    fn noise_has_the_given_standard_deviation() {
+        let rec = recording(0.5, 7);
+        let gap = rec.generate().gap;
+        let n = gap.len() as f64;
+        let mean = gap.iter().sum::<f64>() / n;
+        let var = gap.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+        // standard errors: 0.5/√n ≈ 1.1e-3 for the mean, 0.25·√(2/n) ≈ 7.9e-4 for the variance
+        assert!((mean - 5.0).abs() < 0.01, "mean {mean}");
+        assert!((var - 0.25).abs() < 0.01, "variance {var}");
+    }
+
+    #[test]
+    fn same_seed_same_samples_and_no_noise_is_exact() {
+        let a = recording(0.5, 7);
+        assert_eq!(a.generate(), a.generate());
+        assert_ne!(a.generate().gap, recording(0.5, 8).generate().gap);
+        assert!(recording(0.0, 7).generate().gap.iter().all(|&g| g == 5.0));
     }
 }

@@ -2,7 +2,7 @@
 //! QR on the explicit design matrix, and every refusal.
 
 use harmonics::{
-    Coefficients, ENCODER_RATE_TOLERANCE, FitConfig, HarmonicsError, MAX_ORDER, ProbeSignal,
+    Coefficients, DeclaredRate, FitConfig, HarmonicsError, MAX_ORDER, ProbeSignal, Requirement,
     SpindleAngle, SyntheticRecording, SyntheticSamples, analyze, check_encoder_rate,
     check_time_axis,
 };
@@ -704,10 +704,10 @@ mod refusals {
         let w = rec.rate_rad_s;
         // Within 2 %, on either side.
         for declared in [w, w * 1.019, w / 1.019] {
-            assert!(check_encoder_rate(&signal, declared, ENCODER_RATE_TOLERANCE).is_ok());
+            assert!(check_encoder_rate(&signal, DeclaredRate::new(declared)).is_ok());
         }
         for declared in [w * 1.021, w / 1.021, 10f64.to_radians()] {
-            match check_encoder_rate(&signal, declared, ENCODER_RATE_TOLERANCE) {
+            match check_encoder_rate(&signal, DeclaredRate::new(declared)) {
                 Err(HarmonicsError::RateMismatch {
                     declared_rad_s,
                     encoder_rad_s,
@@ -725,16 +725,26 @@ mod refusals {
             ..rec.clone()
         }
         .generate();
-        assert!(check_encoder_rate(&encoder_signal(&wobbly), w, ENCODER_RATE_TOLERANCE).is_ok());
+        assert!(check_encoder_rate(&encoder_signal(&wobbly), DeclaredRate::new(w)).is_ok());
         // The rate mode has nothing to compare; bad settings are refused.
-        assert!(check_encoder_rate(&rate_signal(&rec, &data), 1.0, 0.02).is_ok());
+        assert!(check_encoder_rate(&rate_signal(&rec, &data), DeclaredRate::new(1.0)).is_ok());
         assert!(matches!(
-            check_encoder_rate(&signal, -1.0, 0.02),
+            check_encoder_rate(&signal, DeclaredRate::new(-1.0)),
             Err(HarmonicsError::InvalidRate { .. })
         ));
         assert!(matches!(
-            check_encoder_rate(&signal, w, f64::NAN),
-            Err(HarmonicsError::InvalidSetting { .. })
+            check_encoder_rate(
+                &signal,
+                DeclaredRate {
+                    rate_rad_s: w,
+                    relative_tolerance: f64::NAN
+                }
+            ),
+            Err(HarmonicsError::InvalidSetting {
+                field: "relative_tolerance",
+                requirement: Requirement::NonNegative,
+                ..
+            })
         ));
     }
 

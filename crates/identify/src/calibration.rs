@@ -3,8 +3,9 @@
 
 use crate::design::Design;
 use crate::error::{IdentifyError, Result};
+use crate::geometry::Geometry;
 use crate::lstsq::{Fit, LstsqOptions, lstsq_design};
-use crate::radius::{PseudoSecondOrder, finite, non_negative, positive, pseudo_second_order};
+use crate::radius::{CrEstimate, PseudoSecondOrder, finite, pseudo_second_order};
 
 /// Least number of distinct rates for the six-column design of eq. 18.
 pub const MIN_DISTINCT_RATES: usize = 6;
@@ -18,10 +19,8 @@ pub const MIN_DISTINCT_RATES: usize = 6;
 /// Coriolis term `2R·ω·ω_ie·sin L/g` that eq. 14 drops.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Calibration {
-    /// Working radius R used to form a (m).
-    pub radius_m: f64,
-    /// Gravity g used to form a (m/s²).
-    pub g_m_s2: f64,
+    /// Working radius R and gravity g used to form a.
+    pub geometry: Geometry,
     /// Number of distinct rates in the data.
     pub distinct_rates: usize,
     /// Coefficient of 1: `k0 + k1·Δφ_ys` (rad/s).
@@ -66,7 +65,7 @@ pub struct Calibration {
 ///
 /// # Errors
 /// [`IdentifyError::DimensionMismatch`] for slices of different lengths,
-/// [`IdentifyError::InvalidParameter`] for a non-positive R or g,
+/// [`IdentifyError::InvalidParameter`] for a non-positive R or g ([`Geometry::validate`]),
 /// [`IdentifyError::NonFinite`] for a non-finite rate (`column: Some(1)`, the ω column) or
 /// output (`column: None`),
 /// [`IdentifyError::TooFewDistinctRates`] for fewer than six distinct rates, and the errors of
@@ -75,13 +74,14 @@ pub struct Calibration {
 ///
 /// ```
 /// use approx::assert_relative_eq;
-/// let (r, g) = (2.5, 9.8);
+/// use identify::{Geometry, identify_calibration};
+/// let geometry = Geometry { radius_m: 2.5, g_m_s2: 9.8 };
 /// let rates: Vec<f64> = (1..=8).map(|i| (25.0 * f64::from(i)).to_radians()).collect();
-/// let out: Vec<f64> = rates.iter().map(|w| {
-///     let a = r * w * w / g;
+/// let out: Vec<f64> = rates.iter().map(|&w| {
+///     let a = geometry.input_g(w);
 ///     1e-4 + 2e-6 * w + 0.56 * a + 3e-6 * a * a + 1e-7 * a.powi(3)
 /// }).collect();
-/// let cal = identify::identify_calibration(&rates, &out, r, g)?;
+/// let cal = identify_calibration(&rates, &out, geometry)?;
 /// assert_relative_eq!(cal.k1_implied_rad_s_g, 0.56, max_relative = 1e-12);
 /// assert_relative_eq!(cal.k2_apparent_rad_s_g2, 3e-6, max_relative = 1e-7);
 /// # Ok::<(), identify::IdentifyError>(())
@@ -89,11 +89,9 @@ pub struct Calibration {
 pub fn identify_calibration(
     rate_rad_s: &[f64],
     output_rad_s: &[f64],
-    radius_m: f64,
-    g_m_s2: f64,
+    geometry: Geometry,
 ) -> Result<Calibration> {
-    positive("radius_m", radius_m)?;
-    positive("g_m_s2", g_m_s2)?;
+    geometry.validate()?;
     if rate_rad_s.len() != output_rad_s.len() {
         return Err(IdentifyError::DimensionMismatch {
             what: "output_rad_s",
@@ -114,7 +112,7 @@ pub fn identify_calibration(
             need: MIN_DISTINCT_RATES,
         });
     }
-    let k = radius_m / g_m_s2;
+    let k = geometry.radius_m / geometry.g_m_s2;
     let design = Design::powers(rate_rad_s, &[0, 1, 2, 3, 4, 6]).scale_columns(&[
         1.0,
         1.0,
@@ -127,8 +125,7 @@ pub fn identify_calibration(
     let c = &fit.coefficients;
     let s = &fit.std_errors;
     Ok(Calibration {
-        radius_m,
-        g_m_s2,
+        geometry,
         distinct_rates,
         bias_rad_s: c[0],
         omega_coeff: c[1],
@@ -145,8 +142,9 @@ pub fn identify_calibration(
 }
 
 /// Which k1 the compensation `k1·C_r·ω⁴/g` uses.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum K1Source {
     /// The k1 implied by the uncompensated fit's ω² coefficient, `c₂·g/R`. Its uncertainty and
     /// its correlation with the a² coefficient are propagated.
@@ -159,12 +157,12 @@ pub enum K1Source {
 }
 
 /// The probe's measurement of the dynamic radius error, used to compensate a calibration.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Compensation {
-    /// Dynamic radius-error coefficient C_r (m·s²), from [`crate::fit_radius_error`].
-    pub c_r_m_s2: f64,
-    /// Its standard deviation (m·s²).
-    pub c_r_sigma_m_s2: f64,
+    /// Dynamic radius-error coefficient C_r with its standard deviation, e.g.
+    /// [`crate::RadiusFit::c_r`].
+    pub c_r: CrEstimate,
     /// The k1 to use.
     pub k1: K1Source,
 }
@@ -198,9 +196,10 @@ pub struct CompensatedCalibration {
 /// Since `k1·C_r·ω⁴/g = (k1·C_r·g/R²)·a²` lies in the a² column, the compensated k2 equals
 /// `k2_apparent − Δk2` exactly, the other coefficients and the residuals are unchanged, and
 ///
-/// $$ \sigma^2(k_2) = \sigma^2_{fit}(c_4) + \left(\tfrac{k_1 g}{R^2}\right)^2 \sigma^2(C_r)
-///    \;\Big[ + \left(\tfrac{C_r g^2}{R^3}\right)^2 \sigma^2(c_2)
-///    - 2\,\tfrac{C_r g^2}{R^3}\operatorname{cov}(c_2, c_4) \Big]_{k_1\ \text{fitted}} $$
+/// ```text
+/// σ²(k2) = σ²_fit(c₄) + (k1·g/R²)²·σ²(C_r)
+///          [ + (C_r·g²/R³)²·σ²(c₂) − 2·(C_r·g²/R³)·cov(c₂, c₄) ]   (the bracket for a fitted k1)
+/// ```
 ///
 /// with c₂ the ω² and c₄ the a² coefficient. C_r comes from the probe, an independent
 /// measurement, so it is uncorrelated with the PIGA fit.
@@ -211,15 +210,18 @@ pub struct CompensatedCalibration {
 ///
 /// ```
 /// use approx::assert_relative_eq;
-/// use identify::{identify_compensated, Compensation, K1Source};
+/// use identify::{identify_compensated, Compensation, CrEstimate, Geometry, K1Source};
 /// let (r, g, k1, k2, c_r) = (2.5, 9.8, 0.56, 3e-6, -4e-8);
 /// let rates: Vec<f64> = (1..=8).map(|i| (25.0 * f64::from(i)).to_radians()).collect();
 /// let out: Vec<f64> = rates.iter().map(|w| {
 ///     let a = r * w * w / g;
 ///     k1 * a + k2 * a * a + k1 * c_r * w.powi(4) / g
 /// }).collect();
-/// let comp = Compensation { c_r_m_s2: c_r, c_r_sigma_m_s2: 1e-9, k1: K1Source::Fitted };
-/// let cal = identify_compensated(&rates, &out, r, g, &comp)?;
+/// let comp = Compensation {
+///     c_r: CrEstimate { c_r_m_s2: c_r, c_r_sigma_m_s2: 1e-9 },
+///     k1: K1Source::Fitted,
+/// };
+/// let cal = identify_compensated(&rates, &out, Geometry { radius_m: r, g_m_s2: g }, &comp)?;
 /// assert_relative_eq!(cal.k2_rad_s_g2, k2, max_relative = 1e-6);
 /// assert_relative_eq!(cal.uncompensated.k2_apparent_rad_s_g2, k2 + k1 * c_r * g / (r * r),
 ///                     max_relative = 1e-6);
@@ -228,28 +230,27 @@ pub struct CompensatedCalibration {
 pub fn identify_compensated(
     rate_rad_s: &[f64],
     output_rad_s: &[f64],
-    radius_m: f64,
-    g_m_s2: f64,
+    geometry: Geometry,
     compensation: &Compensation,
 ) -> Result<CompensatedCalibration> {
-    finite("c_r_m_s2", compensation.c_r_m_s2)?;
-    non_negative("c_r_sigma_m_s2", compensation.c_r_sigma_m_s2)?;
+    compensation.c_r.validate()?;
     if let K1Source::Given { k1_rad_s_g } = compensation.k1 {
         finite("k1_rad_s_g", k1_rad_s_g)?;
     }
-    let uncompensated = identify_calibration(rate_rad_s, output_rad_s, radius_m, g_m_s2)?;
+    let uncompensated = identify_calibration(rate_rad_s, output_rad_s, geometry)?;
     let k1 = match compensation.k1 {
         K1Source::Fitted => uncompensated.k1_implied_rad_s_g,
         K1Source::Given { k1_rad_s_g } => k1_rad_s_g,
     };
-    let c_r = compensation.c_r_m_s2;
+    let c_r = compensation.c_r.c_r_m_s2;
+    let Geometry { radius_m, g_m_s2 } = geometry;
     let corrected: Vec<f64> = rate_rad_s
         .iter()
         .zip(output_rad_s)
         .map(|(w, y)| y - k1 * c_r * w.powi(4) / g_m_s2)
         .collect();
-    let compensated = identify_calibration(rate_rad_s, &corrected, radius_m, g_m_s2)?;
-    let delta_k2 = pseudo_second_order(k1, c_r, compensation.c_r_sigma_m_s2, g_m_s2, radius_m)?;
+    let compensated = identify_calibration(rate_rad_s, &corrected, geometry)?;
+    let delta_k2 = pseudo_second_order(k1, compensation.c_r, geometry)?;
 
     let cov = &compensated.fit.covariance;
     let mut variance = cov[(4, 4)] + delta_k2.sigma_rad_s_g2.powi(2);
@@ -285,6 +286,10 @@ mod tests {
 
     const R: f64 = 2.5;
     const G: f64 = 9.8;
+    const GEOMETRY: Geometry = Geometry {
+        radius_m: R,
+        g_m_s2: G,
+    };
 
     fn rates(n: usize) -> Vec<f64> {
         (1..=n)
@@ -313,7 +318,7 @@ mod tests {
     fn recovers_every_coefficient() {
         let w = rates(9);
         let truth = [1e-4, -2e-6, 0.56 * R / G, 3e-8, 5e-6, -2e-7];
-        let cal = identify_calibration(&w, &outputs(&w, truth, 0.0), R, G).unwrap();
+        let cal = identify_calibration(&w, &outputs(&w, truth, 0.0), GEOMETRY).unwrap();
         assert_relative_eq!(cal.bias_rad_s, truth[0], max_relative = 1e-8);
         assert_relative_eq!(cal.omega_coeff, truth[1], max_relative = 1e-7);
         assert_relative_eq!(cal.omega2_coeff_s, truth[2], max_relative = 1e-12);
@@ -330,7 +335,7 @@ mod tests {
         // The coefficient of a² is (g/R)² times that of ω⁴, and of a³ (g/R)³ times that of ω⁶.
         let w = rates(8);
         let y = outputs(&w, [0.0, 1e-6, 0.1428, 0.0, 4e-6, 1e-7], 1e-9);
-        let cal = identify_calibration(&w, &y, R, G).unwrap();
+        let cal = identify_calibration(&w, &y, GEOMETRY).unwrap();
         let raw = lstsq_design(
             &Design::powers(&w, &[0, 1, 2, 3, 4, 6]),
             &y,
@@ -365,11 +370,13 @@ mod tests {
         let dk2 = k1 * c_r * G / (R * R);
         for source in [K1Source::Fitted, K1Source::Given { k1_rad_s_g: k1 }] {
             let comp = Compensation {
-                c_r_m_s2: c_r,
-                c_r_sigma_m_s2: sigma,
+                c_r: CrEstimate {
+                    c_r_m_s2: c_r,
+                    c_r_sigma_m_s2: sigma,
+                },
                 k1: source,
             };
-            let cal = identify_compensated(&w, &y, R, G, &comp).unwrap();
+            let cal = identify_compensated(&w, &y, GEOMETRY, &comp).unwrap();
             // Within a few of the fit's own standard errors (the noise is ±1e-12 rad/s).
             let fit_sigma = cal.compensated.k2_apparent_sigma_rad_s_g2;
             assert!((cal.uncompensated.k2_apparent_rad_s_g2 - (k2 + dk2)).abs() < 5.0 * fit_sigma);
@@ -431,11 +438,13 @@ mod tests {
             for _ in 0..DRAWS {
                 let y: Vec<f64> = clean.iter().map(|y| y + noise.sample(&mut rng)).collect();
                 let comp = Compensation {
-                    c_r_m_s2: c_r_draw.sample(&mut rng),
-                    c_r_sigma_m_s2: c_r_sigma,
+                    c_r: CrEstimate {
+                        c_r_m_s2: c_r_draw.sample(&mut rng),
+                        c_r_sigma_m_s2: c_r_sigma,
+                    },
                     k1: source,
                 };
-                let cal = identify_compensated(&w, &y, R, G, &comp).unwrap();
+                let cal = identify_compensated(&w, &y, GEOMETRY, &comp).unwrap();
                 let dev = cal.k2_rad_s_g2 - k2;
                 sum += dev;
                 sum_sq += dev * dev;
@@ -461,7 +470,7 @@ mod tests {
         let w = rates(5);
         let y = outputs(&w, [0.0, 0.0, 0.1, 0.0, 0.0, 0.0], 0.0);
         assert_eq!(
-            identify_calibration(&w, &y, R, G),
+            identify_calibration(&w, &y, GEOMETRY),
             Err(IdentifyError::TooFewDistinctRates {
                 distinct: 5,
                 need: 6
@@ -471,7 +480,7 @@ mod tests {
         let w2: Vec<f64> = w.iter().chain(&w).copied().collect();
         let y2: Vec<f64> = y.iter().chain(&y).copied().collect();
         assert_eq!(
-            identify_calibration(&w2, &y2, R, G),
+            identify_calibration(&w2, &y2, GEOMETRY),
             Err(IdentifyError::TooFewDistinctRates {
                 distinct: 5,
                 need: 6
@@ -480,39 +489,48 @@ mod tests {
         let w = rates(6);
         let y = outputs(&w, [0.0, 0.0, 0.1, 0.0, 0.0, 0.0], 0.0);
         assert_eq!(
-            identify_calibration(&w, &y, R, G),
+            identify_calibration(&w, &y, GEOMETRY),
             Err(IdentifyError::TooFewObservations {
                 observations: 6,
                 unknowns: 6
             })
         );
         assert!(matches!(
-            identify_calibration(&w, &y, -R, G),
+            identify_calibration(
+                &w,
+                &y,
+                Geometry {
+                    radius_m: -R,
+                    ..GEOMETRY
+                }
+            ),
             Err(IdentifyError::InvalidParameter {
                 name: "radius_m",
                 ..
             })
         ));
         assert!(matches!(
-            identify_calibration(&w, &y[..5], R, G),
+            identify_calibration(&w, &y[..5], GEOMETRY),
             Err(IdentifyError::DimensionMismatch { .. })
         ));
         let mut bad = w.clone();
         bad[2] = f64::NAN;
         assert_eq!(
-            identify_calibration(&bad, &y, R, G),
+            identify_calibration(&bad, &y, GEOMETRY),
             Err(IdentifyError::NonFinite {
                 row: 2,
                 column: Some(1)
             })
         );
         let comp = Compensation {
-            c_r_m_s2: f64::NAN,
-            c_r_sigma_m_s2: 0.0,
+            c_r: CrEstimate {
+                c_r_m_s2: f64::NAN,
+                c_r_sigma_m_s2: 0.0,
+            },
             k1: K1Source::Fitted,
         };
         assert!(matches!(
-            identify_compensated(&w, &y, R, G, &comp),
+            identify_compensated(&w, &y, GEOMETRY, &comp),
             Err(IdentifyError::InvalidParameter {
                 name: "c_r_m_s2",
                 ..

@@ -3,7 +3,7 @@
 use nalgebra::DMatrix;
 
 use crate::dd::Dd;
-use crate::error::{IdentifyError, Result};
+use crate::error::{IdentifyError, Requirement, Result};
 
 /// A least-squares design matrix X (m observations × n unknowns) whose entries are held in
 /// double-double precision.
@@ -69,7 +69,7 @@ impl Design {
                 return Err(IdentifyError::InvalidParameter {
                     name: "factors",
                     value: f,
-                    requirement: "finite",
+                    requirement: Requirement::Finite,
                 });
             }
             for i in 0..self.m {

@@ -53,14 +53,14 @@ pub enum IdentifyError {
         expected: usize,
     },
     /// A scalar parameter is out of its domain (e.g. a non-positive radius).
-    #[error("invalid parameter {name} = {value}: {requirement}")]
+    #[error("invalid parameter {name} = {value}: must be {requirement}")]
     InvalidParameter {
-        /// Name of the parameter, as in the function signature.
+        /// Name of the parameter, as in the function signature or the parameter struct.
         name: &'static str,
         /// The value given.
         value: f64,
         /// What the value must satisfy.
-        requirement: &'static str,
+        requirement: Requirement,
     },
     /// The calibration design of eq. 18 needs at least `need` distinct rates.
     #[error("{distinct} distinct rates: the eq. 18 calibration needs at least {need}")]
@@ -71,12 +71,13 @@ pub enum IdentifyError {
         need: usize,
     },
     /// An NIST StRD file does not have the expected layout (see [`crate::strd`]).
+    #[cfg(feature = "strd")]
     #[error("StRD file{}: expected {expected}", match line { Some(l) => format!(", line {l}"), None => String::new() })]
     StrdFormat {
         /// 1-based line at fault, or `None` when something is missing from the whole file.
         line: Option<usize>,
         /// What was expected.
-        expected: &'static str,
+        expected: crate::strd::Expected,
     },
     /// Numbers too large for double precision: the result would not be finite.
     #[error("{what} overflows double precision; rescale the data")]
@@ -86,5 +87,30 @@ pub enum IdentifyError {
     },
 }
 
+/// What a scalar parameter must satisfy ([`IdentifyError::InvalidParameter`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Requirement {
+    /// A finite number.
+    Finite,
+    /// A finite number greater than 0.
+    Positive,
+    /// A finite number, 0 or more.
+    NonNegative,
+    /// A finite number in `[0, 1)`.
+    UnitInterval,
+}
+
+impl core::fmt::Display for Requirement {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Self::Finite => "finite",
+            Self::Positive => "finite and > 0",
+            Self::NonNegative => "finite and ≥ 0",
+            Self::UnitInterval => "finite and in [0, 1)",
+        })
+    }
+}
+
 /// `Result` with [`IdentifyError`].
-pub type Result<T, E = IdentifyError> = std::result::Result<T, E>;
+pub type Result<T> = std::result::Result<T, IdentifyError>;

@@ -7,13 +7,12 @@
 //! * [`fit_radius_error`]: the radius-error model `Δr(ω) = a + C_r·ω²` fitted to the probe
 //!   analysis (eq. 22), with the three-term `a + b·ω + C_r·ω²` as an option.
 //! * [`pseudo_second_order`]: the pseudo-second-order error `Δk2 = k1·C_r·g/R²` (eq. 19) with
-//!   its standard deviation propagated from σ(C_r).
+//!   its standard deviation propagated from σ(C_r) ([`CrEstimate`]).
 //! * [`identify_calibration`]: the PIGA calibration of eq. 18, with columns `1, ω, ω², ω³, a², a³`
-//!   and `a = R·ω²/g`. The a² coefficient is the apparent k2 = k2 + Δk2 (eq. 17).
-//!   [`identify_compensated`] removes `k1·C_r·ω⁴/g` and propagates σ(C_r) into σ(k2).
+//!   and `a = R·ω²/g` ([`Geometry`]). The a² coefficient is the apparent k2 = k2 + Δk2
+//!   (eq. 17). [`identify_compensated`] removes `k1·C_r·ω⁴/g` and propagates σ(C_r) into σ(k2).
 //! * [`lstsq_design`] and [`Design`]: the same solver for designs held in double-double, such
-//!   as powers of data. [`strd`] is the NIST StRD parser behind `cargo xtask accuracy`
-//!   (docs/ACCURACY.md).
+//!   as powers of data.
 //!
 //! The solver scales each column by a power of two, factorises the design by column-pivoted
 //! Householder QR (faer), and refines the solution and the covariance through the augmented
@@ -22,16 +21,22 @@
 //!
 //! ```
 //! use approx::assert_relative_eq;
-//! use identify::{fit_radius_error, pseudo_second_order, RadiusModel};
+//! use identify::{fit_radius_error, pseudo_second_order, Geometry, RadiusModel};
 //! // Radius error (m) that shrinks as C_r·ω² with C_r = −4e-8 m·s².
 //! let rate_rad_s = [0.2, 1.0, 1.4, 1.9, 2.8, 3.5];
 //! let err_m: Vec<f64> = rate_rad_s.iter().map(|w| 5.6e-6 - 4e-8 * w * w).collect();
 //! let fit = fit_radius_error(&rate_rad_s, &err_m, RadiusModel::TwoTerm)?;
 //! assert_relative_eq!(fit.c_r_m_s2, -4e-8, max_relative = 1e-9);
-//! let dk2 = pseudo_second_order(0.56, fit.c_r_m_s2, fit.c_r_sigma_m_s2, 9.8, 2.5)?;
+//! let dk2 = pseudo_second_order(0.56, fit.c_r(), Geometry { radius_m: 2.5, g_m_s2: 9.8 })?;
 //! assert_relative_eq!(dk2.delta_k2_rad_s_g2, 0.56 * -4e-8 * 9.8 / 6.25, max_relative = 1e-9);
 //! # Ok::<(), identify::IdentifyError>(())
 //! ```
+//!
+//! # Features
+//! - `serde`: `Serialize`/`Deserialize` on the parameter and result types ([`Geometry`],
+//!   [`CrEstimate`], [`RadiusModel`], [`K1Source`], …).
+//! - `strd`: the module `strd`, the NIST StRD parser and scoring behind `cargo xtask accuracy`
+//!   (docs/ACCURACY.md); not needed for calibration.
 //!
 //! # References
 //! Liu Y., Zhang C., He D., Yu Z., Ren S., "The mechanism of PIGA's pseudo-second-order term
@@ -42,8 +47,10 @@ mod calibration;
 mod dd;
 mod design;
 mod error;
+mod geometry;
 mod lstsq;
 mod radius;
+#[cfg(feature = "strd")]
 pub mod strd;
 
 pub use calibration::{
@@ -51,9 +58,10 @@ pub use calibration::{
     identify_calibration, identify_compensated,
 };
 pub use design::Design;
-pub use error::{IdentifyError, Result};
+pub use error::{IdentifyError, Requirement, Result};
+pub use geometry::Geometry;
 pub use lstsq::{Fit, FitWarning, LstsqOptions, SolverPath, lstsq, lstsq_design, lstsq_with};
 pub use radius::{
-    PseudoSecondOrder, RadiusFit, RadiusModel, fit_radius_error, fit_radius_error_weighted,
-    pseudo_second_order,
+    CrEstimate, PseudoSecondOrder, RadiusFit, RadiusModel, fit_radius_error,
+    fit_radius_error_weighted, pseudo_second_order,
 };

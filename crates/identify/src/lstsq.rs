@@ -8,11 +8,12 @@ use nalgebra::DMatrix;
 
 use crate::dd::Dd;
 use crate::design::Design;
-use crate::error::{IdentifyError, Result};
+use crate::error::{IdentifyError, Requirement, Result};
 
 /// Which numerical method produced a [`Fit`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 #[non_exhaustive]
 pub enum SolverPath {
     /// Column scaling by powers of two near the column 2-norms, then column-pivoted
@@ -26,8 +27,9 @@ pub enum SolverPath {
 }
 
 /// A condition that limits the accuracy of a [`Fit`] without preventing it.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 #[non_exhaustive]
 pub enum FitWarning {
     /// Iterative refinement stopped contracting before its corrections fell below double
@@ -118,8 +120,9 @@ pub struct Fit {
 /// [`FitWarning::RefinementNotConverged`] is attached. The covariance is `s²·(XᵀX)⁻¹` with
 /// `s² = Σr²/(m − n)`:
 ///
-/// $$ \hat\beta = D^{-1} P R^{-1} Q^\top y, \qquad
-///    \operatorname{Cov}\hat\beta = s^2 D^{-1} P R^{-1} R^{-\top} P^\top D^{-1} $$
+/// ```text
+/// β̂ = D⁻¹·P·R⁻¹·Qᵀ·y,    Cov(β̂) = s²·D⁻¹·P·R⁻¹·R⁻ᵀ·Pᵀ·D⁻¹
+/// ```
 ///
 /// (before refinement). For designs whose entries are not exact doubles (powers of data) build a
 /// [`Design`] and call [`lstsq_design`].
@@ -181,7 +184,7 @@ pub fn lstsq_design(design: &Design, y: &[f64], options: &LstsqOptions) -> Resul
             return Err(IdentifyError::InvalidParameter {
                 name: "rank_tolerance",
                 value: t,
-                requirement: "finite and in [0, 1)",
+                requirement: Requirement::UnitInterval,
             });
         }
     };

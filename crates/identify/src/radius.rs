@@ -2,12 +2,14 @@
 
 use nalgebra::DMatrix;
 
-use crate::error::{IdentifyError, Result};
+use crate::error::{IdentifyError, Requirement, Result};
+use crate::geometry::Geometry;
 use crate::lstsq::{Fit, lstsq};
 
 /// Model fitted to the working-radius error as a function of the spindle rate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum RadiusModel {
     /// `Δr = a + C_r·ω²`: static offset plus the dynamic (imbalance) drift. The paper's model.
     TwoTerm,
@@ -51,6 +53,15 @@ pub struct RadiusFit {
 }
 
 impl RadiusFit {
+    /// `C_r` and its standard error from this fit.
+    #[must_use]
+    pub const fn c_r(&self) -> CrEstimate {
+        CrEstimate {
+            c_r_m_s2: self.c_r_m_s2,
+            c_r_sigma_m_s2: self.c_r_sigma_m_s2,
+        }
+    }
+
     /// Radius error predicted by the fitted model at `rate_rad_s` (m).
     #[must_use]
     pub fn predict_m(&self, rate_rad_s: f64) -> f64 {
@@ -62,7 +73,9 @@ impl RadiusFit {
 
 /// Fits the radius error `Δr(ω)` by least squares ([`lstsq`]).
 ///
-/// $$ \Delta r(\omega) = a + C_r\,\omega^2 \quad\text{or}\quad a + b\,\omega + C_r\,\omega^2 $$
+/// ```text
+/// Δr(ω) = a + C_r·ω²    or    Δr(ω) = a + b·ω + C_r·ω²
+/// ```
 ///
 /// `rate_rad_s[i]` is the spindle rate (rad/s) and `radius_error_m[i]` the measured radius error
 /// (m, the sum Δr_xd + Δr_xs of eq. 22) at point i.
@@ -190,8 +203,32 @@ fn fit(
     Ok(radius_fit)
 }
 
+/// The dynamic radius-error coefficient `C_r` with its standard deviation, as measured by the
+/// probe ([`RadiusFit::c_r`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+pub struct CrEstimate {
+    /// `C_r`, m·s² (finite).
+    pub c_r_m_s2: f64,
+    /// Its standard deviation σ(C_r), m·s² (finite and ≥ 0; 0 for an exact value).
+    pub c_r_sigma_m_s2: f64,
+}
+
+impl CrEstimate {
+    /// Checks that `C_r` is finite and σ(C_r) finite and not negative.
+    ///
+    /// # Errors
+    /// [`IdentifyError::InvalidParameter`] naming `c_r_m_s2` or `c_r_sigma_m_s2`.
+    pub fn validate(&self) -> Result<()> {
+        finite("c_r_m_s2", self.c_r_m_s2)?;
+        non_negative("c_r_sigma_m_s2", self.c_r_sigma_m_s2)
+    }
+}
+
 /// Pseudo-second-order error of eq. 19 and its standard deviation.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PseudoSecondOrder {
     /// Δk2 = k1·C_r·g/R² (rad/(s·g²)).
     pub delta_k2_rad_s_g2: f64,
@@ -201,8 +238,9 @@ pub struct PseudoSecondOrder {
 
 /// Pseudo-second-order coefficient error caused by the dynamic radius error (eq. 19).
 ///
-/// $$ \Delta k_2 = \frac{k_1 C_r g}{R^2}, \qquad
-///    \sigma(\Delta k_2) = \left|\frac{k_1 g}{R^2}\right| \sigma(C_r) $$
+/// ```text
+/// Δk2 = k1·C_r·g/R²,    σ(Δk2) = |k1·g/R²|·σ(C_r)
+/// ```
 ///
 /// k1 in rad/(s·g), C_r and σ(C_r) in m·s², g in m/s², R in m; the result is in rad/(s·g²).
 /// Only σ(C_r) is propagated (k1, g and R are taken as exact).
@@ -214,27 +252,26 @@ pub struct PseudoSecondOrder {
 /// # Example
 /// ```
 /// use approx::assert_relative_eq;
-/// let p = identify::pseudo_second_order(0.5, 2e-8, 1e-9, 10.0, 2.0)?;
+/// use identify::{CrEstimate, Geometry, pseudo_second_order};
+/// let c_r = CrEstimate { c_r_m_s2: 2e-8, c_r_sigma_m_s2: 1e-9 };
+/// let p = pseudo_second_order(0.5, c_r, Geometry { radius_m: 2.0, g_m_s2: 10.0 })?;
 /// assert_relative_eq!(p.delta_k2_rad_s_g2, 0.5 * 2e-8 * 10.0 / 4.0, max_relative = 1e-15);
 /// assert_relative_eq!(p.sigma_rad_s_g2, 0.5 * 1e-9 * 10.0 / 4.0, max_relative = 1e-15);
 /// # Ok::<(), identify::IdentifyError>(())
 /// ```
 pub fn pseudo_second_order(
     k1_rad_s_g: f64,
-    c_r_m_s2: f64,
-    c_r_sigma_m_s2: f64,
-    g_m_s2: f64,
-    radius_m: f64,
+    c_r: CrEstimate,
+    geometry: Geometry,
 ) -> Result<PseudoSecondOrder> {
     finite("k1_rad_s_g", k1_rad_s_g)?;
-    finite("c_r_m_s2", c_r_m_s2)?;
-    non_negative("c_r_sigma_m_s2", c_r_sigma_m_s2)?;
-    positive("g_m_s2", g_m_s2)?;
-    positive("radius_m", radius_m)?;
+    c_r.validate()?;
+    geometry.validate()?;
+    let Geometry { radius_m, g_m_s2 } = geometry;
     let factor = k1_rad_s_g * g_m_s2 / (radius_m * radius_m);
     Ok(PseudoSecondOrder {
-        delta_k2_rad_s_g2: factor * c_r_m_s2,
-        sigma_rad_s_g2: factor.abs() * c_r_sigma_m_s2,
+        delta_k2_rad_s_g2: factor * c_r.c_r_m_s2,
+        sigma_rad_s_g2: factor.abs() * c_r.c_r_sigma_m_s2,
     })
 }
 
@@ -245,7 +282,7 @@ pub(crate) fn finite(name: &'static str, value: f64) -> Result<()> {
         Err(IdentifyError::InvalidParameter {
             name,
             value,
-            requirement: "finite",
+            requirement: Requirement::Finite,
         })
     }
 }
@@ -257,7 +294,7 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<()> {
         Err(IdentifyError::InvalidParameter {
             name,
             value,
-            requirement: "finite and > 0",
+            requirement: Requirement::Positive,
         })
     }
 }
@@ -269,7 +306,7 @@ pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<()> {
         Err(IdentifyError::InvalidParameter {
             name,
             value,
-            requirement: "finite and ≥ 0",
+            requirement: Requirement::NonNegative,
         })
     }
 }
@@ -312,25 +349,30 @@ mod tests {
 
     #[test]
     fn eq19_by_hand_and_errors() {
-        let p = pseudo_second_order(-2.0, 3e-8, 1e-8, 9.0, 3.0).unwrap();
+        let c_r = |c_r_m_s2, c_r_sigma_m_s2| CrEstimate {
+            c_r_m_s2,
+            c_r_sigma_m_s2,
+        };
+        let geometry = |radius_m, g_m_s2| Geometry { radius_m, g_m_s2 };
+        let p = pseudo_second_order(-2.0, c_r(3e-8, 1e-8), geometry(3.0, 9.0)).unwrap();
         assert_relative_eq!(p.delta_k2_rad_s_g2, -6e-8, max_relative = 1e-15);
         assert_relative_eq!(p.sigma_rad_s_g2, 2e-8, max_relative = 1e-15);
         assert!(matches!(
-            pseudo_second_order(0.56, 1e-8, 1e-9, 9.8, 0.0),
+            pseudo_second_order(0.56, c_r(1e-8, 1e-9), geometry(0.0, 9.8)),
             Err(IdentifyError::InvalidParameter {
                 name: "radius_m",
                 ..
             })
         ));
         assert!(matches!(
-            pseudo_second_order(0.56, 1e-8, -1e-9, 9.8, 2.5),
+            pseudo_second_order(0.56, c_r(1e-8, -1e-9), geometry(2.5, 9.8)),
             Err(IdentifyError::InvalidParameter {
                 name: "c_r_sigma_m_s2",
                 ..
             })
         ));
         assert!(matches!(
-            pseudo_second_order(f64::NAN, 1e-8, 1e-9, 9.8, 2.5),
+            pseudo_second_order(f64::NAN, c_r(1e-8, 1e-9), geometry(2.5, 9.8)),
             Err(IdentifyError::InvalidParameter {
                 name: "k1_rad_s_g",
                 ..

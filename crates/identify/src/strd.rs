@@ -105,14 +105,69 @@ pub struct Accuracy {
     pub fit: Fit,
 }
 
-fn format_error(line: usize, expected: &'static str) -> IdentifyError {
+/// What an StRD file lacks or holds malformed ([`IdentifyError::StrdFormat`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Expected {
+    /// A `Dataset Name:` line.
+    DatasetName,
+    /// `Certified Values (lines A to B)` in the header.
+    CertifiedValuesRange,
+    /// `Data (lines A to B)` in the header.
+    DataRange,
+    /// Line ranges that lie inside the file.
+    RangesInsideFile,
+    /// `Data:` followed by the column names.
+    DataHeader,
+    /// Column names `y x…`.
+    ColumnNames,
+    /// A model line `y = …` in the header.
+    ModelLine,
+    /// Model terms `Bk`, `Bk*x` or `Bk*(x**p)`.
+    ModelTerms,
+    /// A certified parameter line `Bk estimate std_dev` with two numbers.
+    ParameterLine,
+    /// A residual `Standard Deviation` value.
+    ResidualStandardDeviation,
+    /// Certified parameters `Bk estimate std_dev`.
+    CertifiedParameters,
+    /// A model term for every certified parameter.
+    TermPerParameter,
+    /// As many model terms as certified parameters.
+    TermCount,
+    /// One finite number per data column on a data line.
+    DataRow,
+}
+
+impl core::fmt::Display for Expected {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Self::DatasetName => "a `Dataset Name:` line",
+            Self::CertifiedValuesRange => "`Certified Values (lines A to B)` in the header",
+            Self::DataRange => "`Data (lines A to B)` in the header",
+            Self::RangesInsideFile => "line ranges inside the file",
+            Self::DataHeader => "`Data:` followed by the column names",
+            Self::ColumnNames => "column names `y x…`",
+            Self::ModelLine => "a model line `y = …` in the header",
+            Self::ModelTerms => "model terms `Bk`, `Bk*x` or `Bk*(x**p)`",
+            Self::ParameterLine => "`Bk estimate std_dev` with two numbers",
+            Self::ResidualStandardDeviation => "a residual `Standard Deviation` value",
+            Self::CertifiedParameters => "certified parameters `Bk estimate std_dev`",
+            Self::TermPerParameter => "a model term for every certified parameter",
+            Self::TermCount => "as many model terms as certified parameters",
+            Self::DataRow => "one finite number per data column",
+        })
+    }
+}
+
+fn format_error(line: usize, expected: Expected) -> IdentifyError {
     IdentifyError::StrdFormat {
         line: Some(line),
         expected,
     }
 }
 
-fn missing(expected: &'static str) -> IdentifyError {
+fn missing(expected: Expected) -> IdentifyError {
     IdentifyError::StrdFormat {
         line: None,
         expected,
@@ -141,7 +196,7 @@ pub fn parse(text: &str) -> Result<Dataset> {
         .iter()
         .find_map(|l| l.trim().strip_prefix("Dataset Name:"))
         .and_then(|rest| rest.split_whitespace().next())
-        .ok_or_else(|| missing("a `Dataset Name:` line"))?
+        .ok_or_else(|| missing(Expected::DatasetName))?
         .to_string();
 
     let mut certified_range = None;
@@ -155,11 +210,10 @@ pub fn parse(text: &str) -> Result<Dataset> {
             }
         }
     }
-    let (c0, c1) = certified_range
-        .ok_or_else(|| missing("`Certified Values (lines A to B)` in the header"))?;
-    let (d0, d1) = data_range.ok_or_else(|| missing("`Data (lines A to B)` in the header"))?;
+    let (c0, c1) = certified_range.ok_or_else(|| missing(Expected::CertifiedValuesRange))?;
+    let (d0, d1) = data_range.ok_or_else(|| missing(Expected::DataRange))?;
     if c0 == 0 || d0 < 2 || c1 < c0 || d1 < d0 || c1 > lines.len() || d1 > lines.len() {
-        return Err(missing("line ranges inside the file"));
+        return Err(missing(Expected::RangesInsideFile));
     }
 
     // Data header, e.g. `Data:  y  x1  x2`, on the line before the data block.
@@ -167,10 +221,10 @@ pub fn parse(text: &str) -> Result<Dataset> {
     let header = lines[header_index]
         .trim()
         .strip_prefix("Data:")
-        .ok_or_else(|| format_error(header_index + 1, "`Data:` followed by the column names"))?;
+        .ok_or_else(|| format_error(header_index + 1, Expected::DataHeader))?;
     let columns: Vec<&str> = header.split_whitespace().collect();
     if columns.first() != Some(&"y") || columns.len() < 2 {
-        return Err(format_error(header_index + 1, "column names `y x…`"));
+        return Err(format_error(header_index + 1, Expected::ColumnNames));
     }
     let predictors: Vec<String> = columns[1..].iter().map(|s| (*s).to_string()).collect();
 
@@ -179,8 +233,8 @@ pub fn parse(text: &str) -> Result<Dataset> {
         .iter()
         .enumerate()
         .find_map(|(i, l)| l.trim().strip_prefix("y =").map(|m| (i, m)))
-        .ok_or_else(|| missing("a model line `y = …` in the header"))?;
-    let bad_model = || format_error(model_index + 1, "model terms `Bk`, `Bk*x` or `Bk*(x**p)`");
+        .ok_or_else(|| missing(Expected::ModelLine))?;
+    let bad_model = || format_error(model_index + 1, Expected::ModelTerms);
     let mut named_terms: Vec<(String, Term)> = Vec::new();
     let mut ellipsis = false;
     for part in model.split('+') {
@@ -224,10 +278,7 @@ pub fn parse(text: &str) -> Result<Dataset> {
                     std_dev,
                 }),
                 _ => {
-                    return Err(format_error(
-                        c0 + offset,
-                        "`Bk estimate std_dev` with two numbers",
-                    ));
+                    return Err(format_error(c0 + offset, Expected::ParameterLine));
                 }
             }
         } else if let Some(rest) = line.trim().strip_prefix("Standard Deviation")
@@ -237,9 +288,9 @@ pub fn parse(text: &str) -> Result<Dataset> {
         }
     }
     let certified_residual_sd =
-        certified_residual_sd.ok_or_else(|| missing("a residual `Standard Deviation` value"))?;
+        certified_residual_sd.ok_or_else(|| missing(Expected::ResidualStandardDeviation))?;
     if certified.is_empty() {
-        return Err(missing("certified parameters `Bk estimate std_dev`"));
+        return Err(missing(Expected::CertifiedParameters));
     }
 
     // Order the model terms as the certified parameters.
@@ -249,19 +300,11 @@ pub fn parse(text: &str) -> Result<Dataset> {
             .iter()
             .find(|(n, _)| *n == p.name)
             .map(|(_, t)| *t)
-            .ok_or_else(|| {
-                format_error(
-                    model_index + 1,
-                    "a model term for every certified parameter",
-                )
-            })?;
+            .ok_or_else(|| format_error(model_index + 1, Expected::TermPerParameter))?;
         terms.push(term);
     }
     if named_terms.len() != certified.len() {
-        return Err(format_error(
-            model_index + 1,
-            "as many model terms as certified parameters",
-        ));
+        return Err(format_error(model_index + 1, Expected::TermCount));
     }
 
     // Data block.
@@ -278,10 +321,7 @@ pub fn parse(text: &str) -> Result<Dataset> {
                 x.push(v[1..].to_vec());
             }
             _ => {
-                return Err(format_error(
-                    d0 + offset,
-                    "one finite number per data column",
-                ));
+                return Err(format_error(d0 + offset, Expected::DataRow));
             }
         }
     }
@@ -482,7 +522,7 @@ mod tests {
             parse(&text),
             Err(IdentifyError::StrdFormat {
                 line: Some(22),
-                expected: "one finite number per data column"
+                expected: Expected::DataRow
             })
         );
         assert!(matches!(

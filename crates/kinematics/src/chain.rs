@@ -2,8 +2,6 @@
 
 use core::f64::consts::PI;
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::{Result, finite};
 use crate::error_motion::SpindleOffsets;
 use crate::frames::{Ground, Piga, Sleeve, Spindle, Transform};
@@ -64,7 +62,12 @@ pub fn piga_mount<S: Scalar>(radius_m: S) -> Transform<Spindle, Piga, S> {
 /// use kinematics::{Centrifuge, Chain, ErrorMotion, Site, EARTH_RATE_RAD_S};
 /// let c = Centrifuge {
 ///     radius_m: 2.5,
-///     site: Site::new(45.0, EARTH_RATE_RAD_S, 9.8).unwrap(),
+///     site: Site {
+///         latitude_deg: 45.0,
+///         earth_rate_rad_s: EARTH_RATE_RAD_S,
+///         gravity_m_s2: 9.8,
+///     }
+///     .validated().unwrap(),
 ///     error_motion: ErrorMotion { dr_xs_m: 5e-6, dphi_ys_rad: 2e-6, ..ErrorMotion::ZERO },
 /// };
 /// let w = 100.0_f64.to_radians();
@@ -90,7 +93,7 @@ impl Chain {
     /// The chain at rate `rate_rad_s` (any sign; zero means standing still).
     ///
     /// # Errors
-    /// As [`Centrifuge::validate`], and [`crate::Error::NonFinite`] for the rate.
+    /// As [`Centrifuge::validate`], and [`crate::KinematicsError::NonFinite`] for the rate.
     pub fn new(centrifuge: &Centrifuge, rate_rad_s: f64) -> Result<Self> {
         centrifuge.validate()?;
         finite("rate_rad_s", rate_rad_s)?;
@@ -182,7 +185,7 @@ impl Chain {
     /// rule, exact for the content of the chain (see [`INPUT_HIGHEST_HARMONIC`]).
     ///
     /// # Errors
-    /// [`crate::Error::TooFewQuadraturePoints`] when `points < 2·INPUT_HIGHEST_HARMONIC + 1`.
+    /// [`crate::KinematicsError::TooFewQuadraturePoints`] when `points < 2·INPUT_HIGHEST_HARMONIC + 1`.
     pub fn mean_inputs(&self, points: usize) -> Result<PigaInputs> {
         let q = RevolutionQuadrature::new(points, INPUT_HIGHEST_HARMONIC)?;
         Ok(PigaInputs::from_array(q.mean_array(self.rate_rad_s, |t| {
@@ -207,13 +210,16 @@ impl Chain {
 
 /// The first-order inputs of eq. 14.
 ///
-/// $$ a_x = (R + \Delta r_x)\,\omega^2/g + \Delta\varphi_y,\qquad \omega_I = \Delta\varphi_y\,\omega $$
+/// ```text
+/// a_x = (R + Δr_x)·ω²/g + Δφ_y,    ω_I = Δφ_y·ω
+/// ```
 ///
 /// and, separately, the two mean Earth-rate terms that eq. 14 omits: the Coriolis specific
 /// force `2(R + Δr_x)·ω·ω_ie sin L / g` along IA (NOTES.md, item 4) and the vertical Earth
 /// rate seen through the tilt, `Δφ_y·ω_ie sin L`. The exact means differ from
 /// `a_x + coriolis_a_x_g` and `omega_i + earth_omega_i` by terms quadratic in the error motion.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FirstOrderInputs {
     /// Eq. 14 specific force along IA, g.
     pub a_x_g: f64,
@@ -230,13 +236,15 @@ pub struct FirstOrderInputs {
 ///
 /// The primed drifts are the corrected eq. 9 (a plane rotation of the spindle-frame drift):
 ///
-/// $$ \Delta r'_x = \Delta r_x\cos\theta - \Delta r_y\sin\theta,\qquad
-///    \Delta r'_y = \Delta r_x\sin\theta + \Delta r_y\cos\theta $$
+/// ```text
+/// Δr'_x = Δr_x·cos θ − Δr_y·sin θ,    Δr'_y = Δr_x·sin θ + Δr_y·cos θ
+/// ```
 ///
 /// and to first order the tilts transform alike. To make eq. 8 *exactly* equal to eq. 5 the
 /// primed tilts are taken from the direction of the spindle axis and a twist γ about it,
 /// of second order in the tilts, is carried; the paper's eq. 8 omits it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SleeveFrameMotion {
     /// Spindle angle θ = ωt, rad.
     pub spindle_angle_rad: f64,

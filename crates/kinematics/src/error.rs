@@ -6,7 +6,7 @@
 /// guessing.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
-pub enum Error {
+pub enum KinematicsError {
     /// An input that must be a finite number is NaN or infinite.
     #[error("{field} must be finite, got {value}")]
     NonFinite {
@@ -50,15 +50,15 @@ pub enum Error {
     },
 }
 
-/// `Result` with this crate's [`Error`].
-pub type Result<T> = core::result::Result<T, Error>;
+/// `Result` with this crate's [`KinematicsError`].
+pub type Result<T> = core::result::Result<T, KinematicsError>;
 
 /// Checks that `value` is finite.
 pub(crate) fn finite(field: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::NonFinite { field, value })
+        Err(KinematicsError::NonFinite { field, value })
     }
 }
 
@@ -68,7 +68,7 @@ pub(crate) fn positive(field: &'static str, value: f64) -> Result<f64> {
     if value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::NotPositive { field, value })
+        Err(KinematicsError::NotPositive { field, value })
     }
 }
 
@@ -78,7 +78,7 @@ pub(crate) fn in_range(field: &'static str, value: f64, min: f64, max: f64) -> R
     if (min..=max).contains(&value) {
         Ok(value)
     } else {
-        Err(Error::OutOfRange {
+        Err(KinematicsError::OutOfRange {
             field,
             value,
             min,

@@ -1,15 +1,15 @@
 //! Spindle error motion: static and dynamic (∝ ω²) first-harmonic drift and tilt (eq. 1–7, 16).
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::{Result, finite, positive};
 
 /// The spindle error motion of eq. 5 and 16 as coefficients in the spindle frame `O2`.
 ///
 /// At rate ω the drift and tilt of the spindle, expressed along `X2`, `Y2`, are
 ///
-/// $$ \Delta r_x = \Delta r_{xs} + C_r\,\omega^2,\quad \Delta r_y = \Delta r_{ys} + C_{ry}\,\omega^2 $$
-/// $$ \Delta\varphi_x = \Delta\varphi_{xs} + C_{\varphi x}\,\omega^2,\quad \Delta\varphi_y = \Delta\varphi_{ys} + C_\varphi\,\omega^2 $$
+/// ```text
+/// Δr_x = Δr_xs + C_r·ω²,      Δr_y = Δr_ys + C_ry·ω²
+/// Δφ_x = Δφ_xs + C_φx·ω²,     Δφ_y = Δφ_ys + C_φ·ω²
+/// ```
 ///
 /// (the paper names only `C_r` and `C_φ`, eq. 16; the other-axis coefficients complete the
 /// vector). The parts are constant in `O2`, so in the sleeve frame they are first harmonics of
@@ -22,8 +22,9 @@ use crate::error::{Result, finite, positive};
 /// let w = 200.0_f64.to_radians();
 /// assert_relative_eq!(e.offsets_at(w).dr_x_m, 5.6e-6 - 4.05e-8 * w * w, max_relative = 1e-15);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct ErrorMotion {
     /// Static drift along `X2` (towards the PIGA), Δr_xs, m.
     pub dr_xs_m: f64,
@@ -59,7 +60,7 @@ impl ErrorMotion {
     /// Checks that every coefficient is finite.
     ///
     /// # Errors
-    /// [`crate::Error::NonFinite`] naming the first bad field.
+    /// [`crate::KinematicsError::NonFinite`] naming the first bad field.
     pub fn validate(&self) -> Result<()> {
         finite("dr_xs_m", self.dr_xs_m)?;
         finite("dr_ys_m", self.dr_ys_m)?;
@@ -121,7 +122,7 @@ impl ErrorMotion {
     /// ```
     ///
     /// # Errors
-    /// [`crate::Error::NonFinite`] for a non-finite field, [`crate::Error::NotPositive`] for a
+    /// [`crate::KinematicsError::NonFinite`] for a non-finite field, [`crate::KinematicsError::NotPositive`] for a
     /// stiffness that is not strictly positive.
     pub fn from_physical(p: &PhysicalImbalance) -> Result<Self> {
         p.validate()?;
@@ -150,8 +151,9 @@ impl ErrorMotion {
 /// A physical description of the spindle's imbalance and stiffness (eq. 1–4).
 ///
 /// Azimuths are measured in `O2` from `X2` (towards the PIGA) towards `Y2`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PhysicalImbalance {
     /// Equivalent imbalance mass m, kg.
     pub mass_kg: f64,
@@ -199,7 +201,7 @@ impl PhysicalImbalance {
     /// Checks finiteness of every field and positivity of the stiffnesses.
     ///
     /// # Errors
-    /// [`crate::Error::NonFinite`] or [`crate::Error::NotPositive`] naming the field.
+    /// [`crate::KinematicsError::NonFinite`] or [`crate::KinematicsError::NotPositive`] naming the field.
     pub fn validate(&self) -> Result<()> {
         finite("mass_kg", self.mass_kg)?;
         finite("mass_radius_m", self.mass_radius_m)?;
@@ -220,7 +222,8 @@ impl PhysicalImbalance {
 ///
 /// In RON: `Coefficients((dr_xs_m: 5.6e-6, c_r_m_s2: -4.05e-8))` or
 /// `Physical((mass_kg: 0.2, mass_radius_m: 0.5, radial_stiffness_n_m: 2e9))`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ErrorMotionSpec {
     /// Coefficients of eq. 5 / 16 in `O2`.
     Coefficients(ErrorMotion),
@@ -245,7 +248,8 @@ impl ErrorMotionSpec {
 }
 
 /// Total drift and tilt of the spindle at one rate, in `O2` (the arguments of eq. 5).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SpindleOffsets {
     /// Δr_x = Δr_xd + Δr_xs, m.
     pub dr_x_m: f64,
@@ -324,7 +328,7 @@ mod tests {
         };
         assert_eq!(
             ErrorMotion::from_physical(&p),
-            Err(crate::Error::NotPositive {
+            Err(crate::KinematicsError::NotPositive {
                 field: "radial_stiffness_n_m",
                 value: 0.0
             })
@@ -335,7 +339,7 @@ mod tests {
         };
         assert!(matches!(
             ErrorMotionSpec::Coefficients(e).resolve(),
-            Err(crate::Error::NonFinite {
+            Err(crate::KinematicsError::NonFinite {
                 field: "c_phi_s2",
                 ..
             })

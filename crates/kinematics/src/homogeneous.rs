@@ -24,8 +24,12 @@ pub enum Axis {
 ///
 /// The elementary transforms are the paper's (right-handed, active):
 ///
-/// $$ \mathrm{Rot}(x,\alpha) = \begin{bmatrix}1&0&0&0\\0&\cos\alpha&-\sin\alpha&0\\0&\sin\alpha&\cos\alpha&0\\0&0&0&1\end{bmatrix},\quad
-///    \mathrm{Trans}(a,b,c) = \begin{bmatrix}1&0&0&a\\0&1&0&b\\0&0&1&c\\0&0&0&1\end{bmatrix} $$
+/// ```text
+///             ⎡1    0      0     0⎤                     ⎡1  0  0  a⎤
+/// Rot(x, α) = ⎢0  cos α  −sin α  0⎥,   Trans(a, b, c) = ⎢0  1  0  b⎥
+///             ⎢0  sin α  cos α   0⎥                     ⎢0  0  1  c⎥
+///             ⎣0    0      0     1⎦                     ⎣0  0  0  1⎦
+/// ```
 ///
 /// and cyclically for `y` and `z`. The frame-typed wrapper is [`crate::Transform`].
 ///

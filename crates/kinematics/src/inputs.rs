@@ -1,7 +1,5 @@
 //! Specific force and angular rate seen by the PIGA (eq. 12, 13).
 
-use serde::{Deserialize, Serialize};
-
 use crate::frames::{Ground, Piga, Transform};
 use crate::homogeneous::{cross, mat_mul, mat_vec, transpose};
 use crate::jet::Jet;
@@ -11,13 +9,15 @@ use crate::site::Site;
 ///
 /// With `T₃⁰ = [A D; 0 1]` (eq. 11) and `Ω_ie = [0, ω_ie cos L, ω_ie sin L]`, in g (eq. 12):
 ///
-/// $$ a_R = A^\top \ddot D / g,\qquad a_G = A^\top [0\;0\;1]^\top,\qquad
-///    a_C = 2A^\top(\Omega_{ie}\times\dot D)/g $$
+/// ```text
+/// a_R = Aᵀ·D̈/g,    a_G = Aᵀ·[0 0 1]ᵀ,    a_C = 2·Aᵀ·(Ω_ie × Ḋ)/g
+/// ```
 ///
 /// and the angular rate (eq. 13) is `Aᵀ(Ω_ie + w)`, where `[w]× = Ȧ Aᵀ` is the angular
 /// velocity of the PIGA relative to the ground; for the chain of eq. 5 with constant error
 /// motion `w = ω ẑ`, which is the paper's form. Index 0 is the input axis `X3` (IA).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PigaInputs {
     /// Centripetal part a_R (the whole kinematic acceleration `Aᵀ D̈ / g`), g.
     pub centripetal_g: [f64; 3],

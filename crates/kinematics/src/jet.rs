@@ -47,8 +47,10 @@ impl Scalar for f64 {
 /// Arithmetic follows the product and chain rules exactly, so a quantity computed from jets
 /// carries its exact first and second time derivatives (up to floating-point rounding):
 ///
-/// $$ (uv)^{\cdot} = \dot u v + u \dot v, \qquad (uv)^{\cdot\cdot} = \ddot u v + 2\dot u\dot v + u\ddot v $$
-/// $$ (\sin u)^{\cdot} = \cos u\,\dot u, \qquad (\sin u)^{\cdot\cdot} = \cos u\,\ddot u - \sin u\,\dot u^2 $$
+/// ```text
+/// (uv)˙ = u̇·v + u·v̇,            (uv)¨ = ü·v + 2·u̇·v̇ + u·v̈
+/// (sin u)˙ = cos u·u̇,          (sin u)¨ = cos u·ü − sin u·u̇²
+/// ```
 ///
 /// This is how `d²D/dt²` and `dD/dt` of eq. 12 are obtained: no finite differences and no
 /// small-angle expansion.

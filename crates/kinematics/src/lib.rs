@@ -39,6 +39,9 @@
 //! in metres; accelerations in units of the site's `g`. At `t = 0` the spindle frame `O2`
 //! coincides with the sleeve frame `O1` (apart from the error motion).
 //!
+//! Feature `serde`: `Serialize`/`Deserialize` on the parameter and result types ([`Site`],
+//! [`Centrifuge`], [`ErrorMotion`], [`ErrorMotionSpec`], …), off by default.
+//!
 //! # Example
 //!
 //! ```
@@ -47,7 +50,12 @@
 //!
 //! let centrifuge = Centrifuge {
 //!     radius_m: 2.5,
-//!     site: Site::new(45.0, EARTH_RATE_RAD_S, 9.8)?,
+//!     site: Site {
+//!         latitude_deg: 45.0,
+//!         earth_rate_rad_s: EARTH_RATE_RAD_S,
+//!         gravity_m_s2: 9.8,
+//!     }
+//!     .validated()?,
 //!     error_motion: ErrorMotion { c_r_m_s2: 1.6e-6, ..ErrorMotion::ZERO },
 //! };
 //! let w = 200.0_f64.to_radians();
@@ -64,7 +72,7 @@
 //! let coriolis = 2.0 * radius * w * EARTH_RATE_RAD_S * 45.0_f64.to_radians().sin() / 9.8;
 //! assert_relative_eq!(mean.coriolis_g[0], coriolis, max_relative = 1e-12);
 //! assert_relative_eq!(mean.a_x_g(), radius * w * w / 9.8 + coriolis, max_relative = 1e-12);
-//! # Ok::<(), kinematics::Error>(())
+//! # Ok::<(), kinematics::KinematicsError>(())
 //! ```
 //!
 //! # References
@@ -89,7 +97,7 @@ pub use chain::{
     Chain, FirstOrderInputs, INPUT_HIGHEST_HARMONIC, SleeveFrameMotion, piga_mount,
     spindle_transform,
 };
-pub use error::{Error, Result};
+pub use error::{KinematicsError, Result};
 pub use error_motion::{ErrorMotion, ErrorMotionSpec, PhysicalImbalance, SpindleOffsets};
 pub use frames::{Frame, Ground, Piga, Point, Sleeve, Spindle, Transform};
 pub use homogeneous::{Axis, Homogeneous};

@@ -2,7 +2,7 @@
 
 use core::f64::consts::TAU;
 
-use crate::error::{Error, Result};
+use crate::error::{KinematicsError, Result};
 
 /// The uniform N-point rule over one revolution, `t_j = j·T/N`, `T = 2π/|ω|`.
 ///
@@ -39,11 +39,11 @@ impl RevolutionQuadrature {
     /// A rule with `points` nodes, checked against the harmonic content to be averaged.
     ///
     /// # Errors
-    /// [`Error::TooFewQuadraturePoints`] unless `points > 2 * highest_harmonic`.
+    /// [`KinematicsError::TooFewQuadraturePoints`] unless `points > 2 * highest_harmonic`.
     pub const fn new(points: usize, highest_harmonic: usize) -> Result<Self> {
         let need = 2 * highest_harmonic + 1;
         if points < need {
-            return Err(Error::TooFewQuadraturePoints {
+            return Err(KinematicsError::TooFewQuadraturePoints {
                 points,
                 highest_harmonic,
                 need,
@@ -118,7 +118,7 @@ mod tests {
     fn too_few_points_is_a_typed_error() {
         assert_eq!(
             RevolutionQuadrature::new(4, 2),
-            Err(Error::TooFewQuadraturePoints {
+            Err(KinematicsError::TooFewQuadraturePoints {
                 points: 4,
                 highest_harmonic: 2,
                 need: 5

@@ -1,7 +1,5 @@
 //! The laboratory: latitude, Earth rate, gravity; and the centrifuge description.
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::{Result, finite, in_range, positive};
 use crate::error_motion::ErrorMotion;
 
@@ -15,8 +13,9 @@ pub const EARTH_RATE_RAD_S: f64 = 7.292_115e-5;
 /// `Ω_ie = [0, ω_ie cos L, ω_ie sin L]` (eq. 12) and the specific force that holds the
 /// PIGA up against gravity is `+1 g` along `Z0`. Accelerations in g are divided by
 /// `gravity_m_s2`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Site {
     /// Geodetic latitude L, degrees (−90…90).
     pub latitude_deg: f64,
@@ -27,25 +26,30 @@ pub struct Site {
 }
 
 impl Site {
-    /// A checked site.
+    /// The site itself once [`Site::validate`] has accepted it, so that a site can be built
+    /// and checked in one expression.
+    ///
+    /// ```
+    /// use kinematics::{KinematicsError, Site, EARTH_RATE_RAD_S};
+    /// let site = Site { latitude_deg: 45.0, earth_rate_rad_s: EARTH_RATE_RAD_S, gravity_m_s2: 9.8 };
+    /// assert_eq!(site.validated(), Ok(site));
+    /// let south_of_the_pole = Site { latitude_deg: -91.0, ..site };
+    /// assert!(matches!(south_of_the_pole.validated(), Err(KinematicsError::OutOfRange { .. })));
+    /// ```
     ///
     /// # Errors
-    /// [`crate::Error::OutOfRange`] for a latitude outside ±90°, [`crate::Error::NotPositive`]
-    /// for gravity, [`crate::Error::NonFinite`] for a non-finite Earth rate.
-    pub fn new(latitude_deg: f64, earth_rate_rad_s: f64, gravity_m_s2: f64) -> Result<Self> {
-        let s = Self {
-            latitude_deg,
-            earth_rate_rad_s,
-            gravity_m_s2,
-        };
-        s.validate()?;
-        Ok(s)
+    /// As [`Site::validate`].
+    pub fn validated(self) -> Result<Self> {
+        self.validate()?;
+        Ok(self)
     }
 
-    /// Checks the fields (see [`Site::new`]).
+    /// Checks the fields.
     ///
     /// # Errors
-    /// As [`Site::new`].
+    /// [`crate::KinematicsError::OutOfRange`] for a latitude outside ±90°,
+    /// [`crate::KinematicsError::NotPositive`] for gravity, [`crate::KinematicsError::NonFinite`]
+    /// for a non-finite Earth rate.
     pub fn validate(&self) -> Result<()> {
         in_range("latitude_deg", self.latitude_deg, -90.0, 90.0)?;
         finite("earth_rate_rad_s", self.earth_rate_rad_s)?;
@@ -74,15 +78,16 @@ impl Site {
 }
 
 /// A centrifuge at a site: static working radius, spindle error motion.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Centrifuge {
     /// Static working radius R (PIGA centre of mass to the mean spindle axis), m.
     pub radius_m: f64,
     /// Site of the centrifuge.
     pub site: Site,
     /// Spindle error motion coefficients.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub error_motion: ErrorMotion,
 }
 
@@ -90,7 +95,7 @@ impl Centrifuge {
     /// Checks every field.
     ///
     /// # Errors
-    /// [`crate::Error::NotPositive`] for the radius, otherwise as [`Site::validate`] and
+    /// [`crate::KinematicsError::NotPositive`] for the radius, otherwise as [`Site::validate`] and
     /// [`ErrorMotion::validate`].
     pub fn validate(&self) -> Result<()> {
         positive("radius_m", self.radius_m)?;

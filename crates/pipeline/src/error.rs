@@ -106,7 +106,7 @@ pub enum PipelineError {
         /// The field concerned.
         field: String,
         /// The chain's error.
-        source: kinematics::Error,
+        source: kinematics::KinematicsError,
     },
     /// The PIGA model was refused.
     #[error("{}: `{field}`", path.display())]
@@ -116,7 +116,7 @@ pub enum PipelineError {
         /// The field concerned.
         field: String,
         /// The PIGA model's error.
-        source: accel_model::Error,
+        source: accel_model::AccelModelError,
     },
     /// A probe recording named by the configuration could not be read or analyzed.
     #[error("{}: `{field}`", path.display())]

@@ -122,6 +122,14 @@ pub(crate) struct Mechanism {
 }
 
 impl Inputs {
+    /// The radius and g that turn a rate into the nominal input `a = R·ω²/g`.
+    pub(crate) const fn geometry(&self) -> identify::Geometry {
+        identify::Geometry {
+            radius_m: self.radius_m,
+            g_m_s2: self.g_m_s2,
+        }
+    }
+
     /// Validates a configuration read from `source` (named in every error; relative recording
     /// paths are resolved against its folder) and loads the recordings it names through
     /// `load`, in parallel.

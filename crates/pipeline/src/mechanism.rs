@@ -8,7 +8,7 @@
 //! as measured, whose a² coefficient is `k2 + Δk2`, and after removing `k1·C_r·ω⁴/g`, whose a²
 //! coefficient is k2 (eq. 17–19).
 
-use identify::{Compensation, K1Source};
+use identify::{Compensation, CrEstimate, Geometry, K1Source};
 use kinematics::{Centrifuge, ErrorMotion, Site};
 use simulate::{OutputNoise, piga_table};
 use units::{deg_s_to_rad_s, um_to_m};
@@ -27,19 +27,10 @@ pub(crate) struct MeasuredDrift {
     pub(crate) offset_um: f64,
 }
 
-/// The centrifuge's geometry as the mechanism uses it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Geometry {
-    /// Working radius `R`, m.
-    pub(crate) radius_m: f64,
-    /// Gravity, m/s².
-    pub(crate) g_m_s2: f64,
-}
-
 /// A failure inside one phase, located by the caller.
 #[derive(Debug)]
 pub(crate) enum PhaseFailure {
-    Model(accel_model::Error),
+    Model(accel_model::AccelModelError),
     Identify(identify::IdentifyError),
 }
 
@@ -73,20 +64,16 @@ pub(crate) fn run_phase(
     let rates_rad_s: Vec<f64> = rows.iter().map(|r| deg_s_to_rad_s(r.rate_deg_s)).collect();
     let outputs: Vec<f64> = rows.iter().map(|r| r.output_rad_s).collect();
     let compensation = Compensation {
-        c_r_m_s2: drift.c_r_m_s2,
-        c_r_sigma_m_s2: drift.c_r_sigma_m_s2.unwrap_or(0.0),
+        c_r: CrEstimate {
+            c_r_m_s2: drift.c_r_m_s2,
+            c_r_sigma_m_s2: drift.c_r_sigma_m_s2.unwrap_or(0.0),
+        },
         k1: K1Source::Given {
             k1_rad_s_g: piga.k1_rad_s_g,
         },
     };
-    let cal = identify::identify_compensated(
-        &rates_rad_s,
-        &outputs,
-        geometry.radius_m,
-        geometry.g_m_s2,
-        &compensation,
-    )
-    .map_err(PhaseFailure::Identify)?;
+    let cal = identify::identify_compensated(&rates_rad_s, &outputs, geometry, &compensation)
+        .map_err(PhaseFailure::Identify)?;
     let k2_true = piga.k2_rad_s_g2;
     let k2_uncompensated = cal.uncompensated.k2_apparent_rad_s_g2;
     Ok(MechanismPhase {

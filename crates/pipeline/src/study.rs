@@ -12,7 +12,7 @@ use crate::calibration::{self, CalibrationFailure, Nominal, Setting};
 use crate::config::{RadiusModelName, Weighting};
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Inputs, Phase, PhaseData, radius_model};
-use crate::mechanism::{self, Geometry, MeasuredDrift, PhaseFailure};
+use crate::mechanism::{self, MeasuredDrift, PhaseFailure};
 use crate::probe_analysis::{self, Progress};
 use crate::results::{
     MechanismPhase, MechanismResults, ModelFit, PhaseResults, PigaResult, PointResult, ProbeTrace,
@@ -55,10 +55,7 @@ pub fn run_with_progress(
         .as_ref()
         .map(|m| {
             let _span = tracing::info_span!("mechanism").entered();
-            let geometry = Geometry {
-                radius_m: inputs.radius_m,
-                g_m_s2: inputs.g_m_s2,
-            };
+            let geometry = inputs.geometry();
             let phase = |(n, &p): (usize, &usize)| {
                 let results: &PhaseResults = &phases[p];
                 let drift = MeasuredDrift {
@@ -208,18 +205,16 @@ fn exact_two_point(inputs: &Inputs, points: &[PointResult], section: &str) -> Re
     let [p1, p2] = [&points[0], &points[1]];
     let (w1, w2) = (p1.rate_rad_s, p2.rate_rad_s);
     let c_r_m_s2 = um_to_m(p2.radius_error_um - p1.radius_error_um) / (w2 * w2 - w1 * w1);
-    let k2 = identify::pseudo_second_order(
-        inputs.k1_rad_s_g,
+    let exact_c_r = identify::CrEstimate {
         c_r_m_s2,
-        0.0,
-        inputs.g_m_s2,
-        inputs.radius_m,
-    )
-    .map_err(|source| PipelineError::Identify {
-        path: inputs.source.clone(),
-        field: format!("{section}.points"),
-        source,
-    })?;
+        c_r_sigma_m_s2: 0.0,
+    };
+    let k2 = identify::pseudo_second_order(inputs.k1_rad_s_g, exact_c_r, inputs.geometry())
+        .map_err(|source| PipelineError::Identify {
+            path: inputs.source.clone(),
+            field: format!("{section}.points"),
+            source,
+        })?;
     Ok(ModelFit {
         model: RadiusModelName::TwoTerm,
         c_r_m_s2,
@@ -260,8 +255,12 @@ fn phase_points(
         residual_rms_um: None,
     };
     let harmonic_point = |i: usize, rate_deg_s: f64, dc1_um: f64, ds1_um: f64| {
-        let drift = FirstHarmonic::new(dc1_um, ds1_um)
-            .and_then(|h| inputs.lever.project(h))
+        let drift = inputs
+            .lever
+            .project(FirstHarmonic {
+                c1: dc1_um,
+                s1: ds1_um,
+            })
             .map_err(|source| PipelineError::Harmonics {
                 path: path.to_owned(),
                 field: format!("{section}.points[{i}]"),
@@ -359,14 +358,8 @@ fn fit_model(
     }
     .map_err(identify_error)?;
     let ssr_um2: f64 = fit.residuals_m.iter().map(|r| m_to_um(*r).powi(2)).sum();
-    let k2 = identify::pseudo_second_order(
-        inputs.k1_rad_s_g,
-        fit.c_r_m_s2,
-        fit.c_r_sigma_m_s2,
-        inputs.g_m_s2,
-        inputs.radius_m,
-    )
-    .map_err(identify_error)?;
+    let k2 = identify::pseudo_second_order(inputs.k1_rad_s_g, fit.c_r(), inputs.geometry())
+        .map_err(identify_error)?;
     Ok(ModelFit {
         model,
         c_r_m_s2: fit.c_r_m_s2,

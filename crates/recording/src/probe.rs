@@ -167,7 +167,7 @@ pub fn analyze_recording(
     let signal = recording.signal(rate_rad_s, start_angle_rad);
     let analysis = harmonics::analyze(&signal, config).map_err(located)?;
     // The encoder gives the angle, but the declared rate is the ω a study fits with.
-    harmonics::check_encoder_rate(&signal, rate_rad_s, harmonics::ENCODER_RATE_TOLERANCE)
+    harmonics::check_encoder_rate(&signal, harmonics::DeclaredRate::new(rate_rad_s))
         .map_err(located)?;
     Ok(analysis)
 }

@@ -125,7 +125,7 @@ pub enum SimulateError {
         /// The field concerned.
         field: String,
         /// The chain's error.
-        source: kinematics::Error,
+        source: kinematics::KinematicsError,
     },
     /// The PIGA model was refused.
     #[error("{}: `{field}`: {source}", path.display())]
@@ -135,7 +135,7 @@ pub enum SimulateError {
         /// The field concerned.
         field: String,
         /// The PIGA model's error.
-        source: accel_model::Error,
+        source: accel_model::AccelModelError,
     },
 }
 

@@ -4,7 +4,7 @@ use std::f64::consts::TAU;
 
 use accel_model::{PigaCoefficients, rate_points};
 use harmonics::{FirstHarmonic, LeverGeometry};
-use identify::pseudo_second_order;
+use identify::{CrEstimate, Geometry, pseudo_second_order};
 use kinematics::{
     Centrifuge, Chain, ErrorMotion, Point, Spindle, SpindleOffsets, spindle_transform,
 };
@@ -250,7 +250,15 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
 
     let c_r = error_motion.c_r_m_s2;
     // σ(C_r) = 0: the truth is exact
-    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, c_r, 0.0, g, radius)
+    let exact_c_r = CrEstimate {
+        c_r_m_s2: c_r,
+        c_r_sigma_m_s2: 0.0,
+    };
+    let geometry = Geometry {
+        radius_m: radius,
+        g_m_s2: g,
+    };
+    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, exact_c_r, geometry)
         .map_err(|source| SimulateError::Identify {
             path: loaded.path.clone(),
             field: "piga".to_owned(),
@@ -288,7 +296,7 @@ impl Lever {
         // Eq. 21–22 as `harmonics` reads them: a unit d_c1 stands for a radius error of
         // ±ratio at the PIGA plane, + along O1X1 and − against it.
         let sign = lever
-            .project(FirstHarmonic::new(1.0, 0.0)?)?
+            .project(FirstHarmonic { c1: 1.0, s1: 0.0 })?
             .radius_error
             .signum();
         Ok(Self { ratio, sign })
@@ -422,7 +430,7 @@ pub fn piga_table(
     piga: &PigaCoefficients,
     rates_deg_s: &[f64],
     noise: &OutputNoise,
-) -> std::result::Result<Vec<PigaRow>, accel_model::Error> {
+) -> std::result::Result<Vec<PigaRow>, accel_model::AccelModelError> {
     let rates_rad_s: Vec<f64> = rates_deg_s.iter().map(|d| d.to_radians()).collect();
     let points = rate_points(centrifuge, piga, &rates_rad_s)?;
     Ok(points

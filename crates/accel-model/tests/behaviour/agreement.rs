@@ -1,6 +1,6 @@
 //! Exact mean output against the closed form eq. 17.
 
-use accel_model::{PigaCoefficients, eq17, mean_output_rad_s, rate_point};
+use accel_model::{AxisInputs, PigaCoefficients, eq17, mean_output_rad_s, rate_point};
 use approx::assert_relative_eq;
 use kinematics::{Chain, ErrorMotion};
 
@@ -9,10 +9,10 @@ use crate::{PIGA, centrifuge, errors, paper_rates};
 /// Eq. 15 evaluated at the first-order mean inputs (eq. 14 + Earth-rate terms).
 fn model_at_first_order_inputs(chain: &Chain, piga: &PigaCoefficients) -> f64 {
     let fo = chain.first_order();
-    piga.output_rad_s(
-        fo.a_x_g + fo.coriolis_a_x_g,
-        fo.omega_i_rad_s + fo.earth_omega_i_rad_s,
-    )
+    piga.output_rad_s(AxisInputs {
+        a_x_g: fo.a_x_g + fo.coriolis_a_x_g,
+        omega_i_rad_s: fo.omega_i_rad_s + fo.earth_omega_i_rad_s,
+    })
 }
 
 /// A linear PIGA (k2 = k3 = 0): exact mean − (eq. 17 + Earth-rate terms) is quadratic in the

@@ -40,7 +40,13 @@ pub(crate) fn errors() -> ErrorMotion {
 pub(crate) fn centrifuge(error_motion: ErrorMotion) -> Centrifuge {
     Centrifuge {
         radius_m: 2.5,
-        site: Site::new(45.75, EARTH_RATE_RAD_S, 9.8).unwrap(),
+        site: Site {
+            latitude_deg: 45.75,
+            earth_rate_rad_s: EARTH_RATE_RAD_S,
+            gravity_m_s2: 9.8,
+        }
+        .validated()
+        .unwrap(),
         error_motion,
     }
 }

@@ -1,6 +1,6 @@
 //! The per-rate data a simulator needs, its errors and its serialisation.
 
-use accel_model::{Error, PigaCoefficients, RatePoint, rate_points};
+use accel_model::{AccelModelError, PigaCoefficients, RatePoint, rate_points};
 use approx::assert_relative_eq;
 use kinematics::Chain;
 use proptest::prelude::*;
@@ -25,10 +25,10 @@ fn rate_points_carry_exact_mean_inputs() {
 #[test]
 fn bad_inputs_are_typed_errors() {
     let c = centrifuge(errors());
-    assert_eq!(rate_points(&c, &PIGA, &[]), Err(Error::NoRates));
+    assert_eq!(rate_points(&c, &PIGA, &[]), Err(AccelModelError::NoRates));
     assert!(matches!(
         rate_points(&c, &PIGA, &[1.0, f64::NAN]),
-        Err(Error::NonFiniteRate { index: 1, .. })
+        Err(AccelModelError::NonFiniteRate { index: 1, .. })
     ));
     let bad = PigaCoefficients {
         k2_rad_s_g2: f64::INFINITY,
@@ -36,7 +36,7 @@ fn bad_inputs_are_typed_errors() {
     };
     assert!(matches!(
         rate_points(&c, &bad, &[1.0]),
-        Err(Error::NonFinite {
+        Err(AccelModelError::NonFinite {
             field: "k2_rad_s_g2",
             ..
         })
@@ -45,16 +45,18 @@ fn bad_inputs_are_typed_errors() {
     c0.radius_m = -1.0;
     assert!(matches!(
         rate_points(&c0, &PIGA, &[1.0]),
-        Err(Error::Kinematics(kinematics::Error::NotPositive {
-            field: "radius_m",
-            ..
-        }))
+        Err(AccelModelError::Kinematics(
+            kinematics::KinematicsError::NotPositive {
+                field: "radius_m",
+                ..
+            }
+        ))
     ));
     let chain = Chain::new(&c, 1.0).unwrap();
     assert_eq!(
         accel_model::mean_output_rad_s(&chain, &PIGA, 6),
-        Err(Error::Kinematics(
-            kinematics::Error::TooFewQuadraturePoints {
+        Err(AccelModelError::Kinematics(
+            kinematics::KinematicsError::TooFewQuadraturePoints {
                 points: 6,
                 highest_harmonic: 3,
                 need: 7
@@ -91,7 +93,7 @@ proptest! {
     ) {
         let piga = PigaCoefficients { k0_rad_s: k0, k1_rad_s_g: k1, k2_rad_s_g2: 0.0, k3_rad_s_g3: 0.0 };
         let p = rate_points(&centrifuge(errors().scaled(s)), &piga, &[w]).unwrap()[0];
-        let model = piga.output_rad_s(p.a_x_g, p.omega_i_rad_s);
+        let model = piga.output_rad_s(p.inputs());
         prop_assert!((p.output_rad_s - model).abs() < 1e-14 * (1.0 + model.abs()));
     }
 }

@@ -1,10 +1,17 @@
 //! Eq. 18 identification on synthetic eq. 17 outputs, with and without compensation (eq. 19).
 
 use approx::assert_relative_eq;
-use identify::{Compensation, IdentifyError, K1Source, identify_calibration, identify_compensated};
+use identify::{
+    Compensation, CrEstimate, Geometry, IdentifyError, K1Source, identify_calibration,
+    identify_compensated,
+};
 
 const R: f64 = 2.5;
 const G: f64 = 9.8;
+const GEOMETRY: Geometry = Geometry {
+    radius_m: R,
+    g_m_s2: G,
+};
 const K0: f64 = 2e-5;
 const K1: f64 = 0.56;
 const K2: f64 = 8e-6;
@@ -45,7 +52,7 @@ fn apparent_k2_carries_delta_k2_and_compensation_removes_it() {
         let w = rates();
         let y = outputs(&w, c_r);
         let delta_k2 = K1 * c_r * G / (R * R);
-        let cal = identify_calibration(&w, &y, R, G).unwrap();
+        let cal = identify_calibration(&w, &y, GEOMETRY).unwrap();
         assert!(
             (cal.k2_apparent_rad_s_g2 - K2 - delta_k2).abs() < 0.02 * delta_k2.abs(),
             "apparent k2 {} vs {}",
@@ -56,11 +63,13 @@ fn apparent_k2_carries_delta_k2_and_compensation_removes_it() {
         assert!(cal.fit.warnings.is_empty());
         for k1 in [K1Source::Fitted, K1Source::Given { k1_rad_s_g: K1 }] {
             let comp = Compensation {
-                c_r_m_s2: c_r,
-                c_r_sigma_m_s2: 0.01 * c_r.abs(),
+                c_r: CrEstimate {
+                    c_r_m_s2: c_r,
+                    c_r_sigma_m_s2: 0.01 * c_r.abs(),
+                },
                 k1,
             };
-            let cal = identify_compensated(&w, &y, R, G, &comp).unwrap();
+            let cal = identify_compensated(&w, &y, GEOMETRY, &comp).unwrap();
             assert!(
                 (cal.k2_rad_s_g2 - K2).abs() < 0.02 * delta_k2.abs(),
                 "compensated k2 {} vs {K2}",
@@ -77,7 +86,7 @@ fn five_distinct_rates_are_not_enough() {
     let w: Vec<f64> = rates().into_iter().take(5).cycle().take(10).collect();
     let y = outputs(&w, 0.0);
     assert_eq!(
-        identify_calibration(&w, &y, R, G),
+        identify_calibration(&w, &y, GEOMETRY),
         Err(IdentifyError::TooFewDistinctRates {
             distinct: 5,
             need: 6
@@ -92,7 +101,7 @@ fn numerically_coincident_rates_make_a_rank_deficient_design() {
     w.push(w[4] * (1.0 + 1e-13));
     w.extend(w.clone());
     let y = outputs(&w, 0.0);
-    match identify_calibration(&w, &y, R, G) {
+    match identify_calibration(&w, &y, GEOMETRY) {
         Err(IdentifyError::RankDeficient { rank, unknowns, .. }) => {
             assert_eq!(unknowns, 6);
             assert!(rank < 6, "rank {rank}");

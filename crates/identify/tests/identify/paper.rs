@@ -1,7 +1,7 @@
 //! The paper's post-balance radius-error fit (Table 1) and eq. 19, as checked in NOTES.md.
 
 use approx::assert_relative_eq;
-use identify::{RadiusModel, fit_radius_error, pseudo_second_order};
+use identify::{Geometry, RadiusModel, fit_radius_error, pseudo_second_order};
 
 const RATE_DEG_S: [f64; 6] = [10.0, 60.0, 80.1234, 110.1234, 160.1234, 200.1234];
 const RADIUS_ERROR_UM: [f64; 6] = [5.5980, 5.5453, 5.5102, 5.4251, 5.2531, 5.1079];
@@ -35,7 +35,11 @@ fn three_term_fit_matches_notes() {
 fn pseudo_second_order_matches_notes() {
     let (w, e) = inputs();
     let fit = fit_radius_error(&w, &e, RadiusModel::TwoTerm).unwrap();
-    let p = pseudo_second_order(0.56, fit.c_r_m_s2, fit.c_r_sigma_m_s2, 9.8, 2.5).unwrap();
+    let geometry = Geometry {
+        radius_m: 2.5,
+        g_m_s2: 9.8,
+    };
+    let p = pseudo_second_order(0.56, fit.c_r(), geometry).unwrap();
     assert_relative_eq!(p.delta_k2_rad_s_g2, -3.56e-8, max_relative = 2e-3);
     assert_relative_eq!(
         p.sigma_rad_s_g2,

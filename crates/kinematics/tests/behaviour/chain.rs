@@ -2,7 +2,7 @@
 
 use approx::assert_relative_eq;
 use kinematics::{
-    Chain, Error, ErrorMotion, INPUT_HIGHEST_HARMONIC, SleeveFrameMotion, SpindleOffsets,
+    Chain, ErrorMotion, INPUT_HIGHEST_HARMONIC, KinematicsError, SleeveFrameMotion, SpindleOffsets,
     piga_mount, spindle_transform,
 };
 
@@ -195,14 +195,14 @@ fn bad_inputs_are_typed_errors() {
     let c = centrifuge(errors());
     assert!(matches!(
         Chain::new(&c, f64::NAN),
-        Err(Error::NonFinite {
+        Err(KinematicsError::NonFinite {
             field: "rate_rad_s",
             ..
         })
     ));
     assert!(matches!(
         Chain::new(&c, f64::INFINITY),
-        Err(Error::NonFinite {
+        Err(KinematicsError::NonFinite {
             field: "rate_rad_s",
             ..
         })
@@ -211,7 +211,7 @@ fn bad_inputs_are_typed_errors() {
     bad.radius_m = 0.0;
     assert_eq!(
         Chain::new(&bad, 1.0),
-        Err(Error::NotPositive {
+        Err(KinematicsError::NotPositive {
             field: "radius_m",
             value: 0.0
         })
@@ -220,7 +220,7 @@ fn bad_inputs_are_typed_errors() {
     bad.site.latitude_deg = 91.0;
     assert!(matches!(
         Chain::new(&bad, 1.0),
-        Err(Error::OutOfRange {
+        Err(KinematicsError::OutOfRange {
             field: "latitude_deg",
             ..
         })
@@ -228,7 +228,7 @@ fn bad_inputs_are_typed_errors() {
     let chain = Chain::new(&c, 1.0).unwrap();
     assert_eq!(
         chain.mean_inputs(2),
-        Err(Error::TooFewQuadraturePoints {
+        Err(KinematicsError::TooFewQuadraturePoints {
             points: 2,
             highest_harmonic: 1,
             need: 3

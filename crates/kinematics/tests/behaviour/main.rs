@@ -22,7 +22,13 @@ pub(crate) fn errors() -> ErrorMotion {
 }
 
 pub(crate) fn site() -> Site {
-    Site::new(45.75, kinematics::EARTH_RATE_RAD_S, 9.8).unwrap()
+    Site {
+        latitude_deg: 45.75,
+        earth_rate_rad_s: kinematics::EARTH_RATE_RAD_S,
+        gravity_m_s2: 9.8,
+    }
+    .validated()
+    .unwrap()
 }
 
 pub(crate) fn centrifuge(error_motion: ErrorMotion) -> Centrifuge {

@@ -46,7 +46,7 @@ fn spec_in_either_form() {
     });
     assert!(matches!(
         bad.resolve(),
-        Err(kinematics::Error::NotPositive {
+        Err(kinematics::KinematicsError::NotPositive {
             field: "angular_stiffness_n_m_rad",
             ..
         })

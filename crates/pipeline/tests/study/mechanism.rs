@@ -9,8 +9,10 @@
 
 use approx::assert_relative_eq;
 use harmonics::{FitConfig, ProbeSignal, SpindleAngle, analyze};
-use identify::{Compensation, K1Source, RadiusModel, fit_radius_error, identify_compensated};
-use simulate::{LoadedScenario, Simulation, simulate};
+use identify::{
+    Compensation, Geometry, K1Source, RadiusModel, fit_radius_error, identify_compensated,
+};
+use simulate::{LoadedScenario, Scenario, Simulation, simulate};
 
 use crate::scenarios::{fit_order, modified, post_balance, pre_balance};
 
@@ -79,6 +81,14 @@ fn probe_analysis(loaded: &LoadedScenario, sim: &Simulation) -> identify::Radius
     fit_radius_error(&rates_rad_s, &radius_error_m, RadiusModel::TwoTerm).unwrap()
 }
 
+/// The scenario's radius and g.
+fn geometry(s: &Scenario) -> Geometry {
+    Geometry {
+        radius_m: s.centrifuge.radius_m,
+        g_m_s2: s.centrifuge.site.gravity_m_s2,
+    }
+}
+
 /// The whole loop on one scenario.
 fn run_loop(loaded: &LoadedScenario) -> Loop {
     let s = &loaded.scenario;
@@ -89,18 +99,10 @@ fn run_loop(loaded: &LoadedScenario) -> Loop {
     let rates_rad_s: Vec<f64> = sim.piga.iter().map(|r| r.rate_deg_s.to_radians()).collect();
     let outputs: Vec<f64> = sim.piga.iter().map(|r| r.output_rad_s).collect();
     let compensation = Compensation {
-        c_r_m_s2: radius.c_r_m_s2,
-        c_r_sigma_m_s2: radius.c_r_sigma_m_s2,
+        c_r: radius.c_r(),
         k1: K1Source::Fitted,
     };
-    let cal = identify_compensated(
-        &rates_rad_s,
-        &outputs,
-        s.centrifuge.radius_m,
-        s.centrifuge.site.gravity_m_s2,
-        &compensation,
-    )
-    .unwrap();
+    let cal = identify_compensated(&rates_rad_s, &outputs, geometry(s), &compensation).unwrap();
     Loop {
         c_r_true: sim.truth.c_r_m_s2,
         c_r_hat: radius.c_r_m_s2,
@@ -174,13 +176,7 @@ fn without_c_r_there_is_no_pseudo_second_order_term() {
     let rates: Vec<f64> = sim.piga.iter().map(|r| r.rate_deg_s.to_radians()).collect();
     let out: Vec<f64> = sim.piga.iter().map(|r| r.output_rad_s).collect();
     let s = &balanced.scenario;
-    let cal = identify::identify_calibration(
-        &rates,
-        &out,
-        s.centrifuge.radius_m,
-        s.centrifuge.site.gravity_m_s2,
-    )
-    .unwrap();
+    let cal = identify::identify_calibration(&rates, &out, geometry(s)).unwrap();
     let leak = cal.k2_apparent_rad_s_g2 - s.piga.coefficients.k2_rad_s_g2;
     assert!(
         leak.abs() <= 1e-3 * delta_k2_post.abs(),

@@ -134,7 +134,7 @@ fn non_finite_numbers_in_the_file() {
         Err(SimulateError::Kinematics {
             path,
             field,
-            source: kinematics::Error::NonFinite { field: inner, .. },
+            source: kinematics::KinematicsError::NonFinite { field: inner, .. },
         }) => {
             assert_eq!(path, PathBuf::from(FILE));
             assert_eq!(field, "error_motion");
@@ -317,7 +317,7 @@ fn bad_physical_imbalance_and_lever() {
     match Scenario::parse(&text, Path::new(FILE)) {
         Err(SimulateError::Kinematics {
             field,
-            source: kinematics::Error::NotPositive { field: inner, .. },
+            source: kinematics::KinematicsError::NotPositive { field: inner, .. },
             ..
         }) => {
             assert_eq!(field, "error_motion");
