@@ -128,8 +128,10 @@ impl CalibrationModel {
 /// The compensation of a phase's C_r, for `identify`.
 pub(crate) fn compensation(c_r_m_s2: f64, c_r_sigma_m_s2: f64, k1: K1Choice) -> Compensation {
     Compensation {
-        c_r_m_s2,
-        c_r_sigma_m_s2,
+        c_r: identify::CrEstimate {
+            c_r_m_s2,
+            c_r_sigma_m_s2,
+        },
         k1: match k1 {
             K1Choice::Fitted => K1Source::Fitted,
             K1Choice::Given { k1_rad_s_g, .. } => K1Source::Given { k1_rad_s_g },
@@ -142,7 +144,8 @@ pub(crate) fn compensation(c_r_m_s2: f64, c_r_sigma_m_s2: f64, k1: K1Choice) -> 
 /// (`VIF_j = [(XᵀX)⁻¹]_jj · Σᵢ(x_ij − x̄_j)²`, valid with an intercept column).
 pub(crate) fn variance_inflation(cal: &CompensatedCalibration, rates_rad_s: &[f64]) -> [f64; 5] {
     let fit = &cal.uncompensated.fit;
-    let k = cal.uncompensated.radius_m / cal.uncompensated.g_m_s2;
+    let geometry = cal.uncompensated.geometry;
+    let k = geometry.radius_m / geometry.g_m_s2;
     let columns: [Box<dyn Fn(f64) -> f64>; 5] = [
         Box::new(|w| w),
         Box::new(|w| w * w),
@@ -227,8 +230,10 @@ pub(crate) fn evaluate(
     let cal = identify::identify_compensated(
         &rates_rad_s,
         &inputs.outputs_rad_s,
-        n.radius_m,
-        n.g_m_s2,
+        identify::Geometry {
+            radius_m: n.radius_m,
+            g_m_s2: n.g_m_s2,
+        },
         &compensation(n.c_r_m_s2, sigma_c_r, inputs.k1),
     )
     .map_err(CalibrationFailure::Identify)?;
@@ -694,8 +699,12 @@ mod tests {
                 .iter()
                 .map(|r| units::deg_s_to_rad_s(r * s))
                 .collect();
+            let geometry = identify::Geometry {
+                radius_m: 2.5,
+                g_m_s2: 9.8,
+            };
             let direct =
-                identify::identify_calibration(&rates, &inputs.outputs_rad_s, 2.5, 9.8).unwrap();
+                identify::identify_calibration(&rates, &inputs.outputs_rad_s, geometry).unwrap();
             let se = &direct.fit.std_errors;
             assert!((y[4] - direct.k2_apparent_rad_s_g2).abs() < 1e-4 * se[4]);
             assert!((y[0] - direct.bias_rad_s).abs() < 1e-4 * se[0]);
