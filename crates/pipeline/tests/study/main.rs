@@ -4,6 +4,7 @@
 
 mod bad_config;
 mod baseline;
+mod calibration;
 mod in_memory;
 mod mechanism;
 mod paper;
