@@ -71,6 +71,7 @@ const K2_TRUE: f64 = 5.0e-7;
 /// Over 240 simulated campaigns the reported 95 % interval of the compensated k2 holds the
 /// true k2 in 92–98 % of them, and the reported u(k2) matches the spread of k2 within 20 %.
 #[test]
+#[allow(clippy::print_stderr)] // the figures, shown with --nocapture
 fn the_k2_interval_covers_the_truth_over_many_campaigns() {
     let text = study_text("fixed(2000)");
     let outcomes: Vec<(f64, f64, f64, f64)> = (0..240u64)
