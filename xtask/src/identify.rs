@@ -16,12 +16,19 @@ pub(crate) struct Identify {
     /// CSV file with header `rate_deg_s,output_rad_s`: one row per rate point (mean output over
     /// whole revolutions, rad/s); `#` comment lines and blank lines are skipped.
     file: PathBuf,
-    /// Working radius R (m), used to form a = R·ω²/g.
-    #[arg(long)]
-    radius_m: f64,
+    /// Working radius R (m), used to form a = R·ω²/g (required unless --from).
+    #[arg(long, required_unless_present = "from")]
+    radius_m: Option<f64>,
     /// Gravity g (m/s²). The default is the paper's value.
-    #[arg(long, default_value_t = 9.8)]
+    #[arg(long, default_value_t = 9.8, conflicts_with = "from")]
     g: f64,
+    /// A study's results.json: R, g and k1 from its inputs, C_r and σ(C_r) from the phase
+    /// named by --phase (instead of --radius-m, --g, --k1, --c-r-m-s2, --c-r-sigma-m-s2).
+    #[arg(long, requires = "phase", conflicts_with_all = ["radius_m", "k1", "c_r_m_s2", "c_r_sigma_m_s2"])]
+    from: Option<PathBuf>,
+    /// The phase of --from whose C_r compensates.
+    #[arg(long, requires = "from")]
+    phase: Option<String>,
     /// k1 (rad/(s·g)) for the compensation. Without it, k1 is implied by the fitted ω²
     /// coefficient (c₂·g/R).
     #[arg(long, requires = "c_r_m_s2")]
@@ -44,28 +51,44 @@ impl Identify {
         let rate_rad_s: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
         let output_rad_s = &table.output_rad_s;
         let context = || format!("identifying {}", self.file.display());
-        let geometry = Geometry {
-            radius_m: self.radius_m,
-            g_m_s2: self.g,
+        let from = match (&self.from, &self.phase) {
+            (Some(path), Some(phase)) => Some(FromStudy::read(path, phase)?),
+            _ => None,
         };
-        let result = match (self.c_r_m_s2, self.c_r_sigma_m_s2) {
-            (Some(c_r_m_s2), Some(c_r_sigma_m_s2)) => {
-                let compensation = Compensation {
-                    c_r: CrEstimate {
+        let geometry = match &from {
+            Some(f) => f.geometry,
+            None => Geometry {
+                radius_m: self
+                    .radius_m
+                    .context("--radius-m is required without --from")?,
+                g_m_s2: self.g,
+            },
+        };
+        let (c_r, k1) = match &from {
+            Some(f) => (Some(f.c_r), Some(f.k1_rad_s_g)),
+            None => (
+                self.c_r_m_s2
+                    .zip(self.c_r_sigma_m_s2)
+                    .map(|(c_r_m_s2, c_r_sigma_m_s2)| CrEstimate {
                         c_r_m_s2,
                         c_r_sigma_m_s2,
-                    },
-                    k1: self
-                        .k1
-                        .map_or(K1Source::Fitted, |k1_rad_s_g| K1Source::Given {
-                            k1_rad_s_g,
-                        }),
+                    }),
+                self.k1,
+            ),
+        };
+        let result = match c_r {
+            Some(c_r) => {
+                let compensation = Compensation {
+                    c_r,
+                    k1: k1.map_or(K1Source::Fitted, |k1_rad_s_g| K1Source::Given {
+                        k1_rad_s_g,
+                    }),
                 };
                 let c = identify_compensated(&rate_rad_s, output_rad_s, geometry, &compensation)
                     .with_context(context)?;
                 (c.uncompensated.clone(), Some(c))
             }
-            _ => (
+            None => (
                 identify_calibration(&rate_rad_s, output_rad_s, geometry).with_context(context)?,
                 None,
             ),
@@ -241,8 +264,10 @@ mod tests {
         let f = TempFile::new("bad-number", "rate_deg_s,output_rad_s\n10,0.5\n20,abc\n");
         let args = Identify {
             file: f.0.clone(),
-            radius_m: 2.5,
+            radius_m: Some(2.5),
             g: 9.8,
+            from: None,
+            phase: None,
             k1: None,
             c_r_m_s2: None,
             c_r_sigma_m_s2: None,
@@ -266,8 +291,10 @@ mod tests {
         let f = TempFile::new("synthetic", &text);
         let args = Identify {
             file: f.0.clone(),
-            radius_m: r,
+            radius_m: Some(r),
             g,
+            from: None,
+            phase: None,
             k1: None,
             c_r_m_s2: Some(c_r),
             c_r_sigma_m_s2: Some(1e-8),
@@ -293,5 +320,65 @@ mod tests {
         assert_eq!(json["distinct_rates"], 8);
         assert!(json["compensated"]["k2_rad_s_g2"].as_f64().is_some());
         args.run().unwrap();
+    }
+}
+
+/// What `--from results.json --phase NAME` takes from a study's results.
+#[derive(Debug)]
+struct FromStudy {
+    geometry: Geometry,
+    k1_rad_s_g: f64,
+    c_r: CrEstimate,
+}
+
+impl FromStudy {
+    fn read(path: &Path, phase: &str) -> anyhow::Result<Self> {
+        let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES * 4)?;
+        let json: serde_json::Value = serde_json::from_str(&text)
+            .with_context(|| format!("{}: not a results.json", path.display()))?;
+        let number = |value: &serde_json::Value, key: &str| -> anyhow::Result<f64> {
+            value
+                .get(key)
+                .and_then(serde_json::Value::as_f64)
+                .filter(|v| v.is_finite())
+                .with_context(|| format!("{}: no finite number at `{key}`", path.display()))
+        };
+        let inputs = json
+            .get("inputs")
+            .with_context(|| format!("{}: no `inputs` section", path.display()))?;
+        let phases = json
+            .get("phases")
+            .and_then(serde_json::Value::as_array)
+            .with_context(|| format!("{}: no `phases` list", path.display()))?;
+        let names: Vec<&str> = phases
+            .iter()
+            .filter_map(|p| p.get("name").and_then(serde_json::Value::as_str))
+            .collect();
+        let found = phases
+            .iter()
+            .find(|p| p.get("name").and_then(serde_json::Value::as_str) == Some(phase))
+            .with_context(|| {
+                format!(
+                    "{}: no phase named `{phase}` (the study's phases: {})",
+                    path.display(),
+                    names.join(", ")
+                )
+            })?;
+        // A phase with no σ(C_r) (an exact two-point fit) compensates with C_r taken as exact.
+        let sigma = found
+            .get("c_r_sigma_m_s2")
+            .and_then(serde_json::Value::as_f64)
+            .unwrap_or(0.0);
+        Ok(Self {
+            geometry: Geometry {
+                radius_m: number(inputs, "radius_m")?,
+                g_m_s2: number(inputs, "g_m_s2")?,
+            },
+            k1_rad_s_g: number(inputs, "k1_rad_s_g")?,
+            c_r: CrEstimate {
+                c_r_m_s2: number(found, "c_r_m_s2")?,
+                c_r_sigma_m_s2: sigma,
+            },
+        })
     }
 }

@@ -133,3 +133,56 @@ fn a_bad_study_exits_non_zero_naming_the_file_and_line() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/study.ron"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn identify_takes_r_g_k1_and_c_r_from_a_studys_results() {
+    let dir = temp_dir("identify-from");
+    ok(&xtask(&[
+        "study",
+        "--config",
+        root()
+            .join("fixtures/studies/campaign.ron")
+            .to_str()
+            .unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]));
+    let results: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
+    let phase = &results["phases"][0];
+    let json = ok(&xtask(&[
+        "identify",
+        root().join("fixtures/campaign/piga.csv").to_str().unwrap(),
+        "--from",
+        dir.join("results.json").to_str().unwrap(),
+        "--phase",
+        "spindle",
+        "--json",
+    ]));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let c = &v["compensated"];
+    // serde_json's default float parsing may differ from the written value by an ulp.
+    let same = |a: &serde_json::Value, b: &serde_json::Value| {
+        let (a, b) = (a.as_f64().unwrap(), b.as_f64().unwrap());
+        assert!((a - b).abs() <= 4.0 * f64::EPSILON * b.abs(), "{a} vs {b}");
+    };
+    same(&c["c_r_m_s2"], &phase["c_r_m_s2"]);
+    same(&c["c_r_sigma_m_s2"], &phase["c_r_sigma_m_s2"]);
+    same(&c["k1_used_rad_s_g"], &results["inputs"]["k1_rad_s_g"]);
+    // An unknown phase is named, with the study's phases.
+    let out = xtask(&[
+        "identify",
+        root().join("fixtures/campaign/piga.csv").to_str().unwrap(),
+        "--from",
+        dir.join("results.json").to_str().unwrap(),
+        "--phase",
+        "trial",
+    ]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("no phase named `trial` (the study's phases: spindle)"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
