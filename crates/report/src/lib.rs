@@ -22,5 +22,5 @@ pub use error::{ReportError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
 pub use markdown::render;
 pub use output::{WrittenFiles, results_json, results_json_with_provenance, write_outputs};
-pub use plot::{probe_signals_svg, radius_error_svg};
+pub use plot::{calibration_residuals_svg, probe_signals_svg, radius_error_svg};
 pub use provenance::{FileRecord, Provenance, TOOL};

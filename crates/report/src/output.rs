@@ -18,6 +18,7 @@ const STUDY_FILES: &[&str] = &[
     "report.md",
     "radius_error.svg",
     "probe_signals_*.svg",
+    "calibration_residuals.svg",
 ];
 
 /// The files a study wrote.
@@ -30,6 +31,8 @@ pub struct WrittenFiles {
     /// `radius_error.svg` (the paper's Fig. 5): the last phase whose fit has residual degrees
     /// of freedom.
     pub radius_error_svg: PathBuf,
+    /// `calibration_residuals.svg`, when the study has a calibration section.
+    pub calibration_residuals_svg: Option<PathBuf>,
     /// `probe_signals_<phase>.svg` (the paper's Fig. 4), for each phase given as recordings.
     pub probe_signals_svg: Vec<PathBuf>,
 }
@@ -119,6 +122,14 @@ pub fn write_outputs(
         .iter()
         .map(|(name, svg)| set.write(name, svg.as_bytes()))
         .collect::<edge_io::Result<Vec<_>>>()?;
+    let calibration_residuals_svg = match &results.calibration {
+        Some(c) => {
+            let title = format!("{}: calibration residuals (eq. 18)", results.study);
+            let svg = crate::plot::calibration_residuals_svg(c, &title)?;
+            Some(set.write("calibration_residuals.svg", svg.as_bytes())?)
+        }
+        None => None,
+    };
     let radius_error_svg = set.write("radius_error.svg", radius_figure.as_bytes())?;
     set.commit()?;
     Ok(WrittenFiles {
@@ -126,5 +137,6 @@ pub fn write_outputs(
         report_md,
         radius_error_svg,
         probe_signals_svg,
+        calibration_residuals_svg,
     })
 }

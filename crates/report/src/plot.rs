@@ -160,3 +160,78 @@ pub fn probe_signals_svg(phase: &PhaseResults, title: &str) -> Result<Option<Str
     }
     Ok(Some(svg))
 }
+
+/// The calibration's residuals (output − fitted eq. 18) against rate, with error bars of ± the
+/// fit's residual standard deviation (the noise every point was weighted with).
+pub fn calibration_residuals_svg(
+    calibration: &pipeline::CalibrationResults,
+    title: &str,
+) -> Result<String> {
+    let err = |message: String| ReportError::Plot {
+        what: "calibration_residuals.svg",
+        message,
+    };
+    let s = calibration.residual_sd_rad_s;
+    let rows = &calibration.residuals;
+    let x_max = rows.iter().map(|r| r.rate_deg_s).fold(0.0_f64, f64::max) * 1.05;
+    let y_max = rows
+        .iter()
+        .map(|r| r.residual_rad_s.abs() + s)
+        .fold(0.0_f64, f64::max)
+        .max(f64::MIN_POSITIVE)
+        * 1.15;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(80)
+            .build_cartesian_2d(0.0..x_max, -y_max..y_max)
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .x_desc("rate (deg/s)")
+            .y_desc("residual (rad/s)")
+            .y_label_formatter(&|v| {
+                if v.abs() < y_max * 1e-9 {
+                    "0".to_owned()
+                } else {
+                    format!("{v:.1e}")
+                }
+            })
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .draw_series(rows.iter().map(|r| {
+                ErrorBar::new_vertical(
+                    r.rate_deg_s,
+                    r.residual_rad_s - s,
+                    r.residual_rad_s,
+                    r.residual_rad_s + s,
+                    BLUE.filled(),
+                    8,
+                )
+            }))
+            .map_err(|e| err(e.to_string()))?
+            .label(format!("residual ± residual SD ({s:.2e} rad/s)"))
+            .legend(|(x, y)| Circle::new((x + 10, y), 4, BLUE.filled()));
+        chart
+            .draw_series(LineSeries::new(
+                [(0.0, 0.0), (x_max, 0.0)],
+                BLACK.stroke_width(1),
+            ))
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(svg)
+}
