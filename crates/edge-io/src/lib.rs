@@ -9,6 +9,9 @@
 //!   figures; a simulation's recordings) into a staging directory beside the target and swaps
 //!   it into place, so a run leaves either the complete new set or the previous one untouched.
 //!
+//! - [`ron_options`]: the one RON dialect of the workspace's configuration files (studies,
+//!   scenarios, expected values, plans): optional sections are written without `Some(...)`.
+//!
 //! Errors are one typed enum, [`EdgeIoError`], whose every variant names the file or directory.
 
 mod error;
@@ -20,3 +23,9 @@ mod text;
 pub use error::{EdgeIoError, Result};
 pub use output::OutputSet;
 pub use text::{CONFIG_MAX_BYTES, read_text_capped};
+
+/// The RON dialect of every configuration file in the workspace: RON with implicit `Some`
+/// (an optional section is written as its value, not `Some(value)`).
+pub fn ron_options() -> ron::Options {
+    ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+}

@@ -363,14 +363,14 @@ impl StudyConfig {
     /// Parses RON text into the file's data-transfer types, unvalidated; `path` only names the
     /// source in errors. Optional sections are written without `Some(...)`.
     pub fn from_ron(text: &str, path: &Path) -> Result<Self> {
-        let options = ron::Options::default()
-            .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-        options.from_str(text).map_err(|e| PipelineError::Parse {
-            path: path.to_owned(),
-            line: e.span.start.line,
-            column: e.span.start.col,
-            message: e.code.to_string(),
-        })
+        edge_io::ron_options()
+            .from_str(text)
+            .map_err(|e| PipelineError::Parse {
+                path: path.to_owned(),
+                line: e.span.start.line,
+                column: e.span.start.col,
+                message: e.code.to_string(),
+            })
     }
 }
 

@@ -159,12 +159,15 @@ impl Scenario {
     /// [`SimulateError::Parse`] for malformed RON, an unknown or a missing field; otherwise as
     /// [`Scenario::check`].
     pub fn parse(text: &str, path: &Path) -> Result<LoadedScenario> {
-        let scenario: Self = ron::from_str(text).map_err(|e| SimulateError::Parse {
-            path: path.to_owned(),
-            line: e.span.start.line,
-            column: e.span.start.col,
-            message: e.code.to_string(),
-        })?;
+        let scenario: Self =
+            edge_io::ron_options()
+                .from_str(text)
+                .map_err(|e| SimulateError::Parse {
+                    path: path.to_owned(),
+                    line: e.span.start.line,
+                    column: e.span.start.col,
+                    message: e.code.to_string(),
+                })?;
         scenario.check(path)
     }
 
