@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use harmonics::HarmonicsError;
 
+use crate::binary::{BinaryDefect, BinaryFormat, BinaryPart, Unsupported};
+
 /// Errors of reading a table or probe recording, and of the probe-recording writer's
 /// input. A reading error names the file and, where it applies, the 1-based line; an error
 /// with an underlying cause returns it from [`source`](std::error::Error::source) rather
@@ -180,6 +182,132 @@ pub enum RecordingError {
         /// The check's or the analysis's error.
         source: HarmonicsError,
     },
+    /// A binary file (TDMS or MAT) ends inside a structure.
+    #[error("{}: {format} file ends at byte {offset}, inside {what} that needs {needed} bytes", path.display())]
+    Truncated {
+        /// The file.
+        path: PathBuf,
+        /// The format.
+        format: BinaryFormat,
+        /// Byte offset where the structure starts.
+        offset: u64,
+        /// What was being read.
+        what: BinaryPart,
+        /// Bytes it needs.
+        needed: u64,
+    },
+    /// A binary file does not start with its format's signature.
+    #[error("{}: not a {format} file (no {format} signature at byte {offset})", path.display())]
+    BadMagic {
+        /// The file.
+        path: PathBuf,
+        /// The format expected.
+        format: BinaryFormat,
+        /// Byte offset of the signature looked for.
+        offset: u64,
+    },
+    /// A MAT file of version 7.3, which is HDF5.
+    #[error(
+        "{}: MAT-file version 7.3 (HDF5) is not read; save with -v7 or older          (`save(file, ..., '-v7')`, or scipy.io.savemat)",
+        path.display()
+    )]
+    MatV73 {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A structure of a binary file is invalid.
+    #[error("{}: {format} byte {offset}: {defect}", path.display())]
+    Malformed {
+        /// The file.
+        path: PathBuf,
+        /// The format.
+        format: BinaryFormat,
+        /// Byte offset of the structure (in the decompressed element for a compressed MAT
+        /// variable: see [`BinaryDefect::InCompressed`]).
+        offset: u64,
+        /// What is wrong.
+        defect: BinaryDefect,
+    },
+    /// A channel or variable to read has a data type or shape the reader does not convert.
+    #[error("{}: {format} `{channel}`: unsupported {what}", path.display())]
+    Unsupported {
+        /// The file.
+        path: PathBuf,
+        /// The format.
+        format: BinaryFormat,
+        /// The channel or variable.
+        channel: String,
+        /// What is not supported.
+        what: Unsupported,
+    },
+    /// A channel or variable to read is not in the file.
+    #[error("{}: no {format} {} `{channel}` (available: {})", path.display(), format.item(), available.join(", "))]
+    MissingChannel {
+        /// The file.
+        path: PathBuf,
+        /// The format.
+        format: BinaryFormat,
+        /// The channel or variable looked for.
+        channel: String,
+        /// The channels or variables the file has.
+        available: Vec<String>,
+    },
+    /// Two channels to read have different lengths.
+    #[error("{}: {format} `{channel}` has {found} samples, `{reference}` {expected}", path.display())]
+    ChannelLength {
+        /// The file.
+        path: PathBuf,
+        /// The format.
+        format: BinaryFormat,
+        /// The channel whose length differs.
+        channel: String,
+        /// The channel it is compared with.
+        reference: String,
+        /// Samples of `reference`.
+        expected: usize,
+        /// Samples of `channel`.
+        found: usize,
+    },
+    /// A sample of a binary channel is NaN or infinite.
+    #[error("{}: {format} `{channel}` sample {index} is not finite ({value})", path.display())]
+    NonFiniteSample {
+        /// The file.
+        path: PathBuf,
+        /// The format.
+        format: BinaryFormat,
+        /// The channel or variable.
+        channel: String,
+        /// The 0-based sample index.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// No time channel was given, and the gap channel has no `wf_increment` property to
+    /// give the sample times (a MAT file always needs a time variable).
+    #[error(
+        "{}: `{channel}`: no time channel given, and no `wf_increment` property (TDMS) to give \
+         the sample times",
+        path.display()
+    )]
+    NoTimeBase {
+        /// The file.
+        path: PathBuf,
+        /// The gap channel.
+        channel: String,
+    },
+    /// The time axis of a binary recording fails a check (order, gaps); the source names
+    /// the sample index.
+    #[error("{}: {format} `{channel}`: bad time axis", path.display())]
+    TimeAxis {
+        /// The file.
+        path: PathBuf,
+        /// The format.
+        format: BinaryFormat,
+        /// The time channel (or the gap channel whose `wf_increment` gave the times).
+        channel: String,
+        /// The check's error, naming the sample index.
+        source: HarmonicsError,
+    },
     /// Columns given to the probe-recording writer differ in length.
     #[error(
         "probe columns to write differ in length: {time} times, {gap} gaps{}",
@@ -234,7 +362,17 @@ impl RecordingError {
             | Self::InvalidGapLimit { .. }
             | Self::Empty { .. }
             | Self::ColumnLengths { .. }
-            | Self::NonFiniteValue { .. } => {}
+            | Self::NonFiniteValue { .. }
+            | Self::Truncated { .. }
+            | Self::BadMagic { .. }
+            | Self::MatV73 { .. }
+            | Self::Malformed { .. }
+            | Self::Unsupported { .. }
+            | Self::MissingChannel { .. }
+            | Self::ChannelLength { .. }
+            | Self::NonFiniteSample { .. }
+            | Self::NoTimeBase { .. }
+            | Self::TimeAxis { .. } => {}
         }
         self
     }

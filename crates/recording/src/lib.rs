@@ -57,10 +57,12 @@
 //! depend on `plotters`, `rand`, `ron`, `faer`, `nalgebra`, `kinematics` or `identify`
 //! (`ron` only as a dev-dependency); `.ci/layering` checks this.
 
+mod binary;
 mod error;
 mod format;
 mod line_table;
 mod lines;
+mod mat;
 mod number;
 mod piga;
 mod probe;
@@ -69,10 +71,15 @@ mod stream;
 #[cfg(feature = "synthetic")]
 mod synth;
 mod table;
+mod tdms;
 mod write;
 
+pub use binary::{
+    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, MatVariables, Unsupported,
+};
 pub use error::{RecordingError, Result};
 pub use format::{AngleUnit, LengthUnit, RecordingFormat};
+pub use mat::{load_mat, parse_mat};
 pub use piga::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
 };
@@ -80,4 +87,5 @@ pub use probe::{Recording, analyze_recording, load_recording, parse_recording};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 pub use table::{MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, parse_table};
+pub use tdms::{load_tdms, parse_tdms};
 pub use write::{ProbeColumns, WriteOptions, write_probe_csv};

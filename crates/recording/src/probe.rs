@@ -40,9 +40,29 @@ impl Recording {
 
     /// The 1-based line of sample `index` (0-based) in the file, from the row → line table
     /// kept when the file was read (the file is not read again). An index past the last
-    /// sample is counted on from it.
+    /// sample is counted on from it. 0 for a recording read from a binary file (TDMS,
+    /// MAT), whose samples have no line: its errors name the channel and sample index.
     pub fn line_of_sample(&self, index: usize) -> usize {
         self.lines.line_of(index)
+    }
+
+    /// A recording of checked samples read from a binary file: no row → line table
+    /// ([`Recording::line_of_sample`] is 0).
+    pub(crate) fn from_samples(
+        path: PathBuf,
+        time_s: Vec<f64>,
+        gap: Vec<f64>,
+        gap_unit: LengthUnit,
+        angle_rad: Option<Vec<f64>>,
+    ) -> Self {
+        Self {
+            path,
+            time_s,
+            gap,
+            gap_unit,
+            angle_rad,
+            lines: LineTable::default(),
+        }
     }
 
     /// The samples as a [`ProbeSignal`]: angles from the encoder column when present, else
@@ -161,7 +181,10 @@ pub fn analyze_recording(
 ) -> Result<harmonics::HarmonicAnalysis> {
     let located = |source: HarmonicsError| RecordingError::Samples {
         path: recording.path.clone(),
-        line: sample_index(&source).map(|row| recording.line_of_sample(row)),
+        // A binary recording has no lines (0): its error names the sample index only.
+        line: sample_index(&source)
+            .map(|row| recording.line_of_sample(row))
+            .filter(|&line| line != 0),
         source,
     };
     let signal = recording.signal(rate_rad_s, start_angle_rad);
