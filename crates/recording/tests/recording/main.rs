@@ -1,4 +1,5 @@
 //! Behaviour of the readers through the public API.
 
+mod binary;
 mod probe;
 mod table;
