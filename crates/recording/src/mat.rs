@@ -73,8 +73,9 @@ pub fn parse_mat(bytes: &[u8], path: &Path, variables: &BinaryChannels) -> Resul
             }
             let values = match &item {
                 Item::Numeric { ty, data, count } => {
-                    let mut v = Vec::with_capacity(*count);
-                    decode(&mut v, data, *ty, *count, ty.size());
+                    // `count` values are in `data`, checked against its length.
+                    let mut v = vec![0.0; *count];
+                    decode(&mut v, data, *ty, ty.size());
                     v
                 }
                 Item::Unsupported(what) => return Err(place.unsupported(name, what.clone())),

@@ -78,10 +78,13 @@ pub fn parse_tdms(bytes: &[u8], path: &Path, channels: &BinaryChannels) -> Resul
         }
         let total: usize = obj.spans.iter().map(|s| s.count).sum();
         // Every span's bytes lie in the file: `total` is bounded by its size.
-        let mut values = Vec::with_capacity(total);
+        let mut values = vec![0.0; total];
+        let mut at = 0;
         for s in &obj.spans {
-            decode(&mut values, &bytes[s.offset..], s.ty, s.count, s.stride);
+            let out = &mut values[at..at + s.count];
+            at += decode(out, &bytes[s.offset..], s.ty, s.stride);
         }
+        values.truncate(at);
         Ok(Some(series(roles[role], values)))
     };
     let gap = take(1)?;
@@ -550,9 +553,9 @@ fn property(c: &mut Cursor<'_>, code: u32) -> Result<Option<Option<f64>>> {
     };
     let bytes = c.take(size)?;
     Ok(Some(num_type(code).map(|ty| {
-        let mut v = Vec::with_capacity(1);
-        decode(&mut v, bytes, ty, 1, ty.size());
-        v.first().copied().unwrap_or(f64::NAN)
+        let mut v = [f64::NAN];
+        decode(&mut v, bytes, ty, ty.size());
+        v[0]
     })))
 }
 
