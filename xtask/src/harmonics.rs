@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use harmonics::{Coefficients, FitConfig, HarmonicAnalysis, ProbeDirection};
-use recording::{AngleUnit, LengthUnit, Recording, RecordingFormat};
+use recording::{AngleUnit, BinaryChannels, LengthUnit, Recording, RecordingFormat};
 use serde_json::{Value, json};
 
 use crate::console::Console;
@@ -14,7 +14,8 @@ use crate::console::Console;
 /// Fit eq. 20 to every complete revolution of a probe recording and average the coefficients.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Harmonics {
-    /// The recording: a CSV file with a header row (`time_s,gap_um[,angle_deg]` by default).
+    /// The recording, its reader chosen by extension: `.tdms` (NI TDMS), `.mat` (MATLAB v5/v7),
+    /// else a CSV file with a header row (`time_s,gap_um[,angle_deg]` by default).
     file: PathBuf,
     /// Spindle rate, deg/s; gives the angle `θ = ω·(t − t₀)` when the file has no encoder column.
     #[arg(long)]
@@ -37,15 +38,26 @@ pub(crate) struct Harmonics {
     /// The probe measures along O1X1 (default: against it, as in the paper); sets the sign of β.
     #[arg(long)]
     probe_along: bool,
-    /// Name of the gap column.
-    #[arg(long, default_value = "gap_um")]
+    /// Name of the time column (CSV), channel (TDMS) or variable (MAT).
+    #[arg(long, visible_alias = "time-column", default_value = "time_s")]
+    time_channel: String,
+    /// TDMS: the sample times from the gap channel's `wf_start_offset`/`wf_increment`
+    /// properties instead of a time channel.
+    #[arg(long)]
+    waveform_time: bool,
+    /// Name of the gap column (CSV), channel (TDMS) or variable (MAT).
+    #[arg(long, visible_alias = "gap-channel", default_value = "gap_um")]
     gap_column: String,
     /// Unit of the gap column: um, mm or m.
     #[arg(long, default_value = "um")]
     gap_unit: String,
-    /// Name of the encoder-angle column (used when present).
-    #[arg(long, default_value = "angle_deg")]
+    /// Name of the encoder-angle column, channel or variable (used when present).
+    #[arg(long, visible_alias = "angle-channel", default_value = "angle_deg")]
     angle_column: String,
+    /// TDMS: the group holding the channels (default: the first group that has them). MAT: a
+    /// struct variable whose fields are the variables (default: top-level variables).
+    #[arg(long)]
+    group: Option<String>,
     /// Unit of the angle column: deg or rad.
     #[arg(long, default_value = "deg")]
     angle_unit: String,
@@ -60,6 +72,7 @@ pub(crate) struct Harmonics {
 impl Harmonics {
     pub(crate) fn run(&self) -> anyhow::Result<()> {
         let format = RecordingFormat {
+            time_column: self.time_channel.clone(),
             gap_column: self.gap_column.clone(),
             gap_unit: match self.gap_unit.as_str() {
                 "um" => LengthUnit::Um,
@@ -83,7 +96,7 @@ impl Harmonics {
             revolutions: self.revolutions,
             max_gap_intervals: self.max_gap_intervals,
         };
-        let recording = recording::load_recording(&self.file, &format)?;
+        let recording = self.load(&format)?;
         let rate_rad_s = self.rate_deg_s.to_radians();
         let fit = recording::analyze_recording(
             &recording,
@@ -105,6 +118,43 @@ impl Harmonics {
         };
         Console::stdout().write_str(&out)?;
         Ok(())
+    }
+
+    /// The recording, read by the reader of its file's extension.
+    fn load(&self, format: &RecordingFormat) -> anyhow::Result<Recording> {
+        let extension = self
+            .file
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let binary = || BinaryChannels {
+            group: self.group.clone(),
+            time: (!self.waveform_time).then(|| format.time_column.clone()),
+            gap: format.gap_column.clone(),
+            gap_unit: format.gap_unit,
+            angle: Some(format.angle_column.clone()),
+            angle_unit: format.angle_unit,
+            max_gap_intervals: format.max_gap_intervals,
+        };
+        let only_binary = |flag: &str, given: bool| {
+            if given {
+                bail!("{flag} applies to TDMS and MAT files only");
+            }
+            Ok(())
+        };
+        Ok(match extension.as_deref() {
+            Some("tdms") => recording::load_tdms(&self.file, &binary())?,
+            Some("mat") => {
+                if self.waveform_time {
+                    bail!("--waveform-time applies to TDMS files only");
+                }
+                recording::load_mat(&self.file, &binary())?
+            }
+            _ => {
+                only_binary("--group", self.group.is_some())?;
+                only_binary("--waveform-time", self.waveform_time)?;
+                recording::load_recording(&self.file, format)?
+            }
+        })
     }
 
     fn angle_source(recording: &Recording) -> &'static str {

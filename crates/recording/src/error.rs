@@ -183,7 +183,7 @@ pub enum RecordingError {
         source: HarmonicsError,
     },
     /// A binary file (TDMS or MAT) ends inside a structure.
-    #[error("{}: {format} file ends at byte {offset}, inside {what} that needs {needed} bytes", path.display())]
+    #[error("{}: {format} file ends inside {what} of {needed} bytes at byte {offset}", path.display())]
     Truncated {
         /// The file.
         path: PathBuf,

@@ -278,3 +278,125 @@ fn bad_order() {
         "Fourier order 9 is not supported",
     );
 }
+
+fn binary_fixture(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../fixtures/recordings/binary")
+        .join(name)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+fn json_ok(args: &[&str]) -> serde_json::Value {
+    let out = xtask(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Every mean coefficient of two `--json` outputs, paired.
+fn mean_pairs(a: &serde_json::Value, b: &serde_json::Value) -> Vec<(f64, f64)> {
+    let mut pairs = vec![(
+        a["mean"]["l0"].as_f64().unwrap(),
+        b["mean"]["l0"].as_f64().unwrap(),
+    )];
+    for key in ["c", "s"] {
+        for (x, y) in a["mean"][key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["mean"][key].as_array().unwrap())
+        {
+            pairs.push((x.as_f64().unwrap(), y.as_f64().unwrap()));
+        }
+    }
+    pairs
+}
+
+#[test]
+fn tdms_and_mat_by_extension_give_the_csv_coefficients() {
+    let csv = json_ok(&[fixture().to_str().unwrap(), "--rate-deg-s", "120", "--json"]);
+    let cases: [Vec<String>; 3] = [
+        vec![
+            binary_fixture("probe_120deg_s.tdms"),
+            "--group".into(),
+            "probe".into(),
+        ],
+        vec![binary_fixture("probe_120deg_s.mat")],
+        vec![
+            binary_fixture("probe_120deg_s_v7.mat"),
+            "--group".into(),
+            "rec".into(),
+        ],
+    ];
+    for case in cases {
+        let mut args: Vec<&str> = case.iter().map(String::as_str).collect();
+        args.extend(["--rate-deg-s", "120", "--json"]);
+        let v = json_ok(&args);
+        assert_eq!(v["angle_source"], "encoder", "{args:?}");
+        assert_eq!(v["samples"], csv["samples"]);
+        assert_eq!(v["revolutions_used"], csv["revolutions_used"]);
+        for (x, y) in mean_pairs(&v, &csv) {
+            assert!((x - y).abs() <= 1e-12, "{args:?}: {x} vs {y}");
+        }
+    }
+}
+
+#[test]
+fn channel_flags_for_binary_files() {
+    // Time from the waveform properties; channel names by the --*-channel flags.
+    let v = json_ok(&[
+        &binary_fixture("probe_120deg_s_interleaved_f32.tdms"),
+        "--waveform-time",
+        "--gap-channel",
+        "gap_um",
+        "--angle-channel",
+        "angle_deg",
+        "--rate-deg-s",
+        "120",
+        "--json",
+    ]);
+    assert_eq!(v["samples"], 3750);
+    // A channel that is not there names those that are.
+    fails_with(
+        &[
+            &binary_fixture("probe_120deg_s.tdms"),
+            "--gap-channel",
+            "gap",
+            "--rate-deg-s",
+            "120",
+        ],
+        "no TDMS channel `gap` (available: probe/time_s, probe/gap_um, probe/angle_deg)",
+    );
+    fails_with(
+        &[
+            &binary_fixture("probe_120deg_s.mat"),
+            "--time-channel",
+            "t",
+            "--rate-deg-s",
+            "120",
+        ],
+        "no MAT variable `t` (available: time_s, gap_um, angle_deg)",
+    );
+    // A CSV file takes no group.
+    fails_with(
+        &[
+            fixture().to_str().unwrap(),
+            "--group",
+            "probe",
+            "--rate-deg-s",
+            "120",
+        ],
+        "--group applies to TDMS and MAT files only",
+    );
+    // A CSV file read as TDMS by its extension: not a TDMS file.
+    let f = Temp::new("notreally.tdms", "time_s,gap_um\n0,1\n");
+    fails_with(
+        &[f.path(), "--rate-deg-s", "120"],
+        "notreally.tdms: not a TDMS file",
+    );
+}
