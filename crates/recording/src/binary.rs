@@ -429,33 +429,114 @@ pub(crate) fn first_non_finite(values: &[f64]) -> Option<usize> {
     }
 }
 
-/// The file read whole: its size bounds every allocation of the readers. A large regular
-/// file is read as two halves on two threads (positioned reads into one buffer), which
-/// halves the cost of faulting in the buffer's pages.
-pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>> {
+/// Where a reader reads from: bytes in memory, or a regular file read piece by piece with
+/// positioned reads (only the structures and the samples asked for are read, through a
+/// reused buffer, so no copy of the whole file is made). Every read is within `len`.
+pub(crate) enum Source<'a> {
+    /// Bytes in memory.
+    Bytes(&'a [u8]),
+    /// A regular file of `len` bytes.
+    #[cfg(unix)]
+    File {
+        /// The file.
+        file: std::fs::File,
+        /// Its size when opened.
+        len: usize,
+        /// Its path, for errors.
+        path: &'a Path,
+    },
+}
+
+impl Source<'_> {
+    /// Size in bytes.
+    pub(crate) fn len(&self) -> usize {
+        match self {
+            Self::Bytes(b) => b.len(),
+            #[cfg(unix)]
+            Self::File { len, .. } => *len,
+        }
+    }
+
+    /// The `n` bytes at `offset`, or as many as there are; `buf` holds them for a file.
+    pub(crate) fn read<'s>(
+        &'s self,
+        offset: usize,
+        n: usize,
+        buf: &'s mut Vec<u8>,
+    ) -> Result<&'s [u8]> {
+        let end = offset.saturating_add(n).min(self.len());
+        let offset = offset.min(end);
+        match self {
+            Self::Bytes(b) => Ok(&b[offset..end]),
+            #[cfg(unix)]
+            Self::File { file, path, .. } => {
+                use std::os::unix::fs::FileExt;
+                let n = end - offset;
+                if buf.len() < n {
+                    buf.resize(n, 0);
+                }
+                file.read_exact_at(&mut buf[..n], offset as u64)
+                    .map_err(|source| RecordingError::Io {
+                        path: path.to_path_buf(),
+                        source,
+                    })?;
+                Ok(&buf[..n])
+            }
+        }
+    }
+
+    /// Fills `out` with the values of type `ty` from `offset`, `stride` bytes apart, as
+    /// far as the source holds them; returns how many. A file is read in pieces of about a
+    /// million values through `buf`.
+    pub(crate) fn decode_at(
+        &self,
+        offset: usize,
+        out: &mut [f64],
+        ty: NumType,
+        stride: usize,
+        buf: &mut Vec<u8>,
+    ) -> Result<usize> {
+        const PIECE: usize = 16 * BLOCK;
+        let mut done = 0;
+        while done < out.len() {
+            let n = (out.len() - done).min(PIECE);
+            let at = offset.saturating_add(done.saturating_mul(stride));
+            let bytes = (n - 1).saturating_mul(stride).saturating_add(ty.size());
+            let got = decode(
+                &mut out[done..done + n],
+                self.read(at, bytes, buf)?,
+                ty,
+                stride,
+            );
+            done += got;
+            if got < n {
+                break;
+            }
+        }
+        Ok(done)
+    }
+}
+
+/// Runs a reader on the file at `path`: a regular file as [`Source::File`] (its size
+/// bounds every allocation), anything else read whole into memory.
+pub(crate) fn with_source<T>(
+    path: &Path,
+    read: impl FnOnce(&Source<'_>) -> Result<T>,
+) -> Result<T> {
     let io = |source| RecordingError::Io {
         path: path.to_path_buf(),
         source,
     };
     #[cfg(unix)]
     {
-        use std::os::unix::fs::FileExt;
         let file = std::fs::File::open(path).map_err(io)?;
         let meta = file.metadata().map_err(io)?;
-        let len = usize::try_from(meta.len()).unwrap_or(usize::MAX);
-        if meta.is_file() && (8 * BLOCK..usize::MAX).contains(&len) {
-            let mut bytes = vec![0u8; len];
-            let half = len / 2;
-            let (first, second) = bytes.split_at_mut(half);
-            let (r1, r2) = rayon::join(
-                || file.read_exact_at(first, 0),
-                || file.read_exact_at(second, half as u64),
-            );
-            r1.and(r2).map_err(io)?;
-            return Ok(bytes);
+        if let (true, Ok(len)) = (meta.is_file(), usize::try_from(meta.len())) {
+            return read(&Source::File { file, len, path });
         }
     }
-    std::fs::read(path).map_err(io)
+    let bytes = std::fs::read(path).map_err(io)?;
+    read(&Source::Bytes(&bytes))
 }
 
 /// A named series read from a binary file.
@@ -598,6 +679,8 @@ impl Place<'_> {
 pub(crate) struct Cursor<'a> {
     bytes: &'a [u8],
     pos: usize,
+    /// Offset of `bytes[0]` in the file, for errors.
+    base: usize,
     what: BinaryPart,
     place: Place<'a>,
 }
@@ -607,13 +690,23 @@ impl<'a> Cursor<'a> {
         Self {
             bytes,
             pos,
+            base: 0,
             what,
             place,
         }
     }
 
+    /// A cursor at the start of `bytes`, which are at `base` in the file.
+    pub(crate) fn based(bytes: &'a [u8], base: usize, what: BinaryPart, place: Place<'a>) -> Self {
+        Self {
+            base,
+            ..Self::new(bytes, 0, what, place)
+        }
+    }
+
+    /// Position in the file.
     pub(crate) fn pos(&self) -> usize {
-        self.pos
+        self.base + self.pos
     }
 
     pub(crate) fn take(&mut self, n: u64) -> Result<&'a [u8]> {
@@ -622,14 +715,14 @@ impl<'a> Cursor<'a> {
             .ok()
             .and_then(|n| start.checked_add(n))
             .filter(|&e| e <= self.bytes.len())
-            .ok_or_else(|| self.place.truncated(start, self.what, n))?;
+            .ok_or_else(|| self.place.truncated(self.base + start, self.what, n))?;
         self.pos = end;
         Ok(&self.bytes[start..end])
     }
 
     pub(crate) fn array<const N: usize>(&mut self) -> Result<[u8; N]> {
         let b = self.take(N as u64)?;
-        <[u8; N]>::try_from(b).map_err(|_| self.place.truncated(self.pos, self.what, N as u64))
+        <[u8; N]>::try_from(b).map_err(|_| self.place.truncated(self.pos(), self.what, N as u64))
     }
 
     pub(crate) fn u32(&mut self) -> Result<u32> {

@@ -18,8 +18,8 @@
 use std::path::Path;
 
 use crate::binary::{
-    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, Cursor, NumType, Place, Series,
-    Unsupported, assemble, decode, read_file,
+    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, Cursor, NumType, Place, Series, Source,
+    Unsupported, assemble, decode, with_source,
 };
 use crate::error::{RecordingError, Result};
 use crate::probe::Recording;
@@ -37,20 +37,26 @@ const MAX_DEPTH: usize = 16;
 /// compressed size.
 const MAX_INFLATE_RATIO: usize = 1032;
 
-/// Reads the variables of a probe recording from a MAT-file (see [`parse_mat`]).
+/// Reads the variables of a probe recording from a MAT-file (see [`parse_mat`]), one
+/// top-level element at a time through a reused buffer.
 pub fn load_mat(path: &Path, variables: &BinaryChannels) -> Result<Recording> {
-    let bytes = read_file(path)?;
-    parse_mat(&bytes, path, variables)
+    with_source(path, |source| read(source, path, variables))
 }
 
 /// Parses the variables of a probe recording from a MAT-file held in memory; `path` names
 /// it in errors. Never panics; an error names the file and the byte offset or variable.
 pub fn parse_mat(bytes: &[u8], path: &Path, variables: &BinaryChannels) -> Result<Recording> {
+    read(&Source::Bytes(bytes), path, variables)
+}
+
+fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<Recording> {
     let place = Place {
         path,
         format: BinaryFormat::Mat,
     };
-    header(bytes, place)?;
+    let mut buf = Vec::new();
+    // The header, and where a v7.3 file has its HDF5 signature.
+    header(source.read(0, 520, &mut buf)?, place)?;
     let full = |name: &str| match &variables.group {
         Some(g) => format!("{g}.{name}"),
         None => name.to_string(),
@@ -85,8 +91,36 @@ pub fn parse_mat(bytes: &[u8], path: &Path, variables: &BinaryChannels) -> Resul
         Ok(())
     };
     let mut pos = HEADER;
-    while pos < bytes.len() {
-        let (ty, data, next) = element(bytes, pos, place)?;
+    let len = source.len();
+    while pos < len {
+        let mut tag = Cursor::based(
+            source.read(pos, 8, &mut buf)?,
+            pos,
+            BinaryPart::ElementTag,
+            place,
+        );
+        let ty = tag.u32()?;
+        let n = tag.u32()?;
+        if ty >> 16 != 0 {
+            // A small element at top level holds no variable.
+            pos += 8;
+            continue;
+        }
+        let start = pos + 8;
+        let end = usize::try_from(n)
+            .ok()
+            .and_then(|n| start.checked_add(n))
+            .filter(|&e| e <= len)
+            .ok_or_else(|| place.truncated(start, BinaryPart::Element, u64::from(n)))?;
+        let next = if ty == MI_COMPRESSED {
+            end
+        } else {
+            end.saturating_add((8 - end % 8) % 8).min(len)
+        };
+        let data = match ty {
+            MI_MATRIX | MI_COMPRESSED => source.read(start, end - start, &mut buf)?,
+            _ => &[],
+        };
         match ty {
             MI_MATRIX => matrix(data, pos + 8, "", 0, place, &mut visit)?,
             MI_COMPRESSED => {

@@ -18,8 +18,8 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use crate::binary::{
-    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, Cursor, NumType, Place, Series,
-    Unsupported, assemble, decode, read_file,
+    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, Cursor, NumType, Place, Series, Source,
+    Unsupported, assemble, decode, with_source,
 };
 use crate::error::{RecordingError, Result};
 use crate::probe::Recording;
@@ -37,15 +37,20 @@ const SAME_RAW_INDEX: u32 = 0;
 const DAQMX_FORMAT_CHANGING: u32 = 0x6912_0000;
 const DAQMX_DIGITAL_LINE: u32 = 0x6913_0000;
 
-/// Reads the channels of a probe recording from a TDMS file (see [`parse_tdms`]).
+/// Reads the channels of a probe recording from a TDMS file (see [`parse_tdms`]): the
+/// lead-ins and metadata, then only the samples of the channels asked for, through a
+/// reused buffer.
 pub fn load_tdms(path: &Path, channels: &BinaryChannels) -> Result<Recording> {
-    let bytes = read_file(path)?;
-    parse_tdms(&bytes, path, channels)
+    with_source(path, |source| read(source, path, channels))
 }
 
 /// Parses the channels of a probe recording from a TDMS file held in memory; `path` names
 /// it in errors. Never panics; an error names the file and the byte offset or channel.
 pub fn parse_tdms(bytes: &[u8], path: &Path, channels: &BinaryChannels) -> Result<Recording> {
+    read(&Source::Bytes(bytes), path, channels)
+}
+
+fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<Recording> {
     let place = Place {
         path,
         format: BinaryFormat::Tdms,
@@ -67,8 +72,9 @@ pub fn parse_tdms(bytes: &[u8], path: &Path, channels: &BinaryChannels) -> Resul
         list: Vec::new(),
         claimed: [None; 3],
     };
-    file.walk(bytes)?;
-    let take = |role: usize| -> Result<Option<Series>> {
+    let mut buf = Vec::new();
+    file.walk(source, &mut buf)?;
+    let mut take = |role: usize| -> Result<Option<Series>> {
         let Some(k) = file.claimed[role] else {
             return Ok(None);
         };
@@ -82,7 +88,7 @@ pub fn parse_tdms(bytes: &[u8], path: &Path, channels: &BinaryChannels) -> Resul
         let mut at = 0;
         for s in &obj.spans {
             let out = &mut values[at..at + s.count];
-            at += decode(out, &bytes[s.offset..], s.ty, s.stride);
+            at += source.decode_at(s.offset, out, s.ty, s.stride, &mut buf)?;
         }
         values.truncate(at);
         Ok(Some(series(roles[role], values)))
@@ -180,23 +186,25 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
-    fn walk(&mut self, bytes: &[u8]) -> Result<()> {
-        if bytes.is_empty() {
+    fn walk(&mut self, source: &Source<'_>, buf: &mut Vec<u8>) -> Result<()> {
+        if source.len() == 0 {
             return Err(self.place.truncated(0, BinaryPart::LeadIn, LEAD_IN as u64));
         }
         let mut pos = 0;
-        while pos < bytes.len() {
-            pos = self.segment(bytes, pos)?;
+        while pos < source.len() {
+            pos = self.segment(source, pos, buf)?;
         }
         Ok(())
     }
 
     /// Reads the segment at `pos`; returns the position of the next.
-    fn segment(&mut self, bytes: &[u8], pos: usize) -> Result<usize> {
+    fn segment(&mut self, source: &Source<'_>, pos: usize, buf: &mut Vec<u8>) -> Result<usize> {
         let place = self.place;
-        let mut lead = Cursor::new(bytes, pos, BinaryPart::LeadIn, place);
+        let file_len = source.len();
+        let lead_in = source.read(pos, LEAD_IN, buf)?;
+        let mut lead = Cursor::based(lead_in, pos, BinaryPart::LeadIn, place);
         if lead.array::<4>().ok() != Some(*b"TDSm") {
-            if bytes.len() - pos < 4 && b"TDSm".starts_with(&bytes[pos..]) {
+            if lead_in.len() < 4 && b"TDSm".starts_with(lead_in) {
                 return Err(place.truncated(pos, BinaryPart::LeadIn, LEAD_IN as u64));
             }
             return Err(RecordingError::BadMagic {
@@ -220,12 +228,12 @@ impl Walk<'_> {
         }
         let start = pos + LEAD_IN;
         let end = if next == u64::MAX {
-            bytes.len()
+            file_len
         } else {
             usize::try_from(next)
                 .ok()
                 .and_then(|n| start.checked_add(n))
-                .filter(|&e| e <= bytes.len())
+                .filter(|&e| e <= file_len)
                 .ok_or_else(|| {
                     place.truncated(
                         pos,
@@ -251,7 +259,8 @@ impl Walk<'_> {
             self.list.clear();
         }
         if toc & TOC_META_DATA != 0 {
-            self.metadata(&bytes[..raw_start], start)?;
+            let meta = source.read(start, raw_start - start, buf)?;
+            self.metadata(meta, start)?;
         }
         if toc & TOC_RAW_DATA != 0 {
             self.raw_data(raw_start, end, toc & TOC_INTERLEAVED != 0, pos)?;
@@ -261,7 +270,7 @@ impl Walk<'_> {
 
     fn metadata(&mut self, bytes: &[u8], start: usize) -> Result<()> {
         let place = self.place;
-        let mut c = Cursor::new(bytes, start, BinaryPart::Metadata, place);
+        let mut c = Cursor::based(bytes, start, BinaryPart::Metadata, place);
         let objects = c.u32()?;
         for _ in 0..objects {
             let at = c.pos();

@@ -496,3 +496,48 @@ proptest! {
         check_no_panic(&bytes);
     }
 }
+
+/// A file is read piece by piece, bytes in memory at once: both give the same recording or
+/// the same error, cut anywhere.
+#[test]
+fn file_and_memory_readers_agree() {
+    let dir = std::env::temp_dir().join(format!("recording-binary-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let tdms = BinaryChannels {
+        time: None,
+        ..group()
+    };
+    let struct_rec = BinaryChannels {
+        group: Some("rec".into()),
+        ..BinaryChannels::default()
+    };
+    for (name, channels) in [
+        ("probe_120deg_s.tdms", group()),
+        ("probe_120deg_s_interleaved_f32.tdms", tdms),
+        ("probe_120deg_s.mat", BinaryChannels::default()),
+        ("probe_120deg_s_v7.mat", struct_rec),
+    ] {
+        let bytes = std::fs::read(binary(name)).unwrap();
+        let path = dir.join(name);
+        for cut in [bytes.len(), bytes.len() - 3, bytes.len() / 2, 700, 140, 20] {
+            std::fs::write(&path, &bytes[..cut]).unwrap();
+            let (from_file, from_memory) = if name.ends_with(".tdms") {
+                (
+                    load_tdms(&path, &channels),
+                    parse_tdms(&bytes[..cut], &path, &channels),
+                )
+            } else {
+                (
+                    load_mat(&path, &channels),
+                    parse_mat(&bytes[..cut], &path, &channels),
+                )
+            };
+            assert_eq!(
+                format!("{from_file:?}"),
+                format!("{from_memory:?}"),
+                "{name} cut at {cut}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
