@@ -320,8 +320,8 @@ fn truncated_files_are_typed_errors() {
 #[test]
 fn non_finite_sample_is_named_by_channel_and_index() {
     let mut bytes = std::fs::read(binary("probe_120deg_s.mat")).unwrap();
-    // The first sample of `gap_um` (3.7..e1 as f64) becomes NaN.
-    let first = 47.270448f64.to_le_bytes();
+    // The first sample of `gap_um` becomes NaN.
+    let first = csv().gap[0].to_le_bytes();
     let at = bytes.windows(8).position(|w| w == first).unwrap();
     bytes[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
     let e = parse_mat(&bytes, Path::new("n.mat"), &BinaryChannels::default()).unwrap_err();
