@@ -88,7 +88,6 @@ impl Harmonics {
             },
             delimiter: self.delimiter,
             max_gap_intervals: self.max_gap_intervals,
-            ..RecordingFormat::default()
         };
         let config = FitConfig {
             order: self.order,
