@@ -337,13 +337,14 @@ impl NumType {
 const BLOCK: usize = 1 << 16;
 
 /// Fills `out` with values of type `ty` starting at `bytes[0]`, each `stride` bytes after
-/// the previous; returns how many were in `bytes` (the caller has checked that all are).
+/// the previous; returns how many were in `bytes` (the caller has checked that all are) and
+/// whether all of them are finite (each block is scanned while it is in cache).
 /// Give it memory from `vec![0.0; n]`, which the allocator takes zeroed from the system
 /// without writing it; long outputs are filled in blocks on all cores (rayon).
-pub(crate) fn decode(out: &mut [f64], bytes: &[u8], ty: NumType, stride: usize) -> usize {
+pub(crate) fn decode(out: &mut [f64], bytes: &[u8], ty: NumType, stride: usize) -> (usize, bool) {
     let size = ty.size();
     if stride < size {
-        return 0;
+        return (0, true);
     }
     // Whole values in `bytes`.
     let fit = if bytes.len() < size {
@@ -353,19 +354,22 @@ pub(crate) fn decode(out: &mut [f64], bytes: &[u8], ty: NumType, stride: usize) 
     };
     let count = out.len().min(fit);
     let out = &mut out[..count];
-    if count <= BLOCK {
-        decode_into(out, bytes, ty, stride);
+    let finite = if count <= BLOCK {
+        decode_into(out, bytes, ty, stride)
     } else {
         use rayon::prelude::*;
+        // `reduce`, not `all`: every block is decoded, whatever the others hold.
         out.par_chunks_mut(BLOCK)
             .enumerate()
-            .for_each(|(k, block)| decode_into(block, &bytes[k * BLOCK * stride..], ty, stride));
-    }
-    count
+            .map(|(k, block)| decode_into(block, &bytes[k * BLOCK * stride..], ty, stride))
+            .reduce(|| true, |a, b| a && b)
+    };
+    (count, finite)
 }
 
-/// Fills `out` with values of type `ty` from `bytes`, `stride` bytes apart (all in `bytes`).
-fn decode_into(out: &mut [f64], bytes: &[u8], ty: NumType, stride: usize) {
+/// Fills `out` with values of type `ty` from `bytes`, `stride` bytes apart (all in `bytes`);
+/// whether all are finite.
+fn decode_into(out: &mut [f64], bytes: &[u8], ty: NumType, stride: usize) -> bool {
     fn run<const N: usize>(
         out: &mut [f64],
         bytes: &[u8],
@@ -399,6 +403,7 @@ fn decode_into(out: &mut [f64], bytes: &[u8], ty: NumType, stride: usize) {
         NumType::F32 => run::<4>(out, bytes, stride, |b| f64::from(f32::from_le_bytes(b))),
         NumType::F64 => run::<8>(out, bytes, stride, f64::from_le_bytes),
     }
+    first_non_finite(out).is_none()
 }
 
 /// The index of the first value that is NaN or infinite, if any (a branch-free scan of
@@ -486,8 +491,8 @@ impl Source<'_> {
     }
 
     /// Fills `out` with the values of type `ty` from `offset`, `stride` bytes apart, as
-    /// far as the source holds them; returns how many. A file is read in pieces of about a
-    /// million values through `buf`.
+    /// far as the source holds them; returns how many, and whether all are finite. A file
+    /// is read in pieces of about a million values through `buf`.
     pub(crate) fn decode_at(
         &self,
         offset: usize,
@@ -495,25 +500,27 @@ impl Source<'_> {
         ty: NumType,
         stride: usize,
         buf: &mut Vec<u8>,
-    ) -> Result<usize> {
+    ) -> Result<(usize, bool)> {
         const PIECE: usize = 16 * BLOCK;
         let mut done = 0;
+        let mut all_finite = true;
         while done < out.len() {
             let n = (out.len() - done).min(PIECE);
             let at = offset.saturating_add(done.saturating_mul(stride));
             let bytes = (n - 1).saturating_mul(stride).saturating_add(ty.size());
-            let got = decode(
+            let (got, finite) = decode(
                 &mut out[done..done + n],
                 self.read(at, bytes, buf)?,
                 ty,
                 stride,
             );
             done += got;
+            all_finite &= finite;
             if got < n {
                 break;
             }
         }
-        Ok(done)
+        Ok((done, all_finite))
     }
 }
 
@@ -546,6 +553,9 @@ pub(crate) struct Series {
     pub(crate) name: String,
     /// Its values.
     pub(crate) values: Vec<f64>,
+    /// Whether all values are known to be finite (checked while decoding); when false, the
+    /// values are scanned to find the culprit.
+    pub(crate) finite: bool,
 }
 
 /// Checks the series of a binary recording (finite, equal lengths, the time axis) and
@@ -584,7 +594,7 @@ pub(crate) fn assemble(
                 found: s.values.len(),
             });
         }
-        if let Some(index) = first_non_finite(&s.values) {
+        if let Some(index) = (!s.finite).then(|| first_non_finite(&s.values)).flatten() {
             return Err(RecordingError::NonFiniteSample {
                 path: path.to_path_buf(),
                 format,
@@ -745,26 +755,33 @@ mod tests {
             .flat_map(|x| x.to_le_bytes())
             .collect();
         let mut out = vec![0.0; 3];
-        assert_eq!(decode(&mut out, &bytes, NumType::F64, 8), 3);
+        assert_eq!(decode(&mut out, &bytes, NumType::F64, 8), (3, true));
         assert_eq!(out, [1.5, -2.0, 3.25]);
-        assert_eq!(decode(&mut out[..2], &bytes, NumType::F64, 16), 2);
+        assert_eq!(decode(&mut out[..2], &bytes, NumType::F64, 16), (2, true));
         assert_eq!(out[..2], [1.5, 3.25]);
         // Only whole values in the bytes.
-        assert_eq!(decode(&mut out, &bytes[..20], NumType::F64, 8), 2);
+        assert_eq!(decode(&mut out, &bytes[..20], NumType::F64, 8).0, 2);
         assert_eq!(
             decode(&mut out[..2], &[0xff, 0x7f, 0x00, 0x80], NumType::I16, 2),
-            2
+            (2, true)
         );
         assert_eq!(out[..2], [32767.0, -32768.0]);
         // Long outputs are decoded in blocks on several threads, in order.
         let n = 3 * BLOCK + 5;
         let bytes: Vec<u8> = (0..n).flat_map(|i| (i as f32).to_le_bytes()).collect();
         let mut out = vec![0.0; n];
-        assert_eq!(decode(&mut out, &bytes, NumType::F32, 4), n);
+        assert_eq!(decode(&mut out, &bytes, NumType::F32, 4), (n, true));
         assert!(out.iter().enumerate().all(|(i, &x)| x == i as f64));
         let mut out = vec![0.0; n / 2];
-        assert_eq!(decode(&mut out, &bytes, NumType::F32, 8), n / 2);
+        assert_eq!(decode(&mut out, &bytes, NumType::F32, 8), (n / 2, true));
         assert!(out.iter().enumerate().all(|(i, &x)| x == (2 * i) as f64));
+        // A NaN in any block is reported, and every block is still decoded.
+        let mut bytes = bytes;
+        bytes[4 * (2 * BLOCK + 3)..][..4].copy_from_slice(&f32::NAN.to_le_bytes());
+        let mut out = vec![0.0; n];
+        assert_eq!(decode(&mut out, &bytes, NumType::F32, 4), (n, false));
+        assert_eq!(out[n - 1], (n - 1) as f64);
+        assert!(out[2 * BLOCK + 3].is_nan());
     }
 
     #[test]

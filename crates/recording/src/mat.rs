@@ -69,7 +69,8 @@ fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<
     .into_iter()
     .map(|n| n.map(full).unwrap_or_default())
     .collect();
-    let mut found: [Option<Vec<f64>>; 3] = [None, None, None];
+    // The values of each role, and whether they are all finite.
+    let mut found: [Option<(Vec<f64>, bool)>; 3] = [None, None, None];
     let mut available = Vec::new();
     let mut visit = |name: &str, item: Item<'_>| -> Result<()> {
         available.push(name.to_string());
@@ -81,8 +82,8 @@ fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<
                 Item::Numeric { ty, data, count } => {
                     // `count` values are in `data`, checked against its length.
                     let mut v = vec![0.0; *count];
-                    decode(&mut v, data, *ty, ty.size());
-                    v
+                    let (_, finite) = decode(&mut v, data, *ty, ty.size());
+                    (v, finite)
                 }
                 Item::Unsupported(what) => return Err(place.unsupported(name, what.clone())),
             };
@@ -150,9 +151,10 @@ fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<
         pos = next;
     }
     let mut series = |role: usize| -> Option<Series> {
-        found[role].take().map(|values| Series {
+        found[role].take().map(|(values, finite)| Series {
             name: wanted[role].clone(),
             values,
+            finite,
         })
     };
     let missing = |name: &str| place.missing(&full(name), available.clone());

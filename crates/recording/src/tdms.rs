@@ -86,12 +86,18 @@ fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<R
         // Every span's bytes lie in the file: `total` is bounded by its size.
         let mut values = vec![0.0; total];
         let mut at = 0;
+        let mut finite = true;
         for s in &obj.spans {
             let out = &mut values[at..at + s.count];
-            at += source.decode_at(s.offset, out, s.ty, s.stride, &mut buf)?;
+            let (n, f) = source.decode_at(s.offset, out, s.ty, s.stride, &mut buf)?;
+            at += n;
+            finite &= f;
         }
         values.truncate(at);
-        Ok(Some(series(roles[role], values)))
+        Ok(Some(Series {
+            finite,
+            ..series(roles[role], values)
+        }))
     };
     let gap = take(1)?;
     let time = if channels.time.is_some() {
@@ -133,6 +139,7 @@ fn series(name: &str, values: Vec<f64>) -> Series {
     Series {
         name: name.to_string(),
         values,
+        finite: false,
     }
 }
 
