@@ -1,0 +1,127 @@
+//! Validation of a plan's predicted u(k2) by simulating its campaign many times.
+
+use nalgebra::DMatrix;
+use rand::{SeedableRng, rngs::StdRng};
+use rand_distr::{Distribution, StandardNormal};
+use rayon::prelude::*;
+
+use crate::error::{PlanningError, Result};
+use crate::inputs::{K2, PlanInputs, UNKNOWNS, regressors};
+use crate::plan::Plan;
+
+/// The least number of simulated campaigns.
+pub const MIN_CAMPAIGNS: usize = 10;
+
+/// The spread of k2 over simulated campaigns against the prediction.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SimulationCheck {
+    /// Campaigns simulated.
+    pub campaigns: usize,
+    /// Seed of the first campaign (campaign `c` uses `seed + c`).
+    pub seed: u64,
+    /// The predicted u(k2) of the fit, rad/(s·g²).
+    pub predicted_u_rad_s_g2: f64,
+    /// The sample standard deviation of the fitted k2, rad/(s·g²).
+    pub simulated_sd_rad_s_g2: f64,
+    /// `simulated_sd / predicted_u`.
+    pub ratio: f64,
+    /// The relative standard error of a sample SD from this many campaigns,
+    /// `1/√(2(n − 1))` (normal errors).
+    pub ratio_standard_error: f64,
+    /// The mean of the fitted (apparent) k2, rad/(s·g²).
+    pub mean_k2_rad_s_g2: f64,
+    /// The apparent k2 of the noise-free outputs, rad/(s·g²).
+    pub noise_free_k2_rad_s_g2: f64,
+}
+
+/// The plan's noise-free mean outputs by the closed form of eq. 17 (`k0 + k1·a + k2·a² +
+/// k3·a³ + k1·C_r·ω⁴/g`), one per point. A caller with the exact chain
+/// (`simulate::piga_table` with zero noise) passes its own instead.
+pub fn expected_outputs(inputs: &PlanInputs, plan: &Plan) -> Vec<f64> {
+    let p = &inputs.piga;
+    let c_r = inputs.c_r.expected_m_s2;
+    plan.points
+        .iter()
+        .map(|q| {
+            let w = units::deg_s_to_rad_s(q.rate_deg_s);
+            let a = plan.radius_m * w * w / plan.g_m_s2;
+            p.k0_rad_s
+                + p.k1_rad_s_g * a
+                + p.k2_rad_s_g2 * a * a
+                + p.k3_rad_s_g3 * a * a * a
+                + p.k1_rad_s_g * c_r * w.powi(4) / plan.g_m_s2
+        })
+        .collect()
+}
+
+/// Simulates the plan's campaign `campaigns` times: each point's mean output is
+/// `noise_free_rad_s[i]` plus a normal draw of the point's σ (fresh per campaign and point;
+/// campaign `c` draws from its own `StdRng` seeded with `seed + c`, in parallel, so the result
+/// does not depend on the number of threads), then fits eq. 18 by weighted least squares
+/// (`identify::lstsq` on the rows divided by σ_i) and compares the spread of the apparent k2
+/// with the plan's u(k2) of the fit.
+///
+/// # Errors
+/// [`PlanningError::TooFewCampaigns`], [`PlanningError::OutputCount`], and the solver's
+/// errors.
+pub fn simulate_plan(
+    plan: &Plan,
+    noise_free_rad_s: &[f64],
+    campaigns: usize,
+    seed: u64,
+) -> Result<SimulationCheck> {
+    if campaigns < MIN_CAMPAIGNS {
+        return Err(PlanningError::TooFewCampaigns {
+            campaigns,
+            need: MIN_CAMPAIGNS,
+        });
+    }
+    let n = plan.points.len();
+    if noise_free_rad_s.len() != n {
+        return Err(PlanningError::OutputCount {
+            got: noise_free_rad_s.len(),
+            expected: n,
+        });
+    }
+    let sigma: Vec<f64> = plan.points.iter().map(|q| q.sigma_mean_rad_s).collect();
+    let x = DMatrix::from_fn(n, UNKNOWNS, |r, j| {
+        let w = units::deg_s_to_rad_s(plan.points[r].rate_deg_s);
+        regressors(w, plan.radius_m, plan.g_m_s2)[j] / sigma[r]
+    });
+    let fit = |y: &[f64]| -> Result<f64> {
+        let yw: Vec<f64> = y.iter().zip(&sigma).map(|(y, s)| y / s).collect();
+        identify::lstsq(&x, &yw)
+            .map(|f| f.coefficients[K2])
+            .map_err(PlanningError::Identify)
+    };
+    let noise_free_k2 = fit(noise_free_rad_s)?;
+    let k2: Vec<f64> = (0..campaigns)
+        .into_par_iter()
+        .map(|c| {
+            let mut rng = StdRng::seed_from_u64(seed.wrapping_add(c as u64));
+            let y: Vec<f64> = noise_free_rad_s
+                .iter()
+                .zip(&sigma)
+                .map(|(m, s)| {
+                    let z: f64 = StandardNormal.sample(&mut rng);
+                    m + s * z
+                })
+                .collect();
+            fit(&y)
+        })
+        .collect::<Result<_>>()?;
+    let mean = k2.iter().sum::<f64>() / campaigns as f64;
+    let var = k2.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (campaigns - 1) as f64;
+    let sd = var.sqrt();
+    Ok(SimulationCheck {
+        campaigns,
+        seed,
+        predicted_u_rad_s_g2: plan.u_k2_fit_rad_s_g2,
+        simulated_sd_rad_s_g2: sd,
+        ratio: sd / plan.u_k2_fit_rad_s_g2,
+        ratio_standard_error: 1.0 / (2.0 * (campaigns - 1) as f64).sqrt(),
+        mean_k2_rad_s_g2: mean,
+        noise_free_k2_rad_s_g2: noise_free_k2,
+    })
+}

@@ -1,0 +1,140 @@
+//! The crate's error type.
+
+/// Everything that can make a plan fail. Each variant names the field or the constraint
+/// concerned and, for an infeasible plan, by how much it misses.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PlanningError {
+    /// A field is not finite or outside its range.
+    #[error("{field} = {value}: {requirement}")]
+    InvalidField {
+        /// The field's path in the plan, e.g. `piga.noise.sigma_rad_s`.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// What the field must satisfy.
+        requirement: &'static str,
+    },
+    /// The highest rate the centrifuge allows lies below the lowest rate asked for.
+    #[error(
+        "the maximum rate {max_rate_deg_s} deg/s (from {binding}) is below the minimum rate \
+         {min_rate_deg_s} deg/s, by {} deg/s",
+        min_rate_deg_s - max_rate_deg_s
+    )]
+    RateRange {
+        /// `centrifuge.min_rate_deg_s`.
+        min_rate_deg_s: f64,
+        /// The effective maximum rate.
+        max_rate_deg_s: f64,
+        /// Which field sets the maximum (`centrifuge.max_rate_deg_s` or
+        /// `centrifuge.max_acceleration_g`).
+        binding: &'static str,
+    },
+    /// Fewer candidate rates inside the allowed range than the design has unknowns (or, without
+    /// repeated rates, than points).
+    #[error(
+        "{in_range} candidate rates lie within {min_rate_deg_s}…{max_rate_deg_s} deg/s, \
+         {need} are needed ({reason}): {} short",
+        need - in_range
+    )]
+    TooFewCandidates {
+        /// Candidates within the allowed range.
+        in_range: usize,
+        /// Candidates needed.
+        need: usize,
+        /// The lowest allowed rate, deg/s.
+        min_rate_deg_s: f64,
+        /// The highest allowed rate, deg/s.
+        max_rate_deg_s: f64,
+        /// Why that many are needed.
+        reason: &'static str,
+    },
+    /// Fewer rate points than the eq. 18 design has unknowns, plus one residual degree of
+    /// freedom.
+    #[error(
+        "schedule.points = {points}: the eq. 18 design has 6 unknowns and its Type A \
+         evaluation needs a residual degree of freedom, so at least {need} points ({} short)",
+        need - points
+    )]
+    TooFewPoints {
+        /// Points asked for.
+        points: usize,
+        /// Least number of points.
+        need: usize,
+    },
+    /// The settling time and the minimum revolutions alone exceed the time budget.
+    #[error(
+        "schedule.budget_s = {budget_s} s is shorter than the {needed_s:.1} s that settling \
+         ({settling_s:.1} s) and the minimum revolutions ({minimum_s:.1} s) of {points} points \
+         need, by {:.1} s",
+        needed_s - budget_s
+    )]
+    BudgetTooShort {
+        /// The budget, s.
+        budget_s: f64,
+        /// The least time of any plan with this many points, s.
+        needed_s: f64,
+        /// Of which settling, s.
+        settling_s: f64,
+        /// Of which the minimum revolutions at the fastest candidates, s.
+        minimum_s: f64,
+        /// Points.
+        points: usize,
+    },
+    /// The best plan within the budget misses the target U95(k2).
+    #[error(
+        "target.u95_k2_rad_s_g2 = {target:.4e} rad/(s·g²) is not reached: the best plan within \
+         schedule.budget_s = {budget_s} s gives U95(k2) = {achieved:.4e} ({:.1} % above the \
+         target); {}",
+        100.0 * (achieved / target - 1.0),
+        match needed_budget_s {
+            Some(t) => format!("about {t:.0} s of centrifuge time would reach it"),
+            None => format!(
+                "no budget reaches it: the Type B inputs alone give U95 = {type_b_floor:.4e}"
+            ),
+        }
+    )]
+    TargetUnreachable {
+        /// The target U95(k2), rad/(s·g²).
+        target: f64,
+        /// The best U95(k2) within the budget.
+        achieved: f64,
+        /// The budget, s.
+        budget_s: f64,
+        /// An estimate of the budget that reaches the target (`None`: none does).
+        needed_budget_s: Option<f64>,
+        /// The expanded uncertainty of the Type B inputs alone (infinite centrifuge time).
+        type_b_floor: f64,
+    },
+    /// A design's information matrix is singular (it cannot separate the eq. 18 terms).
+    #[error("the design of rates {rates_deg_s:?} deg/s cannot separate the six eq. 18 terms")]
+    Singular {
+        /// The rates, deg/s.
+        rates_deg_s: Vec<f64>,
+    },
+    /// A number of simulated campaigns below the least that estimates a spread.
+    #[error("campaigns = {campaigns}: at least {need} simulated campaigns are needed")]
+    TooFewCampaigns {
+        /// Asked for.
+        campaigns: usize,
+        /// Least.
+        need: usize,
+    },
+    /// The noise-free outputs given to the simulation do not match the plan's points.
+    #[error("{got} noise-free outputs for a plan of {expected} points")]
+    OutputCount {
+        /// Given.
+        got: usize,
+        /// Points of the plan.
+        expected: usize,
+    },
+    /// The least-squares solver failed.
+    #[error("least squares")]
+    Identify(#[source] identify::IdentifyError),
+    /// The uncertainty evaluation failed.
+    #[error("uncertainty evaluation")]
+    Uncertainty(#[source] uncertainty::UncertaintyError),
+}
+
+/// The crate's result type.
+pub type Result<T> = std::result::Result<T, PlanningError>;

@@ -1,0 +1,87 @@
+//! Infeasible plans are errors that name the binding constraint and by how much.
+
+use planning::{Candidates, PlanningError, plan};
+
+#[test]
+fn a_target_below_what_the_budget_allows() {
+    let mut inputs = super::paper::inputs(8);
+    inputs.target.u95_k2_rad_s_g2 = 1e-9;
+    let e = plan(&inputs).unwrap_err();
+    let PlanningError::TargetUnreachable {
+        achieved, target, ..
+    } = &e
+    else {
+        panic!("{e:?}");
+    };
+    assert!(achieved > target);
+    let text = e.to_string();
+    assert!(text.contains("target.u95_k2_rad_s_g2"), "{text}");
+    assert!(text.contains("% above the target"), "{text}");
+}
+
+#[test]
+fn fewer_allowed_rates_than_unknowns() {
+    let mut inputs = super::paper::inputs(8);
+    inputs.schedule.allow_repeats = true;
+    inputs.centrifuge.candidates = Candidates::List(vec![20.0, 50.0, 90.0, 150.0, 190.0]);
+    let e = plan(&inputs).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            PlanningError::TooFewCandidates {
+                in_range: 5,
+                need: 6,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("1 short"), "{e}");
+}
+
+#[test]
+fn fewer_points_than_unknowns() {
+    let inputs = super::paper::inputs(6);
+    let e = plan(&inputs).unwrap_err();
+    assert!(
+        matches!(e, PlanningError::TooFewPoints { points: 6, need: 7 }),
+        "{e:?}"
+    );
+}
+
+#[test]
+fn a_maximum_rate_below_the_minimum() {
+    let mut inputs = super::paper::inputs(8);
+    inputs.centrifuge.max_acceleration_g = Some(0.5);
+    inputs.centrifuge.min_rate_deg_s = 150.0;
+    let e = plan(&inputs).unwrap_err();
+    let PlanningError::RateRange {
+        binding,
+        max_rate_deg_s,
+        ..
+    } = &e
+    else {
+        panic!("{e:?}");
+    };
+    assert_eq!(*binding, "centrifuge.max_acceleration_g");
+    assert!(*max_rate_deg_s < 150.0);
+    assert!(e.to_string().contains("by "), "{e}");
+}
+
+#[test]
+fn a_budget_shorter_than_settling() {
+    let mut inputs = super::paper::inputs(10);
+    inputs.schedule.budget_s = 300.0;
+    let e = plan(&inputs).unwrap_err();
+    assert!(matches!(e, PlanningError::BudgetTooShort { .. }), "{e:?}");
+}
+
+#[test]
+fn non_finite_fields_are_named() {
+    let mut inputs = super::paper::inputs(8);
+    inputs.piga.noise = planning::NoiseSpec::PerRevolution {
+        sigma_rad_s: f64::NAN,
+    };
+    let e = plan(&inputs).unwrap_err();
+    assert!(e.to_string().starts_with("piga.noise.sigma_rad_s"), "{e}");
+}
