@@ -10,6 +10,7 @@ mod console;
 mod harmonics;
 mod identify;
 mod paths;
+mod plan;
 mod regress;
 mod simulate;
 mod study;
@@ -45,6 +46,8 @@ enum Command {
     Simulate(simulate::Simulate),
     /// Fit eq. 20 per revolution to a probe recording and average the coefficients.
     Harmonics(harmonics::Harmonics),
+    /// Plan a calibration campaign: rates, revolutions and U95(k2) for a target (issue 13).
+    Plan(plan::PlanCmd),
 }
 
 fn main() -> ExitCode {
@@ -71,6 +74,7 @@ fn main() -> ExitCode {
         Command::Identify(c) => c.run(),
         Command::Simulate(c) => c.run(),
         Command::Harmonics(c) => c.run(),
+        Command::Plan(c) => c.run(),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

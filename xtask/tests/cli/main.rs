@@ -2,6 +2,7 @@
 
 mod harmonics;
 mod outputs;
+mod plan;
 mod snapshots;
 mod stdout;
 mod workflow;

@@ -1,0 +1,82 @@
+//! `cargo xtask plan`: the fixture plan's --json output (snapshot), its files, and an
+//! infeasible plan as an error naming the binding constraint.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn out_dir(tag: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("xtask-plan-{tag}-{}", std::process::id()))
+}
+
+#[test]
+fn plan_json_snapshot_and_files() {
+    let dir = out_dir("json");
+    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args([
+            "plan",
+            "--config",
+            "fixtures/plans/paper-centrifuge.ron",
+            "--compare-rates",
+            "10,60,80.1234,110.1234,160.1234,200.1234",
+            "--simulate",
+            "1000",
+            "--json",
+            "--out",
+        ])
+        .arg(&dir)
+        .current_dir(root())
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(value, written, "--json prints plan.json");
+    let csv = std::fs::read_to_string(dir.join("run_sheet.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 11, "a header and ten points");
+    assert!(
+        std::fs::read_to_string(dir.join("run_sheet.md"))
+            .unwrap()
+            .contains("| total |")
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    let ratio = value["simulation"]["ratio"].as_f64().unwrap();
+    assert!((ratio - 1.0).abs() < 0.1, "simulated/predicted {ratio}");
+    value.as_object_mut().unwrap().remove("config");
+    insta::assert_snapshot!(serde_json::to_string_pretty(&value).unwrap());
+}
+
+#[test]
+fn an_unreachable_target_names_the_binding_constraint() {
+    let dir = out_dir("bad");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(root().join("fixtures/plans/paper-centrifuge.ron"))
+        .unwrap()
+        .replace("u95_k2_rad_s_g2: 1.0e-6", "u95_k2_rad_s_g2: 1.0e-8");
+    let config = dir.join("tight.ron");
+    std::fs::write(&config, text).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(["plan", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(dir.join("out"))
+        .current_dir(root())
+        .output()
+        .expect("runs");
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("target.u95_k2_rad_s_g2"), "{stderr}");
+    assert!(
+        stderr.contains("s of centrifuge time would reach it"),
+        "{stderr}"
+    );
+}
