@@ -118,8 +118,8 @@ pub(crate) fn allocate(
         }
         None => vec![free / n as f64; n],
     };
-    let mut t = times(p, design, &s);
-    let (mut value, mut chol) = criterion_value(criterion, &information(p, design, &t))?;
+    let (mut value, mut chol) =
+        criterion_value(criterion, &information(p, design, &times(p, design, &s)))?;
     if free == 0.0 {
         return Some(Allocated {
             design: design.to_vec(),
@@ -156,14 +156,12 @@ pub(crate) fn allocate(
         }
         let change = (value - v_next).abs() / value.abs().max(f64::MIN_POSITIVE);
         s = next;
-        t = t_next;
         value = v_next;
         chol = c_next;
         if change < CONVERGED {
             break;
         }
     }
-    let _ = t;
     Some(Allocated {
         design: design.to_vec(),
         free_s: s,

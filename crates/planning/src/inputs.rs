@@ -258,8 +258,7 @@ pub(crate) struct Problem {
     /// Weight (1/variance of the mean output) per second of recording at each candidate,
     /// 1/(rad/s)².
     pub(crate) info_per_s: Vec<f64>,
-    /// Recording time free to allocate beyond settling and the minimum revolutions, s (for
-    /// the fastest candidates; a design's own is [`Problem::free_time`]).
+    /// The highest allowed rate (the lower of the rate and acceleration limits), deg/s.
     pub(crate) max_rate_deg_s: f64,
 }
 

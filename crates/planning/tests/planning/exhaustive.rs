@@ -15,7 +15,6 @@ fn planner_is_within_one_percent_of_the_exhaustive_optimum() {
     let c = exhaustive_k2(&inputs).unwrap();
     assert_eq!(c.designs, 77_520);
     let var_ratio = (c.planner_u_k2_fit_rad_s_g2 / c.exhaustive_u_k2_fit_rad_s_g2).powi(2);
-    eprintln!("{c:?} var ratio {var_ratio}");
     assert!(
         var_ratio >= 1.0 - 1e-9,
         "the exhaustive search is the optimum"

@@ -8,9 +8,8 @@ fn predicted_u_k2_agrees_with_2000_simulated_campaigns() {
     let p = plan(&inputs).unwrap();
     let outputs = expected_outputs(&inputs, &p);
     let check = simulate_plan(&p, &outputs, 2000, 7).unwrap();
-    eprintln!("{check:?}");
     // The SD of 2000 draws has a relative standard error of 1.6 %: 10 % is six of them.
-    assert!((check.ratio - 1.0).abs() < 0.10, "ratio {}", check.ratio);
+    assert!((check.ratio - 1.0).abs() < 0.10, "{check:?}");
     // The mean is the apparent k2 = k2 + Δk2.
     let delta = p.delta_k2_expected_rad_s_g2;
     assert!((check.noise_free_k2_rad_s_g2 - (5e-7 + delta)).abs() < 1e-4 * p.u_k2_fit_rad_s_g2);
