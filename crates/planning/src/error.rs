@@ -128,6 +128,12 @@ pub enum PlanningError {
         /// Points of the plan.
         expected: usize,
     },
+    /// A result would hold a non-finite number (inputs at the edge of overflow).
+    #[error("the plan's {field} is not finite (inputs too large or too small)")]
+    NonFinite {
+        /// The result's field.
+        field: &'static str,
+    },
     /// The least-squares solver failed.
     #[error("least squares")]
     Identify(#[source] identify::IdentifyError),

@@ -286,8 +286,9 @@ fn gum_k2(p: &Problem, u_fit: f64, fit_dof: usize, u_c_r: Option<(f64, usize)>) 
     let result = gum(&model, &set, &GumOptions::default()).map_err(PlanningError::Uncertainty)?;
     let expanded = |o: &uncertainty::GumOutput| Expanded {
         u_rad_s_g2: o.standard_uncertainty,
-        // A finite ν for every output with a Type A fit term; infinite only when every term
-        // is Type B, shown then as the largest finite number would be misleading: use 1e6.
+        // ν is finite whenever the fit's Type A term is present (every plan); the Type B
+        // floor, all of whose inputs have ν = ∞, is reported as U95 alone, so 1e6 stands in
+        // for ∞ only there and is never shown.
         dof: o.dof.finite().unwrap_or(1e6),
         k: o.coverage_factor,
         u95_rad_s_g2: o.expanded_uncertainty,
@@ -414,7 +415,53 @@ fn describe(p: &Problem, best: &Allocated, revolutions: &[u32]) -> Result<Plan> 
         type_b_floor_u95_rad_s_g2: floor.compensated.u95_rad_s_g2,
         budget: g.budget,
     };
+    check_finite(&plan)?;
     Ok(plan)
+}
+
+/// No `Ok` plan holds a NaN or an infinity.
+fn check_finite(plan: &Plan) -> Result<()> {
+    let expanded = |e: &Expanded| [e.u_rad_s_g2, e.dof, e.k, e.u95_rad_s_g2];
+    let mut fields: Vec<(&'static str, f64)> = vec![
+        ("u_k2_fit_rad_s_g2", plan.u_k2_fit_rad_s_g2),
+        (
+            "u_k2_fit_equal_revolutions_rad_s_g2",
+            plan.u_k2_fit_equal_revolutions_rad_s_g2,
+        ),
+        ("condition_number", plan.condition_number),
+        ("u_c_r_m_s2", plan.u_c_r_m_s2),
+        (
+            "delta_k2_expected_rad_s_g2",
+            plan.delta_k2_expected_rad_s_g2,
+        ),
+        ("c_r_limit_m_s2", plan.c_r_limit_m_s2),
+        ("tur_compensated", plan.tur_compensated),
+        ("tur_uncompensated", plan.tur_uncompensated),
+        ("type_b_floor_u95_rad_s_g2", plan.type_b_floor_u95_rad_s_g2),
+        ("total_time_s", plan.total_time_s),
+    ];
+    fields.extend(expanded(&plan.compensated).map(|v| ("compensated", v)));
+    fields.extend(expanded(&plan.uncompensated).map(|v| ("uncompensated", v)));
+    for q in &plan.points {
+        for v in [
+            q.rate_deg_s,
+            q.recording_s,
+            q.duration_s,
+            q.sigma_mean_rad_s,
+            q.sigma_radius_m,
+        ] {
+            fields.push(("points", v));
+        }
+    }
+    for b in &plan.budget {
+        for v in [b.u, b.sensitivity, b.contribution_rad_s_g2, b.percent] {
+            fields.push(("budget", v));
+        }
+    }
+    match fields.iter().find(|(_, v)| !v.is_finite()) {
+        Some(&(field, _)) => Err(PlanningError::NonFinite { field }),
+        None => Ok(()),
+    }
 }
 
 /// How recording time is shared among given rates in [`evaluate_rates`].

@@ -85,3 +85,21 @@ fn non_finite_fields_are_named() {
     let e = plan(&inputs).unwrap_err();
     assert!(e.to_string().starts_with("piga.noise.sigma_rad_s"), "{e}");
 }
+
+#[test]
+fn the_estimated_budget_reaches_the_target() {
+    let mut inputs = super::paper::inputs(8);
+    inputs.target.u95_k2_rad_s_g2 = 1.5e-7;
+    let e = plan(&inputs).unwrap_err();
+    let PlanningError::TargetUnreachable {
+        needed_budget_s: Some(t),
+        ..
+    } = e
+    else {
+        panic!("{e:?}");
+    };
+    assert!(t > inputs.schedule.budget_s);
+    inputs.schedule.budget_s = 1.05 * t;
+    let p = plan(&inputs).unwrap();
+    assert!(p.compensated.u95_rad_s_g2 <= 1.5e-7);
+}
