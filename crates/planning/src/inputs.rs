@@ -239,6 +239,9 @@ impl Default for Search {
 
 /// Unknowns of the eq. 18 design.
 pub const UNKNOWNS: usize = 6;
+/// The most revolutions a budget may hold at the fastest candidate (whole revolutions are
+/// counted in `u32`).
+const MAX_REVOLUTIONS: f64 = 1e9;
 /// Index of the a² coefficient (k2) in the eq. 18 design.
 pub const K2: usize = 4;
 
@@ -446,6 +449,13 @@ impl Problem {
             .iter()
             .map(|w| std::f64::consts::TAU / w)
             .collect();
+        let fastest = tau_s.iter().copied().fold(f64::INFINITY, f64::min);
+        field(
+            "schedule.budget_s",
+            s.budget_s,
+            s.budget_s / fastest <= MAX_REVOLUTIONS,
+            "must allow at most 1e9 revolutions at the fastest candidate",
+        )?;
         let info_per_s = tau_s
             .iter()
             .map(|tau| match p.noise {

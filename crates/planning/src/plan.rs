@@ -500,6 +500,11 @@ pub fn evaluate_rates(
     let mut distinct: Vec<f64> = rates_deg_s.to_vec();
     distinct.sort_by(f64::total_cmp);
     distinct.dedup();
+    if distinct.len() < UNKNOWNS || distinct.iter().any(|r| !(r.is_finite() && *r > 0.0)) {
+        return Err(PlanningError::Singular {
+            rates_deg_s: rates_deg_s.to_vec(),
+        });
+    }
     let mut probe = inputs.clone();
     probe.centrifuge.candidates = crate::Candidates::List(distinct.clone());
     probe.centrifuge.min_rate_deg_s = probe.centrifuge.min_rate_deg_s.min(distinct[0]);

@@ -103,3 +103,33 @@ fn the_estimated_budget_reaches_the_target() {
     let p = plan(&inputs).unwrap();
     assert!(p.compensated.u95_rad_s_g2 <= 1.5e-7);
 }
+
+#[test]
+fn given_rates_that_cannot_separate_the_terms() {
+    let inputs = super::paper::inputs(8);
+    for rates in [
+        &[][..],
+        &[10.0, 50.0, 100.0][..],
+        &[10.0, f64::NAN, 30.0, 40.0, 50.0, 60.0][..],
+    ] {
+        let e =
+            planning::evaluate_rates(&inputs, rates, planning::Allocation::Optimal).unwrap_err();
+        assert!(matches!(e, PlanningError::Singular { .. }), "{e:?}");
+    }
+    let six = super::paper::PAPER_RATES_DEG_S;
+    let optimal = planning::evaluate_rates(&inputs, &six, planning::Allocation::Optimal).unwrap();
+    let equal =
+        planning::evaluate_rates(&inputs, &six, planning::Allocation::EqualRevolutions).unwrap();
+    assert!(optimal.u_k2_fit_rad_s_g2 < equal.u_k2_fit_rad_s_g2);
+    // The planner's ten points beat the paper's six in the same hour.
+    let p = plan(&super::paper::inputs(10)).unwrap();
+    assert!(p.u_k2_fit_rad_s_g2 < optimal.u_k2_fit_rad_s_g2 / 2.0);
+}
+
+#[test]
+fn a_budget_of_too_many_revolutions() {
+    let mut inputs = super::paper::inputs(8);
+    inputs.schedule.budget_s = 1e12;
+    let e = plan(&inputs).unwrap_err();
+    assert!(e.to_string().starts_with("schedule.budget_s"), "{e}");
+}
