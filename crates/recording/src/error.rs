@@ -6,6 +6,48 @@ use harmonics::HarmonicsError;
 
 use crate::binary::{BinaryDefect, BinaryFormat, BinaryPart, Unsupported};
 
+/// What a lab engineer probably has to change when a recording is refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Hint {
+    /// A number like `1,5`.
+    #[error("decimal comma? set `decimal: comma` (with a delimiter other than `,`, e.g. `;`)")]
+    DecimalComma,
+    /// A number like `1.5` in a format with a decimal comma.
+    #[error("decimal point? set `decimal: point`")]
+    DecimalPoint,
+    /// A field holds another delimiter.
+    #[error("another delimiter? set `delimiter` to the character between the fields")]
+    Delimiter,
+    /// The header was not split, or split where it should not be.
+    #[error(
+        "the header looks separated by {found:?}: set `delimiter: {found:?}` (or `whitespace` for runs of blanks)"
+    )]
+    HeaderDelimiter {
+        /// The separator seen in the header.
+        found: char,
+    },
+    /// The header line is not the first line.
+    #[error(
+        "metadata lines above the header? set `skip_lines` to their number, or name the columns the header has"
+    )]
+    SkipLines,
+    /// A NaN or infinite sample.
+    #[error("to fit the other revolutions, set `on_non_finite: drop_revolution`")]
+    OnNonFinite,
+    /// Missing samples.
+    #[error(
+        "to fit the other revolutions, set `on_gap: drop_revolution` (or raise `max_gap_intervals`)"
+    )]
+    OnGap,
+    /// An encoder in counts read as an angle.
+    #[error("encoder in counts? set `angle: encoder(column: ..., unit: counts(per_rev: N))`")]
+    EncoderCounts,
+    /// The time column is in another unit.
+    #[error("time in another unit? set `time: (column: ..., unit: ms)` (s | ms | us | ns)")]
+    TimeUnit,
+}
+
 /// Errors of reading a table or probe recording, and of the probe-recording writer's
 /// input. A reading error names the file and, where it applies, the 1-based line; an error
 /// with an underlying cause returns it from [`source`](std::error::Error::source) rather
@@ -52,6 +94,25 @@ pub enum RecordingError {
         /// Most columns a format may name.
         max: usize,
     },
+    /// An encoder in counts with 0 counts per revolution.
+    #[error("format: `counts(per_rev: 0)`: an encoder has at least 1 count per revolution")]
+    InvalidCountsPerRev,
+    /// A start angle that is not finite.
+    #[error("format: `rate(start_angle_deg: {value})` must be finite")]
+    InvalidStartAngle {
+        /// The value given.
+        value: f64,
+    },
+    /// An index-pulse column with fewer than two rising edges: no revolution is measured.
+    #[error("{}: index-pulse column `{column}` rises {edges} time(s); at least 2 rising edges (0 → 1) are needed to measure a revolution", path.display())]
+    TooFewIndexPulses {
+        /// The file.
+        path: PathBuf,
+        /// The column.
+        column: String,
+        /// Rising edges found.
+        edges: usize,
+    },
     /// The largest sample interval of a probe-recording format is not a finite value of at
     /// least 1.
     #[error("format: `max_gap_intervals` = {value} must be finite and at least 1")]
@@ -84,7 +145,7 @@ pub enum RecordingError {
         line: usize,
     },
     /// A required column is not in the header.
-    #[error("{}:{line}: no column `{column}` in the header (columns: {})", path.display(), header.join(", "))]
+    #[error("{}:{line}: no column `{column}` in the header (columns: {}){}", path.display(), header.join(", "), hint_text(hint))]
     MissingColumn {
         /// The file.
         path: PathBuf,
@@ -94,6 +155,8 @@ pub enum RecordingError {
         column: String,
         /// The header's columns.
         header: Vec<String>,
+        /// What to change, when known.
+        hint: Option<Hint>,
     },
     /// A row ends before a column that is read.
     #[error("{}:{line}: row has no field for column `{column}`", path.display())]
@@ -119,7 +182,7 @@ pub enum RecordingError {
         found: usize,
     },
     /// A field is not a number.
-    #[error("{}:{line}: column `{column}`: cannot parse {text:?} as a number", path.display())]
+    #[error("{}:{line}: column `{column}`: cannot parse {text:?} as a number{}", path.display(), hint_text(hint))]
     Parse {
         /// The file.
         path: PathBuf,
@@ -129,9 +192,11 @@ pub enum RecordingError {
         column: String,
         /// The field's text.
         text: String,
+        /// What to change, when known.
+        hint: Option<Hint>,
     },
     /// A field is NaN or infinite.
-    #[error("{}:{line}: column `{column}` is not finite ({value})", path.display())]
+    #[error("{}:{line}: column `{column}` is not finite ({value}){}", path.display(), hint_text(hint))]
     NonFinite {
         /// The file.
         path: PathBuf,
@@ -141,6 +206,8 @@ pub enum RecordingError {
         column: String,
         /// The value.
         value: f64,
+        /// What to change, when known.
+        hint: Option<Hint>,
     },
     /// The time does not increase.
     #[error("{}:{line}: time {time_s} s does not increase (previous row at {previous_s} s)", path.display())]
@@ -157,8 +224,8 @@ pub enum RecordingError {
     /// Samples are missing: the interval before this line is too long.
     #[error(
         "{}:{line}: gap of {interval_s} s before this sample, more than {max_intervals} nominal \
-         sample intervals of {nominal_interval_s} s",
-        path.display()
+         sample intervals of {nominal_interval_s} s; {}",
+        path.display(), Hint::OnGap
     )]
     SampleGap {
         /// The file.
@@ -173,12 +240,14 @@ pub enum RecordingError {
         max_intervals: f64,
     },
     /// Another check of the samples, or the harmonic analysis, failed.
-    #[error("{}{}: cannot analyse the samples", path.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
+    #[error("{}{}: cannot analyse the samples{}", path.display(), line.map(|l| format!(":{l}")).unwrap_or_default(), hint_text(hint))]
     Samples {
         /// The file.
         path: PathBuf,
         /// The line of the sample concerned, when the error names one.
         line: Option<usize>,
+        /// What to change, when known.
+        hint: Option<Hint>,
         /// The check's or the analysis's error.
         source: HarmonicsError,
     },
@@ -334,6 +403,11 @@ pub enum RecordingError {
     },
 }
 
+/// ` (hint: …)` after a message, when there is a hint.
+fn hint_text(hint: &Option<Hint>) -> String {
+    hint.map(|h| format!(" (hint: {h})")).unwrap_or_default()
+}
+
 /// Result alias of this crate.
 pub type Result<T, E = RecordingError> = std::result::Result<T, E>;
 
@@ -360,6 +434,9 @@ impl RecordingError {
             | Self::DuplicateColumn { .. }
             | Self::InvalidColumns { .. }
             | Self::InvalidGapLimit { .. }
+            | Self::InvalidCountsPerRev
+            | Self::InvalidStartAngle { .. }
+            | Self::TooFewIndexPulses { .. }
             | Self::Empty { .. }
             | Self::ColumnLengths { .. }
             | Self::NonFiniteValue { .. }

@@ -58,6 +58,7 @@
 //! (`ron` only as a dev-dependency); `.ci/layering` checks this.
 
 mod binary;
+mod analyze;
 mod error;
 mod format;
 mod line_table;
@@ -77,13 +78,20 @@ mod write;
 pub use binary::{
     BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, MatVariables, Unsupported,
 };
-pub use error::{RecordingError, Result};
-pub use format::{AngleUnit, LengthUnit, RecordingFormat};
 pub use mat::{load_mat, parse_mat};
+pub use analyze::{
+    Diagnostic, RATE_WARNING_TOLERANCE, RecordingAnalysis, SPREAD_WARNING_RATIO, SpreadCause,
+    analyze_recording,
+};
+pub use error::{Hint, RecordingError, Result};
+pub use format::{
+    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples,
+    RecordingFormat, TimeUnit,
+};
 pub use piga::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
 };
-pub use probe::{Recording, analyze_recording, load_recording, parse_recording};
+pub use probe::{AngleSourceKind, Recording, load_recording, parse_recording};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 pub use table::{MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, parse_table};

@@ -66,9 +66,9 @@ impl<'a> Lines<'a> {
     }
 }
 
-/// Fields of a line. A blank delimiter (space or tab) treats any run of blanks as one.
-pub(crate) fn split_fields(line: &[u8], delimiter: u8) -> impl Iterator<Item = &[u8]> {
-    let blank = delimiter == b' ' || delimiter == b'\t';
+/// Fields of a line. With `blank`, any run of blanks (spaces and tabs) separates fields and
+/// `delimiter` is not used.
+pub(crate) fn split_fields(line: &[u8], delimiter: u8, blank: bool) -> impl Iterator<Item = &[u8]> {
     let mut rest = Some(if blank { line.trim_ascii() } else { line });
     std::iter::from_fn(move || {
         let r = rest?;

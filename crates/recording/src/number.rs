@@ -15,21 +15,37 @@ pub(super) const POW10: [f64; 23] = {
 /// digits with a decimal exponent within ±22 are exact (Clinger's fast path: an exactly
 /// representable mantissa times or over an exact power of ten is correctly rounded);
 /// everything else (more digits, large exponents, `nan`, `inf`) goes to the standard
-/// library's parser. `None` if the field is not a number.
-pub(super) fn parse_f64(field: &[u8]) -> Option<f64> {
+/// library's parser. `None` if the field is not a number. With `comma`, the decimal mark
+/// is `,` and a `.` is not a number.
+pub(super) fn parse_f64(field: &[u8], comma: bool) -> Option<f64> {
     let f = field.trim_ascii();
-    fast_f64(f).or_else(|| std::str::from_utf8(f).ok()?.parse().ok())
+    let mark = if comma { b',' } else { b'.' };
+    if let Some(v) = fast_f64(f, mark) {
+        return Some(v);
+    }
+    if comma {
+        if f.contains(&b'.') {
+            return None;
+        }
+        let swapped: Vec<u8> = f
+            .iter()
+            .map(|&b| if b == b',' { b'.' } else { b })
+            .collect();
+        return std::str::from_utf8(&swapped).ok()?.parse().ok();
+    }
+    std::str::from_utf8(f).ok()?.parse().ok()
 }
 
 /// `fast_prefix` over the whole field.
-pub(super) fn fast_f64(s: &[u8]) -> Option<f64> {
-    fast_prefix(s).and_then(|(v, used)| (used == s.len()).then_some(v))
+pub(super) fn fast_f64(s: &[u8], mark: u8) -> Option<f64> {
+    fast_prefix(s, mark).and_then(|(v, used)| (used == s.len()).then_some(v))
 }
 
 /// The fast path of [`parse_f64`] on the number at the start of `s`: its value and length,
-/// or `None` when it is not a plain decimal number the fast path computes exactly.
+/// or `None` when it is not a plain decimal number the fast path computes exactly. `mark` is
+/// the decimal mark (`.` or `,`).
 #[inline(always)]
-pub(super) fn fast_prefix(s: &[u8]) -> Option<(f64, usize)> {
+pub(super) fn fast_prefix(s: &[u8], mark: u8) -> Option<(f64, usize)> {
     let mut i = 0;
     let negative = match s.first() {
         Some(b'-') => {
@@ -56,7 +72,7 @@ pub(super) fn fast_prefix(s: &[u8]) -> Option<(f64, usize)> {
     }
     let mut digits = i - int_start;
     let mut exponent: i32 = 0;
-    if s.get(i) == Some(&b'.') {
+    if s.get(i) == Some(&mark) {
         i += 1;
         let frac_start = i;
         while let Some(four) = four_digits(s, i) {
@@ -158,14 +174,14 @@ mod tests {
         ];
         for c in cases {
             let want: f64 = c.parse().unwrap();
-            let got = parse_f64(c.as_bytes()).unwrap();
+            let got = parse_f64(c.as_bytes(), false).unwrap();
             assert!(
                 got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
                 "{c}: {got} vs {want}"
             );
         }
         for bad in ["", "-", ".", "e5", "1e", "1.2.3", "12a", "0x10", "1,5"] {
-            assert_eq!(parse_f64(bad.as_bytes()), None, "{bad:?}");
+            assert_eq!(parse_f64(bad.as_bytes(), false), None, "{bad:?}");
         }
     }
 
@@ -183,10 +199,31 @@ mod tests {
             let s = format!("{m}e-{e}");
             let want: f64 = s.parse().unwrap();
             assert_eq!(
-                parse_f64(s.as_bytes()).unwrap().to_bits(),
+                parse_f64(s.as_bytes(), false).unwrap().to_bits(),
                 want.to_bits(),
                 "{s}"
             );
+            let comma = s.replace('.', ",");
+            assert_eq!(
+                parse_f64(comma.as_bytes(), true).unwrap().to_bits(),
+                want.to_bits(),
+                "{comma}"
+            );
         }
+    }
+
+    #[test]
+    fn decimal_comma() {
+        for (text, want) in [
+            ("1,5", 1.5),
+            ("-0,001", -0.001),
+            ("12345678901234567890,5", 12345678901234567890.5),
+            ("2,5e-3", 2.5e-3),
+            ("7", 7.0),
+        ] {
+            assert_eq!(parse_f64(text.as_bytes(), true), Some(want), "{text}");
+        }
+        assert_eq!(parse_f64(b"1.5", true), None);
+        assert_eq!(parse_f64(b"1,5", false), None);
     }
 }

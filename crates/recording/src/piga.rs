@@ -41,14 +41,13 @@ pub struct PigaTable {
 impl PigaTable {
     /// The table's format: the two columns, comma-separated, not flexible.
     pub fn format() -> TableFormat {
-        TableFormat {
-            columns: vec![
+        TableFormat::new(
+            vec![
                 TableColumn::required(PIGA_RATE_COLUMN),
                 TableColumn::required(PIGA_OUTPUT_COLUMN),
             ],
-            delimiter: ',',
-            flexible: false,
-        }
+            false,
+        )
     }
 
     /// Number of rows.

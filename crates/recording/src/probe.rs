@@ -1,28 +1,68 @@
 //! Probe recordings: time, probe gap and, optionally, the spindle encoder's angle, one
 //! sample per row (the raw data behind eq. 20).
 
+use std::f64::consts::{PI, TAU};
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
 
 use crate::error::{RecordingError, Result};
-use crate::format::{LengthUnit, RecordingFormat};
+use crate::format::{ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, RecordingFormat};
 use crate::line_table::LineTable;
 use crate::table::{Table, load_table, parse_table};
+
+/// Where a recording's spindle angle came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AngleSourceKind {
+    /// The encoder column.
+    Encoder,
+    /// The index-pulse column, interpolated in time between pulses.
+    IndexPulse,
+    /// The declared rate and a start angle: nothing measured.
+    DeclaredRate,
+}
+
+impl AngleSourceKind {
+    /// The name written in results (`encoder`, `index_pulse`, `declared_rate`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Encoder => "encoder",
+            Self::IndexPulse => "index_pulse",
+            Self::DeclaredRate => "declared_rate",
+        }
+    }
+}
 
 /// A probe recording in memory.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Recording {
     /// The file it was read from.
     pub path: PathBuf,
-    /// Sample times, s (strictly increasing, no gap above the format's limit).
+    /// Sample times, s (strictly increasing; without a gap above the format's limit unless
+    /// the format drops the revolutions gaps touch).
     pub time_s: Vec<f64>,
-    /// Probe gap of each sample, in [`Recording::gap_unit`].
+    /// Probe gap of each sample, in [`Recording::gap_unit`] (NaN or infinite only with
+    /// `on_non_finite: drop_revolution`).
     pub gap: Vec<f64>,
     /// Unit of [`Recording::gap`].
     pub gap_unit: LengthUnit,
-    /// Encoder angle of each sample, rad, when the file has the angle column.
+    /// The measured angle of each sample, rad (encoder, or interpolated index pulses).
     pub angle_rad: Option<Vec<f64>>,
+    /// Where the angle comes from.
+    pub angle_source: AngleSourceKind,
+    /// Angle of the first sample when the angle comes from the declared rate, rad.
+    pub start_angle_rad: f64,
+    /// Columns of the header that were not read (named in the `angle_from_rate` warning:
+    /// one of them may be an encoder or index pulse).
+    pub unread_columns: Vec<String>,
+    /// Largest sample interval, in nominal intervals, before it is a gap.
+    pub max_gap_intervals: f64,
+    /// What a gap does.
+    pub on_gap: OnBadSamples,
+    /// What a non-finite sample does.
+    pub on_non_finite: OnBadSamples,
     /// The line of each sample in the file.
     lines: LineTable,
 }
@@ -60,95 +100,245 @@ impl Recording {
             time_s,
             gap,
             gap_unit,
+            angle_source: if angle_rad.is_some() {
+                AngleSourceKind::Encoder
+            } else {
+                AngleSourceKind::DeclaredRate
+            },
             angle_rad,
+            start_angle_rad: 0.0,
+            unread_columns: Vec::new(),
+            max_gap_intervals: RecordingFormat::default().max_gap_intervals,
+            on_gap: OnBadSamples::Error,
+            on_non_finite: OnBadSamples::Error,
             lines: LineTable::default(),
         }
     }
 
-    /// The samples as a [`ProbeSignal`]: angles from the encoder column when present, else
-    /// `θ = ω·(t − t₀) + θ₀` from the given rate and first-sample angle.
-    pub fn signal(&self, rate_rad_s: f64, start_angle_rad: f64) -> ProbeSignal<'_> {
+    /// The samples as a [`ProbeSignal`]: the measured angle when there is one, else
+    /// `θ = ω·(t − t₀) + θ₀` from the declared rate and the format's start angle.
+    pub fn signal(&self, declared_rate_rad_s: f64) -> ProbeSignal<'_> {
+        self.signal_of(0..self.len(), declared_rate_rad_s)
+    }
+
+    /// The samples of `range` as a [`ProbeSignal`] (the rate angle continues from the
+    /// recording's first sample).
+    pub(crate) fn signal_of(
+        &self,
+        range: Range<usize>,
+        declared_rate_rad_s: f64,
+    ) -> ProbeSignal<'_> {
         let angle = match &self.angle_rad {
-            Some(a) => SpindleAngle::Encoder(a),
+            Some(a) => SpindleAngle::Encoder(&a[range.clone()]),
             None => SpindleAngle::Rate {
-                rate_rad_s,
-                start_angle_rad,
+                rate_rad_s: declared_rate_rad_s,
+                start_angle_rad: self.start_angle_rad
+                    + declared_rate_rad_s
+                        * (self.time_s.get(range.start).copied().unwrap_or(0.0) - self.time_s[0]),
             },
         };
         ProbeSignal {
-            time_s: &self.time_s,
-            gap: &self.gap,
+            time_s: &self.time_s[range.clone()],
+            gap: &self.gap[range],
             angle,
         }
     }
 
-    /// The recording in a table read with [`RecordingFormat::table_format`]: the angle in
-    /// radians, the time axis checked.
+    /// The mean rate of the measured angle, rad/s: its unwrapped span over the time span of
+    /// the finite samples (`None` without a measured angle or with fewer than two finite
+    /// samples).
+    pub fn measured_rate_rad_s(&self) -> Option<f64> {
+        let a = self.angle_rad.as_ref()?;
+        let ok = |i: usize| a[i].is_finite() && self.time_s[i].is_finite();
+        let first = (0..a.len()).find(|&i| ok(i))?;
+        let last = (0..a.len()).rev().find(|&i| ok(i))?;
+        if last <= first {
+            return None;
+        }
+        let mut span = 0.0;
+        let mut prev = a[first];
+        for &v in &a[first + 1..=last] {
+            if v.is_finite() {
+                span += wrapped_step(prev, v);
+                prev = v;
+            }
+        }
+        Some(span / (self.time_s[last] - self.time_s[first]))
+    }
+
+    /// The recording in a table read with [`RecordingFormat::table_format`]: time in s, the
+    /// angle in radians (or built from index pulses), the time axis checked.
     fn from_table(table: Table, format: &RecordingFormat) -> Result<Self> {
         let Table {
             path,
             mut columns,
+            names,
+            header,
             lines,
             ..
         } = table;
+        let unread_columns = header
+            .iter()
+            .filter(|h| !names.contains(h))
+            .cloned()
+            .collect();
         let mut take = |k: usize| columns.get_mut(k).and_then(Option::take);
         // Time and gap are required columns: the table has them.
-        let time_s = take(0).unwrap_or_default();
+        let mut time_s = take(0).unwrap_or_default();
         let gap = take(1).unwrap_or_default();
-        let mut angle_rad = take(2);
-        let scale = format.angle_unit.rad_per_unit();
-        if let Some(angle) = angle_rad.as_mut().filter(|_| scale != 1.0) {
-            for a in angle {
-                *a *= scale;
+        let raw_angle = take(ANGLE_SLOT);
+        let time_scale = format.time.unit.s_per_unit();
+        if time_scale != 1.0 {
+            for t in &mut time_s {
+                *t *= time_scale;
             }
         }
-        // The values are finite; what is left is their order, gaps, and intervals that
-        // overflow (a single row has no interval to check).
-        if time_s.len() > 1 {
-            harmonics::check_time_axis(&time_s, format.max_gap_intervals).map_err(|e| {
-                let line = |index| lines.line_of(index);
-                match e {
-                    HarmonicsError::TimeNotIncreasing {
-                        index,
-                        previous_s,
-                        time_s,
-                        ..
-                    } => RecordingError::TimeNotIncreasing {
-                        path: path.clone(),
-                        line: line(index),
-                        previous_s,
-                        time_s,
-                    },
-                    HarmonicsError::SampleGap {
-                        index,
-                        interval_s,
-                        nominal_interval_s,
-                        max_intervals,
-                        ..
-                    } => RecordingError::SampleGap {
-                        path: path.clone(),
-                        line: line(index),
-                        interval_s,
-                        nominal_interval_s,
-                        max_intervals,
-                    },
-                    source => RecordingError::Samples {
-                        path: path.clone(),
-                        line: sample_index(&source).map(line),
-                        source,
-                    },
+        let mut start_angle_rad = 0.0;
+        let (angle_rad, angle_source) = match (&format.angle, raw_angle) {
+            (AngleSource::Encoder { unit, .. }, Some(mut a)) => {
+                let scale = unit.rad_per_unit();
+                if scale != 1.0 {
+                    for v in &mut a {
+                        *v *= scale;
+                    }
                 }
-            })?;
+                (Some(a), AngleSourceKind::Encoder)
+            }
+            (AngleSource::IndexPulse { column }, Some(p)) => {
+                let a = index_pulse_angle(&time_s, &p).map_err(|edges| {
+                    RecordingError::TooFewIndexPulses {
+                        path: path.clone(),
+                        column: column.clone(),
+                        edges,
+                    }
+                })?;
+                (Some(a), AngleSourceKind::IndexPulse)
+            }
+            (AngleSource::Rate { start_angle_deg }, _) => {
+                start_angle_rad = start_angle_deg.to_radians();
+                (None, AngleSourceKind::DeclaredRate)
+            }
+            // An optional encoder column the header lacks.
+            (_, None) => (None, AngleSourceKind::DeclaredRate),
+        };
+        let strict =
+            format.on_gap == OnBadSamples::Error && format.on_non_finite == OnBadSamples::Error;
+        // The values are finite (unless non-finite ones are kept); what is left is their
+        // order, gaps, and intervals that overflow (a single row has no interval to check).
+        // A format that drops revolutions leaves gaps and non-finite samples to the
+        // analysis.
+        let limit = if strict {
+            format.max_gap_intervals
+        } else {
+            f64::MAX
+        };
+        let finite_times = strict || time_s.iter().all(|t| t.is_finite());
+        if time_s.len() > 1 && finite_times {
+            harmonics::check_time_axis(&time_s, limit)
+                .map_err(|e| time_axis_error(e, &path, &lines))?;
         }
         Ok(Self {
             path,
             time_s,
             gap,
-            gap_unit: format.gap_unit,
+            gap_unit: format.gap.unit,
             angle_rad,
+            angle_source,
+            start_angle_rad,
+            unread_columns,
+            max_gap_intervals: format.max_gap_intervals,
+            on_gap: format.on_gap,
+            on_non_finite: format.on_non_finite,
             lines,
         })
     }
+}
+
+/// The reader's error for a time axis that [`harmonics::check_time_axis`] refused.
+fn time_axis_error(e: HarmonicsError, path: &Path, lines: &LineTable) -> RecordingError {
+    let path = path.to_owned();
+    let line = |index| lines.line_of(index);
+    match e {
+        HarmonicsError::TimeNotIncreasing {
+            index,
+            previous_s,
+            time_s,
+            ..
+        } => RecordingError::TimeNotIncreasing {
+            path,
+            line: line(index),
+            previous_s,
+            time_s,
+        },
+        HarmonicsError::SampleGap {
+            index,
+            interval_s,
+            nominal_interval_s,
+            max_intervals,
+            ..
+        } => RecordingError::SampleGap {
+            path,
+            line: line(index),
+            interval_s,
+            nominal_interval_s,
+            max_intervals,
+        },
+        source => RecordingError::Samples {
+            path,
+            line: sample_index(&source).map(line),
+            hint: None,
+            source,
+        },
+    }
+}
+
+/// An angle step wrapped into `(−π, π]`.
+fn wrapped_step(a: f64, b: f64) -> f64 {
+    let d = b - a;
+    d - TAU * ((d + PI) / TAU).ceil() + TAU
+}
+
+/// The angle from a once-per-revolution marker: 0 at each rising edge (the middle of the
+/// interval in which the marker crosses ½), `2π` more at each next one, linear in time
+/// between edges and extended with the neighbouring period before the first and after the
+/// last. `Err(edges)` with fewer than two rising edges. A non-finite marker or time gives
+/// a NaN angle (a bad sample).
+fn index_pulse_angle(time_s: &[f64], pulse: &[f64]) -> std::result::Result<Vec<f64>, usize> {
+    let mut edges = Vec::new();
+    for i in 1..pulse.len() {
+        if pulse[i - 1] < 0.5
+            && pulse[i] >= 0.5
+            && time_s[i - 1].is_finite()
+            && time_s[i].is_finite()
+        {
+            edges.push(0.5 * (time_s[i - 1] + time_s[i]));
+        }
+    }
+    if edges.len() < 2 {
+        return Err(edges.len());
+    }
+    let m = edges.len() - 1;
+    let mut k = 0;
+    Ok(time_s
+        .iter()
+        .zip(pulse)
+        .map(|(&t, &p)| {
+            if !(t.is_finite() && p.is_finite()) {
+                return f64::NAN;
+            }
+            while k < m && t >= edges[k + 1] {
+                k += 1;
+            }
+            // Revolution k spans edges[k]..edges[k + 1]; past the last edge the last period
+            // is extended (and before the first, the first).
+            let (j, period) = if k == m {
+                (m, edges[m] - edges[m - 1])
+            } else {
+                (k, edges[k + 1] - edges[k])
+            };
+            TAU * (j as f64 + (t - edges[j]) / period)
+        })
+        .collect())
 }
 
 /// Reads a probe recording from a file, streaming it through one reused buffer of about a
@@ -166,37 +356,8 @@ pub fn parse_recording(text: &[u8], path: &Path, format: &RecordingFormat) -> Re
     Recording::from_table(table, format)
 }
 
-/// Fits eq. 20 per revolution to a loaded recording ([`harmonics::analyze`]), with the angle
-/// from the encoder column when present, else from the rate; an error naming a sample is
-/// given the sample's line in the file ([`Recording::line_of_sample`]).
-///
-/// With an encoder column, the encoder's mean rate must match `rate_rad_s` within
-/// [`harmonics::ENCODER_RATE_TOLERANCE`] (2 %), else [`HarmonicsError::RateMismatch`]: a
-/// study fits with the declared rate, so a file attached to the wrong rate point is refused.
-pub fn analyze_recording(
-    recording: &Recording,
-    rate_rad_s: f64,
-    start_angle_rad: f64,
-    config: &harmonics::FitConfig,
-) -> Result<harmonics::HarmonicAnalysis> {
-    let located = |source: HarmonicsError| RecordingError::Samples {
-        path: recording.path.clone(),
-        // A binary recording has no lines (0): its error names the sample index only.
-        line: sample_index(&source)
-            .map(|row| recording.line_of_sample(row))
-            .filter(|&line| line != 0),
-        source,
-    };
-    let signal = recording.signal(rate_rad_s, start_angle_rad);
-    let analysis = harmonics::analyze(&signal, config).map_err(located)?;
-    // The encoder gives the angle, but the declared rate is the ω a study fits with.
-    harmonics::check_encoder_rate(&signal, harmonics::DeclaredRate::new(rate_rad_s))
-        .map_err(located)?;
-    Ok(analysis)
-}
-
 /// The sample an analysis error names, if any.
-fn sample_index(error: &HarmonicsError) -> Option<usize> {
+pub(crate) fn sample_index(error: &HarmonicsError) -> Option<usize> {
     match error {
         HarmonicsError::NonFinite { index, .. }
         | HarmonicsError::NonFiniteInterval { index, .. }

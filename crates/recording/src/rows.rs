@@ -2,20 +2,45 @@
 
 use std::path::Path;
 
-use crate::error::RecordingError;
+use crate::error::{Hint, RecordingError};
 use crate::lines::{split_fields, trim_quotes};
 use crate::number::{fast_prefix, parse_f64};
 
 /// Sentinel of [`fast_row`]'s field map: a field that is not stored.
 pub(crate) const SKIP: u8 = u8::MAX;
 
+/// How a row's fields are separated and its numbers written.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Syntax {
+    /// The delimiter byte (unused when `blank`).
+    pub(crate) delimiter: u8,
+    /// Runs of blanks separate fields.
+    pub(crate) blank: bool,
+    /// The decimal mark is `,`.
+    pub(crate) comma: bool,
+    /// NaN and infinite values are stored rather than refused.
+    pub(crate) allow_non_finite: bool,
+}
+
 /// What went wrong in a row, before the file and line are attached; `slot` is the place of
 /// the column among those read.
 pub(crate) enum RowError {
-    MissingField { slot: usize },
-    FieldCount { expected: usize, found: usize },
-    Parse { slot: usize, text: String },
-    NonFinite { slot: usize, value: f64 },
+    MissingField {
+        slot: usize,
+    },
+    FieldCount {
+        expected: usize,
+        found: usize,
+    },
+    Parse {
+        slot: usize,
+        text: String,
+        hint: Option<Hint>,
+    },
+    NonFinite {
+        slot: usize,
+        value: f64,
+    },
 }
 
 impl RowError {
@@ -38,17 +63,19 @@ impl RowError {
                 expected,
                 found,
             },
-            Self::Parse { slot, text } => RecordingError::Parse {
+            Self::Parse { slot, text, hint } => RecordingError::Parse {
                 path,
                 line,
                 column: column_name(slot),
                 text,
+                hint,
             },
             Self::NonFinite { slot, value } => RecordingError::NonFinite {
                 path,
                 line,
                 column: column_name(slot),
                 value,
+                hint: Some(Hint::OnNonFinite),
             },
         }
     }
@@ -59,18 +86,19 @@ impl RowError {
 /// field; with `width`, the row must have exactly that many fields.
 pub(crate) fn parse_row_slowly(
     row: &[u8],
-    delimiter: u8,
+    syntax: Syntax,
     wanted: &[(usize, usize)],
     width: Option<usize>,
     values: &mut [f64],
 ) -> Result<(), RowError> {
+    let split = || split_fields(row, syntax.delimiter, syntax.blank);
     if let Some(expected) = width {
-        let found = split_fields(row, delimiter).count();
+        let found = split().count();
         if found != expected {
             return Err(RowError::FieldCount { expected, found });
         }
     }
-    let mut fields = split_fields(row, delimiter);
+    let mut fields = split();
     let mut next = 0;
     for &(index, slot) in wanted {
         let Some(field) = fields.nth(index - next) else {
@@ -78,16 +106,31 @@ pub(crate) fn parse_row_slowly(
         };
         next = index + 1;
         let field = trim_quotes(field);
-        let value = parse_f64(field).ok_or_else(|| RowError::Parse {
+        let value = parse_f64(field, syntax.comma).ok_or_else(|| RowError::Parse {
             slot,
             text: String::from_utf8_lossy(field).into_owned(),
+            hint: number_hint(field, syntax),
         })?;
-        if !value.is_finite() {
+        if !value.is_finite() && !syntax.allow_non_finite {
             return Err(RowError::NonFinite { slot, value });
         }
         values[slot] = value;
     }
     Ok(())
+}
+
+/// What the field that is not a number probably means.
+fn number_hint(field: &[u8], syntax: Syntax) -> Option<Hint> {
+    if !syntax.comma && field.contains(&b',') && parse_f64(field, true).is_some() {
+        return Some(Hint::DecimalComma);
+    }
+    if syntax.comma && field.contains(&b'.') && parse_f64(field, false).is_some() {
+        return Some(Hint::DecimalPoint);
+    }
+    if !syntax.blank && field.iter().any(|&b| b == b';' || b == b'\t' || b == b',') {
+        return Some(Hint::Delimiter);
+    }
+    None
 }
 
 /// Parses a plain row `number,number,…` starting at `pos` straight from the text: stores
@@ -100,13 +143,16 @@ pub(crate) fn parse_row_slowly(
 pub(crate) fn fast_row(
     text: &[u8],
     mut pos: usize,
-    delimiter: u8,
+    syntax: Syntax,
     dest_of: &[u8],
     rest_allowed: bool,
     values: &mut [f64],
 ) -> Option<usize> {
     let last = dest_of.len() - 1;
-    let blank = delimiter == b' ' || delimiter == b'\t';
+    let Syntax {
+        delimiter, blank, ..
+    } = syntax;
+    let mark = if syntax.comma { b',' } else { b'.' };
     for (f, &dest) in dest_of.iter().enumerate() {
         if dest == SKIP {
             // The skipped field ends at the delimiter; with a blank delimiter at either
@@ -124,7 +170,7 @@ pub(crate) fn fast_row(
             pos += off + 1;
             continue;
         }
-        let (v, used) = fast_prefix(text.get(pos..)?)?;
+        let (v, used) = fast_prefix(text.get(pos..)?, mark)?;
         *values.get_mut(usize::from(dest))? = v;
         pos += used;
         if f < last {

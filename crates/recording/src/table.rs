@@ -3,11 +3,11 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::error::{RecordingError, Result};
+use crate::error::{Hint, RecordingError, Result};
 use crate::format::delimiter_byte;
 use crate::line_table::LineTable;
 use crate::lines::{Lines, normalized, split_fields, trim_quotes};
-use crate::rows::{SKIP, fast_row, parse_row_slowly};
+use crate::rows::{SKIP, Syntax, fast_row, parse_row_slowly};
 use crate::stream::{CHUNK_BYTES, stream_file};
 
 /// Most columns a [`TableFormat`] may name.
@@ -56,17 +56,47 @@ pub struct TableFormat {
     /// The columns read, 1 to [`MAX_COLUMNS`], at least one required, names distinct.
     pub columns: Vec<TableColumn>,
     /// Field delimiter, one ASCII character that cannot occur in a number, a comment or a
-    /// line end. With `' '` or `'\t'`, runs of blanks separate fields.
+    /// line end (unused with `whitespace`).
     pub delimiter: char,
     /// Whether a row may have more fields than the header (they are ignored). When false,
     /// every row has exactly as many fields as the header ([`RecordingError::FieldCount`]).
     pub flexible: bool,
+    /// Runs of blanks (spaces and tabs) separate fields, instead of `delimiter`.
+    pub whitespace: bool,
+    /// Numbers are written with a decimal comma (`1,5`).
+    pub decimal_comma: bool,
+    /// Lines before the header, blank and comment lines included.
+    pub skip_lines: usize,
+    /// NaN and infinite values are read rather than refused.
+    pub allow_non_finite: bool,
 }
 
 impl TableFormat {
-    /// The delimiter as a byte, after checking the format.
-    fn check(&self) -> Result<u8> {
-        let delimiter = delimiter_byte(self.delimiter)?;
+    /// A table of these columns, comma-separated, decimal point, nothing skipped, finite
+    /// values only.
+    pub fn new(columns: Vec<TableColumn>, flexible: bool) -> Self {
+        Self {
+            columns,
+            delimiter: ',',
+            flexible,
+            whitespace: false,
+            decimal_comma: false,
+            skip_lines: 0,
+            allow_non_finite: false,
+        }
+    }
+}
+
+impl TableFormat {
+    /// The row syntax, after checking the format.
+    fn check(&self) -> Result<Syntax> {
+        let delimiter = match self.whitespace {
+            true => b' ',
+            false => delimiter_byte(self.delimiter)?,
+        };
+        if self.decimal_comma && delimiter == b',' {
+            return Err(RecordingError::InvalidDelimiter { delimiter: ',' });
+        }
         let required = self.columns.iter().filter(|c| c.required).count();
         if self.columns.len() > MAX_COLUMNS || required == 0 {
             return Err(RecordingError::InvalidColumns {
@@ -83,7 +113,12 @@ impl TableFormat {
                 });
             }
         }
-        Ok(delimiter)
+        Ok(Syntax {
+            delimiter,
+            blank: self.whitespace,
+            comma: self.decimal_comma,
+            allow_non_finite: self.allow_non_finite,
+        })
     }
 }
 
@@ -98,6 +133,8 @@ pub struct Table {
     /// header lacks.
     pub(crate) columns: Vec<Option<Vec<f64>>>,
     pub(crate) header_line: usize,
+    /// The header's column names, trimmed.
+    pub(crate) header: Vec<String>,
     pub(crate) lines: LineTable,
 }
 
@@ -123,6 +160,11 @@ impl Table {
     pub fn column(&self, name: &str) -> Option<&[f64]> {
         let k = self.names.iter().position(|n| n == name)?;
         self.columns[k].as_deref()
+    }
+
+    /// The header's column names (trimmed, quotes removed).
+    pub fn header(&self) -> &[String] {
+        &self.header
     }
 
     /// The 1-based line of the header.
@@ -157,9 +199,11 @@ pub fn load_table(path: &Path, format: &TableFormat) -> Result<Table> {
 /// ```
 /// use recording::{TableColumn, TableFormat, parse_table};
 /// let format = TableFormat {
-///     columns: vec![TableColumn::required("rate_deg_s"), TableColumn::optional("temp_c")],
 ///     delimiter: ';',
-///     flexible: false,
+///     ..TableFormat::new(
+///         vec![TableColumn::required("rate_deg_s"), TableColumn::optional("temp_c")],
+///         false,
+///     )
 /// };
 /// let text = "# run 3\nrate_deg_s;label\n10;a\n\n20;\"b\"\n";
 /// let table = parse_table(text.as_bytes(), "t.csv".as_ref(), &format)?;
@@ -192,10 +236,11 @@ struct Layout {
 pub(crate) struct TableParser<'a> {
     path: &'a Path,
     format: &'a TableFormat,
-    delimiter: u8,
+    syntax: Syntax,
     /// Lines seen so far.
     pub(crate) line: usize,
     header_line: usize,
+    header: Vec<String>,
     layout: Option<Layout>,
     /// Values of the columns present, by slot.
     data: Vec<Vec<f64>>,
@@ -211,9 +256,10 @@ impl<'a> TableParser<'a> {
         Ok(Self {
             path,
             format,
-            delimiter: format.check()?,
+            syntax: format.check()?,
             line: 0,
             header_line: 0,
+            header: Vec::new(),
             layout: None,
             data: Vec::new(),
             rows: 0,
@@ -223,7 +269,7 @@ impl<'a> TableParser<'a> {
     }
 
     fn header(&mut self, line: usize, header: &[u8]) -> Result<Layout> {
-        let names: Vec<String> = split_fields(header, self.delimiter)
+        let names: Vec<String> = split_fields(header, self.syntax.delimiter, self.syntax.blank)
             .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
             .collect();
         let mut present = Vec::new();
@@ -235,11 +281,13 @@ impl<'a> TableParser<'a> {
                     present.push(k);
                 }
                 None if column.required => {
+                    let hint = header_hint(&names, &column.name, line, self.format);
                     return Err(RecordingError::MissingColumn {
                         path: self.path.to_owned(),
                         line,
                         column: column.name.clone(),
                         header: names,
+                        hint,
                     });
                 }
                 None => {}
@@ -264,6 +312,7 @@ impl<'a> TableParser<'a> {
             .map(|_| Vec::with_capacity(reserve))
             .collect();
         self.header_line = line;
+        self.header = names;
         Ok(Layout {
             present,
             wanted,
@@ -281,7 +330,7 @@ impl<'a> TableParser<'a> {
         };
         let layout = match self.layout.take() {
             Some(l) => l,
-            None => match lines.next_content() {
+            None => match skip_then_next_content(&mut lines, self.format.skip_lines) {
                 Some((line, header)) => self.header(line, header)?,
                 None => {
                     self.line = lines.line;
@@ -302,9 +351,10 @@ impl<'a> TableParser<'a> {
         Self {
             path: self.path,
             format: self.format,
-            delimiter: self.delimiter,
+            syntax: self.syntax,
             line: 0,
             header_line: self.header_line,
+            header: Vec::new(),
             layout: None,
             data: self
                 .data
@@ -377,7 +427,7 @@ impl<'a> TableParser<'a> {
             let line = if let Some(next) = fast_row(
                 text,
                 lines.pos,
-                self.delimiter,
+                self.syntax,
                 &layout.dest_of,
                 flexible,
                 &mut values,
@@ -390,7 +440,7 @@ impl<'a> TableParser<'a> {
                     break Ok(());
                 };
                 if let Err(e) =
-                    parse_row_slowly(fields, self.delimiter, &layout.wanted, width, &mut values)
+                    parse_row_slowly(fields, self.syntax, &layout.wanted, width, &mut values)
                 {
                     let name = |slot: usize| {
                         layout
@@ -439,7 +489,44 @@ impl<'a> TableParser<'a> {
             names: self.format.columns.iter().map(|c| c.name.clone()).collect(),
             columns,
             header_line: self.header_line,
+            header: self.header,
             lines: self.lines,
         })
     }
+}
+
+/// The first content line after the first `skip` lines of the text (counted from its
+/// first line, so a piece fed later continues the count).
+fn skip_then_next_content<'t>(lines: &mut Lines<'t>, skip: usize) -> Option<(usize, &'t [u8])> {
+    while lines.line < skip {
+        lines.next_line()?;
+    }
+    lines.next_content()
+}
+
+/// What a header without a required column probably means.
+fn header_hint(names: &[String], column: &str, line: usize, format: &TableFormat) -> Option<Hint> {
+    if names.len() == 1 {
+        let name = &names[0];
+        if let Some(c) = [';', '\t', ',', ' ']
+            .into_iter()
+            .find(|&c| name.contains(c) && (format.whitespace || c != format.delimiter))
+        {
+            return Some(Hint::HeaderDelimiter { found: c });
+        }
+    }
+    if !format.whitespace
+        && format.delimiter == ' '
+        && names.iter().any(|n| column.starts_with(n.as_str()))
+    {
+        return Some(Hint::HeaderDelimiter { found: '\t' });
+    }
+    if names
+        .iter()
+        .any(|n| n.eq_ignore_ascii_case(column) || n.trim() == column.trim())
+    {
+        return None;
+    }
+    (line <= format.skip_lines + 1 || names.iter().all(|n| n.parse::<f64>().is_err()))
+        .then_some(Hint::SkipLines)
 }

@@ -5,8 +5,8 @@ use std::path::Path;
 
 use harmonics::{HarmonicsError, SpindleAngle};
 use recording::{
-    AngleUnit, LengthUnit, Recording, RecordingError, RecordingFormat, SyntheticSpec,
-    analyze_recording, load_recording, parse_recording,
+    AngleSource, AngleUnit, Column, Delimiter, LengthUnit, Recording, RecordingError,
+    RecordingFormat, SyntheticSpec, TimeUnit, analyze_recording, load_recording, parse_recording,
 };
 
 /// Bytes read from a file at a time.
@@ -58,12 +58,20 @@ fn default_columns_comments_blank_lines_and_crlf() {
 #[test]
 fn configured_names_units_delimiter_and_column_order() {
     let format = RecordingFormat {
-        time_column: "t".into(),
-        gap_column: "d".into(),
-        angle_column: "phi".into(),
-        gap_unit: LengthUnit::Mm,
-        angle_unit: AngleUnit::Rad,
-        delimiter: ';',
+        time: Column {
+            column: "t".into(),
+            unit: TimeUnit::S,
+        },
+        gap: Column {
+            column: "d".into(),
+            unit: LengthUnit::Mm,
+        },
+        angle: AngleSource::Encoder {
+            column: "phi".into(),
+            unit: AngleUnit::Rad,
+            optional: false,
+        },
+        delimiter: Delimiter::Char(';'),
         ..RecordingFormat::default()
     };
     let text = "phi;extra;d;t\n0.5;x;0.0125;10\n0.6;y;0.0126;10.001\n";
@@ -74,7 +82,7 @@ fn configured_names_units_delimiter_and_column_order() {
     assert_eq!(rec.angle_rad.unwrap(), [0.5, 0.6]);
     // Blank-separated, runs of blanks count once.
     let format = RecordingFormat {
-        delimiter: ' ',
+        delimiter: Delimiter::Whitespace,
         ..RecordingFormat::default()
     };
     let text = "time_s   gap_um\n 0.0   1.0\n0.001\t 2.0  \n";
@@ -85,10 +93,23 @@ fn configured_names_units_delimiter_and_column_order() {
 
 #[test]
 fn ron_format_with_defaults() {
-    let f: RecordingFormat = ron::from_str("(gap_unit: mm, delimiter: ';')").unwrap();
-    assert_eq!(f.gap_unit, LengthUnit::Mm);
-    assert_eq!(f.time_column, "time_s");
-    assert!(ron::from_str::<RecordingFormat>("(gap_units: mm)").is_err());
+    let f: RecordingFormat =
+        ron::from_str("(gap: (column: \"gap_um\", unit: mm), delimiter: ';')").unwrap();
+    assert_eq!(f.gap.unit, LengthUnit::Mm);
+    assert_eq!(f.delimiter, Delimiter::Char(';'));
+    assert_eq!(f.time.column, "time_s");
+    assert!(ron::from_str::<RecordingFormat>("(gap_unit: mm)").is_err());
+    let f: RecordingFormat = ron::from_str("(delimiter: whitespace)").unwrap();
+    assert_eq!(f.delimiter, Delimiter::Whitespace);
+    let f: RecordingFormat =
+        ron::from_str("(delimiter: '\\t', angle: index_pulse(column: \"Index\"))").unwrap();
+    assert_eq!(f.delimiter, Delimiter::Char('\t'));
+    assert_eq!(
+        f.angle,
+        AngleSource::IndexPulse {
+            column: "Index".into()
+        }
+    );
 }
 
 #[test]
@@ -381,7 +402,7 @@ fn io_error_names_the_file() {
 #[test]
 fn bad_format() {
     let format = RecordingFormat {
-        delimiter: '.',
+        delimiter: Delimiter::Char('.'),
         ..RecordingFormat::default()
     };
     let e = parse_recording(b"time_s.gap_um\n", Path::new("r"), &format).unwrap_err();
@@ -416,20 +437,28 @@ fn fixture_is_the_generator_output_and_gives_its_coefficients() {
     );
     assert!(text.len() < 300_000);
     let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
-    let fit = analyze_recording(
-        &rec,
-        120f64.to_radians(),
-        0.0,
-        &harmonics::FitConfig::default(),
-    )
-    .unwrap();
-    assert_eq!(fit.revolutions_used(), 2);
-    assert!(fit.incomplete.is_some());
-    let n = fit.revolutions.iter().map(|r| r.samples).sum::<usize>() as f64;
+    let fit =
+        analyze_recording(&rec, 120f64.to_radians(), &harmonics::FitConfig::default()).unwrap();
+    assert_eq!(fit.analysis.revolutions_used(), 2);
+    assert!(fit.analysis.incomplete.is_some());
+    let n = fit
+        .analysis
+        .revolutions
+        .iter()
+        .map(|r| r.samples)
+        .sum::<usize>() as f64;
     let bound = 6.0 * spec.noise_um * (2.0 / n).sqrt();
     for k in 0..4 {
-        approx::assert_abs_diff_eq!(fit.mean.c[k], spec.coefficients.c[k], epsilon = bound);
-        approx::assert_abs_diff_eq!(fit.mean.s[k], spec.coefficients.s[k], epsilon = bound);
+        approx::assert_abs_diff_eq!(
+            fit.analysis.mean.c[k],
+            spec.coefficients.c[k],
+            epsilon = bound
+        );
+        approx::assert_abs_diff_eq!(
+            fit.analysis.mean.s[k],
+            spec.coefficients.s[k],
+            epsilon = bound
+        );
     }
 }
 
@@ -445,13 +474,8 @@ fn analysis_errors_name_the_line() {
     let path = dir.join("half.csv");
     std::fs::write(&path, spec.csv().unwrap()).unwrap();
     let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
-    let e = analyze_recording(
-        &rec,
-        120f64.to_radians(),
-        0.0,
-        &harmonics::FitConfig::default(),
-    )
-    .unwrap_err();
+    let e =
+        analyze_recording(&rec, 120f64.to_radians(), &harmonics::FitConfig::default()).unwrap_err();
     assert!(
         matches!(
             e,
@@ -476,13 +500,8 @@ fn analysis_errors_name_the_line() {
     let path = dir.join("back.csv");
     std::fs::write(&path, &text).unwrap();
     let rec = load_recording(&path, &RecordingFormat::default()).unwrap();
-    let e = analyze_recording(
-        &rec,
-        120f64.to_radians(),
-        0.0,
-        &harmonics::FitConfig::default(),
-    )
-    .unwrap_err();
+    let e =
+        analyze_recording(&rec, 120f64.to_radians(), &harmonics::FitConfig::default()).unwrap_err();
     assert!(
         matches!(
             e,
@@ -495,12 +514,14 @@ fn analysis_errors_name_the_line() {
         "{e}"
     );
     assert!(
-        e.to_string()
-            .ends_with("back.csv:103: cannot analyse the samples"),
+        e.to_string().ends_with(
+            "back.csv:103: cannot analyse the samples (hint: encoder in counts? set \
+             `angle: encoder(column: ..., unit: counts(per_rev: N))`)"
+        ),
         "{e}"
     );
     assert!(
-        chain(&e).contains("back.csv:103: cannot analyse the samples: sample 100"),
+        chain(&e).contains("unit: counts(per_rev: N))`): sample 100"),
         "{e}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
@@ -511,9 +532,9 @@ fn encoder_file_at_another_rate_than_declared_is_refused() {
     let spec = SyntheticSpec::default(); // 120 deg/s, with an encoder and speed ripple
     let rec = parse(&spec.csv().unwrap()).unwrap();
     let config = harmonics::FitConfig::default();
-    assert!(analyze_recording(&rec, 120f64.to_radians(), 0.0, &config).is_ok());
-    assert!(analyze_recording(&rec, 118f64.to_radians(), 0.0, &config).is_ok());
-    let e = analyze_recording(&rec, 10f64.to_radians(), 0.0, &config).unwrap_err();
+    assert!(analyze_recording(&rec, 120f64.to_radians(), &config).is_ok());
+    assert!(analyze_recording(&rec, 118f64.to_radians(), &config).is_ok());
+    let e = analyze_recording(&rec, 10f64.to_radians(), &config).unwrap_err();
     match &e {
         RecordingError::Samples {
             line: None,
@@ -545,7 +566,7 @@ fn encoder_file_at_another_rate_than_declared_is_refused() {
         ..spec
     };
     let rec = parse(&no_encoder.csv().unwrap()).unwrap();
-    assert!(analyze_recording(&rec, 120f64.to_radians(), 0.0, &config).is_ok());
+    assert!(analyze_recording(&rec, 120f64.to_radians(), &config).is_ok());
 }
 
 #[test]
@@ -567,16 +588,13 @@ fn overflowing_time_intervals_are_an_error() {
 #[test]
 fn signal_uses_the_encoder_when_present() {
     let rec = parse("time_s,gap_um,angle_deg\n0,1,10\n0.001,1,11\n").unwrap();
-    assert!(matches!(
-        rec.signal(1.0, 0.0).angle,
-        SpindleAngle::Encoder(_)
-    ));
+    assert!(matches!(rec.signal(1.0).angle, SpindleAngle::Encoder(_)));
     let rec = parse("time_s,gap_um\n0,1\n0.001,1\n").unwrap();
     assert_eq!(
-        rec.signal(2.0, 0.5).angle,
+        rec.signal(2.0).angle,
         SpindleAngle::Rate {
             rate_rad_s: 2.0,
-            start_angle_rad: 0.5
+            start_angle_rad: 0.0
         }
     );
 }
@@ -621,7 +639,7 @@ fn lone_carriage_returns_end_lines() {
 #[test]
 fn fast_and_slow_paths_split_blank_delimited_fields_alike() {
     let format = RecordingFormat {
-        delimiter: ' ',
+        delimiter: Delimiter::Whitespace,
         ..RecordingFormat::default()
     };
     // A tab inside the skipped first field, and a run of blanks after it.
@@ -646,14 +664,24 @@ fn quoted_numbers_are_read() {
 #[test]
 fn overlapping_column_names_are_refused() {
     for (time, gap, angle, field) in [
-        ("t", "t", "a", "gap_column"),
-        ("t", "g", "t", "angle_column"),
-        ("t", "g", "g", "angle_column"),
+        ("t", "t", "a", "gap"),
+        ("t", "g", "t", "angle"),
+        ("t", "g", "g", "angle"),
     ] {
         let format = RecordingFormat {
-            time_column: time.into(),
-            gap_column: gap.into(),
-            angle_column: angle.into(),
+            time: Column {
+                column: time.into(),
+                unit: TimeUnit::S,
+            },
+            gap: Column {
+                column: gap.into(),
+                unit: LengthUnit::Um,
+            },
+            angle: AngleSource::Encoder {
+                column: angle.into(),
+                unit: AngleUnit::Deg,
+                optional: true,
+            },
             ..RecordingFormat::default()
         };
         let e = parse_recording(b"t,g\n0,1\n", Path::new("r"), &format).unwrap_err();
@@ -756,13 +784,8 @@ fn analysis_errors_after_comments_name_the_line_without_the_file() {
     std::fs::remove_dir_all(&dir).unwrap();
     for rec in [&loaded, &parsed] {
         assert_eq!(rec.line_of_sample(300), bad_line);
-        let e = analyze_recording(
-            rec,
-            120f64.to_radians(),
-            0.0,
-            &harmonics::FitConfig::default(),
-        )
-        .unwrap_err();
+        let e = analyze_recording(rec, 120f64.to_radians(), &harmonics::FitConfig::default())
+            .unwrap_err();
         match &e {
             RecordingError::Samples {
                 line: Some(line),

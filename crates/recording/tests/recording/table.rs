@@ -102,11 +102,7 @@ fn piga_file_is_read_like_its_text() {
 }
 
 fn format(columns: Vec<TableColumn>, flexible: bool) -> TableFormat {
-    TableFormat {
-        columns,
-        delimiter: ',',
-        flexible,
-    }
+    TableFormat::new(columns, flexible)
 }
 
 #[test]
