@@ -5,8 +5,11 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::bail;
-use harmonics::{Coefficients, FitConfig, HarmonicAnalysis, ProbeDirection};
-use recording::{AngleUnit, BinaryChannels, LengthUnit, Recording, RecordingFormat};
+use harmonics::{Coefficients, FitConfig, ProbeDirection};
+use recording::{
+    AngleSource, AngleSourceKind, AngleUnit, BinaryChannels, Delimiter, Recording, RecordingAnalysis,
+    RecordingFormat,
+};
 use serde_json::{Value, json};
 
 use crate::console::Console;
@@ -14,10 +17,11 @@ use crate::console::Console;
 /// Fit eq. 20 to every complete revolution of a probe recording and average the coefficients.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Harmonics {
-    /// The recording, its reader chosen by extension: `.tdms` (NI TDMS), `.mat` (MATLAB v5/v7),
-    /// else a CSV file with a header row (`time_s,gap_um[,angle_deg]` by default).
+    /// The recording, its reader chosen by extension: `.tdms` (NI TDMS), `.mat` (MATLAB
+    /// v5/v7), else a delimited text file with a header row (`time_s,gap_um[,angle_deg]` by
+    /// default; see `--format` and docs/YOUR-DATA.md).
     file: PathBuf,
-    /// Spindle rate, deg/s; gives the angle `θ = ω·(t − t₀)` when the file has no encoder column.
+    /// Declared spindle rate, deg/s (the angle is `θ = ω·(t − t₀)` when nothing measures it).
     #[arg(long)]
     rate_deg_s: f64,
     /// Highest Fourier order fitted (1 to 8; the paper uses 4).
@@ -32,94 +36,145 @@ pub(crate) struct Harmonics {
     /// Also fit a linear drift in time within each revolution.
     #[arg(long)]
     drift: bool,
-    /// Angle of the first sample from O1X1, deg (without an encoder column).
-    #[arg(long, default_value_t = 0.0)]
-    start_angle_deg: f64,
     /// The probe measures along O1X1 (default: against it, as in the paper); sets the sign of β.
     #[arg(long)]
     probe_along: bool,
+    /// The recording format, a RON file as in a study's `format: (...)`; the flags below
+    /// override its fields.
+    #[arg(long, value_name = "FILE.ron")]
+    format: Option<PathBuf>,
+    /// Field delimiter: one character, or `whitespace` for runs of blanks.
+    #[arg(long)]
+    delimiter: Option<String>,
+    /// Decimal mark: point or comma.
+    #[arg(long)]
+    decimal: Option<String>,
+    /// Lines before the header (instrument metadata).
+    #[arg(long)]
+    skip_lines: Option<usize>,
     /// Name of the time column (CSV), channel (TDMS) or variable (MAT).
-    #[arg(long, visible_alias = "time-column", default_value = "time_s")]
-    time_channel: String,
+    #[arg(long, visible_alias = "time-channel")]
+    time_column: Option<String>,
     /// TDMS: the sample times from the gap channel's `wf_start_offset`/`wf_increment`
     /// properties instead of a time channel.
     #[arg(long)]
     waveform_time: bool,
-    /// Name of the gap column (CSV), channel (TDMS) or variable (MAT).
-    #[arg(long, visible_alias = "gap-channel", default_value = "gap_um")]
-    gap_column: String,
-    /// Unit of the gap column: um, mm or m.
-    #[arg(long, default_value = "um")]
-    gap_unit: String,
-    /// Name of the encoder-angle column, channel or variable (used when present).
-    #[arg(long, visible_alias = "angle-channel", default_value = "angle_deg")]
-    angle_column: String,
     /// TDMS: the group holding the channels (default: the first group that has them). MAT: a
     /// struct variable whose fields are the variables (default: top-level variables).
     #[arg(long)]
     group: Option<String>,
-    /// Unit of the angle column: deg or rad.
-    #[arg(long, default_value = "deg")]
-    angle_unit: String,
-    /// Field delimiter (one ASCII character).
-    #[arg(long, default_value_t = ',')]
-    delimiter: char,
+    /// Unit of the time column: s, ms, us or ns.
+    #[arg(long)]
+    time_unit: Option<String>,
+    /// Name of the gap column.
+    #[arg(long)]
+    gap_column: Option<String>,
+    /// Unit of the gap column: nm, um, mm or m.
+    #[arg(long)]
+    gap_unit: Option<String>,
+    /// Name of the encoder column (required when given).
+    #[arg(long)]
+    angle_column: Option<String>,
+    /// Unit of the encoder column: deg, rad or `counts(per_rev: N)`.
+    #[arg(long)]
+    angle_unit: Option<String>,
+    /// Name of a once-per-revolution index-pulse column (instead of an encoder).
+    #[arg(long, conflicts_with = "angle_column")]
+    index_pulse: Option<String>,
+    /// Angle of the first sample from O1X1, deg: the angle is taken from the declared rate.
+    #[arg(long, conflicts_with_all = ["angle_column", "index_pulse"])]
+    start_angle_deg: Option<f64>,
     /// Largest sample interval accepted, in nominal (median) intervals.
-    #[arg(long, default_value_t = 3.0)]
-    max_gap_intervals: f64,
+    #[arg(long)]
+    max_gap_intervals: Option<f64>,
+    /// What a gap does: error or drop_revolution.
+    #[arg(long)]
+    on_gap: Option<String>,
+    /// What a NaN or infinite sample does: error or drop_revolution.
+    #[arg(long)]
+    on_non_finite: Option<String>,
+}
+
+/// A RON value of a format field given on the command line, e.g. `mm` or
+/// `counts(per_rev: 4096)`.
+fn ron_value<T: serde::de::DeserializeOwned>(flag: &str, text: &str) -> anyhow::Result<T> {
+    ron::from_str(text).map_err(|e| anyhow::anyhow!("--{flag} {text:?}: {e}"))
 }
 
 impl Harmonics {
-    pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let format = RecordingFormat {
-            time_column: self.time_channel.clone(),
-            gap_column: self.gap_column.clone(),
-            gap_unit: match self.gap_unit.as_str() {
-                "um" => LengthUnit::Um,
-                "mm" => LengthUnit::Mm,
-                "m" => LengthUnit::M,
-                other => bail!("--gap-unit {other:?}: expected um, mm or m"),
-            },
-            angle_column: self.angle_column.clone(),
-            angle_unit: match self.angle_unit.as_str() {
-                "deg" => AngleUnit::Deg,
-                "rad" => AngleUnit::Rad,
-                other => bail!("--angle-unit {other:?}: expected deg or rad"),
-            },
-            delimiter: self.delimiter,
-            max_gap_intervals: self.max_gap_intervals,
+    /// The format: the `--format` file's, with the flags given on top.
+    fn recording_format(&self) -> anyhow::Result<RecordingFormat> {
+        let mut f = match &self.format {
+            Some(path) => {
+                let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES)?;
+                ron::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?
+            }
+            None => RecordingFormat::default(),
         };
-        let config = FitConfig {
-            order: self.order,
-            drift: self.drift,
-            revolutions: self.revolutions,
-            max_gap_intervals: self.max_gap_intervals,
-        };
-        let recording = self.load(&format)?;
-        let rate_rad_s = self.rate_deg_s.to_radians();
-        let fit = recording::analyze_recording(
-            &recording,
-            rate_rad_s,
-            self.start_angle_deg.to_radians(),
-            &config,
-        )?;
-        let direction = if self.probe_along {
-            ProbeDirection::AlongO1X1
-        } else {
-            ProbeDirection::AgainstO1X1
-        };
-        let out = if self.json {
-            let mut s = serde_json::to_string_pretty(&self.to_json(&recording, &fit, direction)?)?;
-            s.push('\n');
-            s
-        } else {
-            self.table(&recording, &fit, direction)?
-        };
-        Console::stdout().write_str(&out)?;
-        Ok(())
+        if let Some(d) = &self.delimiter {
+            let mut chars = d.chars();
+            f.delimiter = match (d.as_str(), chars.next(), chars.next()) {
+                ("whitespace", ..) => Delimiter::Whitespace,
+                (_, Some(c), None) => Delimiter::Char(c),
+                _ => bail!("--delimiter {d:?}: expected one character or `whitespace`"),
+            };
+        }
+        if let Some(d) = &self.decimal {
+            f.decimal = ron_value("decimal", d)?;
+        }
+        if let Some(n) = self.skip_lines {
+            f.skip_lines = n;
+        }
+        if let Some(c) = &self.time_column {
+            f.time.column.clone_from(c);
+        }
+        if let Some(u) = &self.time_unit {
+            f.time.unit = ron_value("time-unit", u)?;
+        }
+        if let Some(c) = &self.gap_column {
+            f.gap.column.clone_from(c);
+        }
+        if let Some(u) = &self.gap_unit {
+            f.gap.unit = ron_value("gap-unit", u)?;
+        }
+        if self.angle_column.is_some() || self.angle_unit.is_some() {
+            let (column, unit, optional) = match &f.angle {
+                AngleSource::Encoder {
+                    column,
+                    unit,
+                    optional,
+                } => (column.clone(), *unit, *optional),
+                _ => ("angle_deg".into(), AngleUnit::Deg, false),
+            };
+            f.angle = AngleSource::Encoder {
+                optional: optional && self.angle_column.is_none(),
+                column: self.angle_column.clone().unwrap_or(column),
+                unit: match &self.angle_unit {
+                    Some(u) => ron_value("angle-unit", u)?,
+                    None => unit,
+                },
+            };
+        }
+        if let Some(c) = &self.index_pulse {
+            f.angle = AngleSource::IndexPulse { column: c.clone() };
+        }
+        if let Some(a) = self.start_angle_deg {
+            f.angle = AngleSource::Rate { start_angle_deg: a };
+        }
+        if let Some(m) = self.max_gap_intervals {
+            f.max_gap_intervals = m;
+        }
+        if let Some(o) = &self.on_gap {
+            f.on_gap = ron_value("on-gap", o)?;
+        }
+        if let Some(o) = &self.on_non_finite {
+            f.on_non_finite = ron_value("on-non-finite", o)?;
+        }
+        Ok(f)
     }
 
-    /// The recording, read by the reader of its file's extension.
+    /// The recording, read by the reader of its file's extension (binary files: the
+    /// format's column names and units, an encoder angle when the file has it).
     fn load(&self, format: &RecordingFormat) -> anyhow::Result<Recording> {
         let extension = self
             .file
@@ -127,11 +182,17 @@ impl Harmonics {
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
         let binary = || BinaryChannels {
             group: self.group.clone(),
-            time: (!self.waveform_time).then(|| format.time_column.clone()),
-            gap: format.gap_column.clone(),
-            gap_unit: format.gap_unit,
-            angle: Some(format.angle_column.clone()),
-            angle_unit: format.angle_unit,
+            time: (!self.waveform_time).then(|| format.time.column.clone()),
+            gap: format.gap.column.clone(),
+            gap_unit: format.gap.unit,
+            angle: match &format.angle {
+                AngleSource::Encoder { column, .. } => Some(column.clone()),
+                _ => None,
+            },
+            angle_unit: match &format.angle {
+                AngleSource::Encoder { unit, .. } => *unit,
+                _ => AngleUnit::Deg,
+            },
             max_gap_intervals: format.max_gap_intervals,
         };
         let only_binary = |flag: &str, given: bool| {
@@ -156,28 +217,56 @@ impl Harmonics {
         })
     }
 
-    fn angle_source(recording: &Recording) -> &'static str {
-        if recording.angle_rad.is_some() {
-            "encoder"
+    pub(crate) fn run(&self) -> anyhow::Result<()> {
+        let format = self.recording_format()?;
+        let config = FitConfig {
+            order: self.order,
+            drift: self.drift,
+            revolutions: self.revolutions,
+            max_gap_intervals: format.max_gap_intervals,
+        };
+        let recording = self.load(&format)?;
+        let rate_rad_s = self.rate_deg_s.to_radians();
+        let result = recording::analyze_recording(&recording, rate_rad_s, &config)?;
+        let direction = if self.probe_along {
+            ProbeDirection::AlongO1X1
         } else {
-            "rate"
-        }
+            ProbeDirection::AgainstO1X1
+        };
+        let out = if self.json {
+            let mut s =
+                serde_json::to_string_pretty(&self.to_json(&recording, &result, direction)?)?;
+            s.push('\n');
+            s
+        } else {
+            self.table(&recording, &result, direction)?
+        };
+        Console::stdout().write_str(&out)?;
+        Ok(())
     }
 
     fn to_json(
         &self,
         recording: &Recording,
-        fit: &HarmonicAnalysis,
+        result: &RecordingAnalysis,
         direction: ProbeDirection,
     ) -> anyhow::Result<Value> {
+        let fit = &result.analysis;
         let h = fit.first_harmonic()?;
         let coefficients = |c: &Coefficients| json!({ "l0": c.l0, "c": c.c, "s": c.s, "drift_per_s": c.drift_per_s });
         Ok(json!({
             "file": recording.path.display().to_string(),
             "samples": recording.len(),
             "gap_unit": recording.gap_unit.symbol(),
-            "angle_source": Self::angle_source(recording),
+            "angle_source": result.angle_source.name(),
             "rate_deg_s": self.rate_deg_s,
+            "measured_rate_deg_s": result.measured_rate_rad_s.map(f64::to_degrees),
+            "dropped_revolutions": result.dropped_revolutions,
+            "warnings": result.diagnostics.iter().map(|d| json!({
+                "code": d.code(),
+                "message": d.to_string(),
+                "where": recording.path.display().to_string(),
+            })).collect::<Vec<_>>(),
             "order": fit.order,
             "drift": fit.drift,
             "revolutions_used": fit.revolutions_used(),
@@ -212,14 +301,24 @@ impl Harmonics {
     fn table(
         &self,
         recording: &Recording,
-        fit: &HarmonicAnalysis,
+        result: &RecordingAnalysis,
         direction: ProbeDirection,
     ) -> anyhow::Result<String> {
+        let fit = &result.analysis;
         let unit = recording.gap_unit.symbol();
         let mut t = String::new();
-        let source = match Self::angle_source(recording) {
-            "encoder" => "encoder column".to_string(),
-            _ => format!("rate {} deg/s", self.rate_deg_s),
+        let source = match (result.angle_source, result.measured_rate_rad_s) {
+            (AngleSourceKind::Encoder, Some(m)) => format!(
+                "encoder column (measured rate {:.6} deg/s, declared {} deg/s)",
+                m.to_degrees(),
+                self.rate_deg_s
+            ),
+            (AngleSourceKind::IndexPulse, Some(m)) => format!(
+                "index pulses (measured rate {:.6} deg/s, declared {} deg/s)",
+                m.to_degrees(),
+                self.rate_deg_s
+            ),
+            _ => format!("declared rate {} deg/s", self.rate_deg_s),
         };
         writeln!(
             t,
@@ -294,6 +393,16 @@ impl Harmonics {
             .map(|r| format!("{:.4}", r.residual_rms))
             .collect();
         writeln!(t, "residual RMS per revolution ({unit}): {}", rms.join(" "))?;
+        if result.dropped_revolutions > 0 {
+            writeln!(
+                t,
+                "dropped revolutions (gaps or non-finite samples): {}",
+                result.dropped_revolutions
+            )?;
+        }
+        for d in &result.diagnostics {
+            writeln!(t, "warning[{}]: {d}", d.code())?;
+        }
         Ok(t)
     }
 }

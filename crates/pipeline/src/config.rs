@@ -266,16 +266,13 @@ pub struct RadiusPoint {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RecordingSet {
-    /// Layout of the files (columns, units, delimiter); defaults to `time_s,gap_um[,angle_deg]`.
+    /// Layout of the files (delimiter, decimal mark, columns and units, angle source, gaps
+    /// and non-finite samples); defaults to `time_s,gap_um[,angle_deg]`.
     #[serde(default)]
     pub format: RecordingFormat,
     /// Settings of the per-revolution fit (order 4 by default, as in the paper).
     #[serde(default)]
     pub fit: FitSettings,
-    /// Angle of each recording's first sample from O1X1, deg, used when a file has no encoder
-    /// column (default 0).
-    #[serde(default)]
-    pub start_angle_deg: f64,
     /// The recordings.
     pub files: Vec<RecordingPoint>,
 }
@@ -290,9 +287,6 @@ pub struct FitSettings {
     pub drift: bool,
     /// Use only the first this many complete revolutions (all when absent).
     pub revolutions: Option<usize>,
-    /// Largest interval between samples, in nominal (median) sample intervals, before the
-    /// recording is refused as having a gap.
-    pub max_gap_intervals: f64,
 }
 
 impl Default for FitSettings {
@@ -302,7 +296,6 @@ impl Default for FitSettings {
             order: d.order,
             drift: d.drift,
             revolutions: d.revolutions,
-            max_gap_intervals: d.max_gap_intervals,
         }
     }
 }

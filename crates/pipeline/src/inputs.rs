@@ -95,7 +95,6 @@ pub(crate) enum PhaseData {
 #[derive(Debug, Clone)]
 pub(crate) struct RecordingPhase {
     pub(crate) fit: FitConfig,
-    pub(crate) start_angle_rad: f64,
     pub(crate) files: Vec<LoadedRecording>,
 }
 
@@ -261,17 +260,14 @@ fn fit_config(fit: FitSettings) -> FitConfig {
         order: fit.order,
         drift: fit.drift,
         revolutions: fit.revolutions,
-        max_gap_intervals: fit.max_gap_intervals,
+        ..FitConfig::default()
     }
 }
 
 /// A phase whose numbers are valid, before its recordings are loaded.
 enum Checked {
     Ready(PhaseData),
-    Recordings {
-        fit: FitConfig,
-        start_angle_rad: f64,
-    },
+    Recordings { fit: FitConfig },
 }
 
 /// Loads the recordings of every phase in parallel and assembles the phases; every loading
@@ -327,14 +323,7 @@ fn load_phases(
             weighting,
             data: match checked {
                 Checked::Ready(data) => data,
-                Checked::Recordings {
-                    fit,
-                    start_angle_rad,
-                } => PhaseData::Recordings(RecordingPhase {
-                    fit,
-                    start_angle_rad,
-                    files,
-                }),
+                Checked::Recordings { fit } => PhaseData::Recordings(RecordingPhase { fit, files }),
             },
         })
         .collect())
@@ -542,19 +531,12 @@ impl Check<'_> {
                     field: format!("{list}.fit"),
                     source,
                 })?;
-                self.finite(format!("{list}.start_angle_deg"), set.start_angle_deg)?;
                 for (i, p) in set.files.iter().enumerate() {
                     self.rate(format!("{list}.files[{i}].rate_deg_s"), p.rate_deg_s)?;
                 }
                 let rates = rates_of(&set.files, |p| p.rate_deg_s);
                 self.unique_rates(&format!("{list}.files"), &rates)?;
-                (
-                    rates,
-                    Checked::Recordings {
-                        fit,
-                        start_angle_rad: set.start_angle_deg.to_radians(),
-                    },
-                )
+                (rates, Checked::Recordings { fit })
             }
             Points::RadiusChange {
                 from_rate_deg_s,

@@ -67,6 +67,6 @@ pub use results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
     Estimate, InfiniteDof, MechanismPhase, MechanismResults, ModelFit, MonteCarlo,
     MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaResult, PointResult,
-    ProbeTrace, StudyInputs, StudyResults,
+    ProbeTrace, StudyInputs, StudyResults, Warning,
 };
 pub use study::{run, run_with_progress};

@@ -7,12 +7,12 @@ use std::path::Path;
 
 use harmonics::Coefficients;
 use rayon::prelude::*;
-use recording::{Recording, analyze_recording};
+use recording::{AngleSourceKind, Recording, analyze_recording};
 use units::deg_s_to_rad_s;
 
 use crate::error::{PipelineError, Result};
 use crate::inputs::RecordingPhase;
-use crate::results::ProbeTrace;
+use crate::results::{ProbeTrace, Warning};
 
 /// What a study reports of progress, for a command line to show.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,6 +43,13 @@ pub(crate) struct ProbeHarmonic {
     pub(crate) residual_rms_um: f64,
     /// Standard error of `dc1_um` from the fit residuals (white noise), µm.
     pub(crate) dc1_noise_sigma_um: f64,
+    /// The rate for the radius-error fit, rad/s (measured when the angle is measured).
+    pub(crate) rate_rad_s: f64,
+    pub(crate) measured_rate_rad_s: Option<f64>,
+    pub(crate) angle_source: AngleSourceKind,
+    pub(crate) dropped_revolutions: usize,
+    /// The recording's diagnostics, as warnings naming the field and the file.
+    pub(crate) warnings: Vec<Warning>,
     pub(crate) trace: ProbeTrace,
 }
 
@@ -69,46 +76,42 @@ pub(crate) fn analyze(
             };
             let recording = &point.recording;
             let file = &point.file;
-            let rate_rad_s = deg_s_to_rad_s(point.rate_deg_s);
-            let start_angle_rad = set.start_angle_rad;
-            let analysis = analyze_recording(recording, rate_rad_s, start_angle_rad, &set.fit)
-                .map_err(recording_error)?;
+            let declared_rad_s = deg_s_to_rad_s(point.rate_deg_s);
+            let result =
+                analyze_recording(recording, declared_rad_s, &set.fit).map_err(recording_error)?;
             progress(Progress::RecordingDone {
                 path: file,
                 samples: recording.len(),
             });
             let um = recording.gap_unit.um_per_unit();
-            let revs = &analysis.revolutions;
-            let samples: usize = revs.iter().map(|r| r.samples).sum();
-            // Pooled residual variance s² of the per-revolution fits.
-            let pooled = revs
-                .iter()
-                .map(|r| r.residual_rms * r.residual_rms * r.samples as f64)
-                .sum::<f64>()
-                / samples as f64;
-            // White-noise standard error of the mean first-harmonic coefficient: each
-            // revolution's d_c1 has variance ≈ 2s²/nᵣ, and K revolutions are averaged.
-            let k = revs.len() as f64;
-            let noise_sigma = revs
-                .iter()
-                .map(|r| 2.0 * pooled / r.samples as f64)
-                .sum::<f64>()
-                .sqrt()
-                / k;
+            let analysis = &result.analysis;
             let mean_um = analysis.mean.scaled(um);
+            let location = format!("{section}.points.files[{i}] ({})", file.display());
             Ok(ProbeHarmonic {
                 dc1_um: mean_um.c[0],
                 ds1_um: mean_um.s[0],
                 dc1_sigma_um: analysis.std_error.as_ref().map(|e| e.c[0] * um),
                 ds1_sigma_um: analysis.std_error.as_ref().map(|e| e.s[0] * um),
                 revolutions: analysis.revolutions_used(),
-                residual_rms_um: pooled.sqrt() * um,
-                dc1_noise_sigma_um: noise_sigma * um,
+                residual_rms_um: result.residual_rms * um,
+                dc1_noise_sigma_um: result.mean_noise_sigma * um,
+                rate_rad_s: result.rate_rad_s(),
+                measured_rate_rad_s: result.measured_rate_rad_s,
+                angle_source: result.angle_source,
+                dropped_revolutions: result.dropped_revolutions,
+                warnings: result
+                    .diagnostics
+                    .iter()
+                    .map(|d| Warning {
+                        code: d.code().into(),
+                        message: d.to_string(),
+                        location: location.clone(),
+                    })
+                    .collect(),
                 trace: trace(
                     recording,
                     point.rate_deg_s,
-                    rate_rad_s,
-                    start_angle_rad,
+                    declared_rad_s,
                     analysis
                         .revolutions
                         .first()
@@ -135,7 +138,6 @@ fn trace(
     recording: &Recording,
     rate_deg_s: f64,
     rate_rad_s: f64,
-    start_angle_rad: f64,
     revolution: Option<(usize, usize)>,
     fit_um: Coefficients,
 ) -> ProbeTrace {
@@ -150,7 +152,7 @@ fn trace(
         .map(|i| {
             let theta = match &recording.angle_rad {
                 Some(a) => a[i],
-                None => rate_rad_s * (recording.time_s[i] - t0) + start_angle_rad,
+                None => rate_rad_s * (recording.time_s[i] - t0) + recording.start_angle_rad,
             };
             (theta.rem_euclid(TAU).to_degrees(), recording.gap[i] * um)
         })

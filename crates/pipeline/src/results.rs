@@ -3,6 +3,8 @@
 use harmonics::Coefficients;
 use serde::{Deserialize, Serialize};
 
+use recording::AngleSourceKind;
+
 use crate::config::{RadiusModelName, Weighting};
 
 /// All results of a study.
@@ -19,6 +21,22 @@ pub struct StudyResults {
     /// The PIGA's calibration on measured data (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub calibration: Option<CalibrationResults>,
+    /// What may make a number wrong, in plain words, in the configuration's order.
+    #[serde(default)]
+    pub warnings: Vec<Warning>,
+}
+
+/// A diagnostic: the numbers were computed, but something may make them wrong.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Warning {
+    /// A short stable code (`angle_from_rate`, `rate_differs`, `revolution_spread`,
+    /// `drift_not_fitted`, `dropped_revolutions`, `lack_of_fit`).
+    pub code: String,
+    /// What was seen and what to do, in plain words.
+    pub message: String,
+    /// The configuration field, and the file when it concerns a recording.
+    #[serde(rename = "where")]
+    pub location: String,
 }
 
 /// Scalar inputs of the study.
@@ -37,10 +55,17 @@ pub struct StudyInputs {
 /// One rate point after the geometry of eq. 21–22.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PointResult {
-    /// Rate, deg/s.
+    /// Rate, deg/s, as declared in the configuration.
     pub rate_deg_s: f64,
-    /// Rate, rad/s.
+    /// The rate the radius-error fit uses, rad/s: the measured mean rate when the recording
+    /// measures the angle (encoder or index pulse), else the declared one.
     pub rate_rad_s: f64,
+    /// The measured mean rate, deg/s (recordings with an encoder or index pulse only).
+    pub measured_rate_deg_s: Option<f64>,
+    /// Where the recording's angle came from (recordings only).
+    pub angle_source: Option<AngleSourceKind>,
+    /// Revolutions dropped for gaps or non-finite samples (recordings only).
+    pub dropped_revolutions: Option<usize>,
     /// First-harmonic cosine coefficient, µm (absent when the input was a radius error).
     pub dc1_um: Option<f64>,
     /// First-harmonic sine coefficient, µm.

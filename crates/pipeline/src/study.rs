@@ -16,7 +16,7 @@ use crate::mechanism::{self, MeasuredDrift, PhaseFailure};
 use crate::probe_analysis::{self, Progress};
 use crate::results::{
     MechanismPhase, MechanismResults, ModelFit, PhaseResults, PigaResult, PointResult, ProbeTrace,
-    StudyInputs, StudyResults,
+    StudyInputs, StudyResults, Warning,
 };
 
 /// Runs a study: both phases, each with its per-point geometry, its radius-error fit and the
@@ -45,11 +45,13 @@ pub fn run_with_progress(
     if total > 0 {
         progress(Progress::Recordings { total });
     }
-    let phases = inputs
-        .phases
-        .iter()
-        .map(|phase| run_phase(inputs, phase, progress))
-        .collect::<Result<Vec<_>>>()?;
+    let mut warnings = Vec::new();
+    let mut phases = Vec::with_capacity(inputs.phases.len());
+    for phase in &inputs.phases {
+        let (results, more) = run_phase(inputs, phase, progress)?;
+        phases.push(results);
+        warnings.extend(more);
+    }
     let mechanism = inputs
         .mechanism
         .as_ref()
@@ -139,6 +141,7 @@ pub fn run_with_progress(
         phases,
         mechanism,
         calibration,
+        warnings,
     })
 }
 
@@ -162,20 +165,22 @@ fn run_phase(
     inputs: &Inputs,
     phase: &Phase,
     progress: &(dyn Fn(Progress<'_>) + Sync),
-) -> Result<PhaseResults> {
+) -> Result<(PhaseResults, Vec<Warning>)> {
     let _span = tracing::info_span!("phase", name = %phase.name).entered();
-    let (points, traces) = phase_points(inputs, phase, progress)?;
+    let (points, traces, mut warnings) = phase_points(inputs, phase, progress)?;
     tracing::info!(points = points.len(), "per-point geometry done");
     if let PhaseData::RadiusChange { .. } = phase.data {
-        return Ok(PhaseResults {
+        let results = PhaseResults {
             name: phase.name.clone(),
             fit: exact_two_point(inputs, &points, &phase.key)?,
             points,
             alternative: None,
             traces,
-        });
+        };
+        return Ok((results, warnings));
     }
     let fit = fit_model(inputs, &points, inputs.radius_model, phase)?;
+    warnings.extend(lack_of_fit(&points, &fit, &phase.key));
     let other = match inputs.radius_model {
         RadiusModelName::TwoTerm => RadiusModelName::ThreeTerm,
         RadiusModelName::ThreeTerm => RadiusModelName::TwoTerm,
@@ -191,12 +196,46 @@ fn run_phase(
         delta_k2_rad_s_g2 = fit.delta_k2_rad_s_g2,
         "radius-error fit done"
     );
-    Ok(PhaseResults {
+    let results = PhaseResults {
         name: phase.name.clone(),
         points,
         fit,
         alternative,
         traces,
+    };
+    Ok((results, warnings))
+}
+
+/// `√(χ²/dof)` of the radius-error residuals over their white-noise σ above which the fit
+/// is flagged as lacking (with few degrees of freedom the limit grows so that white noise
+/// alone rarely reaches it).
+pub(crate) fn lack_of_fit_limit(dof: usize) -> f64 {
+    (4.0_f64).max(1.0 + 6.0 * (2.0 / dof as f64).sqrt()).sqrt()
+}
+
+/// The warning `lack_of_fit` when the radius-error residuals are well above the σ of the
+/// points (recordings only).
+fn lack_of_fit(points: &[PointResult], fit: &ModelFit, section: &str) -> Option<Warning> {
+    if fit.dof == 0 {
+        return None;
+    }
+    let mut chi2 = 0.0;
+    for (p, r) in points.iter().zip(&fit.residuals_um) {
+        let s = p.radius_error_sigma_um.filter(|s| *s > 0.0)?;
+        chi2 += (r / s).powi(2);
+    }
+    let ratio = (chi2 / fit.dof as f64).sqrt();
+    (ratio > lack_of_fit_limit(fit.dof)).then(|| Warning {
+        code: "lack_of_fit".into(),
+        message: format!(
+            "the radius-error residuals are {ratio:.1}× their white-noise σ (√(χ²/dof), {} \
+             degrees of freedom): a + C_r·ω² does not describe the points within their \
+             noise; look for drift (`drift: true`), a rate error or a pickup not synchronous \
+             with the spindle (see the other warnings), or another `radius_model`. σ(C_r) \
+             comes from the residuals and includes the scatter, not a bias",
+            fit.dof
+        ),
+        location: format!("{section}.points"),
     })
 }
 
@@ -237,12 +276,15 @@ fn phase_points(
     inputs: &Inputs,
     phase: &Phase,
     progress: &(dyn Fn(Progress<'_>) + Sync),
-) -> Result<(Vec<PointResult>, Vec<ProbeTrace>)> {
+) -> Result<(Vec<PointResult>, Vec<ProbeTrace>, Vec<Warning>)> {
     let section = phase.key.as_str();
     let path = inputs.source.as_path();
     let radius_point = |rate_deg_s: f64, radius_error_um: f64| PointResult {
         rate_deg_s,
         rate_rad_s: deg_s_to_rad_s(rate_deg_s),
+        measured_rate_deg_s: None,
+        angle_source: None,
+        dropped_revolutions: None,
         dc1_um: None,
         ds1_um: None,
         amplitude_um: None,
@@ -282,14 +324,21 @@ fn phase_points(
                 .map(|(i, p)| harmonic_point(i, p.rate_deg_s, p.dc1_um, p.ds1_um))
                 .collect::<Result<_>>()?,
             Vec::new(),
+            Vec::new(),
         )),
         PhaseData::Recordings(set) => {
             let analyzed = probe_analysis::analyze(set, section, path, progress)?;
             let mut points = Vec::with_capacity(analyzed.len());
             let mut traces = Vec::with_capacity(analyzed.len());
+            let mut warnings = Vec::new();
             for (i, (file, h)) in set.files.iter().zip(analyzed).enumerate() {
                 let point = harmonic_point(i, file.rate_deg_s, h.dc1_um, h.ds1_um)?;
+                warnings.extend(h.warnings);
                 points.push(PointResult {
+                    rate_rad_s: h.rate_rad_s,
+                    measured_rate_deg_s: h.measured_rate_rad_s.map(f64::to_degrees),
+                    angle_source: Some(h.angle_source),
+                    dropped_revolutions: Some(h.dropped_revolutions),
                     dc1_sigma_um: h.dc1_sigma_um,
                     ds1_sigma_um: h.ds1_sigma_um,
                     radius_error_sigma_um: Some(h.dc1_noise_sigma_um * inputs.lever_ratio),
@@ -299,13 +348,14 @@ fn phase_points(
                 });
                 traces.push(h.trace);
             }
-            Ok((points, traces))
+            Ok((points, traces, warnings))
         }
         PhaseData::RadiusError(points) => Ok((
             points
                 .iter()
                 .map(|p| radius_point(p.rate_deg_s, p.radius_error_um))
                 .collect(),
+            Vec::new(),
             Vec::new(),
         )),
         PhaseData::RadiusChange {
@@ -317,6 +367,7 @@ fn phase_points(
                 radius_point(*from_rate_deg_s, 0.0),
                 radius_point(*to_rate_deg_s, *change_um),
             ],
+            Vec::new(),
             Vec::new(),
         )),
     }

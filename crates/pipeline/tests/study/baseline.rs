@@ -9,13 +9,42 @@ use serde_json::Value;
 
 use crate::root;
 
+/// Paths whose numbers may move by a relative 1e-8 rather than 1e-12 (issue 10): a
+/// recording's rate point is now fitted at the encoder's measured mean rate, which for the
+/// fixture's recordings equals the declared one to about 1e-13 (checked below), and these
+/// fields are residuals — differences of nearly equal numbers (1e-3 µm of some 10 µm) —
+/// or rest on them, so that change is amplified about 1e4 times (a residual near zero may
+/// move by 1e-12 µm absolute). Every other number, C_r and Δk2 included, still agrees to
+/// 1e-12.
+const RESIDUAL_FIELDS: [&str; 6] = [
+    "residuals_um",
+    "residual_sd_um",
+    "c_r_sigma_m_s2",
+    "delta_k2_sigma_rad_s_g2",
+    "linear_um_s",
+    "reduced_chi",
+];
+
+/// `(relative, absolute)` tolerance of a path.
+fn tolerance(path: &str) -> (f64, f64) {
+    let residual = RESIDUAL_FIELDS
+        .iter()
+        .any(|f| path.contains(&format!(".{f}")));
+    if path.starts_with(".pre_balance.") && residual {
+        (1e-8, 1e-12)
+    } else {
+        (1e-12, 0.0)
+    }
+}
+
 /// Walks two JSON trees side by side; every difference is pushed with its path.
 fn compare(path: &str, actual: &Value, expected: &Value, out: &mut Vec<String>) {
     match (actual, expected) {
         (Value::Number(a), Value::Number(e)) => {
             let (a, e) = (a.as_f64().unwrap(), e.as_f64().unwrap());
             let scale = a.abs().max(e.abs()).max(f64::MIN_POSITIVE);
-            if (a - e).abs() > 1e-12 * scale {
+            let (relative, absolute) = tolerance(path);
+            if (a - e).abs() > relative * scale + absolute {
                 out.push(format!("{path}: {a:e} vs baseline {e:e}"));
             }
         }
@@ -52,6 +81,21 @@ fn old_shape(mut v: Value) -> Value {
         }
     }
     let root = v.as_object_mut().unwrap();
+    // Added by issue 10 (not in the baseline): warnings, and per point the measured rate,
+    // the angle source and the dropped revolutions.
+    root.remove("warnings");
+    if let Some(Value::Array(phases)) = root.get_mut("phases") {
+        for phase in phases {
+            if let Some(Value::Array(points)) = phase.get_mut("points") {
+                for point in points {
+                    let point = point.as_object_mut().unwrap();
+                    for key in ["measured_rate_deg_s", "angle_source", "dropped_revolutions"] {
+                        point.remove(key);
+                    }
+                }
+            }
+        }
+    }
     unlist(root, "name");
     if let Some(Value::Object(m)) = root.get_mut("mechanism") {
         unlist(m, "phase");
@@ -62,6 +106,15 @@ fn old_shape(mut v: Value) -> Value {
 fn check(config: &str, baseline: &str) {
     let study = pipeline::load_study(&root().join(config)).unwrap();
     let results = pipeline::run(&study).unwrap();
+    // A recording's point is fitted at its measured rate, reported beside the declared one.
+    for phase in &results.phases {
+        for p in &phase.points {
+            if let Some(measured) = p.measured_rate_deg_s {
+                assert!((p.rate_rad_s / measured.to_radians() - 1.0).abs() < 1e-15);
+                assert!((measured / p.rate_deg_s - 1.0).abs() < 1e-12, "{measured}");
+            }
+        }
+    }
     let actual: Value =
         old_shape(serde_json::from_str(&report::results_json(&results).unwrap()).unwrap());
     let text = std::fs::read_to_string(root().join(baseline)).unwrap();
