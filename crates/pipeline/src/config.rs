@@ -283,7 +283,8 @@ pub struct RecordingSet {
 pub struct FitSettings {
     /// Highest Fourier order fitted (1 to 8; the paper uses 4).
     pub order: usize,
-    /// Also fit a linear drift in time within each revolution.
+    /// Also fit a linear drift in time within each revolution (default true: unbiased with
+    /// or without drift; see docs/YOUR-DATA.md for the measurement).
     pub drift: bool,
     /// Use only the first this many complete revolutions (all when absent).
     pub revolutions: Option<usize>,
@@ -294,7 +295,9 @@ impl Default for FitSettings {
         let d = harmonics::FitConfig::default();
         Self {
             order: d.order,
-            drift: d.drift,
+            // Chosen by measurement (docs/YOUR-DATA.md): a drift term costs a little
+            // variance on drift-free data and removes the bias of drifting data.
+            drift: true,
             revolutions: d.revolutions,
         }
     }

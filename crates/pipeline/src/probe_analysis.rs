@@ -94,7 +94,7 @@ pub(crate) fn analyze(
                 ds1_sigma_um: analysis.std_error.as_ref().map(|e| e.s[0] * um),
                 revolutions: analysis.revolutions_used(),
                 residual_rms_um: result.residual_rms * um,
-                dc1_noise_sigma_um: result.mean_noise_sigma * um,
+                dc1_noise_sigma_um: result.mean_noise_sigma[0] * um,
                 rate_rad_s: result.rate_rad_s(),
                 measured_rate_rad_s: result.measured_rate_rad_s,
                 angle_source: result.angle_source,

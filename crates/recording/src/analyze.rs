@@ -34,12 +34,13 @@ pub struct RecordingAnalysis {
     pub measured_rate_rad_s: Option<f64>,
     /// Revolutions dropped because gaps or non-finite samples touch them.
     pub dropped_revolutions: usize,
-    /// White-noise standard error of one revolution's `d_c1` (and `d_s1`), gap unit,
-    /// averaged over the revolutions: `√(2s²/n)`.
-    pub revolution_noise_sigma: f64,
-    /// White-noise standard error of the mean `d_c1` (and `d_s1`), gap unit:
-    /// `√(Σᵣ 2s²/nᵣ)/K`.
-    pub mean_noise_sigma: f64,
+    /// White-noise standard error of one revolution's `(d_c1, d_s1)`, gap unit, averaged
+    /// over the revolutions: `√(2s²/n)`, times the drift term's variance inflation in its
+    /// direction (and, with index pulses, their timing jitter).
+    pub revolution_noise_sigma: [f64; 2],
+    /// White-noise standard error of the mean `(d_c1, d_s1)`, gap unit: `√(Σᵣ 2s²fᵣ/nᵣ)/K`
+    /// with `fᵣ` the drift term's variance inflation.
+    pub mean_noise_sigma: [f64; 2],
     /// Pooled residual RMS of the per-revolution fits, gap unit.
     pub residual_rms: f64,
     /// What may make the numbers wrong, in plain words.
@@ -301,7 +302,9 @@ fn hint_of(recording: &Recording, error: &HarmonicsError) -> Option<Hint> {
                 .any(|r| (ratio / r - 1.0).abs() < 0.05)
             {
                 Some(Hint::TimeUnit)
-            } else if recording.angle_source == AngleSourceKind::Encoder && ratio > 100.0 {
+            } else if recording.angle_source == AngleSourceKind::Encoder
+                && !(0.0..=100.0).contains(&ratio)
+            {
                 Some(Hint::EncoderCounts)
             } else {
                 None
@@ -451,7 +454,9 @@ fn pooled(
         }
         revolutions.truncate(k);
     }
-    let dropped = (total_turns.floor() as usize).saturating_sub(available);
+    // The last sample's interval belongs to the recording too.
+    let whole = (total_turns + 1e-6).floor() as usize;
+    let dropped = whole.saturating_sub(available);
     let (mean, std, std_error) = statistics(&revolutions);
     analysis.revolutions = revolutions;
     analysis.mean = mean;
@@ -476,7 +481,8 @@ fn total_turns(recording: &Recording, declared_rate_rad_s: f64) -> f64 {
     let rate = recording
         .measured_rate_rad_s()
         .unwrap_or(declared_rate_rad_s);
-    rate * (t[last] - t[first]) / std::f64::consts::TAU
+    let interval = (t[last] - t[first]) / (last - first).max(1) as f64;
+    rate * (t[last] - t[first] + interval) / std::f64::consts::TAU
 }
 
 /// Mean, sample standard deviation and standard error of the coefficients.
@@ -542,11 +548,29 @@ fn finish(
         .map(|r| r.residual_rms * r.residual_rms * r.samples as f64)
         .sum::<f64>()
         / samples as f64;
-    // Each revolution's d_c1 has variance ≈ 2s²/nᵣ; K revolutions are averaged.
+    // Each revolution's d_c1 has variance ≈ 2s²/nᵣ (times the drift term's inflation);
+    // K revolutions are averaged.
     let k = revs.len() as f64;
-    let sum_var: f64 = revs.iter().map(|r| 2.0 * pooled / r.samples as f64).sum();
-    let mean_noise_sigma = sum_var.sqrt() / k;
-    let revolution_noise_sigma = (sum_var / k).sqrt();
+    let inflation = drift_inflation(config);
+    let mut sum_var = [0.0; 2];
+    for r in revs {
+        let theta0 = recording.angle_at(r.first_sample, declared_rate_rad_s);
+        let (sin0, cos0) = theta0.sin_cos();
+        let base = 2.0 * pooled / r.samples as f64;
+        sum_var[0] += base * (1.0 + (inflation - 1.0) * sin0 * sin0);
+        sum_var[1] += base * (1.0 + (inflation - 1.0) * cos0 * cos0);
+    }
+    let mean_noise_sigma = sum_var.map(|v| v.sqrt() / k);
+    let mut revolution_noise_sigma = sum_var.map(|v| (v / k).sqrt());
+    if recording.angle_source == AngleSourceKind::IndexPulse {
+        // Each revolution's zero is known to a sample interval: its angle jitters by
+        // ω·Δt/√12, which turns the first harmonic by as much from revolution to
+        // revolution (and averages out over them).
+        let rate = measured_rate_rad_s.unwrap_or(declared_rate_rad_s);
+        let jitter_rad = rate * analysis.nominal_interval_s / 12f64.sqrt();
+        let amplitude = analysis.mean.c[0].hypot(analysis.mean.s[0]);
+        revolution_noise_sigma = revolution_noise_sigma.map(|s| s.hypot(amplitude * jitter_rad));
+    }
     let mut diagnostics = Vec::new();
     if recording.angle_source == AngleSourceKind::DeclaredRate {
         diagnostics.push(Diagnostic::AngleFromRate {
@@ -566,7 +590,7 @@ fn finish(
             drift_across_revolutions(
                 recording,
                 revs,
-                mean_noise_sigma,
+                mean_noise_sigma[0].min(mean_noise_sigma[1]),
                 measured_rate_rad_s.unwrap_or(declared_rate_rad_s),
             )
         })
@@ -576,10 +600,10 @@ fn finish(
     }
     if let Some(std) = &analysis.std
         && revs.len() >= 3
-        && revolution_noise_sigma > 0.0
+        && revolution_noise_sigma.iter().all(|s| *s > 0.0)
     {
-        let ratio_c1 = std.c[0] / revolution_noise_sigma;
-        let ratio_s1 = std.s[0] / revolution_noise_sigma;
+        let ratio_c1 = std.c[0] / revolution_noise_sigma[0];
+        let ratio_s1 = std.s[0] / revolution_noise_sigma[1];
         // ratio² ~ χ²(K−1)/(K−1) for white noise: mean 1, sd √(2/(K−1)).
         let limit = SPREAD_WARNING_RATIO
             .powi(2)
@@ -616,6 +640,23 @@ fn finish(
         residual_rms: pooled.sqrt(),
         diagnostics,
     }
+}
+
+/// The variance inflation of the first harmonic's coefficient along `sin(θ − θ₀)` (θ₀ the
+/// revolution's first angle) when a drift term is fitted: within a revolution time is a
+/// ramp in θ, whose part along that sine the drift term shares. With `v = π²/3 − 2Σₖ≤N 1/k²`
+/// the ramp's variance beyond order N, the factor is `(2 + v)/v` (5.5 for N = 4); 1
+/// without drift.
+fn drift_inflation(config: &FitConfig) -> f64 {
+    if !config.drift {
+        return 1.0;
+    }
+    let beyond = std::f64::consts::PI.powi(2) / 3.0
+        - 2.0
+            * (1..=config.order)
+                .map(|k| 1.0 / (k * k) as f64)
+                .sum::<f64>();
+    (2.0 + beyond) / beyond
 }
 
 /// A significant drift of the revolutions' mean gap, when its bias on the first harmonic

@@ -144,6 +144,16 @@ impl Recording {
         }
     }
 
+    /// The angle of sample `index`, rad: measured, or from the declared rate.
+    pub fn angle_at(&self, index: usize, declared_rate_rad_s: f64) -> f64 {
+        match &self.angle_rad {
+            Some(a) => a[index],
+            None => {
+                self.start_angle_rad + declared_rate_rad_s * (self.time_s[index] - self.time_s[0])
+            }
+        }
+    }
+
     /// The mean rate of the measured angle, rad/s: its unwrapped span over the time span of
     /// the finite samples (`None` without a measured angle or with fewer than two finite
     /// samples).

@@ -506,27 +506,26 @@ fn skip_then_next_content<'t>(lines: &mut Lines<'t>, skip: usize) -> Option<(usi
 
 /// What a header without a required column probably means.
 fn header_hint(names: &[String], column: &str, line: usize, format: &TableFormat) -> Option<Hint> {
-    if names.len() == 1 {
-        let name = &names[0];
-        if let Some(c) = [';', '\t', ',', ' ']
-            .into_iter()
-            .find(|&c| name.contains(c) && (format.whitespace || c != format.delimiter))
-        {
-            return Some(Hint::HeaderDelimiter { found: c });
-        }
-    }
-    if !format.whitespace
-        && format.delimiter == ' '
-        && names.iter().any(|n| column.starts_with(n.as_str()))
+    // Split at another separator, the header would have the column.
+    let splits_to_column = |c: char| {
+        names.iter().any(|n| {
+            n.split(c)
+                .any(|part| part.trim().trim_matches('"') == column)
+        })
+    };
+    if let Some(found) = [';', '\t', ',']
+        .into_iter()
+        .filter(|&c| format.whitespace || c != format.delimiter)
+        .find(|&c| splits_to_column(c))
     {
+        return Some(Hint::HeaderDelimiter { found });
+    }
+    // Split at blanks, a name with spaces falls apart.
+    let blank = format.whitespace || format.delimiter == ' ';
+    if blank && column.contains(' ') && names.iter().any(|n| column.starts_with(n.as_str())) {
         return Some(Hint::HeaderDelimiter { found: '\t' });
     }
-    if names
-        .iter()
-        .any(|n| n.eq_ignore_ascii_case(column) || n.trim() == column.trim())
-    {
-        return None;
-    }
-    (line <= format.skip_lines + 1 || names.iter().all(|n| n.parse::<f64>().is_err()))
-        .then_some(Hint::SkipLines)
+    let numeric = names.iter().all(|n| n.trim().parse::<f64>().is_ok());
+    let _ = line;
+    (names.len() <= 1 && !numeric).then_some(Hint::SkipLines)
 }

@@ -6,6 +6,7 @@ mod bad_config;
 mod baseline;
 mod calibration;
 mod in_memory;
+mod lab_variants;
 mod mechanism;
 mod paper;
 mod recordings;
