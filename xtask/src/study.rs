@@ -105,6 +105,9 @@ impl Study {
 /// Prints the summary table.
 fn print_summary(out: &mut Console, results: &StudyResults) -> Result<(), ConsoleError> {
     writeln!(out, "study {}", results.study)?;
+    for w in &results.warnings {
+        writeln!(out, "warning[{}] {}: {}", w.code, w.location, w.message)?;
+    }
     let f =
         |x: Option<f64>, prec: usize| x.map_or_else(|| "—".to_owned(), |v| format!("{v:.prec$}"));
     for phase in &results.phases {

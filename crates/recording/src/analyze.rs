@@ -263,6 +263,14 @@ pub fn analyze_recording(
     } else {
         pooled(recording, declared_rate_rad_s, &config, &pieces).map_err(|(o, e)| located(o, e))?
     };
+    // The rate over the whole revolutions fitted: from the first one's first sample to the
+    // sample that begins the revolution after the last one.
+    let measured_rate_rad_s = match (analysis.revolutions.first(), analysis.revolutions.last()) {
+        (Some(first), Some(last)) => recording
+            .measured_rate_between(first.first_sample, last.first_sample + last.samples)
+            .or(measured_rate_rad_s),
+        _ => measured_rate_rad_s,
+    };
     Ok(finish(
         recording,
         analysis,

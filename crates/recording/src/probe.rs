@@ -158,10 +158,18 @@ impl Recording {
     /// the finite samples (`None` without a measured angle or with fewer than two finite
     /// samples).
     pub fn measured_rate_rad_s(&self) -> Option<f64> {
+        self.measured_rate_between(0, self.len().checked_sub(1)?)
+    }
+
+    /// The mean rate of the measured angle between samples `from` and `to` (inclusive,
+    /// non-finite samples skipped), rad/s. Over whole revolutions, a once-per-revolution
+    /// speed ripple averages out.
+    pub fn measured_rate_between(&self, from: usize, to: usize) -> Option<f64> {
         let a = self.angle_rad.as_ref()?;
+        let to = to.min(a.len().checked_sub(1)?);
         let ok = |i: usize| a[i].is_finite() && self.time_s[i].is_finite();
-        let first = (0..a.len()).find(|&i| ok(i))?;
-        let last = (0..a.len()).rev().find(|&i| ok(i))?;
+        let first = (from..=to).find(|&i| ok(i))?;
+        let last = (from..=to).rev().find(|&i| ok(i))?;
         if last <= first {
             return None;
         }

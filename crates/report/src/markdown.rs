@@ -35,6 +35,16 @@ pub fn render(
     if let Some(e) = expected {
         let _ = writeln!(out, "Published values for comparison: {}.\n", e.source);
     }
+    if !results.warnings.is_empty() {
+        let _ = writeln!(
+            out,
+            "## Warnings\n\nThe numbers below were computed, but these may make them wrong:\n"
+        );
+        for w in &results.warnings {
+            let _ = writeln!(out, "- **{}** ({}): {}", w.code, w.location, w.message);
+        }
+        let _ = writeln!(out);
+    }
 
     for phase in &results.phases {
         if phase.points.iter().any(|p| p.dc1_um.is_some()) {
@@ -145,16 +155,20 @@ fn point_table(
         let _ = writeln!(
             out,
             "From the recordings (standard errors across revolutions):\n\n\
-             | rate (deg/s) | revolutions | σ(d_c1) (µm) | σ(d_s1) (µm) | σ(Δr) (µm) | fit residual RMS (µm) |\n\
-             |---|---|---|---|---|---|"
+             | rate (deg/s) | measured rate (deg/s) | angle from | revolutions | dropped | σ(d_c1) (µm) | σ(d_s1) (µm) | σ(Δr) (µm) | fit residual RMS (µm) |\n\
+             |---|---|---|---|---|---|---|---|---|"
         );
         let e = |x: Option<f64>| opt(x, |v| format!("{v:.2e}"));
         for p in &phase.points {
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 p.rate_deg_s,
+                opt(p.measured_rate_deg_s, |m| format!("{m:.6}")),
+                p.angle_source.map_or("—", |a| a.name()),
                 p.revolutions
+                    .map_or_else(|| "—".to_owned(), |r| r.to_string()),
+                p.dropped_revolutions
                     .map_or_else(|| "—".to_owned(), |r| r.to_string()),
                 e(p.dc1_sigma_um),
                 e(p.ds1_sigma_um),

@@ -257,8 +257,8 @@ fn reviewer_reproducers() {
                 fixture().to_str().unwrap(),
                 "--rate-deg-s",
                 rate,
-                "--angle-column",
-                "none",
+                "--start-angle-deg",
+                "0",
             ],
             "aliases order 4",
         );

@@ -104,7 +104,7 @@ fn recordings_round_trip_through_the_recording_loader() {
             order: 5,
             ..FitConfig::default()
         };
-        let from_file = analyze(&loaded.signal(0.0, 0.0), &config).unwrap();
+        let from_file = analyze(&loaded.signal(0.0), &config).unwrap();
         let mem_angle = rec.angle_rad().unwrap();
         let in_memory = analyze(
             &harmonics::ProbeSignal {
