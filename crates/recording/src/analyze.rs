@@ -236,7 +236,12 @@ pub fn analyze_recording(
         }
     };
     let signal = recording.signal(declared_rate_rad_s);
-    let measured_rate_rad_s = recording.measured_rate_rad_s();
+    // With every sample finite, harmonics checks the rate itself (one vectorised pass);
+    // with non-finite ones kept, the rate is measured around them.
+    let measured_rate_rad_s = match recording.on_non_finite {
+        OnBadSamples::Error => None,
+        OnBadSamples::DropRevolution => recording.measured_rate_rad_s(),
+    };
     if recording.angle_rad.is_some() {
         let angle_ok = measured_rate_rad_s.is_some_and(f64::is_finite);
         // A recording whose samples are all good is checked by harmonics itself.
@@ -269,7 +274,7 @@ pub fn analyze_recording(
         (Some(first), Some(last)) => recording
             .measured_rate_between(first.first_sample, last.first_sample + last.samples)
             .or(measured_rate_rad_s),
-        _ => measured_rate_rad_s,
+        _ => measured_rate_rad_s.or_else(|| recording.measured_rate_rad_s()),
     };
     Ok(finish(
         recording,

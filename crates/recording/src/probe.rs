@@ -173,14 +173,30 @@ impl Recording {
         if last <= first {
             return None;
         }
-        let mut span = 0.0;
-        let mut prev = a[first];
-        for &v in &a[first + 1..=last] {
-            if v.is_finite() {
-                span += wrapped_step(prev, v);
-                prev = v;
+        let window = &a[first..=last];
+        // The span is the end-to-end difference plus a turn for each step that wraps (a
+        // step beyond ±π); a branch-free count that vectorises. Only with non-finite
+        // samples (kept to be dropped) are the steps taken one by one around them.
+        let span = if self.on_non_finite == OnBadSamples::Error {
+            let wraps: i64 = window
+                .windows(2)
+                .map(|w| {
+                    let d = w[1] - w[0];
+                    i64::from(d < -PI) - i64::from(d > PI)
+                })
+                .sum();
+            a[last] - a[first] + TAU * wraps as f64
+        } else {
+            let mut span = 0.0;
+            let mut prev = a[first];
+            for &v in &window[1..] {
+                if v.is_finite() {
+                    span += wrapped_step(prev, v);
+                    prev = v;
+                }
             }
-        }
+            span
+        };
         Some(span / (self.time_s[last] - self.time_s[first]))
     }
 
