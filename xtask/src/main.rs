@@ -45,7 +45,7 @@ enum Command {
     /// Simulate a calibration from a scenario: probe recordings, piga.csv and truth.json.
     Simulate(simulate::Simulate),
     /// Fit eq. 20 per revolution to a probe recording and average the coefficients.
-    Harmonics(harmonics::Harmonics),
+    Harmonics(Box<harmonics::Harmonics>),
     /// Plan a calibration campaign: rates, revolutions and U95(k2) for a target (issue 13).
     Plan(plan::PlanCmd),
 }

@@ -337,7 +337,7 @@ fn good_pieces(recording: &Recording, config: &FitConfig) -> harmonics::Result<V
     let drop_gap = recording.on_gap == OnBadSamples::DropRevolution;
     let drop_nan = recording.on_non_finite == OnBadSamples::DropRevolution;
     if !drop_gap && !drop_nan {
-        return Ok(vec![0..n]);
+        return Ok(std::iter::once(0..n).collect());
     }
     let bad = |i: usize| {
         !(t[i].is_finite()
@@ -354,7 +354,7 @@ fn good_pieces(recording: &Recording, config: &FitConfig) -> harmonics::Result<V
         .filter(|d| d.is_finite())
         .collect();
     if intervals.is_empty() {
-        return Ok(vec![0..n]);
+        return Ok(std::iter::once(0..n).collect());
     }
     let mid = intervals.len() / 2;
     let nominal = *intervals.select_nth_unstable_by(mid, f64::total_cmp).1;

@@ -1,7 +1,11 @@
 //! Recordings as labs export them (issue 10): one simulated campaign of known C_r, written
 //! in each variant, run as a study in memory. Every variant either gives C_r within 3σ of
 //! the truth, or a warning that says the number may be wrong, or an error that names the
-//! file, the line and the fix.
+//! file, the line and the fix. Run with `--nocapture` to see the numbers quoted in
+//! docs/YOUR-DATA.md.
+
+// The measurements are printed for the documentation; only the assertions decide.
+#![allow(clippy::print_stdout)]
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -49,8 +53,8 @@ fn write(rec: &SimulatedRecording, header: &str, row: Row<'_>) -> Vec<u8> {
     let mut out = String::from(header);
     out.push('\n');
     let angle = rec.angle_deg.as_ref().unwrap();
-    for i in 0..rec.time_s.len() {
-        out += &row(i, rec.time_s[i], rec.gap_um[i], angle[i]);
+    for (i, ((&t, &g), &a)) in rec.time_s.iter().zip(&rec.gap_um).zip(angle).enumerate() {
+        out += &row(i, t, g, a);
         out.push('\n');
     }
     out.into_bytes()
