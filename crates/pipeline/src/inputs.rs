@@ -341,12 +341,16 @@ fn load_calibration(
 ) -> Result<CalibrationInputs> {
     let file = base.join(&config.table.file);
     let format = TableFormat {
-        columns: vec![
-            TableColumn::required(config.table.rate_column.clone()),
-            TableColumn::required(config.table.output_column.clone()),
-        ],
         delimiter: config.table.delimiter,
-        flexible: true,
+        // A blank delimiter keeps its meaning here: runs of blanks separate fields.
+        whitespace: matches!(config.table.delimiter, ' ' | '\t'),
+        ..TableFormat::new(
+            vec![
+                TableColumn::required(config.table.rate_column.clone()),
+                TableColumn::required(config.table.output_column.clone()),
+            ],
+            true,
+        )
     };
     let table = load
         .table(&file, &format)

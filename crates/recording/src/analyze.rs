@@ -252,8 +252,7 @@ pub fn analyze_recording(
                 }
                 _ => harmonics::check_encoder_rate(
                     &signal,
-                    declared_rate_rad_s,
-                    harmonics::ENCODER_RATE_TOLERANCE,
+                    harmonics::DeclaredRate::new(declared_rate_rad_s),
                 ),
             };
             check.map_err(|e| located(0, e))?;

@@ -10,8 +10,10 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use pipeline::{Inputs, PipelineError, StudyConfig, StudyResults};
-use recording::{AngleSourceKind, Hint, RecordingError};
+use pipeline::{DataSource, Inputs, PipelineError, StudyConfig, StudyResults};
+use recording::{
+    AngleSourceKind, Hint, Recording, RecordingError, RecordingFormat, Table, TableFormat,
+};
 use simulate::{Scenario, SimulatedRecording};
 
 /// The C_r of the simulated spindle, m·s².
@@ -91,10 +93,25 @@ fn study(
     );
     let source = Path::new("/nonexistent/lab.ron");
     let config = StudyConfig::from_ron(&text, source).unwrap();
-    let inputs = Inputs::new(config, source, &|path, format| {
-        recording::parse_recording(&files[path], path, format)
-    })?;
+    let inputs = Inputs::new(config, source, &Texts(files))?;
     pipeline::run(&inputs)
+}
+
+/// Files held in memory as text, parsed as the study asks.
+struct Texts(HashMap<PathBuf, Vec<u8>>);
+
+impl DataSource for Texts {
+    fn recording(
+        &self,
+        path: &Path,
+        format: &RecordingFormat,
+    ) -> Result<Recording, RecordingError> {
+        recording::parse_recording(&self.0[path], path, format)
+    }
+
+    fn table(&self, path: &Path, format: &TableFormat) -> Result<Table, RecordingError> {
+        recording::parse_table(&self.0[path], path, format)
+    }
 }
 
 /// C_r, its σ and the warning codes.
