@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use anyhow::bail;
 use harmonics::{Coefficients, FitConfig, ProbeDirection};
 use recording::{
-    AngleSource, AngleSourceKind, AngleUnit, BinaryChannels, Delimiter, Recording, RecordingAnalysis,
-    RecordingFormat,
+    AngleSource, AngleSourceKind, AngleUnit, BinaryChannels, Delimiter, Recording,
+    RecordingAnalysis, RecordingFormat,
 };
 use serde_json::{Value, json};
 
@@ -66,14 +66,14 @@ pub(crate) struct Harmonics {
     /// Unit of the time column: s, ms, us or ns.
     #[arg(long)]
     time_unit: Option<String>,
-    /// Name of the gap column.
-    #[arg(long)]
+    /// Name of the gap column (CSV), channel (TDMS) or variable (MAT).
+    #[arg(long, visible_alias = "gap-channel")]
     gap_column: Option<String>,
     /// Unit of the gap column: nm, um, mm or m.
     #[arg(long)]
     gap_unit: Option<String>,
-    /// Name of the encoder column (required when given).
-    #[arg(long)]
+    /// Name of the encoder column (required when given), channel (TDMS) or variable (MAT).
+    #[arg(long, visible_alias = "angle-channel")]
     angle_column: Option<String>,
     /// Unit of the encoder column: deg, rad or `counts(per_rev: N)`.
     #[arg(long)]

@@ -57,8 +57,8 @@
 //! depend on `plotters`, `rand`, `ron`, `faer`, `nalgebra`, `kinematics` or `identify`
 //! (`ron` only as a dev-dependency); `.ci/layering` checks this.
 
-mod binary;
 mod analyze;
+mod binary;
 mod error;
 mod format;
 mod line_table;
@@ -75,19 +75,19 @@ mod table;
 mod tdms;
 mod write;
 
-pub use binary::{
-    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, MatVariables, Unsupported,
-};
-pub use mat::{load_mat, parse_mat};
 pub use analyze::{
     Diagnostic, RATE_WARNING_TOLERANCE, RecordingAnalysis, SPREAD_WARNING_RATIO, SpreadCause,
     analyze_recording,
+};
+pub use binary::{
+    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, MatVariables, Unsupported,
 };
 pub use error::{Hint, RecordingError, Result};
 pub use format::{
     AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples,
     RecordingFormat, TimeUnit,
 };
+pub use mat::{load_mat, parse_mat};
 pub use piga::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
 };

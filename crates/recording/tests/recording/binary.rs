@@ -25,7 +25,9 @@ fn csv() -> Recording {
 }
 
 fn analyze(rec: &Recording) -> HarmonicAnalysis {
-    analyze_recording(rec, 120f64.to_radians(), 0.0, &FitConfig::default()).unwrap()
+    analyze_recording(rec, 120f64.to_radians(), &FitConfig::default())
+        .unwrap()
+        .analysis
 }
 
 /// Largest difference between two sets of mean coefficients, µm.
@@ -60,7 +62,11 @@ fn csv_as_f32() -> Recording {
     let deg: Vec<f64> = load_recording(
         &fixture("probe_120deg_s.csv"),
         &RecordingFormat {
-            angle_unit: recording::AngleUnit::Rad,
+            angle: recording::AngleSource::Encoder {
+                column: "angle_deg".into(),
+                unit: recording::AngleUnit::Rad,
+                optional: false,
+            },
             ..RecordingFormat::default()
         },
     )
