@@ -98,7 +98,9 @@ pub(crate) struct Harmonics {
 /// A RON value of a format field given on the command line, e.g. `mm` or
 /// `counts(per_rev: 4096)`.
 fn ron_value<T: serde::de::DeserializeOwned>(flag: &str, text: &str) -> anyhow::Result<T> {
-    ron::from_str(text).map_err(|e| anyhow::anyhow!("--{flag} {text:?}: {e}"))
+    edge_io::ron_options()
+        .from_str(text)
+        .map_err(|e| anyhow::anyhow!("--{flag} {text:?}: {e}"))
 }
 
 impl Harmonics {
@@ -107,7 +109,9 @@ impl Harmonics {
         let mut f = match &self.format {
             Some(path) => {
                 let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES)?;
-                ron::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?
+                edge_io::ron_options()
+                    .from_str(&text)
+                    .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?
             }
             None => RecordingFormat::default(),
         };
