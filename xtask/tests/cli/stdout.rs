@@ -107,19 +107,22 @@ fn accuracy_to_a_full_device_exits_1() {
 #[test]
 fn a_pipe_closed_by_its_reader_is_a_quiet_exit_141() {
     let fixture = root().join("fixtures/recordings/probe_120deg_s.csv");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_xtask"))
+    // The pipe's only reader is closed before the command starts, so its first write fails
+    // whatever the timing (closing it after the start raced with a fast command, which could
+    // write everything into the pipe's buffer first and exit 0).
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    let child = Command::new(env!("CARGO_BIN_EXE_xtask"))
         .args([
             "harmonics",
             fixture.to_str().unwrap(),
             "--rate-deg-s",
             "120",
         ])
-        .stdout(Stdio::piped())
+        .stdout(writer)
         .stderr(Stdio::piped())
         .spawn()
         .expect("runs");
-    // Close the only reader before the command has read its recording.
-    drop(child.stdout.take());
     let out = child.wait_with_output().expect("waits");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(141), "{stderr}");
