@@ -108,8 +108,11 @@ impl Harmonics {
         } else {
             ProbeDirection::AgainstO1X1
         };
+        // The analysis is finite (harmonics refuses otherwise); checked again here because a
+        // JSON null would stand for a NaN.
+        edge_io::check_finite(&fit)?;
         let out = if self.json {
-            let mut s = serde_json::to_string_pretty(&self.to_json(&recording, &fit, direction)?)?;
+            let mut s = edge_io::to_json_pretty(&self.to_json(&recording, &fit, direction)?)?;
             s.push('\n');
             s
         } else {

@@ -2,7 +2,7 @@
 //! radius error (eq. 19).
 
 use crate::design::Design;
-use crate::error::{IdentifyError, Result};
+use crate::error::{IdentifyError, Requirement, Result};
 use crate::geometry::Geometry;
 use crate::lstsq::{Fit, LstsqOptions, lstsq_design_unchecked};
 use crate::radius::{CrEstimate, PseudoSecondOrder, finite, pseudo_second_order, result_finite};
@@ -113,6 +113,15 @@ pub fn identify_calibration(
         });
     }
     let k = geometry.radius_m / geometry.g_m_s2;
+    if !(k * k).is_normal() || !(k * k * k).is_normal() {
+        // The a² and a³ columns are scaled by (R/g)² and (R/g)³: out of range, the design
+        // would hold ∞ or a column of zeros (reported as a rank deficiency).
+        return Err(IdentifyError::InvalidParameter {
+            name: "radius_m",
+            value: geometry.radius_m,
+            requirement: Requirement::RadiusOverGravityInRange,
+        });
+    }
     let design = Design::powers(rate_rad_s, &[0, 1, 2, 3, 4, 6]).scale_columns(&[
         1.0,
         1.0,
@@ -562,6 +571,30 @@ mod tests {
             identify_compensated(&w, &y, tiny, &comp),
             Err(IdentifyError::NonFiniteResult { .. })
         ));
+        // Further out, (R/g)³ itself leaves the range: the radius is named (before: the
+        // internal "factors = inf", or a rank deficiency for a column of zeros).
+        for radius_m in [1e-120, 1e120] {
+            let err = identify_calibration(
+                &w,
+                &y,
+                Geometry {
+                    radius_m,
+                    g_m_s2: G,
+                },
+            )
+            .unwrap_err();
+            assert!(
+                matches!(
+                    err,
+                    IdentifyError::InvalidParameter {
+                        name: "radius_m",
+                        ..
+                    }
+                ),
+                "{err:?}"
+            );
+            assert!(!err.to_string().contains("factors"), "{err}");
+        }
     }
 
     #[test]

@@ -110,6 +110,9 @@ pub enum Requirement {
     NonNegative,
     /// A finite number in `[0, 1)`.
     UnitInterval,
+    /// A radius such that `radius_m / g_m_s2` lies within 1e-102 … 1e102, so that the eq. 18
+    /// design's `(R/g)³` is a normal double.
+    RadiusOverGravityInRange,
 }
 
 impl core::fmt::Display for Requirement {
@@ -119,6 +122,9 @@ impl core::fmt::Display for Requirement {
             Self::Positive => "finite and > 0",
             Self::NonNegative => "finite and ≥ 0",
             Self::UnitInterval => "finite and in [0, 1)",
+            Self::RadiusOverGravityInRange => {
+                "such that radius_m / g_m_s2 lies within 1e-102 … 1e102 ((R/g)³ a normal double)"
+            }
         })
     }
 }

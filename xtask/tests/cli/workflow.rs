@@ -255,3 +255,28 @@ fn results_out_of_double_range_are_named_errors() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A PIGA-table value that takes the eq. 18 design out of range is named by its line in the
+/// file, not by a row and column of the design matrix.
+#[test]
+fn a_design_row_out_of_range_names_the_file_line() {
+    let dir = temp_dir("designrow");
+    let piga = dir.join("piga.csv");
+    let mut text = String::from("# PIGA 7\nrate_deg_s,output_rad_s\n");
+    for i in 1..=8 {
+        if i == 5 {
+            text.push_str("\n# a blank line and a comment before the bad row\n");
+            text.push_str("1e60,0.5\n");
+        } else {
+            text.push_str(&format!("{},{}\n", 25 * i, 0.01 * f64::from(i * i)));
+        }
+    }
+    std::fs::write(&piga, text).unwrap();
+    let out = xtask(&["identify", piga.to_str().unwrap(), "--radius-m", "2.5"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let expected = format!("{}:9: column `rate_deg_s` = 1e60", piga.display());
+    assert!(stderr.contains(&expected), "{stderr}");
+    assert!(!stderr.contains("row 4"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
