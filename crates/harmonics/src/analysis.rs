@@ -318,6 +318,29 @@ fn fit_revolution(
     })
 }
 
+/// `std.c` for the statistic `std` and the coefficient `c` (static names for the error).
+fn quantity_name(quantity: &'static str, coefficient: Option<&'static str>) -> &'static str {
+    match (quantity, coefficient) {
+        ("coefficients", Some("l0")) => "coefficients.l0",
+        ("coefficients", Some("c")) => "coefficients.c",
+        ("coefficients", Some("s")) => "coefficients.s",
+        ("coefficients", Some(_)) => "coefficients.drift_per_s",
+        ("mean", Some("l0")) => "mean.l0",
+        ("mean", Some("c")) => "mean.c",
+        ("mean", Some("s")) => "mean.s",
+        ("mean", Some(_)) => "mean.drift_per_s",
+        ("std", Some("l0")) => "std.l0",
+        ("std", Some("c")) => "std.c",
+        ("std", Some("s")) => "std.s",
+        ("std", Some(_)) => "std.drift_per_s",
+        ("std_error", Some("l0")) => "std_error.l0",
+        ("std_error", Some("c")) => "std_error.c",
+        ("std_error", Some("s")) => "std_error.s",
+        ("std_error", Some(_)) => "std_error.drift_per_s",
+        (other, _) => other,
+    }
+}
+
 /// [`HarmonicsError::NonFiniteResult`], naming the largest gap among `samples`.
 fn non_finite_result(
     signal: &ProbeSignal<'_>,
@@ -336,8 +359,7 @@ fn non_finite_result(
         .unwrap_or((0, f64::NAN));
     HarmonicsError::NonFiniteResult {
         revolution,
-        quantity,
-        coefficient,
+        quantity: quantity_name(quantity, coefficient),
         value,
         largest_gap,
         at_sample: start + at,

@@ -208,20 +208,19 @@ pub enum HarmonicsError {
     /// A result of the fit is not finite although every sample was: a gap this large cannot
     /// be squared in double precision (beyond about 1e154).
     #[error(
-        "{}`{quantity}`{} is not finite ({}): the largest gap, {} at sample {at_sample}, is beyond \
+        "{}`{quantity}` is not finite ({}): the largest gap, {} at sample {at_sample}, is beyond \
          the range the fit can square in double precision",
         match revolution { Some(r) => format!("revolution {r}: "), None => String::new() },
-        match coefficient { Some(c) => format!(" of coefficient `{c}`"), None => String::new() },
         units::Compact(*value),
         units::Compact(*largest_gap)
     )]
     NonFiniteResult {
         /// The revolution whose fit it is, or `None` for a statistic across revolutions.
         revolution: Option<usize>,
-        /// The quantity: `residual_rms`, `coefficients`, `mean`, `std` or `std_error`.
+        /// The quantity: `residual_rms`, or a coefficient (`l0`, `c`, `s`, `drift_per_s`) of
+        /// the revolution's `coefficients` or of the `mean`, `std` or `std_error` across
+        /// revolutions (`std.c`).
         quantity: &'static str,
-        /// The coefficient (`l0`, `c`, `s`, `drift_per_s`), when the quantity has several.
-        coefficient: Option<&'static str>,
         /// The value computed (NaN or ±∞).
         value: f64,
         /// The gap of largest magnitude among the samples that drove it out of range.
