@@ -68,11 +68,7 @@ impl Accuracy {
         }
         let mut console = Console::stdout();
         if self.json {
-            writeln!(
-                console,
-                "{}",
-                serde_json::to_string_pretty(&to_json(&results))?
-            )?;
+            writeln!(console, "{}", edge_io::to_json_pretty(&to_json(&results))?)?;
         } else {
             print_table(&mut console, &results)?;
         }

@@ -238,8 +238,7 @@ impl Harmonics {
             ProbeDirection::AgainstO1X1
         };
         let out = if self.json {
-            let mut s =
-                serde_json::to_string_pretty(&self.to_json(&recording, &result, direction)?)?;
+            let mut s = edge_io::to_json_pretty(&self.to_json(&recording, &result, direction)?)?;
             s.push('\n');
             s
         } else {

@@ -6,9 +6,26 @@ use std::path::{Path, PathBuf};
 use crate::console::{Console, ConsoleError};
 use anyhow::Context as _;
 use identify::{
-    Calibration, CompensatedCalibration, Compensation, CrEstimate, Geometry, K1Source,
-    identify_calibration, identify_compensated,
+    Calibration, CompensatedCalibration, Compensation, CrEstimate, Geometry, IdentifyError,
+    K1Source, identify_calibration, identify_compensated,
 };
+use recording::{PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN};
+
+/// A row of the PIGA table whose value takes the eq. 18 design (powers of ω up to ω⁶, or the
+/// compensated output) out of double precision, named by its line in the file.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "{}:{line}: column `{column}` = {value_c}: the eq. 18 design is not finite at this row \
+     (powers of the rate up to ω⁶, or the output after the compensation, overflow)",
+    path.display(),
+    value_c = units::Compact(*value)
+)]
+struct RowOutOfRange {
+    path: PathBuf,
+    line: usize,
+    column: &'static str,
+    value: f64,
+}
 
 /// Identify k0…k3 from a PIGA output table (CSV with header `rate_deg_s,output_rad_s`).
 #[derive(Debug, clap::Args)]
@@ -51,6 +68,24 @@ impl Identify {
         let rate_rad_s: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
         let output_rad_s = &table.output_rad_s;
         let context = || format!("identifying {}", self.file.display());
+        // An error about a row of the design is an error about a line of the file.
+        let located = |e: IdentifyError| -> anyhow::Error {
+            match e {
+                IdentifyError::NonFinite { row, column } if row < table.len() => {
+                    let (column, value) = match column {
+                        None => (PIGA_OUTPUT_COLUMN, table.output_rad_s[row]),
+                        Some(_) => (PIGA_RATE_COLUMN, table.rate_deg_s[row]),
+                    };
+                    anyhow::Error::new(RowOutOfRange {
+                        path: self.file.clone(),
+                        line: table.line_of_row(row),
+                        column,
+                        value,
+                    })
+                }
+                other => anyhow::Error::new(other).context(context()),
+            }
+        };
         let from = match (&self.from, &self.phase) {
             (Some(path), Some(phase)) => Some(FromStudy::read(path, phase)?),
             _ => None,
@@ -85,18 +120,18 @@ impl Identify {
                     }),
                 };
                 let c = identify_compensated(&rate_rad_s, output_rad_s, geometry, &compensation)
-                    .with_context(context)?;
+                    .map_err(located)?;
                 (c.uncompensated.clone(), Some(c))
             }
             None => (
-                identify_calibration(&rate_rad_s, output_rad_s, geometry).with_context(context)?,
+                identify_calibration(&rate_rad_s, output_rad_s, geometry).map_err(located)?,
                 None,
             ),
         };
         let mut console = Console::stdout();
         if self.json {
             let value = to_json(&self.file, &result.0, result.1.as_ref());
-            writeln!(console, "{}", serde_json::to_string_pretty(&value)?)?;
+            writeln!(console, "{}", edge_io::to_json_pretty(&value)?)?;
         } else {
             print_report(&mut console, &self.file, &result.0, result.1.as_ref())?;
         }
@@ -117,8 +152,8 @@ fn print_report(
         path.display(),
         fit.residuals.len(),
         cal.distinct_rates,
-        cal.geometry.radius_m,
-        cal.geometry.g_m_s2
+        units::Compact(cal.geometry.radius_m),
+        units::Compact(cal.geometry.g_m_s2)
     )?;
     writeln!(
         console,

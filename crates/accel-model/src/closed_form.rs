@@ -3,7 +3,7 @@
 use kinematics::Centrifuge;
 
 use crate::error::{AccelModelError, Result};
-use crate::piga::PigaCoefficients;
+use crate::piga::{PigaCoefficients, result_inputs};
 
 /// The terms of eq. 17 at one rate, rad/s, each named after its origin:
 ///
@@ -113,7 +113,7 @@ pub fn eq17(
     let oz = centrifuge.site.earth_rate_vertical_rad_s();
     let radius = r + e.dr_xs_m + e.c_r_m_s2 * w2;
     let tilt_y = e.dphi_ys_rad + e.c_phi_s2 * w2;
-    Ok(Eq17Terms {
+    let terms = Eq17Terms {
         bias_rad_s: piga.k0_rad_s + k1 * e.dphi_ys_rad,
         omega_rad_s: -e.dphi_ys_rad * w,
         omega3_rad_s: -e.c_phi_s2 * w3,
@@ -122,7 +122,30 @@ pub fn eq17(
         pseudo_second_order_rad_s: k1 * e.c_r_m_s2 * w4 / g,
         k3_rad_s: piga.k3_rad_s_g3 * (r * w2 / g).powi(3),
         earth_rate_rad_s: k1 * 2.0 * radius * w * oz / g - tilt_y * oz,
-    })
+    };
+    for (quantity, value) in [
+        ("bias_rad_s", terms.bias_rad_s),
+        ("omega_rad_s", terms.omega_rad_s),
+        ("omega2_rad_s", terms.omega2_rad_s),
+        ("omega3_rad_s", terms.omega3_rad_s),
+        ("k2_rad_s", terms.k2_rad_s),
+        ("pseudo_second_order_rad_s", terms.pseudo_second_order_rad_s),
+        ("k3_rad_s", terms.k3_rad_s),
+        ("earth_rate_rad_s", terms.earth_rate_rad_s),
+        (
+            "total_with_earth_rate_rad_s",
+            terms.total_with_earth_rate_rad_s(),
+        ),
+    ] {
+        if !value.is_finite() {
+            return Err(AccelModelError::NonFiniteResult {
+                quantity,
+                value,
+                inputs: result_inputs(centrifuge, piga, rate_rad_s),
+            });
+        }
+    }
+    Ok(terms)
 }
 
 #[cfg(test)]
@@ -130,6 +153,59 @@ mod tests {
     use super::*;
     use approx::assert_relative_eq;
     use kinematics::{ErrorMotion, Site};
+
+    /// Finite inputs whose terms overflow: a named error, not an `Ok` holding ±∞.
+    #[test]
+    fn overflowing_terms_are_a_named_error() {
+        let c = Centrifuge {
+            radius_m: 2.5,
+            site: Site {
+                latitude_deg: 40.0,
+                earth_rate_rad_s: 7.292_115e-5,
+                gravity_m_s2: 9.8,
+            }
+            .validated()
+            .unwrap(),
+            error_motion: ErrorMotion {
+                c_r_m_s2: 1e308,
+                ..ErrorMotion::ZERO
+            },
+        };
+        let p = PigaCoefficients {
+            k0_rad_s: 0.0,
+            k1_rad_s_g: 0.56,
+            k2_rad_s_g2: 0.0,
+            k3_rad_s_g3: 0.0,
+        };
+        let e = eq17(&c, &p, 100f64.to_radians()).unwrap_err();
+        assert!(
+            matches!(e, AccelModelError::NonFiniteResult { .. }),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("c_r_m_s2 = 1e308"), "{e}");
+        // g = 1e-300: the specific force is ~1e300 g, and k2·a² overflows.
+        let tiny_g = Centrifuge {
+            site: Site {
+                latitude_deg: 40.0,
+                earth_rate_rad_s: 7.292_115e-5,
+                gravity_m_s2: 1e-300,
+            }
+            .validated()
+            .unwrap(),
+            error_motion: ErrorMotion::ZERO,
+            ..c
+        };
+        let with_k2 = PigaCoefficients {
+            k2_rad_s_g2: 2e-6,
+            ..p
+        };
+        let e = crate::rate_point(&tiny_g, &with_k2, 100f64.to_radians()).unwrap_err();
+        assert!(
+            matches!(e, AccelModelError::NonFiniteResult { .. }),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("gravity_m_s2 = 1e-300"), "{e}");
+    }
 
     /// Eq. 17 is eq. 15 at eq. 14's inputs with a_x nominal in the k2, k3 terms.
     #[test]

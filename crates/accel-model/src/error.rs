@@ -8,7 +8,7 @@ pub enum AccelModelError {
     #[error(transparent)]
     Kinematics(#[from] kinematics::KinematicsError),
     /// A PIGA coefficient is NaN or infinite.
-    #[error("{field} must be finite, got {value}")]
+    #[error("{field} must be finite, got {}", units::Compact(*value))]
     NonFinite {
         /// Name of the coefficient (with its unit suffix).
         field: &'static str,
@@ -16,12 +16,23 @@ pub enum AccelModelError {
         value: f64,
     },
     /// A rate in the list is NaN or infinite.
-    #[error("rate #{index} must be finite, got {value} rad/s")]
+    #[error("rate #{index} must be finite, got {} rad/s", units::Compact(*value))]
     NonFiniteRate {
         /// Position of the rate in the list (from 0).
         index: usize,
         /// The value that was given.
         value: f64,
+    },
+    /// A result is not finite (NaN or ±∞) although every input was: the inputs named take it
+    /// out of the range of double precision.
+    #[error("{quantity} is not finite ({}) for {}", units::Compact(*value), units::CompactList(inputs))]
+    NonFiniteResult {
+        /// The quantity (`output_rad_s`, `a_x_g`, `omega_i_rad_s`, an eq. 17 term).
+        quantity: &'static str,
+        /// The value computed.
+        value: f64,
+        /// The scalar inputs that drove it out of range, by name, with their values.
+        inputs: Vec<(&'static str, f64)>,
     },
     /// The list of rates is empty.
     #[error("no rate points given")]

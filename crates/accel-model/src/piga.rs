@@ -165,12 +165,42 @@ pub fn rate_point(
     let chain = Chain::new(centrifuge, rate_rad_s)?;
     let q = RevolutionQuadrature::minimal(OUTPUT_HIGHEST_HARMONIC);
     let [output_rad_s, a_x_g, omega_i_rad_s] = revolution_means(&chain, piga, &q);
+    for (quantity, value) in [
+        ("output_rad_s", output_rad_s),
+        ("a_x_g", a_x_g),
+        ("omega_i_rad_s", omega_i_rad_s),
+    ] {
+        if !value.is_finite() {
+            return Err(AccelModelError::NonFiniteResult {
+                quantity,
+                value,
+                inputs: result_inputs(centrifuge, piga, rate_rad_s),
+            });
+        }
+    }
     Ok(RatePoint {
         rate_rad_s,
         output_rad_s,
         a_x_g,
         omega_i_rad_s,
     })
+}
+
+/// The scalar inputs an [`AccelModelError::NonFiniteResult`] names: the rate, the radius, g, the
+/// dynamic radius coefficient and the PIGA's k1 and k2.
+pub(crate) fn result_inputs(
+    centrifuge: &Centrifuge,
+    piga: &PigaCoefficients,
+    rate_rad_s: f64,
+) -> Vec<(&'static str, f64)> {
+    vec![
+        ("rate_rad_s", rate_rad_s),
+        ("radius_m", centrifuge.radius_m),
+        ("gravity_m_s2", centrifuge.site.gravity_m_s2),
+        ("c_r_m_s2", centrifuge.error_motion.c_r_m_s2),
+        ("k1_rad_s_g", piga.k1_rad_s_g),
+        ("k2_rad_s_g2", piga.k2_rad_s_g2),
+    ]
 }
 
 /// Mean PIGA output and exact mean inputs for each rate of a calibration, in order.

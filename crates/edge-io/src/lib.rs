@@ -8,6 +8,9 @@
 //! - [`OutputSet`]: writes a set of output files (a study's `results.json`, `report.md` and
 //!   figures; a simulation's recordings) into a staging directory beside the target and swaps
 //!   it into place, so a run leaves either the complete new set or the previous one untouched.
+//! - [`to_json_pretty`] and [`check_finite`]: the JSON writer of result files and `--json`
+//!   output, which refuses a NaN or ±∞ anywhere in the value (serde_json would write `null`),
+//!   naming its path.
 //!
 //! - [`ron_options`]: the one RON dialect of the workspace's configuration files (studies,
 //!   scenarios, expected values, plans): optional sections are written without `Some(...)`.
@@ -17,10 +20,12 @@
 mod error;
 #[doc(hidden)]
 pub mod fault;
+mod json;
 mod output;
 mod text;
 
 pub use error::{EdgeIoError, Result};
+pub use json::{JsonError, NonFiniteValue, check_finite, to_json_pretty};
 pub use output::OutputSet;
 pub use text::{CONFIG_MAX_BYTES, read_text_capped};
 

@@ -132,6 +132,15 @@ impl Coefficients {
         self.map(|v| v * k)
     }
 
+    /// The first coefficient that is not finite, by field name, with its value.
+    fn first_non_finite(&self) -> Option<(&'static str, f64)> {
+        let fields = std::iter::once(("l0", self.l0))
+            .chain(self.c.iter().map(|&v| ("c", v)))
+            .chain(self.s.iter().map(|&v| ("s", v)))
+            .chain(self.drift_per_s.map(|v| ("drift_per_s", v)));
+        fields.into_iter().find(|(_, v)| !v.is_finite())
+    }
+
     fn map(&self, f: impl Fn(f64) -> f64) -> Self {
         Self {
             l0: f(self.l0),
@@ -284,13 +293,77 @@ fn fit_revolution(
             .drift
             .then(|| sol.x[2 * order + 1] * centre.t_inv_half),
     };
+    let residual_rms = (sol.rss / range.len() as f64).sqrt();
+    let non_finite = match coefficients.first_non_finite() {
+        Some((field, value)) => Some(("coefficients", Some(field), value)),
+        None if !residual_rms.is_finite() => Some(("residual_rms", None, residual_rms)),
+        None => None,
+    };
+    if let Some((quantity, coefficient, value)) = non_finite {
+        return Err(non_finite_result(
+            signal,
+            Some(r),
+            quantity,
+            coefficient,
+            value,
+            range,
+        ));
+    }
     Ok(RevolutionFit {
         first_sample: range.start,
         samples: range.len(),
         coefficients,
-        residual_rms: (sol.rss / range.len() as f64).sqrt(),
+        residual_rms,
         condition: sol.condition,
     })
+}
+
+/// `std.c` for the statistic `std` and the coefficient `c` (static names for the error).
+fn quantity_name(quantity: &'static str, coefficient: Option<&'static str>) -> &'static str {
+    match (quantity, coefficient) {
+        ("coefficients", Some("l0")) => "coefficients.l0",
+        ("coefficients", Some("c")) => "coefficients.c",
+        ("coefficients", Some("s")) => "coefficients.s",
+        ("coefficients", Some(_)) => "coefficients.drift_per_s",
+        ("mean", Some("l0")) => "mean.l0",
+        ("mean", Some("c")) => "mean.c",
+        ("mean", Some("s")) => "mean.s",
+        ("mean", Some(_)) => "mean.drift_per_s",
+        ("std", Some("l0")) => "std.l0",
+        ("std", Some("c")) => "std.c",
+        ("std", Some("s")) => "std.s",
+        ("std", Some(_)) => "std.drift_per_s",
+        ("std_error", Some("l0")) => "std_error.l0",
+        ("std_error", Some("c")) => "std_error.c",
+        ("std_error", Some("s")) => "std_error.s",
+        ("std_error", Some(_)) => "std_error.drift_per_s",
+        (other, _) => other,
+    }
+}
+
+/// [`HarmonicsError::NonFiniteResult`], naming the largest gap among `samples`.
+fn non_finite_result(
+    signal: &ProbeSignal<'_>,
+    revolution: Option<usize>,
+    quantity: &'static str,
+    coefficient: Option<&'static str>,
+    value: f64,
+    samples: Range<usize>,
+) -> HarmonicsError {
+    let start = samples.start;
+    let (at, largest_gap) = signal.gap[samples]
+        .iter()
+        .copied()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .unwrap_or((0, f64::NAN));
+    HarmonicsError::NonFiniteResult {
+        revolution,
+        quantity: quantity_name(quantity, coefficient),
+        value,
+        largest_gap,
+        at_sample: start + at,
+    }
 }
 
 /// [`analyze`] on a recording already cut by [`segment`] (with the same signal).
@@ -405,6 +478,23 @@ pub(crate) fn analyze_segmented(
     } else {
         (None, None)
     };
+    let span = revolutions.first().map_or(0, |r| r.start)..revolutions.last().map_or(0, |r| r.end);
+    for (quantity, statistic) in [
+        ("mean", Some(&mean)),
+        ("std", std.as_ref()),
+        ("std_error", std_error.as_ref()),
+    ] {
+        if let Some((field, value)) = statistic.and_then(Coefficients::first_non_finite) {
+            return Err(non_finite_result(
+                signal,
+                None,
+                quantity,
+                Some(field),
+                value,
+                span,
+            ));
+        }
+    }
     Ok(HarmonicAnalysis {
         order,
         drift: config.drift,

@@ -9,7 +9,7 @@
 #[non_exhaustive]
 pub enum HarmonicsError {
     /// A geometric parameter is out of its domain (non-finite, zero or negative).
-    #[error("invalid geometry: `{field}` = {value} (must be finite and > 0)")]
+    #[error("invalid geometry: `{field}` = {value_c} (must be finite and > 0)", value_c = units::Compact(*value))]
     InvalidGeometry {
         /// Name of the offending field.
         field: &'static str,
@@ -17,7 +17,7 @@ pub enum HarmonicsError {
         value: f64,
     },
     /// A harmonic coefficient is not finite.
-    #[error("non-finite harmonic coefficient `{field}` = {value}")]
+    #[error("non-finite harmonic coefficient `{field}` = {value_c}", value_c = units::Compact(*value))]
     NonFiniteCoefficient {
         /// Name of the offending coefficient.
         field: &'static str,
@@ -25,7 +25,7 @@ pub enum HarmonicsError {
         value: f64,
     },
     /// A fit setting is out of its domain.
-    #[error("invalid fit setting: `{field}` = {value} ({requirement})")]
+    #[error("invalid fit setting: `{field}` = {value_c} ({requirement})", value_c = units::Compact(*value))]
     InvalidSetting {
         /// Name of the offending setting.
         field: &'static str,
@@ -53,7 +53,7 @@ pub enum HarmonicsError {
         expected: usize,
     },
     /// A sample is NaN or infinite.
-    #[error("sample {index}: `{column}` is not finite ({value})")]
+    #[error("sample {index}: `{column}` is not finite ({value_c})", value_c = units::Compact(*value))]
     NonFinite {
         /// Index of the sample.
         index: usize,
@@ -64,7 +64,7 @@ pub enum HarmonicsError {
     },
     /// The time stamps do not increase strictly.
     #[error(
-        "sample {index}: time {time_s} s does not increase (previous sample at {previous_s} s)"
+        "sample {index}: time {time_s_c} s does not increase (previous sample at {previous_s_c} s)", time_s_c = units::Compact(*time_s), previous_s_c = units::Compact(*previous_s)
     )]
     TimeNotIncreasing {
         /// Index of the sample.
@@ -76,8 +76,8 @@ pub enum HarmonicsError {
     },
     /// Two consecutive samples are further apart than the allowed number of sample intervals.
     #[error(
-        "sample {index}: gap of {interval_s} s since the previous sample, more than {max_intervals} \
-         nominal sample intervals of {nominal_interval_s} s"
+        "sample {index}: gap of {interval_s_c} s since the previous sample, more than {max_intervals_c} \
+         nominal sample intervals of {nominal_interval_s_c} s", interval_s_c = units::Compact(*interval_s), max_intervals_c = units::Compact(*max_intervals), nominal_interval_s_c = units::Compact(*nominal_interval_s)
     )]
     SampleGap {
         /// Index of the sample after the gap.
@@ -90,7 +90,7 @@ pub enum HarmonicsError {
         max_intervals: f64,
     },
     /// Two consecutive times are so far apart that their difference overflows.
-    #[error("sample {index}: interval of {interval_s} s since the previous sample is not finite")]
+    #[error("sample {index}: interval of {interval_s_c} s since the previous sample is not finite", interval_s_c = units::Compact(*interval_s))]
     NonFiniteInterval {
         /// Index of the sample.
         index: usize,
@@ -100,8 +100,8 @@ pub enum HarmonicsError {
     /// The spindle turns by `π/N` or more in a sample interval, so no revolution can resolve
     /// order `N` (checked before the recording is cut into revolutions).
     #[error(
-        "spindle rate {rate_rad_s} rad/s turns {step_rad} rad in a sample interval of \
-         {interval_s} s, which aliases order {order} (must be below π/{order} = {limit_rad} rad)"
+        "spindle rate {rate_rad_s_c} rad/s turns {step_rad_c} rad in a sample interval of \
+         {interval_s_c} s, which aliases order {order} (must be below π/{order} = {limit_rad_c} rad)", rate_rad_s_c = units::Compact(*rate_rad_s), step_rad_c = units::Compact(*step_rad), interval_s_c = units::Compact(*interval_s), limit_rad_c = units::Compact(*limit_rad)
     )]
     RateAliases {
         /// The rate, rad/s.
@@ -118,8 +118,8 @@ pub enum HarmonicsError {
     },
     /// The encoder's mean rate differs from the declared rate by more than the tolerance.
     #[error(
-        "declared spindle rate {declared_rad_s} rad/s differs from the encoder's mean rate \
-         {encoder_rad_s} rad/s by more than {tolerance} (relative)"
+        "declared spindle rate {declared_rad_s_c} rad/s differs from the encoder's mean rate \
+         {encoder_rad_s_c} rad/s by more than {tolerance_c} (relative)", declared_rad_s_c = units::Compact(*declared_rad_s), encoder_rad_s_c = units::Compact(*encoder_rad_s), tolerance_c = units::Compact(*tolerance)
     )]
     RateMismatch {
         /// The declared rate, rad/s.
@@ -131,7 +131,7 @@ pub enum HarmonicsError {
     },
     /// The encoder angle goes backwards (after unwrapping: steps are taken in (−π, π]).
     #[error(
-        "sample {index}: encoder angle steps back by {step_rad} rad (the spindle turns one way)"
+        "sample {index}: encoder angle steps back by {step_rad_c} rad (the spindle turns one way)", step_rad_c = units::Compact(*step_rad)
     )]
     AngleNotIncreasing {
         /// Index of the sample.
@@ -140,13 +140,13 @@ pub enum HarmonicsError {
         step_rad: f64,
     },
     /// The spindle rate is not finite and positive.
-    #[error("spindle rate {rate_rad_s} rad/s must be finite and > 0")]
+    #[error("spindle rate {rate_rad_s_c} rad/s must be finite and > 0", rate_rad_s_c = units::Compact(*rate_rad_s))]
     InvalidRate {
         /// The rate given, rad/s.
         rate_rad_s: f64,
     },
     /// The recording does not hold one complete revolution.
-    #[error("less than one complete revolution: {samples} samples cover {turns} turns")]
+    #[error("less than one complete revolution: {samples} samples cover {turns_c} turns", turns_c = units::Compact(*turns))]
     NoCompleteRevolution {
         /// Number of samples in the recording.
         samples: usize,
@@ -177,8 +177,8 @@ pub enum HarmonicsError {
     },
     /// The angular sampling of a revolution cannot resolve the fitted order (aliasing).
     #[error(
-        "revolution {revolution}: angular gap of {max_gap_rad} rad after sample {after_sample} \
-         aliases order {order} (must be below π/{order} = {limit_rad} rad)"
+        "revolution {revolution}: angular gap of {max_gap_rad_c} rad after sample {after_sample} \
+         aliases order {order} (must be below π/{order} = {limit_rad_c} rad)", max_gap_rad_c = units::Compact(*max_gap_rad), limit_rad_c = units::Compact(*limit_rad)
     )]
     Aliasing {
         /// Index of the revolution.
@@ -194,8 +194,8 @@ pub enum HarmonicsError {
     },
     /// The normal equations of a revolution are too badly conditioned to be solved reliably.
     #[error(
-        "revolution {revolution}: normal equations ill-conditioned (1-norm condition {condition:e} \
-         after scaling, limit {limit:e})"
+        "revolution {revolution}: normal equations ill-conditioned (1-norm condition {condition_c} \
+         after scaling, limit {limit_c})", condition_c = units::Compact(*condition), limit_c = units::Compact(*limit)
     )]
     IllConditioned {
         /// Index of the revolution.
@@ -204,6 +204,29 @@ pub enum HarmonicsError {
         condition: f64,
         /// The largest condition accepted.
         limit: f64,
+    },
+    /// A result of the fit is not finite although every sample was: a gap this large cannot
+    /// be squared in double precision (beyond about 1e154).
+    #[error(
+        "{}`{quantity}` is not finite ({}): the largest gap, {} at sample {at_sample}, is beyond \
+         the range the fit can square in double precision",
+        match revolution { Some(r) => format!("revolution {r}: "), None => String::new() },
+        units::Compact(*value),
+        units::Compact(*largest_gap)
+    )]
+    NonFiniteResult {
+        /// The revolution whose fit it is, or `None` for a statistic across revolutions.
+        revolution: Option<usize>,
+        /// The quantity: `residual_rms`, or a coefficient (`l0`, `c`, `s`, `drift_per_s`) of
+        /// the revolution's `coefficients` or of the `mean`, `std` or `std_error` across
+        /// revolutions (`std.c`).
+        quantity: &'static str,
+        /// The value computed (NaN or ±∞).
+        value: f64,
+        /// The gap of largest magnitude among the samples that drove it out of range.
+        largest_gap: f64,
+        /// That gap's sample index.
+        at_sample: usize,
     },
 }
 

@@ -190,7 +190,14 @@ pub(crate) fn solve(s: &Sums, order: usize, drift: bool, revolution: usize) -> R
     // RSS = yᵀy − xᵀb at the least-squares solution (data centred, so the cancellation
     // leaves about √ε of the signal's RMS as the floor of the residual RMS).
     let fitted: f64 = (0..p).map(|i| x[i] * b[i]).sum();
-    let rss = (s.yy - fitted).max(0.0);
+    // A NaN (ΣY² overflowed: samples beyond ~1e154) stays NaN for the caller to refuse;
+    // `max` alone would turn it into a residual of 0.
+    let difference = s.yy - fitted;
+    let rss = if difference.is_nan() {
+        difference
+    } else {
+        difference.max(0.0)
+    };
     Ok(Solution { x, rss, condition })
 }
 

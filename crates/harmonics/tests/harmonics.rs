@@ -388,6 +388,38 @@ mod refusals {
     }
 
     #[test]
+    fn a_finite_but_huge_sample_is_a_named_non_finite_result() {
+        // One gap of 1e160 (finite): its square overflows ΣY². Before: Ok with std = inf and a
+        // residual RMS of 0 (with drift) or of NaN; now an error naming the sample.
+        for drift in [true, false] {
+            let (rec, mut data) = base();
+            data.gap[123] = 1e160;
+            let config = FitConfig {
+                drift,
+                ..FitConfig::default()
+            };
+            let e = analyze(&rate_signal(&rec, &data), &config).unwrap_err();
+            assert!(
+                matches!(
+                    e,
+                    HarmonicsError::NonFiniteResult {
+                        at_sample: 123,
+                        largest_gap: 1e160,
+                        ..
+                    }
+                ),
+                "{e:?}"
+            );
+            assert!(e.to_string().contains("1e160 at sample 123"), "{e}");
+        }
+        // Just below the range: 1e150 squares to 1e300, and the fit is finite.
+        let (rec, mut data) = base();
+        data.gap[123] = 1e150;
+        let fit = analyze(&rate_signal(&rec, &data), &FitConfig::default()).unwrap();
+        assert!(fit.revolutions.iter().all(|r| r.residual_rms.is_finite()));
+    }
+
+    #[test]
     fn time_not_increasing() {
         let (rec, mut data) = base();
         data.time_s[100] = data.time_s[99];

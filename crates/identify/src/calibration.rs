@@ -2,10 +2,10 @@
 //! radius error (eq. 19).
 
 use crate::design::Design;
-use crate::error::{IdentifyError, Result};
+use crate::error::{IdentifyError, Requirement, Result};
 use crate::geometry::Geometry;
-use crate::lstsq::{Fit, LstsqOptions, lstsq_design};
-use crate::radius::{CrEstimate, PseudoSecondOrder, finite, pseudo_second_order};
+use crate::lstsq::{Fit, LstsqOptions, lstsq_design_unchecked};
+use crate::radius::{CrEstimate, PseudoSecondOrder, finite, pseudo_second_order, result_finite};
 
 /// Least number of distinct rates for the six-column design of eq. 18.
 pub const MIN_DISTINCT_RATES: usize = 6;
@@ -113,6 +113,15 @@ pub fn identify_calibration(
         });
     }
     let k = geometry.radius_m / geometry.g_m_s2;
+    if !(k * k).is_normal() || !(k * k * k).is_normal() {
+        // The a² and a³ columns are scaled by (R/g)² and (R/g)³: out of range, the design
+        // would hold ∞ or a column of zeros (reported as a rank deficiency).
+        return Err(IdentifyError::InvalidParameter {
+            name: "radius_m",
+            value: geometry.radius_m,
+            requirement: Requirement::RadiusOverGravityInRange,
+        });
+    }
     let design = Design::powers(rate_rad_s, &[0, 1, 2, 3, 4, 6]).scale_columns(&[
         1.0,
         1.0,
@@ -121,10 +130,10 @@ pub fn identify_calibration(
         k * k,
         k * k * k,
     ])?;
-    let fit = lstsq_design(&design, output_rad_s, &LstsqOptions::default())?;
+    let fit = lstsq_design_unchecked(&design, output_rad_s, &LstsqOptions::default())?;
     let c = &fit.coefficients;
     let s = &fit.std_errors;
-    Ok(Calibration {
+    let calibration = Calibration {
         geometry,
         distinct_rates,
         bias_rad_s: c[0],
@@ -138,7 +147,57 @@ pub fn identify_calibration(
         k3_rad_s_g3: c[5],
         k3_sigma_rad_s_g3: s[5],
         fit,
-    })
+    };
+    calibration.check_finite()?;
+    Ok(calibration)
+}
+
+impl Calibration {
+    /// [`IdentifyError::NonFiniteResult`] for the first coefficient or standard error that is
+    /// not finite, naming it and the scalar inputs (R, g).
+    fn check_finite(&self) -> Result<()> {
+        let inputs = [
+            ("radius_m", self.geometry.radius_m),
+            ("g_m_s2", self.geometry.g_m_s2),
+        ];
+        for (quantity, value) in [
+            ("bias_rad_s", self.bias_rad_s),
+            ("omega_coeff", self.omega_coeff),
+            ("omega2_coeff_s", self.omega2_coeff_s),
+            ("omega3_coeff_s2", self.omega3_coeff_s2),
+            ("k1_implied_rad_s_g", self.k1_implied_rad_s_g),
+            ("k1_implied_sigma_rad_s_g", self.k1_implied_sigma_rad_s_g),
+            ("k2_apparent_rad_s_g2", self.k2_apparent_rad_s_g2),
+            (
+                "k2_apparent_sigma_rad_s_g2",
+                self.k2_apparent_sigma_rad_s_g2,
+            ),
+            ("k3_rad_s_g3", self.k3_rad_s_g3),
+            ("k3_sigma_rad_s_g3", self.k3_sigma_rad_s_g3),
+        ] {
+            result_finite(quantity, value, &inputs)?;
+        }
+        if let Some(what) = self.fit.first_non_finite() {
+            let value = self
+                .fit
+                .covariance
+                .iter()
+                .chain(&self.fit.residuals)
+                .copied()
+                .find(|v| !v.is_finite())
+                .unwrap_or(f64::NAN);
+            return Err(IdentifyError::NonFiniteResult {
+                quantity: if what == "a residual" {
+                    "residual of the eq. 18 fit"
+                } else {
+                    "covariance of the eq. 18 fit"
+                },
+                value,
+                inputs: inputs.to_vec(),
+            });
+        }
+        Ok(())
+    }
 }
 
 /// Which k1 the compensation `k1·C_r·ω⁴/g` uses.
@@ -259,9 +318,21 @@ pub fn identify_compensated(
         let d = -c_r * g_m_s2 * g_m_s2 / (radius_m * radius_m * radius_m);
         variance += d * d * cov[(2, 2)] + 2.0 * d * cov[(2, 4)];
     }
+    let k2_sigma_rad_s_g2 = variance.max(0.0).sqrt();
+    let inputs = [
+        ("radius_m", radius_m),
+        ("g_m_s2", g_m_s2),
+        ("c_r_m_s2", c_r),
+        ("c_r_sigma_m_s2", compensation.c_r.c_r_sigma_m_s2),
+        ("k1_rad_s_g", k1),
+    ];
+    if variance.is_nan() {
+        result_finite("k2_sigma_rad_s_g2", f64::NAN, &inputs)?;
+    }
+    result_finite("k2_sigma_rad_s_g2", k2_sigma_rad_s_g2, &inputs)?;
     Ok(CompensatedCalibration {
         k2_rad_s_g2: compensated.k2_apparent_rad_s_g2,
-        k2_sigma_rad_s_g2: variance.max(0.0).sqrt(),
+        k2_sigma_rad_s_g2,
         k2_sigma_from_c_r_rad_s_g2: delta_k2.sigma_rad_s_g2,
         uncompensated,
         compensated,
@@ -282,6 +353,7 @@ fn count_distinct(values: &[f64]) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lstsq::lstsq_design;
     use approx::assert_relative_eq;
 
     const R: f64 = 2.5;
@@ -462,6 +534,66 @@ mod tests {
                 mean.abs() < 4.0 * empirical_sd / n.sqrt(),
                 "{source:?}: mean {mean:e}"
             );
+        }
+    }
+
+    #[test]
+    fn a_tiny_radius_is_a_named_non_finite_result_not_a_nan_sigma() {
+        // R = 1e-80 m: a = R·ω²/g ≈ 1e-80, so the a³ coefficient's variance ≈ 1e480 overflows.
+        // Before: Ok with σ(k2) = NaN (`cargo xtask identify --radius-m 1e-80`).
+        let w = rates(8);
+        let y = outputs(&w, [1e-5, 1e-6, 0.1428, 0.0, 4e-6, 1e-7], 1e-7);
+        let tiny = Geometry {
+            radius_m: 1e-80,
+            g_m_s2: G,
+        };
+        let err = identify_calibration(&w, &y, tiny).unwrap_err();
+        let IdentifyError::NonFiniteResult {
+            quantity, inputs, ..
+        } = &err
+        else {
+            panic!("{err:?}");
+        };
+        assert!(
+            quantity.contains("sigma") || quantity.contains("covariance"),
+            "{quantity}"
+        );
+        assert!(inputs.contains(&("radius_m", 1e-80)));
+        assert!(err.to_string().contains("radius_m = 1e-80"), "{err}");
+        let comp = Compensation {
+            c_r: CrEstimate {
+                c_r_m_s2: 1e-6,
+                c_r_sigma_m_s2: 1e-8,
+            },
+            k1: K1Source::Fitted,
+        };
+        assert!(matches!(
+            identify_compensated(&w, &y, tiny, &comp),
+            Err(IdentifyError::NonFiniteResult { .. })
+        ));
+        // Further out, (R/g)³ itself leaves the range: the radius is named (before: the
+        // internal "factors = inf", or a rank deficiency for a column of zeros).
+        for radius_m in [1e-120, 1e120] {
+            let err = identify_calibration(
+                &w,
+                &y,
+                Geometry {
+                    radius_m,
+                    g_m_s2: G,
+                },
+            )
+            .unwrap_err();
+            assert!(
+                matches!(
+                    err,
+                    IdentifyError::InvalidParameter {
+                        name: "radius_m",
+                        ..
+                    }
+                ),
+                "{err:?}"
+            );
+            assert!(!err.to_string().contains("factors"), "{err}");
         }
     }
 

@@ -24,7 +24,7 @@ pub enum IdentifyError {
     /// The column-scaled design is numerically rank deficient: after column-pivoted QR only
     /// `rank` diagonal entries of R exceed `tolerance·|R₀₀|`.
     #[error(
-        "design is rank deficient: numerical rank {rank} < {unknowns} unknowns at relative tolerance {tolerance:e}"
+        "design is rank deficient: numerical rank {rank} < {unknowns} unknowns at relative tolerance {tolerance_c}", tolerance_c = units::Compact(*tolerance)
     )]
     RankDeficient {
         /// Numerical rank found.
@@ -53,7 +53,7 @@ pub enum IdentifyError {
         expected: usize,
     },
     /// A scalar parameter is out of its domain (e.g. a non-positive radius).
-    #[error("invalid parameter {name} = {value}: must be {requirement}")]
+    #[error("invalid parameter {name} = {}: must be {requirement}", units::Compact(*value))]
     InvalidParameter {
         /// Name of the parameter, as in the function signature or the parameter struct.
         name: &'static str,
@@ -79,6 +79,17 @@ pub enum IdentifyError {
         /// What was expected.
         expected: crate::strd::Expected,
     },
+    /// A result that is not finite (NaN or ±∞) although every input was: the inputs named
+    /// take it out of the range of double precision.
+    #[error("{quantity} is not finite ({}) for {}", units::Compact(*value), units::CompactList(inputs))]
+    NonFiniteResult {
+        /// The quantity, by the name its caller knows (`k2_sigma_rad_s_g2`, `delta_k2_rad_s_g2`).
+        quantity: &'static str,
+        /// The value computed (NaN or ±∞).
+        value: f64,
+        /// The scalar inputs that drove it out of range, by name, with their values.
+        inputs: Vec<(&'static str, f64)>,
+    },
     /// Numbers too large for double precision: the result would not be finite.
     #[error("{what} overflows double precision; rescale the data")]
     Overflow {
@@ -99,6 +110,9 @@ pub enum Requirement {
     NonNegative,
     /// A finite number in `[0, 1)`.
     UnitInterval,
+    /// A radius such that `radius_m / g_m_s2` lies within 1e-102 … 1e102, so that the eq. 18
+    /// design's `(R/g)³` is a normal double.
+    RadiusOverGravityInRange,
 }
 
 impl core::fmt::Display for Requirement {
@@ -108,6 +122,9 @@ impl core::fmt::Display for Requirement {
             Self::Positive => "finite and > 0",
             Self::NonNegative => "finite and ≥ 0",
             Self::UnitInterval => "finite and in [0, 1)",
+            Self::RadiusOverGravityInRange => {
+                "such that radius_m / g_m_s2 lies within 1e-102 … 1e102 ((R/g)³ a normal double)"
+            }
         })
     }
 }

@@ -175,6 +175,38 @@ pub fn lstsq_with(design: &DMatrix<f64>, y: &[f64], options: &LstsqOptions) -> R
 /// # Errors
 /// As [`lstsq_with`].
 pub fn lstsq_design(design: &Design, y: &[f64], options: &LstsqOptions) -> Result<Fit> {
+    let fit = lstsq_design_unchecked(design, y, options)?;
+    if let Some(what) = fit.first_non_finite() {
+        return Err(IdentifyError::Overflow { what });
+    }
+    Ok(fit)
+}
+
+impl Fit {
+    /// The first part of the fit that is not finite, if any (the coefficients and the residual
+    /// SD are checked by the solver itself).
+    pub(crate) fn first_non_finite(&self) -> Option<&'static str> {
+        if self.std_errors.iter().any(|s| !s.is_finite()) {
+            Some("a standard error")
+        } else if self.covariance.iter().any(|c| !c.is_finite())
+            || self.unscaled_covariance.iter().any(|c| !c.is_finite())
+        {
+            Some("the covariance")
+        } else if self.residuals.iter().any(|r| !r.is_finite()) {
+            Some("a residual")
+        } else {
+            None
+        }
+    }
+}
+
+/// [`lstsq_design`] without the finiteness check of the standard errors, covariance and
+/// residuals, for callers that name the quantity that overflowed themselves.
+pub(crate) fn lstsq_design_unchecked(
+    design: &Design,
+    y: &[f64],
+    options: &LstsqOptions,
+) -> Result<Fit> {
     let (m, n) = (design.nrows(), design.ncols());
     validate(design, y)?;
     let tau = match options.rank_tolerance {
@@ -250,6 +282,7 @@ pub fn lstsq_design(design: &Design, y: &[f64], options: &LstsqOptions) -> Resul
             what: "the residual sum of squares or a coefficient",
         });
     }
+
     Ok(Fit {
         coefficients,
         covariance,

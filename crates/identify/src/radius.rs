@@ -200,6 +200,14 @@ fn fit(
         None => radius_fit.fit.residuals.clone(),
         Some(s) => (0..m).map(|i| radius_fit.fit.residuals[i] * s[i]).collect(),
     };
+    let inputs: &[(&'static str, f64)] = &[];
+    result_finite("c_r_sigma_m_s2", radius_fit.c_r_sigma_m_s2, inputs)?;
+    if let Some(sigma) = radius_fit.linear_sigma_m_s {
+        result_finite("linear_sigma_m_s", sigma, inputs)?;
+    }
+    if let Some(r) = radius_fit.residuals_m.iter().find(|r| !r.is_finite()) {
+        result_finite("residuals_m", *r, inputs)?;
+    }
     Ok(radius_fit)
 }
 
@@ -269,10 +277,38 @@ pub fn pseudo_second_order(
     geometry.validate()?;
     let Geometry { radius_m, g_m_s2 } = geometry;
     let factor = k1_rad_s_g * g_m_s2 / (radius_m * radius_m);
-    Ok(PseudoSecondOrder {
+    let result = PseudoSecondOrder {
         delta_k2_rad_s_g2: factor * c_r.c_r_m_s2,
         sigma_rad_s_g2: factor.abs() * c_r.c_r_sigma_m_s2,
-    })
+    };
+    let inputs = [
+        ("k1_rad_s_g", k1_rad_s_g),
+        ("c_r_m_s2", c_r.c_r_m_s2),
+        ("c_r_sigma_m_s2", c_r.c_r_sigma_m_s2),
+        ("g_m_s2", g_m_s2),
+        ("radius_m", radius_m),
+    ];
+    result_finite("delta_k2_rad_s_g2", result.delta_k2_rad_s_g2, &inputs)?;
+    result_finite("delta_k2_sigma_rad_s_g2", result.sigma_rad_s_g2, &inputs)?;
+    Ok(result)
+}
+
+/// `Ok` when a result is finite, [`IdentifyError::NonFiniteResult`] naming it and the inputs
+/// otherwise: no function of this crate returns an `Ok` holding NaN or ±∞.
+pub(crate) fn result_finite(
+    quantity: &'static str,
+    value: f64,
+    inputs: &[(&'static str, f64)],
+) -> Result<()> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(IdentifyError::NonFiniteResult {
+            quantity,
+            value,
+            inputs: inputs.to_vec(),
+        })
+    }
 }
 
 pub(crate) fn finite(name: &'static str, value: f64) -> Result<()> {
@@ -364,6 +400,31 @@ mod tests {
                 ..
             })
         ));
+        // Finite inputs whose Δk2 overflows (R² underflows to 0): an error naming Δk2 and R.
+        let err = pseudo_second_order(
+            0.56,
+            CrEstimate {
+                c_r_m_s2: -4e-8,
+                c_r_sigma_m_s2: 1e-9,
+            },
+            Geometry {
+                radius_m: 1e-160,
+                g_m_s2: 9.8,
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(
+            err,
+            IdentifyError::NonFiniteResult {
+                quantity: "delta_k2_rad_s_g2",
+                ..
+            }
+        ));
+        assert_eq!(
+            err.to_string(),
+            "delta_k2_rad_s_g2 is not finite (-inf) for k1_rad_s_g = 0.56, c_r_m_s2 = -4e-8, \
+             c_r_sigma_m_s2 = 1e-9, g_m_s2 = 9.8, radius_m = 1e-160"
+        );
         assert!(matches!(
             pseudo_second_order(0.56, c_r(1e-8, -1e-9), geometry(2.5, 9.8)),
             Err(IdentifyError::InvalidParameter {

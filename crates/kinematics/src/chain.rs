@@ -93,14 +93,31 @@ impl Chain {
     /// The chain at rate `rate_rad_s` (any sign; zero means standing still).
     ///
     /// # Errors
-    /// As [`Centrifuge::validate`], and [`crate::KinematicsError::NonFinite`] for the rate.
+    /// As [`Centrifuge::validate`], [`crate::KinematicsError::NonFinite`] for the rate, and
+    /// [`crate::KinematicsError::NonFiniteResult`] for a spindle offset that overflows at this
+    /// rate.
     pub fn new(centrifuge: &Centrifuge, rate_rad_s: f64) -> Result<Self> {
         centrifuge.validate()?;
         finite("rate_rad_s", rate_rad_s)?;
+        let offsets = centrifuge.error_motion.offsets_at(rate_rad_s);
+        for (quantity, value) in [
+            ("dr_x_m", offsets.dr_x_m),
+            ("dr_y_m", offsets.dr_y_m),
+            ("dphi_x_rad", offsets.dphi_x_rad),
+            ("dphi_y_rad", offsets.dphi_y_rad),
+        ] {
+            if !value.is_finite() {
+                return Err(crate::KinematicsError::NonFiniteResult {
+                    quantity,
+                    value,
+                    rate_rad_s,
+                });
+            }
+        }
         Ok(Self {
             radius_m: centrifuge.radius_m,
             rate_rad_s,
-            offsets: centrifuge.error_motion.offsets_at(rate_rad_s),
+            offsets,
             site: centrifuge.site,
         })
     }

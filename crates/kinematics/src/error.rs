@@ -8,7 +8,7 @@
 #[non_exhaustive]
 pub enum KinematicsError {
     /// An input that must be a finite number is NaN or infinite.
-    #[error("{field} must be finite, got {value}")]
+    #[error("{field} must be finite, got {}", units::Compact(*value))]
     NonFinite {
         /// Name of the input (as in the parameter structs, with its unit suffix).
         field: &'static str,
@@ -16,7 +16,7 @@ pub enum KinematicsError {
         value: f64,
     },
     /// An input that must be strictly positive is zero or negative.
-    #[error("{field} must be > 0, got {value}")]
+    #[error("{field} must be > 0, got {}", units::Compact(*value))]
     NotPositive {
         /// Name of the input.
         field: &'static str,
@@ -24,7 +24,7 @@ pub enum KinematicsError {
         value: f64,
     },
     /// An input lies outside its admissible closed interval.
-    #[error("{field} must lie in [{min}, {max}], got {value}")]
+    #[error("{field} must lie in [{}, {}], got {}", units::Compact(*min), units::Compact(*max), units::Compact(*value))]
     OutOfRange {
         /// Name of the input.
         field: &'static str,
@@ -34,6 +34,17 @@ pub enum KinematicsError {
         min: f64,
         /// Largest admissible value.
         max: f64,
+    },
+    /// A spindle offset at a rate is not finite although the inputs were: the error-motion
+    /// coefficients and the rate take it out of the range of double precision.
+    #[error("{quantity} is not finite ({}) at rate_rad_s = {}", units::Compact(*value), units::Compact(*rate_rad_s))]
+    NonFiniteResult {
+        /// The offset (`dr_x_m`, `dr_y_m`, `dphi_x_rad`, `dphi_y_rad`).
+        quantity: &'static str,
+        /// The value computed.
+        value: f64,
+        /// The spindle rate, rad/s.
+        rate_rad_s: f64,
     },
     /// A uniform rule with `points` nodes per revolution is not exact for harmonics up to
     /// `highest_harmonic`; at least `need` nodes are required.

@@ -22,7 +22,7 @@ pub enum PipelineError {
         message: String,
     },
     /// A field has a value outside its domain.
-    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
+    #[error("{}: field `{field}` = {value_c}: {reason}", path.display(), value_c = units::Compact(*value))]
     InvalidField {
         /// The file concerned.
         path: PathBuf,
@@ -34,7 +34,7 @@ pub enum PipelineError {
         reason: InvalidReason,
     },
     /// Two points of one phase share a rate.
-    #[error("{}: field `{field}`: rate {rate_deg_s} deg/s appears twice (first at `{first}`)", path.display())]
+    #[error("{}: field `{field}`: rate {rate_deg_s_c} deg/s appears twice (first at `{first}`)", path.display(), rate_deg_s_c = units::Compact(*rate_deg_s))]
     DuplicateRate {
         /// The file concerned.
         path: PathBuf,
@@ -59,6 +59,17 @@ pub enum PipelineError {
         need: usize,
         /// The model's name.
         model: &'static str,
+    },
+    /// A result of the study is not finite although every input was: the configuration's
+    /// numbers take it out of the range of double precision. Nothing is written.
+    #[error("{}: result `{field}` is not finite ({value}): the study's inputs take it out of the range of double precision", path.display())]
+    NonFiniteResult {
+        /// The configuration file.
+        path: PathBuf,
+        /// The result's path in `results.json` (`phases[0].delta_k2.delta_k2_rad_s_g2`).
+        field: String,
+        /// The value computed.
+        value: f64,
     },
     /// The least-squares identification failed.
     #[error("{}: `{field}`", path.display())]

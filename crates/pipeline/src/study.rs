@@ -130,7 +130,7 @@ pub fn run_with_progress(
             ))
         })
         .transpose()?;
-    Ok(StudyResults {
+    let results = StudyResults {
         study: inputs.name.clone(),
         inputs: StudyInputs {
             radius_m: inputs.radius_m,
@@ -142,7 +142,14 @@ pub fn run_with_progress(
         mechanism,
         calibration,
         warnings,
-    })
+    };
+    // The libraries refuse their own non-finite results; this catches what is combined here.
+    edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {
+        path: inputs.source.clone(),
+        field: e.path,
+        value: e.value,
+    })?;
+    Ok(results)
 }
 
 /// A mechanism failure as a study error naming the configuration and the section.

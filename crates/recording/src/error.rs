@@ -115,7 +115,7 @@ pub enum RecordingError {
     },
     /// The largest sample interval of a probe-recording format is not a finite value of at
     /// least 1.
-    #[error("format: `max_gap_intervals` = {value} must be finite and at least 1")]
+    #[error("format: `max_gap_intervals` = {value_c} must be finite and at least 1", value_c = units::Compact(*value))]
     InvalidGapLimit {
         /// The value given.
         value: f64,
@@ -196,7 +196,7 @@ pub enum RecordingError {
         hint: Option<Hint>,
     },
     /// A field is NaN or infinite.
-    #[error("{}:{line}: column `{column}` is not finite ({value}){}", path.display(), hint_text(hint))]
+    #[error("{}:{line}: column `{column}` is not finite ({value_c}){}", path.display(), hint_text(hint), value_c = units::Compact(*value))]
     NonFinite {
         /// The file.
         path: PathBuf,
@@ -210,7 +210,7 @@ pub enum RecordingError {
         hint: Option<Hint>,
     },
     /// The time does not increase.
-    #[error("{}:{line}: time {time_s} s does not increase (previous row at {previous_s} s)", path.display())]
+    #[error("{}:{line}: time {time_s_c} s does not increase (previous row at {previous_s_c} s)", path.display(), time_s_c = units::Compact(*time_s), previous_s_c = units::Compact(*previous_s))]
     TimeNotIncreasing {
         /// The file.
         path: PathBuf,
@@ -223,9 +223,9 @@ pub enum RecordingError {
     },
     /// Samples are missing: the interval before this line is too long.
     #[error(
-        "{}:{line}: gap of {interval_s} s before this sample, more than {max_intervals} nominal \
-         sample intervals of {nominal_interval_s} s; {}",
-        path.display(), Hint::OnGap
+        "{}:{line}: gap of {interval_s_c} s before this sample, more than {max_intervals_c} nominal \
+         sample intervals of {nominal_interval_s_c} s; {}",
+        path.display(), Hint::OnGap, interval_s_c = units::Compact(*interval_s), max_intervals_c = units::Compact(*max_intervals), nominal_interval_s_c = units::Compact(*nominal_interval_s)
     )]
     SampleGap {
         /// The file.
@@ -392,7 +392,7 @@ pub enum RecordingError {
     },
     /// A value given to the probe-recording writer is NaN or infinite (the reader would
     /// refuse the file).
-    #[error("probe column `{column}` to write: value {value} at index {index} is not finite")]
+    #[error("probe column `{column}` to write: value {value_c} at index {index} is not finite", value_c = units::Compact(*value))]
     NonFiniteValue {
         /// The column (`time_s`, `gap_um` or `angle_deg`).
         column: &'static str,

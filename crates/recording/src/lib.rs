@@ -88,12 +88,18 @@ pub use format::{
     RecordingFormat, TimeUnit,
 };
 pub use mat::{load_mat, parse_mat};
+#[doc(hidden)]
+pub use number::number_paths;
 pub use piga::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
 };
+#[doc(hidden)]
+pub use probe::parse_recording_reference;
 pub use probe::{AngleSourceKind, Recording, load_recording, parse_recording};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
+#[doc(hidden)]
+pub use table::parse_table_reference;
 pub use table::{MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, parse_table};
 pub use tdms::{load_tdms, parse_tdms};
 pub use write::{ProbeColumns, WriteOptions, write_probe_csv};

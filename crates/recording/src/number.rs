@@ -36,6 +36,14 @@ pub(super) fn parse_f64(field: &[u8], comma: bool) -> Option<f64> {
     std::str::from_utf8(f).ok()?.parse().ok()
 }
 
+/// The decimal parser as the fuzz targets and tests see it: `(parse_f64, fast_f64)` of
+/// `field` with a decimal point, the full parser and its fast path alone (`None` where the
+/// fast path declines). Not part of the crate's interface.
+#[doc(hidden)]
+pub fn number_paths(field: &[u8]) -> (Option<f64>, Option<f64>) {
+    (parse_f64(field, false), fast_f64(field.trim_ascii(), b'.'))
+}
+
 /// `fast_prefix` over the whole field.
 pub(super) fn fast_f64(s: &[u8], mark: u8) -> Option<f64> {
     fast_prefix(s, mark).and_then(|(v, used)| (used == s.len()).then_some(v))

@@ -390,6 +390,19 @@ pub fn parse_recording(text: &[u8], path: &Path, format: &RecordingFormat) -> Re
     Recording::from_table(table, format)
 }
 
+/// [`parse_recording`] through the reference path of the table parser (every row field by
+/// field, [`crate::parse_table_reference`]): the fast path must give the same recording or
+/// the same error. For the tests and the fuzz targets; not part of the crate's interface.
+#[doc(hidden)]
+pub fn parse_recording_reference(
+    text: &[u8],
+    path: &Path,
+    format: &RecordingFormat,
+) -> Result<Recording> {
+    let table = crate::parse_table_reference(text, path, &format.table_format()?)?;
+    Recording::from_table(table, format)
+}
+
 /// The sample an analysis error names, if any.
 pub(crate) fn sample_index(error: &HarmonicsError) -> Option<usize> {
     match error {

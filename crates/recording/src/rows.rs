@@ -163,6 +163,11 @@ pub(crate) fn fast_row(
             if text[pos + off] != delimiter || (blank && off == 0) {
                 return None;
             }
+            // Other ASCII whitespace (a lone CR, a form feed) next to blanks is trimmed by the
+            // slow path's field splitting: leave such a line to it (found by fuzzing).
+            if blank && text[pos..pos + off].iter().any(u8::is_ascii_whitespace) {
+                return None;
+            }
             // A comment line is not a row.
             if f == 0 && text[pos..pos + off].trim_ascii_start().first() == Some(&b'#') {
                 return None;

@@ -36,7 +36,7 @@ pub enum ReportError {
         checks: usize,
     },
     /// A check's value or tolerance is not a finite number, or its tolerance is negative.
-    #[error("{}: `{field}` = {value}: {reason}", path.display())]
+    #[error("{}: `{field}` = {value_c}: {reason}", path.display(), value_c = units::Compact(*value))]
     InvalidCheckNumber {
         /// The file concerned.
         path: PathBuf,
@@ -94,6 +94,36 @@ pub enum ReportError {
         /// The serialiser's message.
         message: String,
     },
+    /// A number of an output is not finite: the file is not written (JSON would hold `null`
+    /// where a number belongs).
+    #[error("{what}: `{field}` is not finite ({value_c}); nothing was written", value_c = units::Compact(*value))]
+    NonFiniteOutput {
+        /// The output file (`results.json`, `truth.json`, `piga.csv`).
+        what: &'static str,
+        /// The path of the value in the output (`phases[0].delta_k2.delta_k2_rad_s_g2`).
+        field: String,
+        /// The value (NaN or ±∞).
+        value: f64,
+    },
+}
+
+impl ReportError {
+    /// The error of [`edge_io::to_json_pretty`] for the output `what`.
+    pub(crate) fn json(what: &'static str, e: edge_io::JsonError) -> Self {
+        match e {
+            edge_io::JsonError::NonFinite(edge_io::NonFiniteValue { path, value }) => {
+                Self::NonFiniteOutput {
+                    what,
+                    field: path,
+                    value,
+                }
+            }
+            other => Self::Serialize {
+                what,
+                message: other.to_string(),
+            },
+        }
+    }
 }
 
 /// Result alias of this crate.

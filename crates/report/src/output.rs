@@ -40,19 +40,18 @@ pub struct WrittenFiles {
 /// Serialises results as pretty JSON, without provenance.
 ///
 /// # Errors
-/// [`ReportError::Serialize`] if the results cannot be serialised.
+/// [`ReportError::NonFiniteOutput`] naming a number that is not finite (never a `null` for
+/// one); [`ReportError::Serialize`] if the results cannot be serialised.
 pub fn results_json(results: &StudyResults) -> Result<String> {
-    serde_json::to_string_pretty(results).map_err(|e| ReportError::Serialize {
-        what: "results.json",
-        message: e.to_string(),
-    })
+    edge_io::to_json_pretty(results).map_err(|e| ReportError::json("results.json", e))
 }
 
 /// Serialises results as pretty JSON with a leading `provenance` object: the text of
 /// `results.json` as [`write_outputs`] writes it.
 ///
 /// # Errors
-/// [`ReportError::Serialize`] if the results cannot be serialised.
+/// [`ReportError::NonFiniteOutput`] naming a number that is not finite (never a `null` for
+/// one); [`ReportError::Serialize`] if the results cannot be serialised.
 pub fn results_json_with_provenance(
     results: &StudyResults,
     provenance: &Provenance,
@@ -63,14 +62,11 @@ pub fn results_json_with_provenance(
         #[serde(flatten)]
         results: &'a StudyResults,
     }
-    serde_json::to_string_pretty(&WithProvenance {
+    edge_io::to_json_pretty(&WithProvenance {
         provenance,
         results,
     })
-    .map_err(|e| ReportError::Serialize {
-        what: "results.json",
-        message: e.to_string(),
-    })
+    .map_err(|e| ReportError::json("results.json", e))
 }
 
 /// Writes `results.json` (with `provenance` when given), `report.md`, `radius_error.svg` and,

@@ -26,7 +26,7 @@ pub enum SimulateError {
         message: String,
     },
     /// A field has a value outside its domain.
-    #[error("{}: field `{field}` = {value}: {reason}", path.display())]
+    #[error("{}: field `{field}` = {value_c}: {reason}", path.display(), value_c = units::Compact(*value))]
     InvalidField {
         /// The file concerned.
         path: PathBuf,
@@ -38,7 +38,7 @@ pub enum SimulateError {
         reason: &'static str,
     },
     /// Two points of one phase share a rate.
-    #[error("{}: field `{field}`: rate {rate_deg_s} deg/s appears twice (first at `{first}`)", path.display())]
+    #[error("{}: field `{field}`: rate {rate_deg_s_c} deg/s appears twice (first at `{first}`)", path.display(), rate_deg_s_c = units::Compact(*rate_deg_s))]
     DuplicateRate {
         /// The file concerned.
         path: PathBuf,
@@ -50,7 +50,7 @@ pub enum SimulateError {
         rate_deg_s: f64,
     },
     /// (the file name keeps four decimals of the rate).
-    #[error("{}: field `{field}`: rate {rate_deg_s} deg/s and rate {first_rate_deg_s} deg/s (`{first}`) would both be recorded as `{file_name}`", path.display())]
+    #[error("{}: field `{field}`: rate {rate_deg_s_c} deg/s and rate {first_rate_deg_s_c} deg/s (`{first}`) would both be recorded as `{file_name}`", path.display(), rate_deg_s_c = units::Compact(*rate_deg_s), first_rate_deg_s_c = units::Compact(*first_rate_deg_s))]
     RecordingNameCollision {
         /// The file concerned.
         path: PathBuf,
@@ -66,7 +66,7 @@ pub enum SimulateError {
         file_name: String,
     },
     /// one revolution needs.
-    #[error("{}: field `{field}` = {rate_deg_s} deg/s: a revolution would hold {samples_per_revolution} samples at the probe's sample rate, the harmonic fit needs at least {need} (rate at most {max_rate_deg_s} deg/s)", path.display())]
+    #[error("{}: field `{field}` = {rate_deg_s_c} deg/s: a revolution would hold {samples_per_revolution_c} samples at the probe's sample rate, the harmonic fit needs at least {need} (rate at most {max_rate_deg_s_c} deg/s)", path.display(), rate_deg_s_c = units::Compact(*rate_deg_s), samples_per_revolution_c = units::Compact(*samples_per_revolution), max_rate_deg_s_c = units::Compact(*max_rate_deg_s))]
     RateTooFast {
         /// The file concerned.
         path: PathBuf,
@@ -109,6 +109,17 @@ pub enum SimulateError {
         /// The serialiser's message.
         message: String,
     },
+    /// A number of an output is not finite: the file is not written (JSON would hold `null`
+    /// where a number belongs).
+    #[error("{what}: `{field}` is not finite ({value_c}); nothing was written", value_c = units::Compact(*value))]
+    NonFiniteOutput {
+        /// The output file (`results.json`, `truth.json`, `piga.csv`).
+        what: &'static str,
+        /// The path of the value in the output (`phases[0].delta_k2.delta_k2_rad_s_g2`).
+        field: String,
+        /// The value (NaN or ±∞).
+        value: f64,
+    },
     /// A list that must not be empty is empty.
     #[error("{}: field `{field}`: the list is empty", path.display())]
     EmptyList {
@@ -137,6 +148,25 @@ pub enum SimulateError {
         /// The PIGA model's error.
         source: accel_model::AccelModelError,
     },
+}
+
+impl SimulateError {
+    /// The error of [`edge_io::to_json_pretty`] for the output `what`.
+    pub(crate) fn json(what: &'static str, e: edge_io::JsonError) -> Self {
+        match e {
+            edge_io::JsonError::NonFinite(edge_io::NonFiniteValue { path, value }) => {
+                Self::NonFiniteOutput {
+                    what,
+                    field: path,
+                    value,
+                }
+            }
+            other => Self::Serialize {
+                what,
+                message: other.to_string(),
+            },
+        }
+    }
 }
 
 /// Result alias of this crate.

@@ -176,7 +176,9 @@ pub struct ProbeTruth {
 /// # Errors
 /// As [`Scenario::check`] if the scenario was altered after loading so that it is no longer
 /// valid; [`SimulateError::Kinematics`] or [`SimulateError::AccelModel`] if the chain or the
-/// PIGA model refuses an input (a valid scenario does not trigger them).
+/// PIGA model refuses an input or its result is not finite (e.g. `c_r_m_s2: 1e300`);
+/// [`SimulateError::NonFiniteOutput`] for any other number of the simulation that is not
+/// finite, by its path (`truth.rates[0].a_nominal_g`).
 pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     let s = &loaded.scenario;
     // `LoadedScenario`'s fields are public: check again rather than trust them (cheap).
@@ -265,7 +267,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             source,
         })?
         .delta_k2_rad_s_g2;
-    Ok(Simulation {
+    let simulation = Simulation {
         recordings,
         piga,
         truth: Truth {
@@ -277,7 +279,15 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             k2_apparent_predicted_rad_s_g2: k.k2_rad_s_g2 + delta_k2,
             rates,
         },
-    })
+    };
+    // Every number the simulation returns is finite (the libraries check their own results;
+    // this catches what is combined here, e.g. `a_nominal_g = R·ω²/g`).
+    edge_io::check_finite(&simulation).map_err(|e| SimulateError::NonFiniteOutput {
+        what: "the simulation",
+        field: e.path,
+        value: e.value,
+    })?;
+    Ok(simulation)
 }
 
 /// The probe geometry as the simulator uses it, both numbers from `harmonics`' conventions.

@@ -1,5 +1,6 @@
 //! The simulation scenario, read from RON and validated.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use accel_model::PigaCoefficients;
@@ -280,6 +281,11 @@ impl Scenario {
             ..FitConfig::default()
         }
         .min_samples();
+        // First index of each rate (by bits: the rates are finite and > 0 when looked up, so
+        // equal values have equal bits) and of each file name: linear in the number of rates.
+        let mut first_of_rate: HashMap<u64, usize> = HashMap::with_capacity(self.rates_deg_s.len());
+        let mut first_of_name: HashMap<String, usize> =
+            HashMap::with_capacity(self.rates_deg_s.len());
         for (i, &r) in self.rates_deg_s.iter().enumerate() {
             let field = format!("rates_deg_s[{i}]");
             if !(r.is_finite() && r > 0.0) {
@@ -296,7 +302,7 @@ impl Scenario {
                     max_rate_deg_s: p.sample_rate_hz * 360.0 / min_samples as f64,
                 });
             }
-            if let Some(j) = self.rates_deg_s[..i].iter().position(|&q| q == r) {
+            if let Some(&j) = first_of_rate.get(&r.to_bits()) {
                 return Err(SimulateError::DuplicateRate {
                     path: path.to_owned(),
                     field,
@@ -304,11 +310,9 @@ impl Scenario {
                     rate_deg_s: r,
                 });
             }
+            first_of_rate.insert(r.to_bits(), i);
             let name = recording_file_name(r);
-            if let Some(j) = self.rates_deg_s[..i]
-                .iter()
-                .position(|&q| recording_file_name(q) == name)
-            {
+            if let Some(&j) = first_of_name.get(&name) {
                 return Err(SimulateError::RecordingNameCollision {
                     path: path.to_owned(),
                     field,
@@ -318,6 +322,7 @@ impl Scenario {
                     file_name: name,
                 });
             }
+            first_of_name.insert(name, i);
         }
 
         if self.revolutions == 0 || self.revolutions > MAX_REVOLUTIONS {

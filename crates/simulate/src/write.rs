@@ -35,9 +35,12 @@ const SIMULATION_FILES: &[&str] = &["probe_*deg_s.csv", "piga.csv", "truth.json"
 /// cannot be written or moved into place (naming it); [`SimulateError::Serialize`] if
 /// `truth.json` cannot be serialised (nothing is written).
 pub fn write_simulation(dir: &Path, sim: &Simulation) -> Result<SimulationFiles> {
-    let json = serde_json::to_string_pretty(&sim.truth).map_err(|e| SimulateError::Serialize {
-        what: "truth.json",
-        message: e.to_string(),
+    let json =
+        edge_io::to_json_pretty(&sim.truth).map_err(|e| SimulateError::json("truth.json", e))?;
+    edge_io::check_finite(&sim.piga).map_err(|e| SimulateError::NonFiniteOutput {
+        what: "piga.csv",
+        field: e.path,
+        value: e.value,
     })?;
     let mut set = OutputSet::create(dir, SIMULATION_FILES)?;
     let mut recordings = Vec::with_capacity(sim.recordings.len());

@@ -186,3 +186,97 @@ fn identify_takes_r_g_k1_and_c_r_from_a_studys_results() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Results that would not be finite are errors naming the quantity and the inputs, with short
+/// numbers; never a NaN, an inf or a `null` on standard output. Before: `identify --radius-m
+/// 1e-80` printed σ(k2) = NaN, and a recording with one huge sample gave `--drift` std = inf
+/// and a residual RMS of 0.
+#[test]
+fn results_out_of_double_range_are_named_errors() {
+    let dir = temp_dir("nonfinite");
+    let piga = dir.join("piga.csv");
+    let rows: String = (1..=8)
+        .map(|i| {
+            let w = f64::from(25 * i).to_radians();
+            let a = 2.5 * w * w / 9.8;
+            format!(
+                "{},{}\n",
+                25 * i,
+                1e-5 + 0.56 * a + 3e-6 * a * a + 1e-9 * f64::from(i % 3)
+            )
+        })
+        .collect();
+    std::fs::write(&piga, format!("rate_deg_s,output_rad_s\n{rows}")).unwrap();
+    for json in [false, true] {
+        let mut args = vec!["identify", piga.to_str().unwrap(), "--radius-m", "1e-80"];
+        if json {
+            args.push("--json");
+        }
+        let out = xtask(&args);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stdout}{stderr}");
+        assert!(
+            !stdout.contains("NaN") && !stdout.contains("null"),
+            "{stdout}"
+        );
+        assert!(stderr.contains("not finite"), "{stderr}");
+        assert!(stderr.contains("radius_m = 1e-80"), "{stderr}");
+        assert!(!stderr.contains("00000000000"), "{stderr}");
+    }
+
+    let text =
+        std::fs::read_to_string(root().join("fixtures/recordings/probe_120deg_s.csv")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let mut fields: Vec<&str> = lines[40].split(',').collect();
+    fields[1] = "1e155";
+    lines[40] = fields.join(",");
+    let huge = dir.join("huge.csv");
+    std::fs::write(&huge, lines.join("\n")).unwrap();
+    for json in [false, true] {
+        let mut args = vec![
+            "harmonics",
+            huge.to_str().unwrap(),
+            "--rate-deg-s",
+            "120",
+            "--drift",
+        ];
+        if json {
+            args.push("--json");
+        }
+        let out = xtask(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        assert!(out.stdout.is_empty());
+        assert!(
+            stderr.contains("not finite") && stderr.contains("1e155"),
+            "{stderr}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A PIGA-table value that takes the eq. 18 design out of range is named by its line in the
+/// file, not by a row and column of the design matrix.
+#[test]
+fn a_design_row_out_of_range_names_the_file_line() {
+    let dir = temp_dir("designrow");
+    let piga = dir.join("piga.csv");
+    let mut text = String::from("# PIGA 7\nrate_deg_s,output_rad_s\n");
+    for i in 1..=8 {
+        if i == 5 {
+            text.push_str("\n# a blank line and a comment before the bad row\n");
+            text.push_str("1e60,0.5\n");
+        } else {
+            text.push_str(&format!("{},{}\n", 25 * i, 0.01 * f64::from(i * i)));
+        }
+    }
+    std::fs::write(&piga, text).unwrap();
+    let out = xtask(&["identify", piga.to_str().unwrap(), "--radius-m", "2.5"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let expected = format!("{}:9: column `rate_deg_s` = 1e60", piga.display());
+    assert!(stderr.contains(&expected), "{stderr}");
+    assert!(!stderr.contains("row 4"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

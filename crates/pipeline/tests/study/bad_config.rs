@@ -244,3 +244,36 @@ fn the_mechanism_names_known_phases() {
         other => panic!("expected UnknownPhase, got {other:?}"),
     }
 }
+
+/// `radius_m: 1e-160` is a valid number whose square underflows: before, the study returned
+/// Δk2 = −inf (−inf in the summary and report, `null` in results.json); now a typed error
+/// names Δk2 and the inputs.
+#[test]
+fn a_radius_whose_square_underflows_is_a_named_error_not_an_infinite_delta_k2() {
+    let text = paper_text().replace("radius_m: 2.5,", "radius_m: 1e-160,");
+    let inputs = parse(&text).expect("a tiny radius is a valid configuration");
+    let err = pipeline::run(&inputs).unwrap_err();
+    let chain = {
+        let mut text = err.to_string();
+        let mut source = std::error::Error::source(&err);
+        while let Some(s) = source {
+            text.push_str(&format!(": {s}"));
+            source = s.source();
+        }
+        text
+    };
+    assert!(
+        matches!(
+            &err,
+            PipelineError::Identify {
+                source: identify::IdentifyError::NonFiniteResult {
+                    quantity: "delta_k2_rad_s_g2",
+                    ..
+                },
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert!(chain.contains("radius_m = 1e-160"), "{chain}");
+}

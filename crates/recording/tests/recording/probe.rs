@@ -654,6 +654,28 @@ fn fast_and_slow_paths_split_blank_delimited_fields_alike() {
     assert_eq!(rec.gap, [1.0, 2.0]);
 }
 
+/// Found by the `csv_probe` fuzz target: a lone CR between blanks of a blank-delimited row
+/// was a skipped field for the fast path and whitespace for the slow one, so the same file
+/// gave two different errors. Both paths now read it alike.
+#[test]
+fn fast_and_slow_paths_agree_on_a_lone_cr_between_blanks() {
+    let format = RecordingFormat {
+        delimiter: recording::Delimiter::Whitespace,
+        ..RecordingFormat::default()
+    };
+    for text in [
+        &b"time_s gs gap_um\r\n1 \r .0\n.?\r\n"[..],
+        b"time_s gs gap_um\r\n0 x 1\r\n0.001 \r 2\r\n",
+        b"time_s gs gap_um\n0 \x0c 1\n0.001 y 2\n",
+    ] {
+        let path = Path::new("r.txt");
+        let fast = parse_recording(text, path, &format).map_err(|e| e.to_string());
+        let reference =
+            recording::parse_recording_reference(text, path, &format).map_err(|e| e.to_string());
+        assert_eq!(fast, reference, "{}", String::from_utf8_lossy(text));
+    }
+}
+
 #[test]
 fn quoted_numbers_are_read() {
     let rec = parse("\"time_s\",\"gap_um\"\n\"0.000000\",\"1.5\"\n\"0.001\", \"2\" \n").unwrap();

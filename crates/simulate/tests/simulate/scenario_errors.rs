@@ -420,3 +420,62 @@ fn a_scenario_above_the_cap_is_refused_unread() {
         other => panic!("expected TooLarge, got {other:?}"),
     }
 }
+
+/// Valid but extreme scenarios whose results overflow double precision: before, `simulate`
+/// returned them and `piga.csv` held `inf`, `truth.json` `null`s; now a typed error names the
+/// quantity and the inputs, with short numbers, and nothing is written.
+#[test]
+fn scenarios_whose_results_overflow_are_named_errors() {
+    for (from, to, input) in [
+        ("c_r_m_s2: -4.05e-8", "c_r_m_s2: 1e300", "c_r_m_s2 = 1e300"),
+        ("gravity_m_s2: 9.8", "gravity_m_s2: 1e-300", "1e-300"),
+        ("radius_m: 2.5", "radius_m: 1e-300", "radius_m = 1e-300"),
+    ] {
+        let loaded = parse_with(from, to).expect("the scenario itself is valid");
+        let err = simulate::simulate(&loaded).unwrap_err();
+        let message = err.to_string();
+        assert!(
+            matches!(
+                err,
+                SimulateError::AccelModel { .. }
+                    | SimulateError::Identify { .. }
+                    | SimulateError::Kinematics { .. }
+                    | SimulateError::NonFiniteOutput { .. }
+            ),
+            "{to}: {err:?}"
+        );
+        assert!(message.contains("not finite"), "{to}: {message}");
+        assert!(message.contains(input), "{to}: {message}");
+        assert!(
+            !message.contains("0000000000"),
+            "{to}: a long expansion in {message}"
+        );
+    }
+}
+
+/// 1e5 distinct rates, then one repeated and one whose file name collides: the duplicate and
+/// collision checks are linear (before: pairwise, 80 s for 2e4 rates, 1e5 hung).
+#[test]
+fn a_hundred_thousand_rates_are_checked_in_linear_time() {
+    let n = 100_000;
+    // 1e-4 deg/s apart from 50 deg/s: distinct rates with distinct file names (4 decimals).
+    let rates: Vec<String> = (0..n)
+        .map(|i| format!("{:.4}", 50.0 + f64::from(i) * 1e-4))
+        .collect();
+    let list = |extra: &str| format!("rates_deg_s: [{}, {extra}]", rates.join(", "));
+    let from = "rates_deg_s: [10.0, 40.0, 60.0, 80.1234, 110.1234, 135.0, 160.1234, 200.1234]";
+    match parse_with(from, &list("50.0003")) {
+        Err(SimulateError::DuplicateRate { field, first, .. }) => {
+            assert_eq!(field, format!("rates_deg_s[{n}]"));
+            assert_eq!(first, "rates_deg_s[3]");
+        }
+        other => panic!("expected DuplicateRate, got {other:?}"),
+    }
+    match parse_with(from, &list("50.00030001")) {
+        Err(SimulateError::RecordingNameCollision { field, first, .. }) => {
+            assert_eq!(field, format!("rates_deg_s[{n}]"));
+            assert_eq!(first, "rates_deg_s[3]");
+        }
+        other => panic!("expected RecordingNameCollision, got {other:?}"),
+    }
+}
