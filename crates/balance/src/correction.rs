@@ -268,7 +268,12 @@ pub fn influence_correction(
     };
     let correction = correction_from(unbalance, plane, fields.plane)?;
     // residual D_0 + α·U as mounted (U exact): (1 − c)·D_0 + c·D_t in value and variance
-    let residual = d0.times(one_minus_c).plus_independent(&dt.times(c));
+    // its value is zero by construction (what is left is rounding): keep the covariance
+    let residual = Phasor {
+        x: 0.0,
+        y: 0.0,
+        ..d0.times(one_minus_c).plus_independent(&dt.times(c))
+    };
     let predicted = predict(residual, alpha, context)?;
     let out = InfluenceCorrection {
         influence_um_s2_per_kg_m: influence,
