@@ -98,6 +98,9 @@ impl Study {
         for svg in &files.probe_signals_svg {
             writeln!(console, "wrote {}", svg.display())?;
         }
+        if let Some(svg) = &files.balance_polar_svg {
+            writeln!(console, "wrote {}", svg.display())?;
+        }
         Ok(())
     }
 }

@@ -135,7 +135,7 @@ impl ErrorMotion {
         // eq. 3 and 4
         let drift_s = p.static_force_n / p.radial_stiffness_n_m;
         let tilt_s = p.static_moment_n_m / p.angular_stiffness_n_m_rad;
-        Ok(Self {
+        let mut e = Self {
             dr_xs_m: drift_s * cf,
             dr_ys_m: drift_s * sf,
             dphi_xs_rad: -tilt_s * sm,
@@ -144,14 +144,44 @@ impl ErrorMotion {
             c_r_y_m_s2: drift_per_w2 * sa,
             c_phi_x_s2: -tilt_per_w2 * sa,
             c_phi_s2: tilt_per_w2 * ca,
-        })
+        };
+        // further masses (trial weights, corrections) add as vectors (eq. 1–2 each)
+        for m in &p.masses {
+            let (s, c) = m.azimuth_deg.to_radians().sin_cos();
+            let drift = m.radius_m * m.mass_kg / p.radial_stiffness_n_m;
+            let tilt = m.radius_m * m.mass_kg * m.arm_m / p.angular_stiffness_n_m_rad;
+            e.c_r_m_s2 += drift * c;
+            e.c_r_y_m_s2 += drift * s;
+            e.c_phi_x_s2 -= tilt * s;
+            e.c_phi_s2 += tilt * c;
+        }
+        e.validate()?;
+        Ok(e)
     }
+}
+
+/// One imbalance mass of a [`PhysicalImbalance`]'s list (a trial weight, a correction).
+///
+/// In RON: `(mass_kg: 0.5, radius_m: 1.2, azimuth_deg: 90.0, arm_m: 0.0)`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+pub struct ImbalanceMass {
+    /// Mass, kg.
+    pub mass_kg: f64,
+    /// Distance from the spindle axis, m.
+    pub radius_m: f64,
+    /// Azimuth in `O2` from `X2` towards `Y2`, degrees.
+    pub azimuth_deg: f64,
+    /// Lever arm relative to the rotor's centre of mass, m (as [`PhysicalImbalance::arm_m`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub arm_m: f64,
 }
 
 /// A physical description of the spindle's imbalance and stiffness (eq. 1–4).
 ///
 /// Azimuths are measured in `O2` from `X2` (towards the PIGA) towards `Y2`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct PhysicalImbalance {
@@ -177,6 +207,9 @@ pub struct PhysicalImbalance {
     pub static_moment_n_m: f64,
     /// Azimuth towards which the static moment leans the spindle, degrees.
     pub static_tilt_azimuth_deg: f64,
+    /// Further imbalance masses (trial weights, corrections), each added as a vector to the
+    /// single mass above through eq. 1–2 with the same stiffnesses. Default: none.
+    pub masses: Vec<ImbalanceMass>,
 }
 
 impl Default for PhysicalImbalance {
@@ -193,6 +226,7 @@ impl Default for PhysicalImbalance {
             static_force_azimuth_deg: 0.0,
             static_moment_n_m: 0.0,
             static_tilt_azimuth_deg: 0.0,
+            masses: Vec::new(),
         }
     }
 }
@@ -213,6 +247,12 @@ impl PhysicalImbalance {
         finite("static_force_azimuth_deg", self.static_force_azimuth_deg)?;
         finite("static_moment_n_m", self.static_moment_n_m)?;
         finite("static_tilt_azimuth_deg", self.static_tilt_azimuth_deg)?;
+        for m in &self.masses {
+            finite("masses[].mass_kg", m.mass_kg)?;
+            finite("masses[].radius_m", m.radius_m)?;
+            finite("masses[].azimuth_deg", m.azimuth_deg)?;
+            finite("masses[].arm_m", m.arm_m)?;
+        }
         Ok(())
     }
 }
@@ -222,7 +262,7 @@ impl PhysicalImbalance {
 ///
 /// In RON: `Coefficients((dr_xs_m: 5.6e-6, c_r_m_s2: -4.05e-8))` or
 /// `Physical((mass_kg: 0.2, mass_radius_m: 0.5, radial_stiffness_n_m: 2e9))`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ErrorMotionSpec {
     /// Coefficients of eq. 5 / 16 in `O2`.
@@ -294,6 +334,7 @@ mod tests {
             static_force_azimuth_deg: 20.0,
             static_moment_n_m: 100.0,
             static_tilt_azimuth_deg: 90.0,
+            masses: Vec::new(),
         };
         let e = ErrorMotion::from_physical(&p).unwrap();
         let w = 3.0;
@@ -318,6 +359,63 @@ mod tests {
         assert!(e.dphi_ys_rad.abs() < 1e-20);
         // dynamic tilt leans towards 180°: negative about Y2 (eq. 2)
         assert_relative_eq!(e.c_phi_s2, -0.4 * 0.1 * 0.2 / 5e8, max_relative = 1e-12);
+    }
+
+    #[test]
+    fn listed_masses_add_as_vectors_to_the_single_mass() {
+        let single = PhysicalImbalance {
+            mass_kg: 0.2,
+            mass_radius_m: 0.5,
+            arm_m: 0.3,
+            imbalance_azimuth_deg: 40.0,
+            radial_stiffness_n_m: 2.0e9,
+            angular_stiffness_n_m_rad: 1.0e9,
+            ..PhysicalImbalance::default()
+        };
+        let listed = PhysicalImbalance {
+            masses: vec![
+                ImbalanceMass {
+                    mass_kg: 0.1,
+                    radius_m: 1.0,
+                    azimuth_deg: 130.0,
+                    arm_m: -0.2,
+                },
+                ImbalanceMass {
+                    mass_kg: 0.05,
+                    radius_m: 2.0,
+                    azimuth_deg: -90.0,
+                    arm_m: 0.0,
+                },
+            ],
+            ..single.clone()
+        };
+        let a = ErrorMotion::from_physical(&single).unwrap();
+        let b = ErrorMotion::from_physical(&listed).unwrap();
+        let (s, c) = 130f64.to_radians().sin_cos();
+        let d1 = 0.1 / 2.0e9;
+        let d2 = 0.1 / 2.0e9;
+        assert_relative_eq!(b.c_r_m_s2, a.c_r_m_s2 + d1 * c, max_relative = 1e-12);
+        assert_relative_eq!(
+            b.c_r_y_m_s2,
+            a.c_r_y_m_s2 + d1 * s - d2,
+            max_relative = 1e-12
+        );
+        let t1 = 0.1 * -0.2 / 1.0e9;
+        assert_relative_eq!(b.c_phi_s2, a.c_phi_s2 + t1 * c, max_relative = 1e-12);
+        assert_relative_eq!(b.c_phi_x_s2, a.c_phi_x_s2 - t1 * s, max_relative = 1e-12);
+        // a mass opposite the single one cancels it
+        let cancelled = PhysicalImbalance {
+            masses: vec![ImbalanceMass {
+                mass_kg: 0.1,
+                radius_m: 1.0,
+                azimuth_deg: 220.0,
+                arm_m: 0.3,
+            }],
+            ..single
+        };
+        let e = ErrorMotion::from_physical(&cancelled).unwrap();
+        assert!(e.c_r_m_s2.abs() < 1e-25 && e.c_r_y_m_s2.abs() < 1e-25);
+        assert!(e.c_phi_s2.abs() < 1e-25 && e.c_phi_x_s2.abs() < 1e-25);
     }
 
     #[test]

@@ -98,7 +98,9 @@ pub use chain::{
     spindle_transform,
 };
 pub use error::{KinematicsError, Result};
-pub use error_motion::{ErrorMotion, ErrorMotionSpec, PhysicalImbalance, SpindleOffsets};
+pub use error_motion::{
+    ErrorMotion, ErrorMotionSpec, ImbalanceMass, PhysicalImbalance, SpindleOffsets,
+};
 pub use frames::{Frame, Ground, Piga, Point, Sleeve, Spindle, Transform};
 pub use homogeneous::{Axis, Homogeneous};
 pub use inputs::PigaInputs;

@@ -43,6 +43,58 @@ pub struct StudyConfig {
     /// budget says so).
     #[serde(default)]
     pub uncertainty: Option<UncertaintyConfig>,
+    /// The balance advisor: from the probe phases to a correction mass and azimuth, and the
+    /// k2 error it leaves (absent: not run; `docs/BALANCING.md`).
+    #[serde(default)]
+    pub balance: Option<BalanceConfig>,
+}
+
+/// The balance section (`balance: (...)`): which phases were run without and with a trial
+/// mass, the trial mass, where the correction goes, and optionally the bearing's radial
+/// stiffness (the stiffness-model correction of eq. 1) and a check run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BalanceConfig {
+    /// The phase run as found (no trial mass), by name.
+    pub initial: String,
+    /// The phase run with the trial mass added, by name (with `trial_mass`: the
+    /// influence-coefficient correction).
+    #[serde(default)]
+    pub trial: Option<String>,
+    /// The trial mass of the trial phase.
+    #[serde(default)]
+    pub trial_mass: Option<TrialMassConfig>,
+    /// Radial stiffness `k_r` of the spindle bearing, N/m: the stiffness-model correction
+    /// (eq. 1), alone or beside the influence coefficient.
+    #[serde(default)]
+    pub radial_stiffness_n_m: Option<f64>,
+    /// Radius at which the correction mass is mounted, m.
+    pub correction_radius_m: f64,
+    /// Azimuths of fixed mounting positions, deg (default none: any azimuth).
+    #[serde(default)]
+    pub fixed_azimuths_deg: Vec<f64>,
+    /// Mass of the rotor, kg, for the ISO 21940-11 grade (absent: no grade).
+    #[serde(default)]
+    pub rotor_mass_kg: Option<f64>,
+    /// A phase run after the correction, by name, compared with the prediction.
+    #[serde(default)]
+    pub check: Option<String>,
+}
+
+/// A trial mass: mass, radius from the axis and azimuth in `O2` (from `O2X2`, the arm, towards
+/// `O2Y2`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrialMassConfig {
+    /// Mass, kg (> 0).
+    pub mass_kg: f64,
+    /// Radius, m (> 0).
+    pub radius_m: f64,
+    /// Azimuth, deg.
+    pub azimuth_deg: f64,
+    /// Height of the trial mass above the pivot, m (recorded; one probe plane cannot use it).
+    #[serde(default)]
+    pub height_m: Option<f64>,
 }
 
 /// The calibration section: the PIGA's mean output at several rates, identified by eq. 18

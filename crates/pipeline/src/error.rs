@@ -91,6 +91,16 @@ pub enum PipelineError {
         /// The evaluation's error (boxed: it is large).
         source: Box<uncertainty::UncertaintyError>,
     },
+    /// The balance advisor refused its input (e.g. a singular influence coefficient).
+    #[error("{}: `{field}`", path.display())]
+    Balance {
+        /// The file concerned.
+        path: PathBuf,
+        /// The section.
+        field: String,
+        /// The advisor's error (boxed: it is large).
+        source: Box<balance::BalanceError>,
+    },
     /// The harmonic geometry was refused.
     #[error("{}: `{field}`", path.display())]
     Harmonics {
@@ -264,6 +274,18 @@ pub enum UnsupportedReason {
          harmonic fit has no residual (noise-free data?)"
     )]
     NoStandardError,
+    /// The balance advisor needs each point's first harmonic (`d_c1`, `d_s1`), which only
+    /// first-harmonic points and recordings give.
+    #[error("the balance advisor needs a phase given as first_harmonic points or recordings")]
+    BalanceNeedsFirstHarmonic,
+    /// A trial phase without its trial mass, or a trial mass without its phase.
+    #[error("`trial` and `trial_mass` go together: give both or neither")]
+    TrialNeedsTrialMass,
+    /// Neither a trial run nor a stiffness: no correction can be computed.
+    #[error(
+        "give `trial` with `trial_mass` (influence coefficient) or `radial_stiffness_n_m` (stiffness model)"
+    )]
+    BalanceNeedsMethod,
 }
 
 impl PipelineError {

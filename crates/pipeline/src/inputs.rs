@@ -65,6 +65,8 @@ pub struct Inputs {
     pub(crate) type_b: TypeB,
     /// Whether the study has an `uncertainty` section.
     pub(crate) type_b_given: bool,
+    /// The balance section, validated.
+    pub(crate) balance: Option<crate::balancing::BalanceInputs>,
 }
 
 /// One validated phase.
@@ -188,6 +190,11 @@ impl Inputs {
             .as_ref()
             .map(|c| check.calibration(c, &names))
             .transpose()?;
+        let balance = config
+            .balance
+            .as_ref()
+            .map(|b| check.balance(b, &config.phases, &names))
+            .transpose()?;
         let phases = load_phases(&config.phases, checked, base, source, load)?;
         let calibration = match (config.calibration.as_ref(), calibration_config) {
             (Some(c), Some((phase, k1))) => {
@@ -209,6 +216,7 @@ impl Inputs {
             calibration,
             type_b_given: type_b.is_some(),
             type_b: type_b.unwrap_or_default(),
+            balance,
         })
     }
 
@@ -618,6 +626,113 @@ impl Check<'_> {
             }
         };
         Ok((phase, k1))
+    }
+
+    /// The balance section: known phases with first harmonics and enough rates, a trial mass
+    /// with its phase, positive lengths and masses.
+    fn balance(
+        &self,
+        b: &crate::config::BalanceConfig,
+        phases: &[crate::config::PhaseConfig],
+        names: &HashMap<&str, usize>,
+    ) -> Result<crate::balancing::BalanceInputs> {
+        let phase = |field: &str, name: &str| -> Result<usize> {
+            let Some(&i) = names.get(name) else {
+                return Err(PipelineError::UnknownPhase {
+                    path: self.path.to_owned(),
+                    field: field.to_owned(),
+                    name: name.to_owned(),
+                    known: sorted_names(names),
+                });
+            };
+            let count = match &phases[i].points {
+                Points::FirstHarmonic(p) => p.len(),
+                Points::Recordings(set) => set.files.len(),
+                Points::RadiusError(_) | Points::RadiusChange { .. } => {
+                    return Err(PipelineError::Unsupported {
+                        path: self.path.to_owned(),
+                        field: field.to_owned(),
+                        reason: UnsupportedReason::BalanceNeedsFirstHarmonic,
+                    });
+                }
+            };
+            if count < balance::MIN_RATES {
+                return Err(PipelineError::TooFewPoints {
+                    path: self.path.to_owned(),
+                    field: format!("phases[{i}].points"),
+                    got: count,
+                    need: balance::MIN_RATES,
+                    model: "the balance advisor's static/dynamic phasor fit",
+                });
+            }
+            Ok(i)
+        };
+        let initial = phase("balance.initial", &b.initial)?;
+        let trial = match (&b.trial, &b.trial_mass) {
+            (Some(name), Some(m)) => {
+                let i = phase("balance.trial", name)?;
+                self.positive("balance.trial_mass.mass_kg", m.mass_kg)?;
+                self.positive("balance.trial_mass.radius_m", m.radius_m)?;
+                self.finite("balance.trial_mass.azimuth_deg".to_owned(), m.azimuth_deg)?;
+                if let Some(h) = m.height_m {
+                    self.finite("balance.trial_mass.height_m".to_owned(), h)?;
+                }
+                Some((
+                    i,
+                    balance::TrialMass {
+                        mass_kg: m.mass_kg,
+                        radius_m: m.radius_m,
+                        azimuth_deg: m.azimuth_deg,
+                    },
+                ))
+            }
+            (None, None) => None,
+            (Some(_), None) | (None, Some(_)) => {
+                return Err(PipelineError::Unsupported {
+                    path: self.path.to_owned(),
+                    field: if b.trial.is_some() {
+                        "balance.trial_mass"
+                    } else {
+                        "balance.trial"
+                    }
+                    .to_owned(),
+                    reason: UnsupportedReason::TrialNeedsTrialMass,
+                });
+            }
+        };
+        if let Some(k) = b.radial_stiffness_n_m {
+            self.positive("balance.radial_stiffness_n_m", k)?;
+        }
+        if trial.is_none() && b.radial_stiffness_n_m.is_none() {
+            return Err(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: "balance".to_owned(),
+                reason: UnsupportedReason::BalanceNeedsMethod,
+            });
+        }
+        self.positive("balance.correction_radius_m", b.correction_radius_m)?;
+        for (i, &a) in b.fixed_azimuths_deg.iter().enumerate() {
+            self.finite(format!("balance.fixed_azimuths_deg[{i}]"), a)?;
+        }
+        if let Some(m) = b.rotor_mass_kg {
+            self.positive("balance.rotor_mass_kg", m)?;
+        }
+        let check = b
+            .check
+            .as_deref()
+            .map(|name| phase("balance.check", name))
+            .transpose()?;
+        Ok(crate::balancing::BalanceInputs {
+            initial,
+            trial,
+            radial_stiffness_n_m: b.radial_stiffness_n_m,
+            plane: balance::CorrectionPlane {
+                radius_m: b.correction_radius_m,
+                fixed_azimuths_deg: b.fixed_azimuths_deg.clone(),
+            },
+            rotor_mass_kg: b.rotor_mass_kg,
+            check,
+        })
     }
 
     /// The Type B uncertainties: each finite and ≥ 0.

@@ -130,6 +130,27 @@ pub fn run_with_progress(
             ))
         })
         .transpose()?;
+    let balance = inputs
+        .balance
+        .as_ref()
+        .map(|b| {
+            let _span = tracing::info_span!("balance").entered();
+            let setting = crate::balancing::Setting {
+                lever: inputs.lever,
+                lever_ratio: inputs.lever_ratio,
+                k1_rad_s_g: inputs.k1_rad_s_g,
+                radius_m: inputs.radius_m,
+                g_m_s2: inputs.g_m_s2,
+            };
+            crate::balancing::run(b, &phases, &setting).map_err(|(field, source)| {
+                PipelineError::Balance {
+                    path: inputs.source.clone(),
+                    field,
+                    source: Box::new(source),
+                }
+            })
+        })
+        .transpose()?;
     let results = StudyResults {
         study: inputs.name.clone(),
         inputs: StudyInputs {
@@ -142,6 +163,7 @@ pub fn run_with_progress(
         mechanism,
         calibration,
         warnings,
+        balance,
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {

@@ -79,6 +79,9 @@ pub fn render(
     if let Some(c) = &results.calibration {
         crate::calibration::section(&mut out, c);
     }
+    if let Some(b) = &results.balance {
+        crate::balance::section(&mut out, b);
+    }
 
     if let Some(outcomes) = outcomes {
         let _ = writeln!(out, "## Regression checks\n");

@@ -19,6 +19,7 @@ const STUDY_FILES: &[&str] = &[
     "radius_error.svg",
     "probe_signals_*.svg",
     "calibration_residuals.svg",
+    "balance_polar.svg",
 ];
 
 /// The files a study wrote.
@@ -35,6 +36,8 @@ pub struct WrittenFiles {
     pub calibration_residuals_svg: Option<PathBuf>,
     /// `probe_signals_<phase>.svg` (the paper's Fig. 4), for each phase given as recordings.
     pub probe_signals_svg: Vec<PathBuf>,
+    /// `balance_polar.svg`, when the study has a balance section.
+    pub balance_polar_svg: Option<PathBuf>,
 }
 
 /// Serialises results as pretty JSON, without provenance.
@@ -111,6 +114,15 @@ pub fn write_outputs(
     let title = format!("{}: radius error, phase {}", results.study, figure.name);
     let radius_figure = radius_error_svg(figure, &title)?;
 
+    let balance_figure = results
+        .balance
+        .as_ref()
+        .map(|b| {
+            let title = format!("{}: balance phasors and correction", results.study);
+            crate::balance::balance_polar_svg(b, &title)
+        })
+        .transpose()?;
+
     let mut set = OutputSet::create(dir, STUDY_FILES)?;
     let results_json = set.write("results.json", json.as_bytes())?;
     let report_md = set.write("report.md", report.as_bytes())?;
@@ -127,6 +139,9 @@ pub fn write_outputs(
         None => None,
     };
     let radius_error_svg = set.write("radius_error.svg", radius_figure.as_bytes())?;
+    let balance_polar_svg = balance_figure
+        .map(|svg| set.write("balance_polar.svg", svg.as_bytes()))
+        .transpose()?;
     set.commit()?;
     Ok(WrittenFiles {
         results_json,
@@ -134,5 +149,6 @@ pub fn write_outputs(
         radius_error_svg,
         probe_signals_svg,
         calibration_residuals_svg,
+        balance_polar_svg,
     })
 }

@@ -3,6 +3,7 @@
 //! compensated identification.
 
 mod bad_config;
+mod balancing;
 mod baseline;
 mod calibration;
 mod in_memory;

@@ -51,3 +51,28 @@ fn the_recordings_report_is_unchanged() {
     let text = report::render(&results, Some(&expected), Some(&outcomes));
     insta::assert_snapshot!("recordings_report_md", text);
 }
+
+/// The balance section of the simulated balancing study, as a snapshot, and its figure.
+#[test]
+fn the_balance_report_is_unchanged() {
+    let inputs =
+        pipeline::load_study(&root().join("fixtures/studies/balance-simulated.ron")).unwrap();
+    let results = pipeline::run(&inputs).unwrap();
+    let text = report::render(&results, None, None);
+    let section = &text[text.find("## Balance advisor").expect("a balance section")..];
+    insta::assert_snapshot!("balance_report_md", section);
+    let dir = Scratch::new("balance");
+    let files = report::write_outputs(&dir.0, &results, None, None, None).unwrap();
+    let svg = std::fs::read_to_string(files.balance_polar_svg.expect("a balance figure")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("correction: 31.99"));
+}
+
+/// A study without a balance section writes no balance figure and no section.
+#[test]
+fn no_balance_section_without_its_configuration() {
+    let inputs = pipeline::load_study(&root().join("fixtures/studies/paper-2025.ron")).unwrap();
+    let results = pipeline::run(&inputs).unwrap();
+    assert!(!report::render(&results, None, None).contains("Balance advisor"));
+    let json = report::results_json(&results).unwrap();
+    assert!(!json.contains("\"balance\""));
+}

@@ -1,0 +1,233 @@
+//! The balance advisor's report section and its polar plot (`balance_polar.svg`).
+
+use std::fmt::Write as _;
+
+use plotters::prelude::*;
+
+use crate::error::{ReportError, Result};
+use pipeline::{BalanceResults, CorrectionResult, PredictedResult};
+
+fn opt(value: Option<f64>, fmt: impl Fn(f64) -> String) -> String {
+    value.map_or_else(|| "—".to_owned(), fmt)
+}
+
+fn correction_line(out: &mut String, c: &CorrectionResult, p: &PredictedResult) {
+    let _ = writeln!(
+        out,
+        "| {} | {:.4} ± {:.4} | {} | {:.3} ± {:.3} | {:.4e} | {:.3e} ± {:.3e} | {:.3e} ± {:.3e} | {:.4e} | {} |",
+        c.method.replace('_', " "),
+        c.mass_kg,
+        c.mass_u_kg,
+        c.radius_m,
+        c.azimuth_deg,
+        c.azimuth_u_deg,
+        c.unbalance_g_mm,
+        p.c_r_m_s2,
+        p.c_r_u_m_s2,
+        p.delta_k2_rad_s_g2,
+        p.delta_k2_u_rad_s_g2,
+        p.residual_unbalance_g_mm,
+        opt(p.iso_grade_mm_s, |g| format!(
+            "G {g} ({:.3} mm/s)",
+            p.e_per_omega_mm_s.unwrap_or(0.0)
+        )),
+    );
+}
+
+/// Appends the balance section to report.md.
+pub(crate) fn section(out: &mut String, b: &BalanceResults) {
+    let _ = writeln!(out, "## Balance advisor\n");
+    let _ = writeln!(
+        out,
+        "The first harmonic of each phase, read as the drift of the spindle axis in the spindle \
+         frame O2 (azimuth from O2X2, the arm towards the PIGA, towards O2Y2), is fitted over its \
+         rates as S + D·ω² (complex least squares): S the static part (eq. 3–4), D the dynamic \
+         part (eq. 1–2). Magnitudes are at the PIGA plane (× lever ratio, eq. 22); the O2X2 \
+         component of D is C_r. Figure: `balance_polar.svg`. Procedure: `docs/BALANCING.md`.\n"
+    );
+    let _ = writeln!(
+        out,
+        "| phase | static \\|S\\| (µm) | static azimuth (deg) | dynamic \\|D\\| (µm·s²) | dynamic azimuth (deg) | C_r (m·s²) | lack of fit \\|B\\|/σ | √(χ²/dof) |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    for p in &b.phases {
+        let _ = writeln!(
+            out,
+            "| `{}` | {:.4} ± {:.4} | {:.3} ± {:.3} | {:.5} ± {:.5} | {:.3} ± {:.3} | {:.4e} | {} | {} |",
+            p.name,
+            p.static_phasor.magnitude_um,
+            p.static_phasor.magnitude_u_um,
+            p.static_phasor.azimuth_deg,
+            p.static_phasor.azimuth_u_deg,
+            p.dynamic.magnitude_um_s2,
+            p.dynamic.magnitude_u_um_s2,
+            p.dynamic.azimuth_deg,
+            p.dynamic.azimuth_u_deg,
+            p.dynamic.c_r_m_s2,
+            opt(p.linear_significance, |v| format!("{v:.2}")),
+            opt(p.reduced_chi, |v| format!("{v:.3}")),
+        );
+    }
+    if let Some(a) = &b.influence {
+        let _ = writeln!(
+            out,
+            "\nInfluence coefficient (trial phase `{}`): |α| = {:.5e} µm·s² per kg·m at {:.3}° \
+             (an effective radial stiffness of {:.4e} N/m).",
+            b.trial.as_deref().unwrap_or("—"),
+            a.magnitude_um_s2_per_kg_m,
+            a.azimuth_deg,
+            a.effective_stiffness_n_m
+        );
+    }
+    if let Some(s) = &b.stiffness {
+        let _ = writeln!(
+            out,
+            "\nStiffness model (eq. 1, k_r = {:e} N/m): imbalance m·R_cm = {:.4} ± {:.4} kg·m at {:.3}°.",
+            s.radial_stiffness_n_m, s.imbalance_kg_m, s.imbalance_u_kg_m, s.imbalance_azimuth_deg
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\n| correction | mass (kg) | radius (m) | azimuth (deg) | unbalance (g·mm) | residual C_r (m·s²) | residual Δk2 (rad/(s·g²)) | residual unbalance (g·mm) | ISO 21940-11 |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+    correction_line(out, &b.correction, &b.predicted);
+    if let Some(s) = &b.stiffness
+        && b.correction.method != s.correction.method
+    {
+        correction_line(out, &s.correction, &s.predicted);
+    }
+    if let Some(split) = &b.correction.split {
+        let parts: Vec<String> = split
+            .iter()
+            .map(|m| format!("{:.4} kg at {}°", m.mass_kg, m.azimuth_deg))
+            .collect();
+        let _ = writeln!(
+            out,
+            "\nOn the fixed positions: {} (the same vector sum).",
+            parts.join(" and ")
+        );
+    }
+    if let Some(c) = &b.check {
+        let _ = writeln!(
+            out,
+            "\nCheck run `{}`: C_r = {:.4e} ± {:.4e} m·s², {:.3}σ from the prediction; C_r fell by {:.1}×.",
+            c.phase, c.c_r_m_s2, c.c_r_u_m_s2, c.z, c.reduction
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\nThe predicted residual is zero by construction; its uncertainty comes from the \
+         phasors' covariances (the initial and the trial runs). Assumption: {}.\n",
+        b.assumption
+    );
+}
+
+fn plot_error(message: impl ToString) -> ReportError {
+    ReportError::Plot {
+        what: "balance_polar.svg",
+        message: message.to_string(),
+    }
+}
+
+/// The polar plot: each phase's measured drift per rate at the PIGA plane (points), its fit
+/// `S + D·ω²` from ω = 0 to the top rate (line), the static phasor S (arrow from the origin)
+/// and the direction of the correction (dashed, to the plot's edge).
+///
+/// # Errors
+/// [`ReportError::Plot`] when plotters fails.
+pub fn balance_polar_svg(b: &BalanceResults, title: &str) -> Result<String> {
+    let colours = [RED, BLUE, GREEN, MAGENTA, CYAN];
+    let mut reach: f64 = 1e-6;
+    for p in &b.phases {
+        for q in &p.points_um {
+            reach = reach.max(q[1].hypot(q[2]));
+        }
+    }
+    let lim = reach * 1.15;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (720, 720)).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_error)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-lim..lim, -lim..lim)
+            .map_err(plot_error)?;
+        chart
+            .configure_mesh()
+            .x_desc("drift along O2X2 at the PIGA plane (µm)")
+            .y_desc("along O2Y2 (µm)")
+            .draw()
+            .map_err(plot_error)?;
+        for (k, p) in b.phases.iter().enumerate() {
+            let colour = colours[k % colours.len()];
+            let top = p.points_um.iter().map(|q| q[0]).fold(0.0, f64::max);
+            let (s, d) = (&p.static_phasor, &p.dynamic);
+            let (sa, da) = (s.azimuth_deg.to_radians(), d.azimuth_deg.to_radians());
+            let curve: Vec<(f64, f64)> = (0..=100)
+                .map(|i| {
+                    let w = (top * f64::from(i) / 100.0).to_radians();
+                    let r = d.magnitude_um_s2 * w * w;
+                    (
+                        s.magnitude_um * sa.cos() + r * da.cos(),
+                        s.magnitude_um * sa.sin() + r * da.sin(),
+                    )
+                })
+                .collect();
+            chart
+                .draw_series(LineSeries::new(curve, colour.stroke_width(2)))
+                .map_err(plot_error)?
+                .label(format!("{}: S + D·ω²", p.name))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+            chart
+                .draw_series(
+                    p.points_um
+                        .iter()
+                        .map(|q| Circle::new((q[1], q[2]), 4, colour.filled())),
+                )
+                .map_err(plot_error)?;
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![
+                        (0.0, 0.0),
+                        (s.magnitude_um * sa.cos(), s.magnitude_um * sa.sin()),
+                    ],
+                    colour.stroke_width(1),
+                )))
+                .map_err(plot_error)?;
+        }
+        let ca = b.correction.azimuth_deg.to_radians();
+        let dashes: Vec<PathElement<(f64, f64)>> = (0..20)
+            .filter(|i| i % 2 == 0)
+            .map(|i| {
+                let (a, z) = (f64::from(i) / 20.0 * lim, f64::from(i + 1) / 20.0 * lim);
+                PathElement::new(
+                    vec![(a * ca.cos(), a * ca.sin()), (z * ca.cos(), z * ca.sin())],
+                    BLACK.stroke_width(2),
+                )
+            })
+            .collect();
+        chart
+            .draw_series(dashes)
+            .map_err(plot_error)?
+            .label(format!(
+                "correction: {:.4} kg at {:.2}°",
+                b.correction.mass_kg, b.correction.azimuth_deg
+            ))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()
+            .map_err(plot_error)?;
+        root.present().map_err(plot_error)?;
+    }
+    Ok(svg)
+}
