@@ -6,23 +6,45 @@ use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
 use recording::{
-    AngleUnit, LengthUnit, RecordingFormat, parse_recording, parse_recording_reference,
+    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, RecordingFormat,
+    parse_recording, parse_recording_reference,
 };
 
 fuzz_target!(|data: &[u8]| {
-    // The first byte picks the format: delimiter, gap unit, angle unit.
+    // The first byte picks the format: delimiter, decimal mark, gap unit, angle unit.
     let Some((&choice, text)) = data.split_first() else {
         return;
     };
+    let delimiter = [
+        Delimiter::Char(','),
+        Delimiter::Char(';'),
+        Delimiter::Whitespace,
+        Delimiter::Char('\t'),
+    ][usize::from(choice & 3)];
+    // A decimal comma needs a delimiter other than `,`.
+    let decimal = if choice & 0x80 != 0 && delimiter != Delimiter::Char(',') {
+        DecimalMark::Comma
+    } else {
+        DecimalMark::Point
+    };
+    let defaults = RecordingFormat::default();
     let format = RecordingFormat {
-        delimiter: [',', ';', ' ', '\t'][usize::from(choice & 3)],
-        gap_unit: [LengthUnit::Um, LengthUnit::Mm, LengthUnit::M][usize::from(choice >> 2) % 3],
-        angle_unit: if choice & 0x40 == 0 {
-            AngleUnit::Deg
-        } else {
-            AngleUnit::Rad
+        delimiter,
+        decimal,
+        gap: Column {
+            unit: [LengthUnit::Um, LengthUnit::Mm, LengthUnit::M][usize::from(choice >> 2) % 3],
+            ..defaults.gap.clone()
         },
-        ..RecordingFormat::default()
+        angle: AngleSource::Encoder {
+            column: "angle_deg".to_owned(),
+            unit: if choice & 0x40 == 0 {
+                AngleUnit::Deg
+            } else {
+                AngleUnit::Rad
+            },
+            optional: true,
+        },
+        ..defaults
     };
     let path = Path::new("fuzz.csv");
     let fast = parse_recording(text, path, &format);
