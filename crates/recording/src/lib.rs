@@ -4,7 +4,7 @@
 //!
 //! # Formats
 //!
-//! Both are delimited text tables read by one parser ([`load_table`], [`parse_table`]):
+//! Text recordings and tables are delimited text read by one parser ([`load_table`], [`parse_table`]):
 //! blank lines and lines starting with `#` are skipped, the first other line is the header
 //! naming the columns, then one row per line. Lines end with LF, CRLF, or (in a file whose
 //! first line end is one) a lone CR; a leading UTF-8 byte-order mark is skipped; fields may
@@ -13,14 +13,20 @@
 //! finite number.
 //!
 //! - **Probe recording** ([`load_recording`], [`parse_recording`], [`RecordingFormat`]):
-//!   time (s), probe gap (µm, mm or m) and, optionally, the spindle encoder's angle (deg or
-//!   rad), one sample per row; names, units and delimiter configurable (default
-//!   `time_s,gap_um[,angle_deg]`, comma-separated). Times must increase without a gap of
+//!   time, probe gap and the spindle's angle source (an encoder in deg, rad or counts, an
+//!   index pulse, or the declared rate), one sample per row; delimiter, decimal mark, lines
+//!   to skip, column names and units configurable (default `time_s,gap_um[,angle_deg]`,
+//!   comma-separated; `docs/YOUR-DATA.md`). Times must increase without a gap of
 //!   more than a few nominal sample intervals. Rows may have more fields than are read.
 //!   [`write_probe_csv`] writes this format.
 //! - **PIGA table** ([`load_piga_table`], [`PigaTable`]): `rate_deg_s,output_rad_s`, the mean
 //!   PIGA output at each centrifuge rate (the data of eq. 18); every row as many fields as
 //!   the header.
+//!
+//! - **Binary recordings**: NI TDMS ([`load_tdms`], [`parse_tdms`]) and MATLAB `.mat` v5/v7
+//!   ([`load_mat`], [`parse_mat`]) channels or variables named by [`BinaryChannels`], read
+//!   into the same [`Recording`]; written from the formats' public descriptions, every
+//!   length field checked against the bytes left before anything is allocated from it.
 //!
 //! # Reading
 //!
