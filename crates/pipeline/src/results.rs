@@ -302,12 +302,13 @@ pub struct BudgetLine {
     pub quantity: String,
     /// Type A or B.
     pub evaluation: String,
-    /// Its value (for a group of inputs such as the mean outputs: absent).
+    /// Its value (for the fit's coefficients, a correlated group: absent).
     pub value: Option<f64>,
-    /// Its standard uncertainty (for a group: the common one).
+    /// Its standard uncertainty (for the fit's group: the group's contribution itself, with
+    /// sensitivity 1, so that `contribution = |sensitivity|·u` holds on every line).
     pub u: f64,
-    /// Sensitivity coefficient ∂y/∂x through the computation (for a group: the root sum of
-    /// squares of its members').
+    /// Sensitivity coefficient ∂y/∂x through the computation (1 for the fit's group, whose
+    /// members are correlated and are shown as one line).
     pub sensitivity: f64,
     /// Contribution |c|·u to the output's standard uncertainty.
     pub contribution: f64,

@@ -207,6 +207,20 @@ fn bad_calibration_input_is_a_typed_error() {
         "{e}"
     );
 
+    // A rate that is not > 0 names the table's file, line and column.
+    let mut negative = Campaign {
+        files: data.files.clone(),
+    };
+    let text_neg = String::from_utf8(negative.files[&table].clone())
+        .unwrap()
+        .replacen("\n30,", "\n-30,", 1);
+    negative.files.insert(table.clone(), text_neg.into_bytes());
+    let e = error_of(&text, &negative);
+    assert!(
+        matches!(&e, PipelineError::TableValue { line: 3, column, value, .. } if column == "rate_deg_s" && *value == -30.0),
+        "{e}"
+    );
+
     // A non-finite output names the table's file and line.
     let mut bad = Campaign {
         files: data.files.clone(),
