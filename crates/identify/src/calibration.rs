@@ -45,8 +45,17 @@ pub struct Calibration {
     pub k3_rad_s_g3: f64,
     /// Standard error of k3.
     pub k3_sigma_rad_s_g3: f64,
+    /// Residuals `output − fitted`, rad/s, one per point (also for a weighted fit, whose
+    /// `fit.residuals` are divided by σᵢ).
+    pub residuals_rad_s: Vec<f64>,
+    /// For a weighted fit ([`identify_calibration_weighted`]), the Birge ratio
+    /// `√(χ²/ν)` of the residuals against the given σᵢ; `None` for an unweighted fit.
+    pub birge_ratio: Option<f64>,
     /// The least-squares fit, with coefficients in the column order 1, ω, ω², ω³, a², a³, their
-    /// covariance, the residuals and the condition number of the column-scaled design.
+    /// covariance, the residuals and the condition number of the column-scaled design. For a
+    /// weighted fit the covariance (and the standard errors) are those of the σᵢ taken as
+    /// known, `(XᵀWX)⁻¹`, times the squared Birge ratio when it exceeds 1 (never shrunk),
+    /// and the residuals are divided by σᵢ.
     pub fit: Fit,
 }
 
@@ -91,6 +100,50 @@ pub fn identify_calibration(
     output_rad_s: &[f64],
     geometry: Geometry,
 ) -> Result<Calibration> {
+    calibrate(rate_rad_s, output_rad_s, None, geometry)
+}
+
+/// [`identify_calibration`] by weighted least squares: row i is divided by `sigma_rad_s[i]`,
+/// the standard uncertainty of the mean output at that point (e.g. the standard error
+/// across revolutions of a raw output recording, or a table's σ column).
+///
+/// The coefficients' covariance is that of the σᵢ taken as known, `(XᵀWX)⁻¹`, enlarged by
+/// the squared Birge ratio `χ²/ν` when the residuals scatter more than the σᵢ say, and never
+/// shrunk when they scatter less ([`Calibration::birge_ratio`]); the same policy as
+/// [`crate::fit_radius_error_weighted`].
+///
+/// # Errors
+/// Those of [`identify_calibration`], and [`IdentifyError::DimensionMismatch`] for a σ slice
+/// of another length, [`IdentifyError::InvalidParameter`] for a σᵢ that is not finite and
+/// > 0 (`name: "sigma_rad_s"`).
+///
+/// ```
+/// use identify::{Geometry, identify_calibration_weighted};
+/// let geometry = Geometry { radius_m: 2.5, g_m_s2: 9.8 };
+/// let rates: Vec<f64> = (1..=8).map(|i| (25.0 * f64::from(i)).to_radians()).collect();
+/// let out: Vec<f64> = rates.iter().map(|&w| 0.56 * geometry.input_g(w)).collect();
+/// let sigma = vec![1e-7; 8];
+/// let cal = identify_calibration_weighted(&rates, &out, &sigma, geometry)?;
+/// assert!(cal.birge_ratio.unwrap() < 1.0);
+/// approx::assert_relative_eq!(cal.k1_implied_rad_s_g, 0.56, max_relative = 1e-12);
+/// # Ok::<(), identify::IdentifyError>(())
+/// ```
+pub fn identify_calibration_weighted(
+    rate_rad_s: &[f64],
+    output_rad_s: &[f64],
+    sigma_rad_s: &[f64],
+    geometry: Geometry,
+) -> Result<Calibration> {
+    calibrate(rate_rad_s, output_rad_s, Some(sigma_rad_s), geometry)
+}
+
+/// The eq. 18 fit, weighted by `1/σᵢ` when σ is given.
+fn calibrate(
+    rate_rad_s: &[f64],
+    output_rad_s: &[f64],
+    sigma_rad_s: Option<&[f64]>,
+    geometry: Geometry,
+) -> Result<Calibration> {
     geometry.validate()?;
     if rate_rad_s.len() != output_rad_s.len() {
         return Err(IdentifyError::DimensionMismatch {
@@ -130,7 +183,54 @@ pub fn identify_calibration(
         k * k,
         k * k * k,
     ])?;
-    let fit = lstsq_design_unchecked(&design, output_rad_s, &LstsqOptions::default())?;
+    let (fit, residuals_rad_s, birge_ratio) = match sigma_rad_s {
+        None => {
+            let fit = lstsq_design_unchecked(&design, output_rad_s, &LstsqOptions::default())?;
+            let residuals = fit.residuals.clone();
+            (fit, residuals, None)
+        }
+        Some(sigma) => {
+            if sigma.len() != rate_rad_s.len() {
+                return Err(IdentifyError::DimensionMismatch {
+                    what: "sigma_rad_s",
+                    got: sigma.len(),
+                    expected: rate_rad_s.len(),
+                });
+            }
+            if let Some(&bad) = sigma.iter().find(|s| !(s.is_finite() && **s > 0.0)) {
+                return Err(IdentifyError::InvalidParameter {
+                    name: "sigma_rad_s",
+                    value: bad,
+                    requirement: Requirement::Positive,
+                });
+            }
+            let weights: Vec<f64> = sigma.iter().map(|s| 1.0 / s).collect();
+            let y: Vec<f64> = output_rad_s
+                .iter()
+                .zip(&weights)
+                .map(|(y, w)| y * w)
+                .collect();
+            let mut fit = lstsq_design_unchecked(
+                &design.scale_rows(&weights)?,
+                &y,
+                &LstsqOptions::default(),
+            )?;
+            // The σᵢ taken as known, enlarged by the Birge ratio when it exceeds 1.
+            let birge = fit.residual_sd;
+            let inflation = birge.max(1.0).powi(2);
+            fit.covariance = &fit.unscaled_covariance * inflation;
+            fit.std_errors = (0..fit.coefficients.len())
+                .map(|k| fit.covariance[(k, k)].max(0.0).sqrt())
+                .collect();
+            let residuals = fit
+                .residuals
+                .iter()
+                .zip(sigma)
+                .map(|(r, s)| r * s)
+                .collect();
+            (fit, residuals, Some(birge))
+        }
+    };
     let c = &fit.coefficients;
     let s = &fit.std_errors;
     let calibration = Calibration {
@@ -146,6 +246,8 @@ pub fn identify_calibration(
         k2_apparent_sigma_rad_s_g2: s[4],
         k3_rad_s_g3: c[5],
         k3_sigma_rad_s_g3: s[5],
+        residuals_rad_s,
+        birge_ratio,
         fit,
     };
     calibration.check_finite()?;
@@ -292,11 +394,43 @@ pub fn identify_compensated(
     geometry: Geometry,
     compensation: &Compensation,
 ) -> Result<CompensatedCalibration> {
+    compensate(rate_rad_s, output_rad_s, None, geometry, compensation)
+}
+
+/// [`identify_compensated`] with both fits weighted by `1/σᵢ`
+/// ([`identify_calibration_weighted`]).
+///
+/// # Errors
+/// Those of [`identify_compensated`] and [`identify_calibration_weighted`].
+pub fn identify_compensated_weighted(
+    rate_rad_s: &[f64],
+    output_rad_s: &[f64],
+    sigma_rad_s: &[f64],
+    geometry: Geometry,
+    compensation: &Compensation,
+) -> Result<CompensatedCalibration> {
+    compensate(
+        rate_rad_s,
+        output_rad_s,
+        Some(sigma_rad_s),
+        geometry,
+        compensation,
+    )
+}
+
+/// The compensated identification, weighted when σ is given.
+fn compensate(
+    rate_rad_s: &[f64],
+    output_rad_s: &[f64],
+    sigma_rad_s: Option<&[f64]>,
+    geometry: Geometry,
+    compensation: &Compensation,
+) -> Result<CompensatedCalibration> {
     compensation.c_r.validate()?;
     if let K1Source::Given { k1_rad_s_g } = compensation.k1 {
         finite("k1_rad_s_g", k1_rad_s_g)?;
     }
-    let uncompensated = identify_calibration(rate_rad_s, output_rad_s, geometry)?;
+    let uncompensated = calibrate(rate_rad_s, output_rad_s, sigma_rad_s, geometry)?;
     let k1 = match compensation.k1 {
         K1Source::Fitted => uncompensated.k1_implied_rad_s_g,
         K1Source::Given { k1_rad_s_g } => k1_rad_s_g,
@@ -308,7 +442,7 @@ pub fn identify_compensated(
         .zip(output_rad_s)
         .map(|(w, y)| y - k1 * c_r * w.powi(4) / g_m_s2)
         .collect();
-    let compensated = identify_calibration(rate_rad_s, &corrected, geometry)?;
+    let compensated = calibrate(rate_rad_s, &corrected, sigma_rad_s, geometry)?;
     let delta_k2 = pseudo_second_order(k1, compensation.c_r, geometry)?;
 
     let cov = &compensated.fit.covariance;
@@ -668,5 +802,97 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn weighted_fit_with_equal_sigmas_has_the_ordinary_coefficients() {
+        let w = rates(9);
+        let y = outputs(&w, [1e-4, -2e-6, 0.56 * R / G, 3e-8, 5e-6, -2e-7], 1e-7);
+        let plain = identify_calibration(&w, &y, GEOMETRY).unwrap();
+        // σ far above the scatter: Birge ratio < 1, the covariance is (XᵀWX)⁻¹ unshrunk.
+        let weighted = identify_calibration_weighted(&w, &y, &[1e-5; 9], GEOMETRY).unwrap();
+        let birge = weighted.birge_ratio.unwrap();
+        assert!(birge < 0.1, "{birge}");
+        for k in 0..6 {
+            assert_relative_eq!(
+                weighted.fit.coefficients[k],
+                plain.fit.coefficients[k],
+                max_relative = 1e-9,
+                epsilon = 1e-20
+            );
+            // Unweighted σ scales with the residual SD; the weighted one with the given σ.
+            assert_relative_eq!(
+                weighted.fit.std_errors[k] * plain.fit.residual_sd,
+                plain.fit.std_errors[k] * 1e-5,
+                max_relative = 1e-9
+            );
+        }
+        for (a, b) in weighted.residuals_rad_s.iter().zip(&plain.residuals_rad_s) {
+            assert_relative_eq!(*a, *b, max_relative = 1e-6, epsilon = 1e-15);
+        }
+        assert_eq!(plain.birge_ratio, None);
+        // σ far below the scatter: the covariance grows by the Birge ratio squared, which
+        // makes it the ordinary (residual-scaled) one.
+        let tight = identify_calibration_weighted(&w, &y, &[1e-10; 9], GEOMETRY).unwrap();
+        assert!(tight.birge_ratio.unwrap() > 1.0);
+        for k in 0..6 {
+            assert_relative_eq!(
+                tight.fit.std_errors[k],
+                plain.fit.std_errors[k],
+                max_relative = 1e-9
+            );
+        }
+    }
+
+    #[test]
+    fn a_point_with_a_large_sigma_hardly_counts() {
+        let w = rates(10);
+        let mut y = outputs(&w, [1e-4, -2e-6, 0.56 * R / G, 3e-8, 5e-6, -2e-7], 1e-9);
+        let mut sigma = vec![1e-9; 10];
+        // A disturbed point declared as such.
+        y[4] += 1e-4;
+        sigma[4] = 1e-2;
+        let weighted = identify_calibration_weighted(&w, &y, &sigma, GEOMETRY).unwrap();
+        let plain = identify_calibration(&w, &y, GEOMETRY).unwrap();
+        // The weighted fit is the fit of the other nine points.
+        let (w9, y9): (Vec<f64>, Vec<f64>) = w
+            .iter()
+            .zip(&y)
+            .enumerate()
+            .filter(|(i, _)| *i != 4)
+            .map(|(_, (a, b))| (*a, *b))
+            .unzip();
+        let without = identify_calibration(&w9, &y9, GEOMETRY).unwrap();
+        let from_without =
+            |c: &Calibration| (c.k2_apparent_rad_s_g2 - without.k2_apparent_rad_s_g2).abs();
+        assert!(
+            from_without(&weighted) < 1e-12,
+            "{}",
+            from_without(&weighted)
+        );
+        assert!(from_without(&plain) > 1e-6, "{}", from_without(&plain));
+    }
+
+    #[test]
+    fn a_sigma_that_is_not_positive_is_refused() {
+        let w = rates(8);
+        let y = outputs(&w, [0.0, 0.0, 0.1, 0.0, 1e-6, 0.0], 1e-9);
+        for bad in [0.0, -1e-9, f64::NAN, f64::INFINITY] {
+            let mut sigma = vec![1e-9; 8];
+            sigma[3] = bad;
+            let err = identify_calibration_weighted(&w, &y, &sigma, GEOMETRY).unwrap_err();
+            assert!(
+                matches!(
+                    err,
+                    IdentifyError::InvalidParameter {
+                        name: "sigma_rad_s",
+                        ..
+                    }
+                ),
+                "{err:?}"
+            );
+        }
+        let err = identify_calibration_weighted(&w, &y, &[1e-9; 7], GEOMETRY).unwrap_err();
+        assert!(matches!(err, IdentifyError::DimensionMismatch { .. }));
     }
 }

@@ -86,6 +86,42 @@ impl Design {
         Ok(self)
     }
 
+    /// Multiplies row i by `factors[i]` (in double-double), e.g. by `1/σᵢ` for a weighted
+    /// fit.
+    ///
+    /// # Errors
+    /// [`IdentifyError::DimensionMismatch`] when `factors.len()` is not the number of rows,
+    /// [`IdentifyError::InvalidParameter`] for a non-finite factor.
+    pub fn scale_rows(mut self, factors: &[f64]) -> Result<Self> {
+        if factors.len() != self.m {
+            return Err(IdentifyError::DimensionMismatch {
+                what: "row factors",
+                got: factors.len(),
+                expected: self.m,
+            });
+        }
+        if let Some(&f) = factors.iter().find(|f| !f.is_finite()) {
+            return Err(IdentifyError::InvalidParameter {
+                name: "factors",
+                value: f,
+                requirement: Requirement::Finite,
+            });
+        }
+        for j in 0..self.n {
+            for (i, &f) in factors.iter().enumerate() {
+                let k = j * self.m + i;
+                let v = Dd {
+                    hi: self.hi[k],
+                    lo: self.lo[k],
+                }
+                .mul_f64(f);
+                self.hi[k] = v.hi;
+                self.lo[k] = v.lo;
+            }
+        }
+        Ok(self)
+    }
+
     /// Number of observations (rows).
     #[must_use]
     pub const fn nrows(&self) -> usize {

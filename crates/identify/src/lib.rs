@@ -10,7 +10,8 @@
 //!   its standard deviation propagated from σ(C_r) ([`CrEstimate`]).
 //! * [`identify_calibration`]: the PIGA calibration of eq. 18, with columns `1, ω, ω², ω³, a², a³`
 //!   and `a = R·ω²/g` ([`Geometry`]). The a² coefficient is the apparent k2 = k2 + Δk2
-//!   (eq. 17). [`identify_compensated`] removes `k1·C_r·ω⁴/g` and propagates σ(C_r) into σ(k2).
+//!   (eq. 17). [`identify_compensated`] removes `k1·C_r·ω⁴/g` and propagates σ(C_r) into σ(k2);
+//!   the `_weighted` forms weight each point by `1/σᵢ` of its mean output.
 //! * [`lstsq_design`] and [`Design`]: the same solver for designs held in double-double, such
 //!   as powers of data.
 //!
@@ -55,7 +56,8 @@ pub mod strd;
 
 pub use calibration::{
     Calibration, CompensatedCalibration, Compensation, K1Source, MIN_DISTINCT_RATES,
-    identify_calibration, identify_compensated,
+    identify_calibration, identify_calibration_weighted, identify_compensated,
+    identify_compensated_weighted,
 };
 pub use design::Design;
 pub use error::{IdentifyError, Requirement, Result};
