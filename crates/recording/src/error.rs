@@ -390,6 +390,26 @@ pub enum RecordingError {
         /// Length of the angle column, when there is one.
         angle: Option<usize>,
     },
+    /// A PIGA output recording's output angle moves by more than a quarter turn between two
+    /// samples: too far to unwrap or to tell its direction.
+    #[error("{}:{line}: the PIGA output angle moves by {step_c} rad from the previous sample, more than a quarter turn: the sampling is too slow to follow it, or the column or its unit is wrong (hint: check `output` and its unit: deg, rad or counts(per_rev))", path.display(), step_c = units::Compact(*step_rad))]
+    OutputStep {
+        /// The file.
+        path: PathBuf,
+        /// The line of the later sample.
+        line: usize,
+        /// The step after unwrapping whole turns, rad.
+        step_rad: f64,
+    },
+    /// A PIGA output recording holds fewer than two whole spindle revolutions: its mean
+    /// output has no standard error across revolutions.
+    #[error("{}: {revolutions} whole spindle revolution(s) usable; the mean output rate needs at least 2 for its standard error across revolutions (hint: record longer)", path.display())]
+    TooFewRevolutions {
+        /// The file.
+        path: PathBuf,
+        /// Revolutions usable.
+        revolutions: usize,
+    },
     /// A value given to the probe-recording writer is NaN or infinite (the reader would
     /// refuse the file).
     #[error("probe column `{column}` to write: value {value_c} at index {index} is not finite", value_c = units::Compact(*value))]
@@ -421,6 +441,7 @@ impl RecordingError {
             | Self::NonFinite { line, .. }
             | Self::TimeNotIncreasing { line, .. }
             | Self::SampleGap { line, .. }
+            | Self::OutputStep { line, .. }
             | Self::NoRows { line, .. }
             | Self::MissingColumn { line, .. }
             | Self::LineTooLong { line, .. } => *line += offset,
@@ -438,6 +459,7 @@ impl RecordingError {
             | Self::InvalidStartAngle { .. }
             | Self::TooFewIndexPulses { .. }
             | Self::Empty { .. }
+            | Self::TooFewRevolutions { .. }
             | Self::ColumnLengths { .. }
             | Self::NonFiniteValue { .. }
             | Self::Truncated { .. }

@@ -395,6 +395,7 @@ impl RecordingFormat {
             decimal_comma: self.decimal == DecimalMark::Comma,
             skip_lines: self.skip_lines,
             allow_non_finite: self.on_non_finite == OnBadSamples::DropRevolution,
+            label: None,
         })
     }
 }

@@ -21,7 +21,13 @@
 //!   [`write_probe_csv`] writes this format.
 //! - **PIGA table** ([`load_piga_table`], [`PigaTable`]): `rate_deg_s,output_rad_s`, the mean
 //!   PIGA output at each centrifuge rate (the data of eq. 18); every row as many fields as
-//!   the header.
+//!   the header. A table may also name a text column as each row's label
+//!   ([`TableFormat::label`]: a repeat or an orientation).
+//! - **Raw PIGA output recording** ([`load_piga_recording`], [`PigaRecordingFormat`]):
+//!   time, the PIGA's output angle (deg, rad or pick-off counts; whole turns unwrapped) and
+//!   the spindle's angle source, as a probe recording; [`reduce_piga_recording`] gives the
+//!   mean output rate over whole spindle revolutions (once-per-revolution terms cancel) with
+//!   its standard error across revolutions: one row of eq. 18.
 //!
 //! - **Binary recordings**: NI TDMS ([`load_tdms`], [`parse_tdms`]) and MATLAB `.mat` v5/v7
 //!   ([`load_mat`], [`parse_mat`]) channels or variables named by [`BinaryChannels`], read
@@ -72,6 +78,7 @@ mod lines;
 mod mat;
 mod number;
 mod piga;
+mod piga_recording;
 mod probe;
 mod rows;
 mod stream;
@@ -98,6 +105,10 @@ pub use mat::{load_mat, parse_mat};
 pub use number::number_paths;
 pub use piga::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
+};
+pub use piga_recording::{
+    PIGA_OUTPUT_ANGLE_COLUMN, PigaOutputRate, PigaRecording, PigaRecordingFormat,
+    load_piga_recording, parse_piga_recording, reduce_piga_recording,
 };
 #[doc(hidden)]
 pub use probe::parse_recording_reference;

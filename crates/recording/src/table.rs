@@ -69,6 +69,11 @@ pub struct TableFormat {
     pub skip_lines: usize,
     /// NaN and infinite values are read rather than refused.
     pub allow_non_finite: bool,
+    /// A text column read as each row's label (a repeat number, an orientation), which the
+    /// header must have when one is named; its field is trimmed and unquoted, an absent
+    /// field is an empty label. With a label, rows are parsed field by field (tables with
+    /// labels are small).
+    pub label: Option<String>,
 }
 
 impl TableFormat {
@@ -83,6 +88,7 @@ impl TableFormat {
             decimal_comma: false,
             skip_lines: 0,
             allow_non_finite: false,
+            label: None,
         }
     }
 }
@@ -103,6 +109,14 @@ impl TableFormat {
                 count: self.columns.len(),
                 required,
                 max: MAX_COLUMNS,
+            });
+        }
+        if let Some(label) = &self.label
+            && self.columns.iter().any(|c| c.name == *label)
+        {
+            return Err(RecordingError::DuplicateColumn {
+                field: "label",
+                name: label.clone(),
             });
         }
         for (i, c) in self.columns.iter().enumerate() {
@@ -136,6 +150,8 @@ pub struct Table {
     /// The header's column names, trimmed.
     pub(crate) header: Vec<String>,
     pub(crate) lines: LineTable,
+    /// Each row's label, when the format names a label column.
+    pub(crate) labels: Option<Vec<String>>,
 }
 
 impl Table {
@@ -176,6 +192,11 @@ impl Table {
     /// counted on from it.
     pub fn line_of_row(&self, row: usize) -> usize {
         self.lines.line_of(row)
+    }
+
+    /// Each row's label, when the format names a label column ([`TableFormat::label`]).
+    pub fn labels(&self) -> Option<&[String]> {
+        self.labels.as_deref()
     }
 }
 
@@ -242,6 +263,8 @@ struct Layout {
     dest_of: Vec<u8>,
     /// Fields of the header.
     width: usize,
+    /// Field of the label column, when the format names one.
+    label_field: Option<usize>,
 }
 
 /// The state of a parse fed with whole lines.
@@ -264,6 +287,8 @@ pub(crate) struct TableParser<'a> {
     /// Whether plain rows take the in-place fast path (`false`: every row field by field,
     /// the reference the fast path must agree with).
     fast: bool,
+    /// Each row's label, when the format names a label column.
+    labels: Vec<String>,
 }
 
 impl<'a> TableParser<'a> {
@@ -280,7 +305,9 @@ impl<'a> TableParser<'a> {
             rows: 0,
             lines: LineTable::default(),
             size_hint,
-            fast: true,
+            // A label column is text, which only the field-by-field path reads.
+            fast: format.label.is_none(),
+            labels: Vec::new(),
         })
     }
 
@@ -309,6 +336,22 @@ impl<'a> TableParser<'a> {
                 None => {}
             }
         }
+        let label_field = match &self.format.label {
+            None => None,
+            Some(label) => match names.iter().position(|n| n == label) {
+                Some(field) => Some(field),
+                None => {
+                    let hint = header_hint(&names, label, line, self.format);
+                    return Err(RecordingError::MissingColumn {
+                        path: self.path.to_owned(),
+                        line,
+                        column: label.clone(),
+                        header: names,
+                        hint,
+                    });
+                }
+            },
+        };
         wanted.sort_unstable();
         let width = names.len();
         // A flexible table's fast path stops at the last field read; a strict one's reads
@@ -334,6 +377,7 @@ impl<'a> TableParser<'a> {
             wanted,
             dest_of,
             width,
+            label_field,
         })
     }
 
@@ -381,6 +425,7 @@ impl<'a> TableParser<'a> {
             lines: LineTable::default(),
             size_hint,
             fast: self.fast,
+            labels: Vec::new(),
         }
     }
 
@@ -389,7 +434,8 @@ impl<'a> TableParser<'a> {
     fn rows_maybe_parallel(&mut self, lines: &mut Lines<'_>, layout: &Layout) -> Result<()> {
         let text = lines.text;
         let rest = text.len() - lines.pos;
-        let cut = (rest >= PARALLEL_BYTES)
+        // Labelled tables are read on one thread (they are small).
+        let cut = (rest >= PARALLEL_BYTES && layout.label_field.is_none())
             .then(|| {
                 let mid = lines.pos + rest / 2;
                 text[mid..]
@@ -473,6 +519,13 @@ impl<'a> TableParser<'a> {
                     };
                     break Err(e.located(self.path, line, &name));
                 }
+                if let Some(field) = layout.label_field {
+                    let label = split_fields(fields, self.syntax.delimiter, self.syntax.blank)
+                        .nth(field)
+                        .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
+                        .unwrap_or_default();
+                    self.labels.push(label);
+                }
                 line
             };
             if line != expected {
@@ -513,6 +566,7 @@ impl<'a> TableParser<'a> {
             header_line: self.header_line,
             header: self.header,
             lines: self.lines,
+            labels: layout.label_field.map(|_| self.labels),
         })
     }
 }

@@ -229,3 +229,61 @@ fn a_line_without_end_is_refused_not_read_whole() {
     }
     assert!(start.elapsed().as_secs_f64() < 10.0);
 }
+
+#[test]
+fn a_label_column_is_read_as_text_per_row() {
+    let text = b"# repeats\nrate_deg_s,run,output_rad_s\n10,\"cw\",1.5\n\n10, ccw ,1.25\n20,,3\n";
+    let f = TableFormat {
+        label: Some("run".into()),
+        ..PigaTable::format()
+    };
+    let t = parse_table(text, Path::new("t.csv"), &f).unwrap();
+    assert_eq!(t.labels().unwrap(), ["cw", "ccw", ""]);
+    assert_eq!(t.column("output_rad_s"), Some(&[1.5, 1.25, 3.0][..]));
+    assert_eq!(t.line_of_row(1), 5);
+    // Without a label the table has none.
+    let plain = parse_table(text, Path::new("t.csv"), &PigaTable::format()).unwrap();
+    assert_eq!(plain.labels(), None);
+}
+
+#[test]
+fn a_named_label_column_the_header_lacks_is_an_error() {
+    let text = b"rate_deg_s,output_rad_s\n10,1.5\n";
+    let f = TableFormat {
+        label: Some("orientation".into()),
+        ..PigaTable::format()
+    };
+    let e = parse_table(text, Path::new("t.csv"), &f).unwrap_err();
+    assert!(
+        matches!(&e, RecordingError::MissingColumn { column, line: 1, .. } if column == "orientation"),
+        "{e}"
+    );
+    // A label that is also a numeric column is refused.
+    let f = TableFormat {
+        label: Some("rate_deg_s".into()),
+        ..PigaTable::format()
+    };
+    let e = parse_table(text, Path::new("t.csv"), &f).unwrap_err();
+    assert!(
+        matches!(e, RecordingError::DuplicateColumn { field: "label", .. }),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_large_labelled_table_keeps_every_label_in_order() {
+    // Above the two-thread threshold: read on one thread, every label with its row.
+    let mut text = String::from("rate_deg_s,output_rad_s,run\n");
+    for i in 0..40_000 {
+        text.push_str(&format!("{}.5,{}.25,r{i}\n", i + 1, i));
+    }
+    let f = TableFormat {
+        label: Some("run".into()),
+        ..PigaTable::format()
+    };
+    let t = parse_table(text.as_bytes(), Path::new("t.csv"), &f).unwrap();
+    let labels = t.labels().unwrap();
+    assert_eq!(labels.len(), 40_000);
+    assert_eq!(labels[39_999], "r39999");
+    assert_eq!(t.column("rate_deg_s").unwrap()[39_999], 40_000.5);
+}
