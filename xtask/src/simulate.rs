@@ -63,13 +63,24 @@ impl Simulate {
             )?;
         }
         writeln!(console)?;
-        writeln!(
-            console,
-            "wrote {} recordings, {} and {}",
-            files.recordings.len(),
-            files.piga_csv.display(),
-            files.truth_json.display()
-        )?;
+        if files.piga_recordings.is_empty() {
+            writeln!(
+                console,
+                "wrote {} recordings, {} and {}",
+                files.recordings.len(),
+                files.piga_csv.display(),
+                files.truth_json.display()
+            )?;
+        } else {
+            writeln!(
+                console,
+                "wrote {} probe recordings, {} raw PIGA output recordings, {} and {}",
+                files.recordings.len(),
+                files.piga_recordings.len(),
+                files.piga_csv.display(),
+                files.truth_json.display()
+            )?;
+        }
         Ok(())
     }
 }

@@ -102,8 +102,15 @@ pub struct TrialMassConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CalibrationConfig {
-    /// The PIGA table: one row per measurement, the rate and the mean output.
-    pub table: PigaTableConfig,
+    /// The PIGA table: one row per measurement, the rate and the mean output (exactly one
+    /// of `table` and `recordings`).
+    #[serde(default)]
+    pub table: Option<PigaTableConfig>,
+    /// Raw PIGA output recordings, one file per rate, each reduced to its mean output over
+    /// whole spindle revolutions with its standard error (exactly one of `table` and
+    /// `recordings`).
+    #[serde(default)]
+    pub recordings: Option<PigaRecordingSet>,
     /// The phase whose C_r is removed (eq. 19), by name.
     pub compensate_with: String,
     /// Where k1 comes from (default: fitted, from the ω² coefficient).
@@ -148,6 +155,35 @@ pub struct PigaTableConfig {
     /// Field delimiter (default `,`).
     #[serde(default = "default_delimiter")]
     pub delimiter: char,
+    /// Header name of a column holding each mean output's standard uncertainty, rad/s
+    /// (absent: the fit is unweighted). With it, the fit is weighted by `1/σᵢ`.
+    #[serde(default)]
+    pub sigma_column: Option<String>,
+    /// Header name of a text column labelling each row (a repeat, an orientation), shown
+    /// with its residual; rows with the same label are compared.
+    #[serde(default)]
+    pub label_column: Option<String>,
+}
+
+/// Raw PIGA output recordings, one per rate (`docs/YOUR-DATA.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PigaRecordingSet {
+    /// Layout of the files: time, the output angle (`output`: deg, rad or
+    /// `counts(per_rev)`), the spindle's angle source, delimiter, decimal mark, gaps and
+    /// non-finite samples; defaults to `time_s,output_rad[,angle_deg]`.
+    #[serde(default)]
+    pub format: recording::PigaRecordingFormat,
+    /// Harmonics of the spindle angle removed from the output angle in each revolution
+    /// with its slope (1 to 8, default 2).
+    #[serde(default = "default_piga_order")]
+    pub order: usize,
+    /// The recordings.
+    pub files: Vec<RecordingPoint>,
+}
+
+const fn default_piga_order() -> usize {
+    2
 }
 
 fn default_rate_column() -> String {

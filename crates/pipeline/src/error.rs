@@ -259,6 +259,14 @@ pub enum InvalidReason {
     /// A latitude must be finite and within ±90°.
     #[error("must be finite and within ±90")]
     NotALatitude,
+    /// A standard uncertainty given with a value must be finite and positive.
+    #[error(
+        "a standard uncertainty must be finite and > 0 (a σ of 0 would give the row infinite weight)"
+    )]
+    SigmaNotPositive,
+    /// A harmonic order outside 1 to 8.
+    #[error("must be 1 to 8")]
+    HarmonicOrder,
 }
 
 /// Why a setting cannot be used with the rest of the configuration or data.
@@ -281,6 +289,9 @@ pub enum UnsupportedReason {
     /// A trial phase without its trial mass, or a trial mass without its phase.
     #[error("`trial` and `trial_mass` go together: give both or neither")]
     TrialNeedsTrialMass,
+    /// A calibration with both or neither of a table and raw recordings.
+    #[error("give exactly one of `table` and `recordings`")]
+    CalibrationNeedsOneSource,
     /// Neither a trial run nor a stiffness: no correction can be computed.
     #[error(
         "give `trial` with `trial_mass` (influence coefficient) or `radial_stiffness_n_m` (stiffness model)"

@@ -12,13 +12,18 @@ use accel_model::PigaCoefficients;
 use harmonics::{FitConfig, LeverGeometry, ProbeDirection};
 use identify::RadiusModel;
 use rayon::prelude::*;
-use recording::{Recording, RecordingError, RecordingFormat, Table, TableColumn, TableFormat};
+use recording::{
+    PigaRecording, PigaRecordingFormat, Recording, RecordingError, RecordingFormat, Table,
+    TableColumn, TableFormat,
+};
 
-use crate::calibration::{CalibrationInputs, K1Choice, TypeB};
+use crate::calibration::{
+    CalibrationInputs, K1Choice, LoadedPigaRecording, PigaData, PigaTableRows, TypeB,
+};
 use crate::config::{
     CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
-    PhaseConfig, Points, ProbeDirectionName, RadiusModelName, RadiusPoint, StudyConfig,
-    TrialsConfig, UncertaintyConfig, Weighting,
+    PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName,
+    RadiusPoint, StudyConfig, TrialsConfig, UncertaintyConfig, Weighting,
 };
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 
@@ -38,6 +43,18 @@ pub trait DataSource: Sync {
         path: &Path,
         format: &TableFormat,
     ) -> std::result::Result<Table, RecordingError>;
+
+    /// The raw PIGA output recording at `path`, read in `format`: by default, the file read
+    /// as a probe recording ([`DataSource::recording`]) with the output angle in the gap's
+    /// place, converted and unwrapped.
+    fn piga_recording(
+        &self,
+        path: &Path,
+        format: &PigaRecordingFormat,
+    ) -> std::result::Result<PigaRecording, RecordingError> {
+        let samples = self.recording(path, &format.probe_format()?)?;
+        PigaRecording::from_recording(samples, format.output.unit)
+    }
 }
 
 /// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2: 100/(1 − p)).
@@ -337,8 +354,9 @@ fn load_phases(
         .collect())
 }
 
-/// Reads the calibration's PIGA table and checks its rows: rates > 0, at least
-/// [`MIN_MECHANISM_RATES`] distinct (six unknowns and a residual degree of freedom).
+/// Reads the calibration's data — a PIGA table (rates > 0, σ > 0 when given) or raw output
+/// recordings (read in parallel) — and checks that it has at least [`MIN_MECHANISM_RATES`]
+/// distinct rates (six unknowns and a residual degree of freedom).
 fn load_calibration(
     config: &CalibrationConfig,
     phase: usize,
@@ -347,65 +365,48 @@ fn load_calibration(
     source: &Path,
     load: &dyn DataSource,
 ) -> Result<CalibrationInputs> {
-    let file = base.join(&config.table.file);
-    let format = TableFormat {
-        delimiter: config.table.delimiter,
-        // A blank delimiter keeps its meaning here: runs of blanks separate fields.
-        whitespace: matches!(config.table.delimiter, ' ' | '\t'),
-        ..TableFormat::new(
-            vec![
-                TableColumn::required(config.table.rate_column.clone()),
-                TableColumn::required(config.table.output_column.clone()),
-            ],
-            true,
-        )
-    };
-    let table = load
-        .table(&file, &format)
-        .map_err(|e| PipelineError::Recording {
-            path: source.to_owned(),
-            field: "calibration.table".to_owned(),
-            source: Box::new(e),
-        })?;
-    let rates = table
-        .column(&config.table.rate_column)
-        .unwrap_or(&[])
-        .to_vec();
-    let outputs = table
-        .column(&config.table.output_column)
-        .unwrap_or(&[])
-        .to_vec();
-    let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
-    for (i, &rate) in rates.iter().enumerate() {
-        if !(rate.is_finite() && rate > 0.0) {
-            return Err(PipelineError::TableValue {
+    let (data, rates, field, file) = match (&config.table, &config.recordings) {
+        (Some(table), None) => {
+            let rows = load_piga_table(table, base, source, load)?;
+            let rates = rows.rates_deg_s.clone();
+            let file = rows.file.clone();
+            (PigaData::Table(rows), rates, "calibration.table", file)
+        }
+        (None, Some(set)) => {
+            let files = load_piga_recordings(set, base, source, load)?;
+            let rates = files.iter().map(|f| f.rate_deg_s).collect();
+            (
+                PigaData::Recordings {
+                    order: set.order,
+                    files,
+                },
+                rates,
+                "calibration.recordings.files",
+                PathBuf::from("the recordings"),
+            )
+        }
+        _ => {
+            return Err(PipelineError::Unsupported {
                 path: source.to_owned(),
-                field: "calibration.table".to_owned(),
-                file: file.clone(),
-                line: lines[i],
-                column: config.table.rate_column.clone(),
-                value: rate,
-                reason: InvalidReason::RateNotPositive,
+                field: "calibration".to_owned(),
+                reason: UnsupportedReason::CalibrationNeedsOneSource,
             });
         }
-    }
-    let mut distinct: Vec<u64> = rates.iter().map(|r| r.to_bits()).collect();
+    };
+    let mut distinct: Vec<u64> = rates.iter().map(|r: &f64| r.to_bits()).collect();
     distinct.sort_unstable();
     distinct.dedup();
     if distinct.len() < MIN_MECHANISM_RATES {
         return Err(PipelineError::TooFewRates {
             path: source.to_owned(),
-            field: "calibration.table".to_owned(),
+            field: field.to_owned(),
             file,
             distinct: distinct.len(),
             need: MIN_MECHANISM_RATES,
         });
     }
     Ok(CalibrationInputs {
-        table_file: file,
-        rates_deg_s: rates,
-        outputs_rad_s: outputs,
-        lines,
+        data,
         phase,
         k1,
         seed: config.seed,
@@ -414,6 +415,128 @@ fn load_calibration(
             TrialsConfig::Fixed(n) => Some(n),
         },
     })
+}
+
+/// Reads a PIGA table: rate and output columns, the σ and label columns when named.
+fn load_piga_table(
+    config: &PigaTableConfig,
+    base: &Path,
+    source: &Path,
+    load: &dyn DataSource,
+) -> Result<PigaTableRows> {
+    let file = base.join(&config.file);
+    let mut columns = vec![
+        TableColumn::required(config.rate_column.clone()),
+        TableColumn::required(config.output_column.clone()),
+    ];
+    if let Some(sigma) = &config.sigma_column {
+        columns.push(TableColumn::required(sigma.clone()));
+    }
+    let format = TableFormat {
+        delimiter: config.delimiter,
+        // A blank delimiter keeps its meaning here: runs of blanks separate fields.
+        whitespace: matches!(config.delimiter, ' ' | '\t'),
+        label: config.label_column.clone(),
+        ..TableFormat::new(columns, true)
+    };
+    let table = load
+        .table(&file, &format)
+        .map_err(|e| PipelineError::Recording {
+            path: source.to_owned(),
+            field: "calibration.table".to_owned(),
+            source: Box::new(e),
+        })?;
+    let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
+    let rates = column(&config.rate_column);
+    let outputs = column(&config.output_column);
+    let sigma = config.sigma_column.as_deref().map(column);
+    let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
+    let bad =
+        |i: usize, column: &str, value: f64, reason: InvalidReason| PipelineError::TableValue {
+            path: source.to_owned(),
+            field: "calibration.table".to_owned(),
+            file: file.clone(),
+            line: lines[i],
+            column: column.to_owned(),
+            value,
+            reason,
+        };
+    if let Some(i) = rates.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
+        return Err(bad(
+            i,
+            &config.rate_column,
+            rates[i],
+            InvalidReason::RateNotPositive,
+        ));
+    }
+    if let (Some(name), Some(sigma)) = (&config.sigma_column, &sigma)
+        && let Some(i) = sigma.iter().position(|s| !(s.is_finite() && *s > 0.0))
+    {
+        return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
+    }
+    Ok(PigaTableRows {
+        file: file.clone(),
+        rates_deg_s: rates,
+        outputs_rad_s: outputs,
+        sigma_rad_s: sigma,
+        labels: table.labels().map(<[String]>::to_vec),
+        lines,
+    })
+}
+
+/// Reads raw PIGA output recordings in parallel, after checking their rates and the
+/// harmonic order.
+fn load_piga_recordings(
+    set: &PigaRecordingSet,
+    base: &Path,
+    source: &Path,
+    load: &dyn DataSource,
+) -> Result<Vec<LoadedPigaRecording>> {
+    let check = Check { path: source };
+    if !(1..=harmonics::MAX_ORDER).contains(&set.order) {
+        return Err(check.invalid(
+            "calibration.recordings.order".to_owned(),
+            set.order as f64,
+            InvalidReason::HarmonicOrder,
+        ));
+    }
+    for (i, point) in set.files.iter().enumerate() {
+        if !(point.rate_deg_s.is_finite() && point.rate_deg_s > 0.0) {
+            return Err(check.invalid(
+                format!("calibration.recordings.files[{i}].rate_deg_s"),
+                point.rate_deg_s,
+                InvalidReason::RateNotPositive,
+            ));
+        }
+    }
+    let loaded: Vec<_> = set
+        .files
+        .par_iter()
+        .map(|point| {
+            let file = base.join(&point.file);
+            let _span = tracing::info_span!("load", file = %file.display()).entered();
+            let result = load.piga_recording(&file, &set.format);
+            (point.rate_deg_s, file, result)
+        })
+        .collect();
+    let mut errors = Vec::new();
+    let mut files = Vec::with_capacity(loaded.len());
+    for (i, (rate_deg_s, file, result)) in loaded.into_iter().enumerate() {
+        match result {
+            Ok(recording) => files.push(LoadedPigaRecording {
+                rate_deg_s,
+                file,
+                recording,
+            }),
+            Err(error) => errors.push(PipelineError::Recording {
+                path: source.to_owned(),
+                field: format!("calibration.recordings.files[{i}]"),
+                source: Box::new(error),
+            }),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    Ok(files)
 }
 
 /// Field checks that name the configuration file.

@@ -71,8 +71,8 @@ pub use results::{
 };
 pub use results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
-    Estimate, InfiniteDof, MechanismPhase, MechanismResults, ModelFit, MonteCarlo,
-    MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaResult, PointResult,
-    ProbeTrace, StudyInputs, StudyResults, Warning,
+    Estimate, InfiniteDof, LabelSummary, MechanismPhase, MechanismResults, ModelFit, MonteCarlo,
+    MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult, PigaResult,
+    PointResult, ProbeTrace, StudyInputs, StudyResults, Warning,
 };
 pub use study::{run, run_with_progress};

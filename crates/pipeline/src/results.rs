@@ -319,16 +319,72 @@ pub struct BudgetLine {
 }
 
 /// One row of the calibration table with its fitted value.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CalibrationRow {
-    /// Rate, deg/s.
+    /// Rate, deg/s (a raw recording's measured rate when it has an encoder).
     pub rate_deg_s: f64,
     /// Mean output, rad/s.
     pub output_rad_s: f64,
     /// Output minus the fitted eq. 18 model, rad/s.
     pub residual_rad_s: f64,
+    /// The output's standard uncertainty, rad/s (a table's σ column or a recording's
+    /// standard error across revolutions; absent for an unweighted fit).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub u_rad_s: Option<f64>,
+    /// The row's label (a table's label column).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
     /// The row's line in the table file.
-    pub line: usize,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line: Option<usize>,
+    /// The raw recording the point comes from.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+}
+
+/// The residuals of the rows sharing a label: a repeat or an orientation that sits apart
+/// from the others shows here (warning `label_offset`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LabelSummary {
+    /// The label.
+    pub label: String,
+    /// Rows with it.
+    pub rows: usize,
+    /// Their mean residual (weighted by 1/σ² for a weighted fit), rad/s.
+    pub mean_residual_rad_s: f64,
+    /// Its standard uncertainty, rad/s: from the rows' σ (times the Birge ratio when it
+    /// exceeds 1) for a weighted fit, else the fit's residual SD over √rows.
+    pub u_rad_s: f64,
+}
+
+/// A raw PIGA output recording reduced to one calibration point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PigaRecordingResult {
+    /// The file.
+    pub file: String,
+    /// The rate the study declares, deg/s.
+    pub declared_rate_deg_s: f64,
+    /// The rate used: measured by the spindle angle when it is measured, deg/s.
+    pub rate_deg_s: f64,
+    /// Where the spindle angle comes from (`encoder`, `index_pulse`, `declared_rate`).
+    pub angle_source: String,
+    /// Mean output rate over whole spindle revolutions, rad/s.
+    pub output_rad_s: f64,
+    /// Its standard uncertainty (the point's weight), rad/s: the white-noise standard error,
+    /// or the one across revolutions when the slopes scatter beyond white noise (warning
+    /// `output_spread`).
+    pub u_rad_s: f64,
+    /// The standard error across revolutions, `s/√K`, rad/s.
+    pub across_revolutions_u_rad_s: f64,
+    /// The white-noise standard error from the pooled residuals of the per-revolution fits,
+    /// rad/s.
+    pub white_noise_u_rad_s: f64,
+    /// Standard deviation of the per-revolution output rates, rad/s.
+    pub revolution_sd_rad_s: f64,
+    /// Whole revolutions used.
+    pub revolutions: usize,
+    /// Revolutions dropped for gaps or non-finite samples.
+    pub dropped_revolutions: usize,
 }
 
 /// Monte Carlo results for one output (JCGM 101).
@@ -374,8 +430,22 @@ pub struct MonteCarlo {
 /// The calibration on measured data.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CalibrationResults {
-    /// The PIGA table read.
-    pub table: String,
+    /// The PIGA table read (absent for raw recordings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<String>,
+    /// The raw PIGA output recordings, each reduced to a point (absent for a table).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub recordings: Vec<PigaRecordingResult>,
+    /// Whether the eq. 18 fit is weighted by `1/σᵢ` of each point.
+    pub weighted: bool,
+    /// For a weighted fit, `√(χ²/ν)` of the residuals against the points' own σ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub birge_ratio: Option<f64>,
+    /// When the weighted fit's Birge ratio exceeds 1: the standard deviation τ common to
+    /// every point that their σ miss (run-to-run variation), rad/s, chosen so that χ²/ν = 1
+    /// with `σᵢ² + τ²` (Paule–Mandel); the fit is weighted by those.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub excess_u_rad_s: Option<f64>,
     /// The phase whose C_r was removed.
     pub compensate_with: String,
     /// `fitted` or `given`.
@@ -407,6 +477,9 @@ pub struct CalibrationResults {
     pub residual_sd_rad_s: f64,
     /// Each row with its residual.
     pub residuals: Vec<CalibrationRow>,
+    /// The residuals by label (a table's label column), when there are two labels or more.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub labels: Vec<LabelSummary>,
     /// Correlation matrix of the six fitted coefficients, in the order of `terms`.
     pub correlation: Vec<Vec<f64>>,
     /// The design's terms: `1, ω, ω², ω³, a², a³`.

@@ -92,6 +92,7 @@ pub fn run_with_progress(
             })
         })
         .transpose()?;
+    let mut calibration_warnings: Vec<Warning> = Vec::new();
     let calibration = inputs
         .calibration
         .as_ref()
@@ -109,7 +110,9 @@ pub fn run_with_progress(
                 type_b: &inputs.type_b,
                 c_r_sigma: phase.fit.c_r_sigma_m_s2.map(|s| (s, phase.fit.dof)),
             };
-            let evaluated = calibration::evaluate(c, &setting).map_err(|e| match e {
+            let (points, more) = c.points(&inputs.source)?;
+            calibration_warnings.extend(more);
+            let evaluated = calibration::evaluate(c, &points, &setting).map_err(|e| match e {
                 CalibrationFailure::Identify(source) => PipelineError::Identify {
                     path: inputs.source.clone(),
                     field: "calibration".to_owned(),
@@ -121,13 +124,17 @@ pub fn run_with_progress(
                     source: Box::new(source),
                 },
             })?;
-            Ok::<_, PipelineError>(calibration::results(
+            let results = calibration::results(
                 c,
+                &points,
                 &setting,
                 &phase.name,
                 inputs.type_b_given,
                 &evaluated,
-            ))
+            );
+            let phase_rates: Vec<f64> = phase.points.iter().map(|p| p.rate_deg_s).collect();
+            calibration_warnings.extend(calibration::data_warnings(&results, &phase_rates));
+            Ok::<_, PipelineError>(results)
         })
         .transpose()?;
     let balance = inputs
@@ -151,6 +158,7 @@ pub fn run_with_progress(
             })
         })
         .transpose()?;
+    warnings.extend(calibration_warnings);
     let results = StudyResults {
         study: inputs.name.clone(),
         inputs: StudyInputs {

@@ -126,11 +126,19 @@ pub enum Diagnostic {
         /// How many were used.
         used: usize,
     },
+    /// A raw PIGA output recording's per-revolution output rates scatter beyond what the
+    /// white noise of the output angle explains.
+    OutputSpread {
+        /// Their standard deviation over the white-noise one.
+        ratio: f64,
+        /// Revolutions.
+        revolutions: usize,
+    },
 }
 
 impl Diagnostic {
     /// A short stable code (`angle_from_rate`, `rate_differs`, `revolution_spread`,
-    /// `drift_not_fitted`, `dropped_revolutions`).
+    /// `drift_not_fitted`, `dropped_revolutions`, `output_spread`).
     pub const fn code(&self) -> &'static str {
         match self {
             Self::AngleFromRate { .. } => "angle_from_rate",
@@ -138,6 +146,7 @@ impl Diagnostic {
             Self::RevolutionSpread { .. } => "revolution_spread",
             Self::DriftNotFitted { .. } => "drift_not_fitted",
             Self::DroppedRevolutions { .. } => "dropped_revolutions",
+            Self::OutputSpread { .. } => "output_spread",
         }
     }
 }
@@ -199,6 +208,13 @@ impl fmt::Display for Diagnostic {
             Self::DroppedRevolutions { count, used } => write!(
                 f,
                 "{count} revolution(s) dropped for gaps or non-finite samples; {used} used"
+            ),
+            Self::OutputSpread { ratio, revolutions } => write!(
+                f,
+                "the output rate varies from revolution to revolution {ratio:.1}× more than \
+                 the white noise of the output angle explains ({revolutions} revolutions): a \
+                 random walk of the output or a disturbance not synchronous with the spindle; \
+                 the point's u is the standard error across revolutions"
             ),
         }
     }
@@ -553,13 +569,21 @@ fn finish(
     config: &FitConfig,
 ) -> RecordingAnalysis {
     let revs = &analysis.revolutions;
-    let samples: usize = revs.iter().map(|r| r.samples).sum();
-    // Pooled residual variance s² of the per-revolution fits.
-    let pooled = revs
+    // Pooled residual variance s² of the per-revolution fits, each revolution's residual
+    // sum of squares over its degrees of freedom (samples minus the 2N + 1 (+ drift)
+    // coefficients): the unbiased white-noise variance even when a revolution holds few
+    // samples.
+    let parameters = 2 * config.order + 1 + usize::from(config.drift);
+    let dof: usize = revs
+        .iter()
+        .map(|r| r.samples.saturating_sub(parameters))
+        .sum();
+    let rss = revs
         .iter()
         .map(|r| r.residual_rms * r.residual_rms * r.samples as f64)
-        .sum::<f64>()
-        / samples as f64;
+        .sum::<f64>();
+    let samples: usize = revs.iter().map(|r| r.samples).sum();
+    let pooled = rss / dof.max(1) as f64;
     // Each revolution's d_c1 has variance ≈ 2s²/nᵣ (times the drift term's inflation);
     // K revolutions are averaged.
     let k = revs.len() as f64;
@@ -649,7 +673,7 @@ fn finish(
         dropped_revolutions,
         revolution_noise_sigma,
         mean_noise_sigma,
-        residual_rms: pooled.sqrt(),
+        residual_rms: (rss / samples.max(1) as f64).sqrt(),
         diagnostics,
     }
 }

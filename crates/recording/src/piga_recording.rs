@@ -83,8 +83,12 @@ impl Default for PigaRecordingFormat {
 }
 
 impl PigaRecordingFormat {
-    /// The same layout as a probe recording's, the output angle in the gap's place.
-    fn as_probe_format(&self) -> Result<RecordingFormat> {
+    /// The same layout as a probe recording's, the output angle in the gap's place (read
+    /// it with [`crate::load_recording`], then [`PigaRecording::from_recording`]).
+    ///
+    /// # Errors
+    /// [`RecordingError::InvalidCountsPerRev`] for `counts` with 0 counts per revolution.
+    pub fn probe_format(&self) -> Result<RecordingFormat> {
         if let AngleUnit::Counts { per_rev: 0 } = self.output.unit {
             return Err(RecordingError::InvalidCountsPerRev);
         }
@@ -150,9 +154,13 @@ impl PigaRecording {
         self.samples.line_of_sample(index)
     }
 
-    /// The recording read as a probe recording, its output converted to radians and
-    /// unwrapped.
-    fn from_samples(mut samples: Recording, unit: AngleUnit) -> Result<Self> {
+    /// A recording read as a probe recording in [`PigaRecordingFormat::probe_format`], its
+    /// output (in the gap's place) converted from `unit` to radians and unwrapped.
+    ///
+    /// # Errors
+    /// [`RecordingError::OutputStep`] for an output that moves by more than a quarter turn
+    /// between two samples.
+    pub fn from_recording(mut samples: Recording, unit: AngleUnit) -> Result<Self> {
         let scale = unit.rad_per_unit();
         let mut turns = 0.0;
         let mut previous: Option<f64> = None;
@@ -190,8 +198,8 @@ impl PigaRecording {
 /// counts per revolution; [`RecordingError::OutputStep`] for an output that moves by more
 /// than a quarter turn between two samples.
 pub fn load_piga_recording(path: &Path, format: &PigaRecordingFormat) -> Result<PigaRecording> {
-    let samples = load_recording(path, &format.as_probe_format()?)?;
-    PigaRecording::from_samples(samples, format.output.unit)
+    let samples = load_recording(path, &format.probe_format()?)?;
+    PigaRecording::from_recording(samples, format.output.unit)
 }
 
 /// Parses a raw PIGA output recording held in memory; `path` names it in errors.
@@ -215,8 +223,8 @@ pub fn parse_piga_recording(
     path: &Path,
     format: &PigaRecordingFormat,
 ) -> Result<PigaRecording> {
-    let samples = parse_recording(text, path, &format.as_probe_format()?)?;
-    PigaRecording::from_samples(samples, format.output.unit)
+    let samples = parse_recording(text, path, &format.probe_format()?)?;
+    PigaRecording::from_recording(samples, format.output.unit)
 }
 
 /// The mean output rate of one raw PIGA recording.
@@ -230,18 +238,27 @@ pub struct PigaOutputRate {
     /// The mean output rate over whole spindle revolutions, rad/s: the mean of the
     /// per-revolution slopes of the output angle.
     pub output_rad_s: f64,
-    /// Its standard error across revolutions, rad/s (`s/√K`).
+    /// Its standard uncertainty, rad/s: the white-noise standard error
+    /// ([`PigaOutputRate::white_noise_u_rad_s`]), or the standard error across
+    /// revolutions when the slopes scatter beyond white noise (diagnostic `output_spread`).
     pub output_u_rad_s: f64,
+    /// The standard error of the mean slope across revolutions, `s/√K` (K − 1 degrees of
+    /// freedom).
+    pub across_revolutions_u_rad_s: f64,
+    /// The standard error of the mean slope that white noise of the output angle gives,
+    /// from the residuals of the per-revolution fits pooled over the recording (many
+    /// degrees of freedom, hence a steady weight even from few revolutions).
+    pub white_noise_u_rad_s: f64,
     /// Standard deviation of the per-revolution output rates, rad/s.
     pub revolution_sd_rad_s: f64,
-    /// Whole revolutions used (K ≥ 2); the standard error has K − 1 degrees of freedom.
+    /// Whole revolutions used (K ≥ 2).
     pub revolutions: usize,
     /// Revolutions dropped for gaps or non-finite samples.
     pub dropped_revolutions: usize,
     /// Where the spindle angle came from.
     pub angle_source: AngleSourceKind,
     /// What may make the number wrong (`angle_from_rate`, `rate_differs`,
-    /// `revolution_spread`, `dropped_revolutions`).
+    /// `dropped_revolutions`, `output_spread`).
     pub diagnostics: Vec<Diagnostic>,
 }
 
@@ -255,10 +272,18 @@ impl PigaOutputRate {
 
 /// Reduces a raw PIGA output recording to its mean output rate: each whole spindle
 /// revolution's samples are fitted with `θ_out = l0 + b·(t − t_mid) + Σₖ₌₁ᴺ (cₖ cos kφ + sₖ sin
-/// kφ)` against the spindle angle φ ([`analyze_recording`] with a drift term), so the slope
-/// `b` is the revolution's mean output rate with its once-per-revolution (and up to `order`)
-/// terms removed; the mean of the slopes over the revolutions and its standard error
-/// across them are the point's output and its standard uncertainty.
+/// kφ)` against the spindle angle φ ([`analyze_recording`] with a drift term, on the output
+/// less its end-to-end trend so that no precision is lost to the ramp), so the slope `b` is
+/// the revolution's mean output rate with its once-per-revolution (and up to `order`)
+/// terms removed; the mean of the slopes over the revolutions is the point's output.
+///
+/// Its standard uncertainty is the white-noise standard error of that mean — the pooled
+/// residual variance of the per-revolution fits (over their degrees of freedom) times each
+/// revolution's `1/Σ(t − t̄)²` and the variance inflation of the slope by the harmonics,
+/// `(π²/3)/(π²/3 − 2Σₖ≤N 1/k²)` — which stays steady with few revolutions; when the slopes
+/// scatter across revolutions beyond what white noise explains (a random walk of the
+/// output, a disturbance not synchronous with the spindle), the diagnostic `output_spread`
+/// says so and the standard error across revolutions, if larger, is used.
 ///
 /// # Errors
 /// Those of [`analyze_recording`] (an encoder rate more than 2 % from the declared one, too
@@ -275,11 +300,31 @@ pub fn reduce_piga_recording(
         revolutions: None,
         ..FitConfig::default()
     };
-    let analysed = analyze_recording(&recording.samples, declared_rate_rad_s, &config)?;
+    // The end-to-end trend, removed before the fit: the per-revolution fits then see the
+    // ripple and the noise, not a ramp of many radians whose square would swamp the
+    // residual sum of squares the normal equations give.
+    let samples = &recording.samples;
+    let finite = |i: &usize| samples.gap[*i].is_finite() && samples.time_s[*i].is_finite();
+    let first = (0..samples.len()).find(finite);
+    let last = (0..samples.len()).rev().find(finite);
+    let trend_rad_s = match (first, last) {
+        (Some(a), Some(b)) if b > a => {
+            (samples.gap[b] - samples.gap[a]) / (samples.time_s[b] - samples.time_s[a])
+        }
+        _ => 0.0,
+    };
+    let mut detrended = samples.clone();
+    if let Some(a) = first {
+        let (t0, y0) = (samples.time_s[a], samples.gap[a]);
+        for (y, t) in detrended.gap.iter_mut().zip(&samples.time_s) {
+            *y -= y0 + trend_rad_s * (t - t0);
+        }
+    }
+    let analysed = analyze_recording(&detrended, declared_rate_rad_s, &config)?;
     let a = &analysed.analysis;
     let revolutions = a.revolutions_used();
     let slope = |c: &harmonics::Coefficients| c.drift_per_s;
-    let (Some(output_rad_s), Some(sd), Some(se)) = (
+    let (Some(mean_slope), Some(sd), Some(se)) = (
         slope(&a.mean),
         a.std.as_ref().and_then(slope),
         a.std_error.as_ref().and_then(slope),
@@ -295,19 +340,76 @@ pub fn reduce_piga_recording(
             revolutions,
         });
     }
+    // White noise: pooled residual variance over the fits' degrees of freedom.
+    let parameters = 2 * order + 2;
+    let rss: f64 = a
+        .revolutions
+        .iter()
+        .map(|r| r.residual_rms * r.residual_rms * r.samples as f64)
+        .sum();
+    let dof: usize = a
+        .revolutions
+        .iter()
+        .map(|r| r.samples.saturating_sub(parameters))
+        .sum();
+    let s2 = rss / dof.max(1) as f64;
+    let inflation = slope_inflation(order);
+    let variances: Vec<f64> = a
+        .revolutions
+        .iter()
+        .map(|r| {
+            let t = &samples.time_s[r.first_sample..r.first_sample + r.samples];
+            let mean = t.iter().sum::<f64>() / t.len() as f64;
+            let stt: f64 = t.iter().map(|v| (v - mean) * (v - mean)).sum();
+            s2 / stt * inflation
+        })
+        .collect();
+    let k = revolutions as f64;
+    let white = (variances.iter().sum::<f64>()).sqrt() / k;
+    let mut diagnostics: Vec<Diagnostic> = analysed
+        .diagnostics
+        .into_iter()
+        // The slope is always fitted; the harmonics' white-noise model is made for a
+        // gap's first harmonic, and the slopes' own spread is checked below.
+        .filter(|d| {
+            !matches!(
+                d,
+                Diagnostic::DriftNotFitted { .. } | Diagnostic::RevolutionSpread { .. }
+            )
+        })
+        .collect();
+    let per_revolution_white = (variances.iter().sum::<f64>() / k).sqrt();
+    let ratio = sd / per_revolution_white;
+    // ratio² ~ χ²(K−1)/(K−1) for white noise: mean 1, sd √(2/(K−1)).
+    let limit = crate::SPREAD_WARNING_RATIO
+        .powi(2)
+        .max(1.0 + 6.0 * (2.0 / (k - 1.0)).sqrt());
+    let mut u = white;
+    if revolutions >= 3 && per_revolution_white > 0.0 && ratio * ratio > limit {
+        diagnostics.push(Diagnostic::OutputSpread { ratio, revolutions });
+        u = u.max(se);
+    }
     Ok(PigaOutputRate {
         declared_rate_rad_s,
         measured_rate_rad_s: analysed.measured_rate_rad_s,
-        output_rad_s,
-        output_u_rad_s: se,
+        output_rad_s: trend_rad_s + mean_slope,
+        output_u_rad_s: u,
+        across_revolutions_u_rad_s: se,
+        white_noise_u_rad_s: white,
         revolution_sd_rad_s: sd,
         revolutions,
         dropped_revolutions: analysed.dropped_revolutions,
         angle_source: analysed.angle_source,
-        diagnostics: analysed
-            .diagnostics
-            .into_iter()
-            .filter(|d| !matches!(d, Diagnostic::DriftNotFitted { .. }))
-            .collect(),
+        diagnostics,
     })
+}
+
+/// Variance inflation of a revolution's slope by the harmonics fitted beside it, for
+/// samples spread evenly over the revolution: the ramp `θ − π` has the Fourier series
+/// `−2 Σ sin kθ / k`, so the harmonics up to N explain `2 Σₖ≤N 1/k²` of its variance
+/// `π²/3`.
+fn slope_inflation(order: usize) -> f64 {
+    let total = std::f64::consts::PI.powi(2) / 3.0;
+    let explained = 2.0 * (1..=order).map(|k| 1.0 / (k * k) as f64).sum::<f64>();
+    total / (total - explained)
 }

@@ -58,13 +58,28 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
     );
     let _ = writeln!(
         out,
-        "Table `{}`: {} points at {} distinct rates, {} residual degrees of freedom, residual SD {:.3e} rad/s. \
+        "{}: {} points at {} distinct rates, {} residual degrees of freedom, residual SD {:.3e} rad/s{}. \
          k1 {}; g = {} m/s²{}. C_r = {:.4e} ± {:.2e} m·s² (phase `{}`), Δk2 = k1·C_r·g/R² = {:.4e} ± {:.2e} rad/(s·g²) removed.\n",
-        c.table,
+        match &c.table {
+            Some(t) => format!("Table `{t}`"),
+            None => format!(
+                "{} raw output recordings, each reduced to its mean output over whole spindle revolutions",
+                c.recordings.len()
+            ),
+        },
         c.points,
         c.distinct_rates,
         c.dof,
         c.residual_sd_rad_s,
+        match (c.birge_ratio, c.excess_u_rad_s) {
+            (Some(b), Some(tau)) => format!(
+                "; weighted by 1/σ of each point, whose residuals scatter {b:.3}× their σ (Birge ratio √(χ²/ν)): \
+                 a variation common to every point of τ = {tau:.3e} rad/s is added to each σ (Paule–Mandel, χ²/ν = 1 then)"
+            ),
+            (Some(b), None) =>
+                format!("; weighted by 1/σ of each point, Birge ratio √(χ²/ν) = {b:.3}"),
+            _ => "; unweighted".to_owned(),
+        },
         if c.k1_source == "fitted" {
             "fitted (c₂·g/R)"
         } else {
@@ -143,20 +158,79 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         );
     }
     let _ = writeln!(out);
+    if !c.recordings.is_empty() {
+        let _ = writeln!(out, "### Raw output recordings\n");
+        let _ = writeln!(
+            out,
+            "| file | declared rate (deg/s) | rate used (deg/s) | angle | revolutions (dropped) | mean output (rad/s) | u (rad/s) | white-noise SE | SE across revolutions |"
+        );
+        let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+        for r in &c.recordings {
+            let _ = writeln!(
+                out,
+                "| `{}` | {} | {:.6} | {} | {} ({}) | {:.9e} | {:.2e} | {:.2e} | {:.2e} |",
+                r.file,
+                r.declared_rate_deg_s,
+                r.rate_deg_s,
+                r.angle_source,
+                r.revolutions,
+                r.dropped_revolutions,
+                r.output_rad_s,
+                r.u_rad_s,
+                r.white_noise_u_rad_s,
+                r.across_revolutions_u_rad_s,
+            );
+        }
+        let _ = writeln!(out);
+    }
     let _ = writeln!(out, "### Residuals\n");
     let _ = writeln!(
         out,
-        "| rate (deg/s) | output (rad/s) | residual (rad/s) | line |"
+        "| rate (deg/s) | output (rad/s) | u (rad/s) | residual (rad/s) | residual/u | label | from |"
     );
-    let _ = writeln!(out, "|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     for r in &c.residuals {
         let _ = writeln!(
             out,
-            "| {} | {:.9e} | {:+.2e} | {} |",
-            r.rate_deg_s, r.output_rad_s, r.residual_rad_s, r.line
+            "| {} | {:.9e} | {} | {:+.2e} | {} | {} | {} |",
+            r.rate_deg_s,
+            r.output_rad_s,
+            r.u_rad_s
+                .map_or_else(|| "—".to_owned(), |u| format!("{u:.2e}")),
+            r.residual_rad_s,
+            r.u_rad_s.map_or_else(
+                || "—".to_owned(),
+                |u| format!("{:+.2}", r.residual_rad_s / u)
+            ),
+            r.label.as_deref().unwrap_or("—"),
+            match (&r.line, &r.file) {
+                (Some(l), _) => format!("line {l}"),
+                (None, Some(f)) => format!("`{f}`"),
+                (None, None) => "—".to_owned(),
+            },
         );
     }
     let _ = writeln!(out);
+    if !c.labels.is_empty() {
+        let _ = writeln!(out, "Residuals by label (mean ± its standard error):\n");
+        let _ = writeln!(
+            out,
+            "| label | rows | mean residual (rad/s) | u (rad/s) | mean/u |"
+        );
+        let _ = writeln!(out, "|---|---|---|---|---|");
+        for l in &c.labels {
+            let _ = writeln!(
+                out,
+                "| {} | {} | {:+.3e} | {:.2e} | {:+.2} |",
+                l.label,
+                l.rows,
+                l.mean_residual_rad_s,
+                l.u_rad_s,
+                l.mean_residual_rad_s / l.u_rad_s
+            );
+        }
+        let _ = writeln!(out);
+    }
     let _ = writeln!(
         out,
         "Design: condition number {:.3e}; variance inflation of ω, ω², ω³, a², a³: {}.\n",

@@ -161,8 +161,9 @@ pub fn probe_signals_svg(phase: &PhaseResults, title: &str) -> Result<Option<Str
     Ok(Some(svg))
 }
 
-/// The calibration's residuals (output − fitted eq. 18) against rate, with error bars of ± the
-/// fit's residual standard deviation (the noise every point was weighted with).
+/// The calibration's residuals (output − fitted eq. 18) against rate, with error bars of ±
+/// each point's standard uncertainty for a weighted fit, else ± the fit's residual standard
+/// deviation (the noise every point was weighted with).
 pub fn calibration_residuals_svg(
     calibration: &pipeline::CalibrationResults,
     title: &str,
@@ -171,12 +172,13 @@ pub fn calibration_residuals_svg(
         what: "calibration_residuals.svg",
         message,
     };
-    let s = calibration.residual_sd_rad_s;
+    let sd = calibration.residual_sd_rad_s;
     let rows = &calibration.residuals;
+    let bar = |r: &pipeline::CalibrationRow| r.u_rad_s.unwrap_or(sd);
     let x_max = rows.iter().map(|r| r.rate_deg_s).fold(0.0_f64, f64::max) * 1.05;
     let y_max = rows
         .iter()
-        .map(|r| r.residual_rad_s.abs() + s)
+        .map(|r| r.residual_rad_s.abs() + bar(r))
         .fold(0.0_f64, f64::max)
         .max(f64::MIN_POSITIVE)
         * 1.15;
@@ -208,15 +210,19 @@ pub fn calibration_residuals_svg(
             .draw_series(rows.iter().map(|r| {
                 ErrorBar::new_vertical(
                     r.rate_deg_s,
-                    r.residual_rad_s - s,
+                    r.residual_rad_s - bar(r),
                     r.residual_rad_s,
-                    r.residual_rad_s + s,
+                    r.residual_rad_s + bar(r),
                     BLUE.filled(),
                     8,
                 )
             }))
             .map_err(|e| err(e.to_string()))?
-            .label(format!("residual ± residual SD ({s:.2e} rad/s)"))
+            .label(if calibration.weighted {
+                "residual ± the point's standard uncertainty".to_owned()
+            } else {
+                format!("residual ± residual SD ({sd:.2e} rad/s)")
+            })
             .legend(|(x, y)| Circle::new((x + 10, y), 4, BLUE.filled()));
         chart
             .draw_series(LineSeries::new(

@@ -13,7 +13,10 @@ use rand::rngs::StdRng;
 use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
 
-use super::scenario::{LoadedScenario, ProbeSpec, Scenario, recording_file_name};
+use super::scenario::{
+    LoadedScenario, PigaRecordingSpec, ProbeSpec, Scenario, piga_recording_file_name,
+    recording_file_name,
+};
 use crate::error::{Result, SimulateError};
 use units::m_to_um;
 
@@ -22,6 +25,7 @@ use units::m_to_um;
 /// reordering rates leaves the noise of the others unchanged.
 const PROBE_STREAM: u64 = 1;
 const PIGA_STREAM: u64 = 2;
+const PIGA_RECORDING_STREAM: u64 = 3;
 
 /// Everything a scenario produces, in memory.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -30,6 +34,9 @@ pub struct Simulation {
     pub recordings: Vec<SimulatedRecording>,
     /// The PIGA calibration table (`piga.csv`), one row per rate.
     pub piga: Vec<PigaRow>,
+    /// The raw PIGA output recordings (`piga_<rate>deg_s.csv`), one per rate, when the
+    /// scenario asks for them (`piga.recordings`); else empty.
+    pub piga_recordings: Vec<SimulatedPigaRecording>,
     /// Every parameter and the exact per-rate quantities (`truth.json`).
     pub truth: Truth,
 }
@@ -58,6 +65,22 @@ impl SimulatedRecording {
             .as_ref()
             .map(|a| a.iter().map(|d| d.to_radians()).collect())
     }
+}
+
+/// One raw PIGA output recording: the columns of `piga_<rate>deg_s.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SimulatedPigaRecording {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// File name (`piga_010.0000deg_s.csv`).
+    pub file_name: String,
+    /// Sample times, s (the probe's).
+    pub time_s: Vec<f64>,
+    /// The PIGA's output angle, rad (not wrapped).
+    pub output_rad: Vec<f64>,
+    /// Encoder angle of the spindle from `O1X1`, deg in `[0, 360)` (the probe's), when the
+    /// scenario asks for it.
+    pub angle_deg: Option<Vec<f64>>,
 }
 
 /// One row of `piga.csv`.
@@ -105,8 +128,11 @@ pub struct TruthRate {
     pub omega_i_rad_s: f64,
     /// Mean PIGA output over a revolution without noise, rad/s (eq. 15).
     pub output_noise_free_rad_s: f64,
-    /// The output written to `piga.csv` (noise included), rad/s.
+    /// The output written to `piga.csv` (noise included), rad/s; also the mean slope of the
+    /// raw output recording.
     pub output_rad_s: f64,
+    /// The raw output recording's file name, when the scenario asks for one.
+    pub piga_recording: Option<String>,
     /// Drift and tilt of the spindle at this rate in `O2` (eq. 5).
     pub offsets: SpindleOffsets,
     /// Radius error at the PIGA plane, `Δr_x = Δr_xs + C_r ω²`, µm.
@@ -207,6 +233,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
         })?;
 
     let mut recordings = Vec::with_capacity(points.len());
+    let mut piga_recordings = Vec::new();
     let mut piga = Vec::with_capacity(points.len());
     let mut rates = Vec::with_capacity(points.len());
     for (i, (point, &rate_deg_s)) in points.iter().zip(&s.rates_deg_s).enumerate() {
@@ -227,6 +254,9 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             rate_deg_s,
             output_rad_s,
         });
+        if let Some(spec) = &s.piga.recordings {
+            piga_recordings.push(record_piga(s.seed, spec, &recording, output_rad_s));
+        }
         let offsets = *chain.offsets();
         let w = point.rate_rad_s;
         rates.push(TruthRate {
@@ -237,6 +267,10 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             omega_i_rad_s: point.omega_i_rad_s,
             output_noise_free_rad_s: point.output_rad_s,
             output_rad_s,
+            piga_recording: s
+                .piga
+                .recordings
+                .map(|_| piga_recording_file_name(rate_deg_s)),
             offsets,
             radius_error_um: m_to_um(offsets.dr_x_m),
             probe_first_harmonic: probe_truth(lever, &offsets),
@@ -270,6 +304,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     let simulation = Simulation {
         recordings,
         piga,
+        piga_recordings,
         truth: Truth {
             scenario: s.clone(),
             error_motion,
@@ -408,6 +443,41 @@ fn record(s: &Scenario, lever: Lever, chain: &Chain, rate_deg_s: f64) -> Simulat
         time_s,
         gap_um,
         angle_deg,
+    }
+}
+
+/// The raw PIGA output recording at one rate, sampled with the probe's recording: the
+/// output angle `ω̄_out·t + A·sin(θ + φ) + e` with `θ` the spindle angle of each sample (the
+/// encoder's when the probe records one; the same formula of time otherwise).
+fn record_piga(
+    seed: u64,
+    spec: &PigaRecordingSpec,
+    probe: &SimulatedRecording,
+    output_rad_s: f64,
+) -> SimulatedPigaRecording {
+    let mut rng = stream(seed, PIGA_RECORDING_STREAM, probe.rate_deg_s.to_bits());
+    let noise = normal(spec.angle_noise_rad);
+    let phase = spec.ripple_phase_deg.to_radians();
+    let rate_rad_s = probe.rate_deg_s.to_radians();
+    let output_rad = probe
+        .time_s
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let theta = probe
+                .angle_deg
+                .as_ref()
+                .map_or(rate_rad_s * t, |a| a[i].to_radians());
+            let e = noise.as_ref().map_or(0.0, |d| d.sample(&mut rng));
+            output_rad_s * t + spec.ripple_rad * (theta + phase).sin() + e
+        })
+        .collect();
+    SimulatedPigaRecording {
+        rate_deg_s: probe.rate_deg_s,
+        file_name: piga_recording_file_name(probe.rate_deg_s),
+        time_s: probe.time_s.clone(),
+        output_rad,
+        angle_deg: probe.angle_deg.clone(),
     }
 }
 

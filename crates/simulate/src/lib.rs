@@ -18,7 +18,11 @@
 //! signal. See `docs/SIMULATION.md`.
 //!
 //! **PIGA.** Each row of `piga.csv` is `accel_model::rate_points` — eq. 15 evaluated on the
-//! exact inputs of eq. 12–13 and averaged over whole revolutions — plus N(0, σ²).
+//! exact inputs of eq. 12–13 and averaged over whole revolutions — plus N(0, σ²). With
+//! `piga.recordings`, each rate also gets a raw output recording `piga_<rate>deg_s.csv`
+//! sampled with the probe: the output angle `ω̄_out·t + A·sin(θ + φ) + e` whose mean slope
+//! is that row's output, a once-per-revolution term that whole revolutions cancel, and white
+//! noise.
 
 mod error;
 mod generate;
@@ -27,11 +31,12 @@ mod write;
 
 pub use error::{Result, SimulateError};
 pub use generate::{
-    OutputNoise, PigaRow, ProbeTruth, SimulatedRecording, Simulation, Truth, TruthRate, piga_table,
-    simulate,
+    OutputNoise, PigaRow, ProbeTruth, SimulatedPigaRecording, SimulatedRecording, Simulation,
+    Truth, TruthRate, piga_table, simulate,
 };
 pub use scenario::{
-    CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaSpec, ProbeSpec,
-    Scenario, SleeveHarmonic, SpeedRipple, recording_file_name,
+    CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaRecordingSpec,
+    PigaSpec, ProbeSpec, Scenario, SleeveHarmonic, SpeedRipple, piga_recording_file_name,
+    recording_file_name,
 };
 pub use write::{SimulationFiles, piga_csv_text, write_simulation};

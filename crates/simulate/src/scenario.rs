@@ -129,6 +129,27 @@ pub struct PigaSpec {
     /// rad/s (0: noise-free).
     #[serde(default)]
     pub noise_rad_s: f64,
+    /// Raw output recordings, one per rate at the probe's sampling
+    /// (`piga_<rate>deg_s.csv`), when given.
+    #[serde(default)]
+    pub recordings: Option<PigaRecordingSpec>,
+}
+
+/// Raw PIGA output recordings: the output angle `θ_out(t) = ω̄_out·t + A·sin(θ + φ) + e`,
+/// with `ω̄_out` the rate's mean output (`piga.csv`'s value), `θ` the spindle angle, and
+/// white noise `e`, sampled with the probe (same times, same encoder angle).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PigaRecordingSpec {
+    /// Standard deviation of the white noise of each output-angle sample, rad.
+    pub angle_noise_rad: f64,
+    /// Amplitude A of a once-per-revolution term of the output angle, rad (default 0): a
+    /// periodic input that whole revolutions cancel.
+    #[serde(default)]
+    pub ripple_rad: f64,
+    /// Its phase φ, deg (default 0).
+    #[serde(default)]
+    pub ripple_phase_deg: f64,
 }
 
 /// A scenario read from a file (or text) and validated.
@@ -268,6 +289,11 @@ impl Scenario {
         v.finite("piga.coefficients.k2_rad_s_g2", k.k2_rad_s_g2)?;
         v.finite("piga.coefficients.k3_rad_s_g3", k.k3_rad_s_g3)?;
         v.non_negative("piga.noise_rad_s", self.piga.noise_rad_s)?;
+        if let Some(r) = &self.piga.recordings {
+            v.non_negative("piga.recordings.angle_noise_rad", r.angle_noise_rad)?;
+            v.non_negative("piga.recordings.ripple_rad", r.ripple_rad)?;
+            v.finite("piga.recordings.ripple_phase_deg", r.ripple_phase_deg)?;
+        }
 
         if self.rates_deg_s.is_empty() {
             return Err(SimulateError::EmptyList {
@@ -413,6 +439,17 @@ impl Scenario {
 #[must_use]
 pub fn recording_file_name(rate_deg_s: f64) -> String {
     format!("probe_{rate_deg_s:08.4}deg_s.csv")
+}
+
+/// File name of the raw PIGA output recording at a rate: `piga_<rate>deg_s.csv`, as
+/// [`recording_file_name`].
+///
+/// ```
+/// assert_eq!(simulate::piga_recording_file_name(20.0), "piga_020.0000deg_s.csv");
+/// ```
+#[must_use]
+pub fn piga_recording_file_name(rate_deg_s: f64) -> String {
+    format!("piga_{rate_deg_s:08.4}deg_s.csv")
 }
 
 /// Field checks that name the file and the field.

@@ -8,7 +8,7 @@ use recording::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, ProbeColumns, WriteOptions, write_probe_csv,
 };
 
-use super::generate::{PigaRow, SimulatedRecording, Simulation};
+use super::generate::{PigaRow, SimulatedPigaRecording, SimulatedRecording, Simulation};
 use crate::error::{Result, SimulateError};
 
 /// The files a simulation wrote.
@@ -18,12 +18,19 @@ pub struct SimulationFiles {
     pub recordings: Vec<PathBuf>,
     /// `piga.csv`.
     pub piga_csv: PathBuf,
+    /// One raw PIGA output recording per rate, when the scenario asks for them.
+    pub piga_recordings: Vec<PathBuf>,
     /// `truth.json`.
     pub truth_json: PathBuf,
 }
 
 /// The names a simulation's output directory may hold: what [`write_simulation`] writes.
-const SIMULATION_FILES: &[&str] = &["probe_*deg_s.csv", "piga.csv", "truth.json"];
+const SIMULATION_FILES: &[&str] = &[
+    "probe_*deg_s.csv",
+    "piga_*deg_s.csv",
+    "piga.csv",
+    "truth.json",
+];
 
 /// Writes a simulation into `dir`, atomically: `probe_<rate>deg_s.csv` per rate, `piga.csv`
 /// and `truth.json` go through an [`OutputSet`], so `dir` ends up holding exactly these files
@@ -47,12 +54,17 @@ pub fn write_simulation(dir: &Path, sim: &Simulation) -> Result<SimulationFiles>
     for r in &sim.recordings {
         recordings.push(set.write_with(&r.file_name, |mut out| r.write_csv(&mut out))?);
     }
+    let mut piga_recordings = Vec::with_capacity(sim.piga_recordings.len());
+    for r in &sim.piga_recordings {
+        piga_recordings.push(set.write(&r.file_name, r.csv_text().as_bytes())?);
+    }
     let piga_csv = set.write("piga.csv", piga_csv_text(&sim.piga).as_bytes())?;
     let truth_json = set.write("truth.json", json.as_bytes())?;
     set.commit()?;
     Ok(SimulationFiles {
         recordings,
         piga_csv,
+        piga_recordings,
         truth_json,
     })
 }
@@ -72,6 +84,28 @@ pub fn piga_csv_text(rows: &[PigaRow]) -> String {
         let _ = writeln!(text, "{},{}", r.rate_deg_s, r.output_rad_s);
     }
     text
+}
+
+impl SimulatedPigaRecording {
+    /// The recording as CSV: header `time_s,output_rad[,angle_deg]`, times and output angles
+    /// in their shortest exact (round-trip) decimal form, angles with nine decimals (the
+    /// probe recording's).
+    #[must_use]
+    pub fn csv_text(&self) -> String {
+        let mut text = String::from("time_s,output_rad");
+        if self.angle_deg.is_some() {
+            text.push_str(",angle_deg");
+        }
+        text.push('\n');
+        for (i, (t, o)) in self.time_s.iter().zip(&self.output_rad).enumerate() {
+            // writing to a String cannot fail
+            let _ = match &self.angle_deg {
+                Some(a) => writeln!(text, "{t},{o},{:.9}", a[i]),
+                None => writeln!(text, "{t},{o}"),
+            };
+        }
+        text
+    }
 }
 
 impl SimulatedRecording {

@@ -25,6 +25,14 @@ const RESIDUAL_FIELDS: [&str; 6] = [
     "reduced_chi",
 ];
 
+/// Paths that moved on purpose (issue 11 session): a recording point's white-noise σ now
+/// pools the per-revolution residuals over their degrees of freedom (samples less the
+/// fitted coefficients) instead of over the samples, which made it optimistic for
+/// revolutions of few samples (false `revolution_spread` warnings). These σ grow by
+/// `√(n/(n − p))`, a few per cent at the fixture's high rates; the test checks that they
+/// grow, by less than 20 %.
+const NOISE_SIGMA_FIELDS: [&str; 1] = ["radius_error_sigma_um"];
+
 /// `(relative, absolute)` tolerance of a path.
 fn tolerance(path: &str) -> (f64, f64) {
     let residual = RESIDUAL_FIELDS
@@ -40,6 +48,16 @@ fn tolerance(path: &str) -> (f64, f64) {
 /// Walks two JSON trees side by side; every difference is pushed with its path.
 fn compare(path: &str, actual: &Value, expected: &Value, out: &mut Vec<String>) {
     match (actual, expected) {
+        (Value::Number(a), Value::Number(e))
+            if NOISE_SIGMA_FIELDS
+                .iter()
+                .any(|f| path.ends_with(&format!(".{f}"))) =>
+        {
+            let (a, e) = (a.as_f64().unwrap(), e.as_f64().unwrap());
+            if !(a >= e && a < 1.2 * e) {
+                out.push(format!("{path}: {a:e} vs baseline {e:e} (expected 1–1.2×)"));
+            }
+        }
         (Value::Number(a), Value::Number(e)) => {
             let (a, e) = (a.as_f64().unwrap(), e.as_f64().unwrap());
             let scale = a.abs().max(e.abs()).max(f64::MIN_POSITIVE);

@@ -1,5 +1,5 @@
-//! The calibration on measured data: coverage of its uncertainty over simulated campaigns, and
-//! typed errors on bad calibration input.
+//! The calibration on measured data — raw PIGA output recordings or a table — coverage of
+//! its uncertainty over simulated campaigns, and typed errors on bad calibration input.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -32,17 +32,24 @@ impl DataSource for Campaign {
 
 const DIR: &str = "/nonexistent/campaign";
 
-/// The campaign scenario with another seed, simulated into memory under `DIR`.
-fn campaign(seed: u64) -> Campaign {
+/// The campaign scenario with another seed, simulated into memory under `DIR`: the probe
+/// recordings, the raw PIGA output recordings, and `piga.csv` whose means carry N(0,
+/// `table_noise_rad_s`²) (the scenario's own table is noise-free: its noise is in the raw
+/// recordings).
+fn campaign_with(seed: u64, table_noise_rad_s: f64) -> Campaign {
     let text = std::fs::read_to_string(root().join("fixtures/scenarios/campaign.ron")).unwrap();
     let mut loaded = Scenario::parse(&text, Path::new("campaign.ron")).unwrap();
     loaded.scenario.seed = seed;
+    loaded.scenario.piga.noise_rad_s = table_noise_rad_s;
     let simulation = simulate::simulate(&loaded).unwrap();
     let mut files = HashMap::new();
     for r in &simulation.recordings {
         let mut csv = Vec::new();
         r.write_csv(&mut csv).unwrap();
         files.insert(Path::new(DIR).join(&r.file_name), csv);
+    }
+    for r in &simulation.piga_recordings {
+        files.insert(Path::new(DIR).join(&r.file_name), r.csv_text().into_bytes());
     }
     files.insert(
         Path::new(DIR).join("piga.csv"),
@@ -51,12 +58,31 @@ fn campaign(seed: u64) -> Campaign {
     Campaign { files }
 }
 
-/// The campaign study pointed at `DIR`, with `trials` Monte Carlo trials.
+/// The campaign with noise from run to run: 1e-9 rad/s on each rate's mean output, in the
+/// table and in the raw recordings' slopes (beyond the raw recordings' own noise).
+fn campaign(seed: u64) -> Campaign {
+    campaign_with(seed, 1e-9)
+}
+
+/// The campaign study (raw PIGA recordings) pointed at `DIR`, with `trials` Monte Carlo
+/// trials.
 fn study_text(trials: &str) -> String {
     std::fs::read_to_string(root().join("fixtures/studies/campaign.ron"))
         .unwrap()
         .replace("../campaign/", "campaign/")
         .replace("seed: 1,", &format!("seed: 1, trials: {trials},"))
+}
+
+/// The campaign study with the PIGA table (`piga.csv`) in place of the raw recordings.
+fn table_study_text(trials: &str) -> String {
+    let text = study_text(trials);
+    let start = text.find("        recordings: (").unwrap();
+    let end = start + text[start..].find("\n        ),\n").unwrap() + "\n        ),\n".len();
+    format!(
+        "{}        table: (file: \"campaign/piga.csv\"),\n{}",
+        &text[..start],
+        &text[end..]
+    )
 }
 
 fn run(text: &str, data: &Campaign) -> Result<pipeline::StudyResults, PipelineError> {
@@ -69,15 +95,48 @@ fn run(text: &str, data: &Campaign) -> Result<pipeline::StudyResults, PipelineEr
 const K2_TRUE: f64 = 5.0e-7;
 
 /// Over 240 simulated campaigns the reported 95 % interval of the compensated k2 holds the
-/// true k2 in 92–98 % of them, and the reported u(k2) matches the spread of k2 within 20 %.
+/// true k2 in 92–98 % of them, and the reported u(k2) matches the spread of k2 within 20 %:
+/// from the raw output recordings (weighted by their standard errors) and from a table
+/// (unweighted).
 #[test]
-#[allow(clippy::print_stderr)] // the figures, shown with --nocapture
 fn the_k2_interval_covers_the_truth_over_many_campaigns() {
-    let text = study_text("fixed(2000)");
+    // The raw recordings' noise only: the points' σ are the whole story.
+    coverage(
+        "raw recordings",
+        &study_text("fixed(2000)"),
+        0.0,
+        0.92..=0.98,
+    );
+    // The table, unweighted, with noise from run to run.
+    coverage("table", &table_study_text("fixed(2000)"), 1e-9, 0.92..=0.98);
+}
+
+/// The raw recordings with noise from run to run that their within-run σ miss: the
+/// weighted fit's χ²/ν exceeds 1 and the common variation τ (Paule–Mandel) is added to
+/// every σ. τ comes from the same 20 points, so the coverage is a little below nominal
+/// (the bound here is 90 %); with the points' own σ and the Birge ratio alone it was 83 %
+/// and u(k2) was 0.62 of the spread.
+#[test]
+fn run_to_run_variation_the_sigmas_miss_is_estimated() {
+    coverage(
+        "raw recordings with run-to-run noise",
+        &study_text("fixed(2000)"),
+        1e-9,
+        0.90..=0.98,
+    );
+}
+
+#[allow(clippy::print_stderr)] // the figures, shown with --nocapture
+fn coverage(
+    what: &str,
+    text: &str,
+    run_to_run_rad_s: f64,
+    expected: std::ops::RangeInclusive<f64>,
+) {
     let outcomes: Vec<(f64, f64, f64, f64)> = (0..240u64)
         .into_par_iter()
         .map(|seed| {
-            let results = run(&text, &campaign(1000 + seed)).unwrap();
+            let results = run(text, &campaign_with(1000 + seed, run_to_run_rad_s)).unwrap();
             let c = results.calibration.unwrap();
             let k2 = c.coefficients.k2;
             (
@@ -98,14 +157,17 @@ fn the_k2_interval_covers_the_truth_over_many_campaigns() {
     let sd = (outcomes.iter().map(|o| (o.0 - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
     let mean_u = outcomes.iter().map(|o| o.1).sum::<f64>() / n;
     eprintln!(
-        "coverage {covered:.3}, sd(k2) {sd:.3e}, mean u(k2) {mean_u:.3e}, ratio {:.3}, bias {:.2e}",
+        "{what}: coverage {covered:.3}, sd(k2) {sd:.3e}, mean u(k2) {mean_u:.3e}, ratio {:.3}, bias {:.2e}",
         mean_u / sd,
         mean - K2_TRUE
     );
-    assert!((0.92..=0.98).contains(&covered), "coverage {covered}");
+    assert!(
+        expected.contains(&covered),
+        "{what}: coverage {covered}"
+    );
     assert!(
         (0.8..=1.2).contains(&(mean_u / sd)),
-        "u/sd = {}",
+        "{what}: u/sd = {}",
         mean_u / sd
     );
     // Uncompensated k2 minus the predicted Δk2 is the compensated k2: the bias is Δk2.
@@ -144,7 +206,7 @@ fn error_of(text: &str, data: &Campaign) -> PipelineError {
 #[test]
 fn bad_calibration_input_is_a_typed_error() {
     let data = campaign(5);
-    let text = study_text("adaptive");
+    let text = table_study_text("adaptive");
 
     let e = error_of(
         &text.replace("compensate_with: \"spindle\"", "compensate_with: \"pre\""),
@@ -238,3 +300,4 @@ fn bad_calibration_input_is_a_typed_error() {
     );
     assert!(message.contains("piga.csv:3"), "{message}");
 }
+
