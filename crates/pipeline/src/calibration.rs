@@ -670,13 +670,13 @@ pub(crate) fn results(
             },
         })
         .collect();
-    let labels = label_summaries(
-        points,
-        &unc.residuals_rad_s,
-        fit,
-        unc.birge_ratio,
-        e.excess_u_rad_s.unwrap_or(0.0),
-    );
+    let residual_sd_rad_s = if unc.birge_ratio.is_some() {
+        let ss: f64 = unc.residuals_rad_s.iter().map(|r| r * r).sum();
+        (ss / fit.dof as f64).sqrt()
+    } else {
+        fit.residual_sd
+    };
+    let labels = label_summaries(points, &unc.residuals_rad_s, residual_sd_rad_s);
     let budget_of = |name: &str| budget(&out(name), &e.quantities, e.noise_dof, inputs.k1);
     let budget = PigaCoefficients {
         k0: budget_of("k0"),
@@ -779,12 +779,7 @@ pub(crate) fn results(
             },
         },
         // The fit's own residual SD is in units of the points' σ when it is weighted.
-        residual_sd_rad_s: if unc.birge_ratio.is_some() {
-            let ss: f64 = unc.residuals_rad_s.iter().map(|r| r * r).sum();
-            (ss / fit.dof as f64).sqrt()
-        } else {
-            fit.residual_sd
-        },
+        residual_sd_rad_s,
         residuals,
         labels,
         correlation,
@@ -857,15 +852,14 @@ fn budget(
 }
 
 /// The residuals by label, in order of first appearance, when the points carry two labels or
-/// more: the weighted mean residual and its σ (from the points' σ combined with the excess
-/// τ, times the fit's Birge ratio when it exceeds 1), or for an unweighted fit the mean and
-/// the residual SD over √rows.
+/// more: each label's mean residual (weighted by 1/σ² for a weighted fit) and its Type A
+/// standard uncertainty from the scatter of that label's residuals about it, so that an
+/// offset of one label is measured against the scatter within labels, whatever the σ given
+/// or estimated (a label with one row gets the fit's scatter instead).
 fn label_summaries(
     points: &PigaPoints,
     residuals_rad_s: &[f64],
-    fit: &identify::Fit,
-    birge_ratio: Option<f64>,
-    excess_u_rad_s: f64,
+    fit_residual_sd_rad_s: f64,
 ) -> Vec<crate::results::LabelSummary> {
     let Some(labels) = &points.labels else {
         return Vec::new();
@@ -883,29 +877,29 @@ fn label_summaries(
         .into_iter()
         .map(|label| {
             let rows: Vec<usize> = (0..labels.len()).filter(|&i| labels[i] == label).collect();
-            let (mean, u) = match &points.sigma_rad_s {
-                Some(sigma) => {
-                    let w: Vec<f64> = rows
-                        .iter()
-                        .map(|&i| 1.0 / sigma[i].hypot(excess_u_rad_s).powi(2))
-                        .collect();
-                    let total: f64 = w.iter().sum();
-                    let mean = rows
-                        .iter()
-                        .zip(&w)
-                        .map(|(&i, w)| w * residuals_rad_s[i])
-                        .sum::<f64>()
-                        / total;
-                    (
-                        mean,
-                        total.recip().sqrt() * birge_ratio.unwrap_or(1.0).max(1.0),
-                    )
-                }
-                None => {
-                    let n = rows.len() as f64;
-                    let mean = rows.iter().map(|&i| residuals_rad_s[i]).sum::<f64>() / n;
-                    (mean, fit.residual_sd / n.sqrt())
-                }
+            let w: Vec<f64> = rows
+                .iter()
+                .map(|&i| points.sigma_rad_s.as_ref().map_or(1.0, |s| s[i].powi(-2)))
+                .collect();
+            let total: f64 = w.iter().sum();
+            let mean = rows
+                .iter()
+                .zip(&w)
+                .map(|(&i, w)| w * residuals_rad_s[i])
+                .sum::<f64>()
+                / total;
+            let n = rows.len() as f64;
+            let u = if rows.len() >= 2 {
+                // Weighted scatter about the mean: s² = Σw(r − m)²/Σw · n/(n − 1), over n.
+                let ss = rows
+                    .iter()
+                    .zip(&w)
+                    .map(|(&i, w)| w * (residuals_rad_s[i] - mean).powi(2))
+                    .sum::<f64>()
+                    / total;
+                (ss * n / (n - 1.0) / n).sqrt()
+            } else {
+                fit_residual_sd_rad_s
             };
             crate::results::LabelSummary {
                 label: label.to_owned(),
@@ -918,7 +912,8 @@ fn label_summaries(
 }
 
 /// Mean residual of a label, in its standard uncertainties, above which the label is
-/// reported as sitting apart (`label_offset`).
+/// reported as sitting apart (`label_offset`), for many rows (fewer widen it by Student's
+/// t).
 pub(crate) const LABEL_OFFSET_LIMIT: f64 = 3.0;
 
 /// The calibration's warnings about its data: a weighted fit whose residuals exceed the
@@ -949,14 +944,21 @@ pub(crate) fn data_warnings(
     }
     for l in &c.labels {
         let z = l.mean_residual_rad_s / l.u_rad_s;
-        if l.rows >= 2 && z.abs() > LABEL_OFFSET_LIMIT {
+        // About 3σ for many rows, wider for few (Student t, 99.73 %).
+        let limit = if l.rows >= 2 {
+            uncertainty::coverage_factor(0.9973, uncertainty::Dof::Finite((l.rows - 1) as f64))
+                .unwrap_or(LABEL_OFFSET_LIMIT)
+        } else {
+            f64::INFINITY
+        };
+        if z.abs() > limit {
             warnings.push(Warning {
                 code: "label_offset".into(),
                 message: format!(
                     "the {} rows labelled `{}` sit {:+.1} standard uncertainties from the fit \
-                     on average (mean residual {:+.3e} rad/s): that repeat or orientation \
-                     differs from the others (a bias, a set-up change) and one eq. 18 model \
-                     does not describe them all",
+                     on average (mean residual {:+.3e} rad/s, against the scatter within the \
+                     label): that repeat or orientation differs from the others (a bias, a \
+                     set-up change) and one eq. 18 model does not describe them all",
                     l.rows, l.label, z, l.mean_residual_rad_s
                 ),
                 location: "calibration.table".into(),

@@ -352,8 +352,8 @@ pub struct LabelSummary {
     pub rows: usize,
     /// Their mean residual (weighted by 1/σ² for a weighted fit), rad/s.
     pub mean_residual_rad_s: f64,
-    /// Its standard uncertainty, rad/s: from the rows' σ (times the Birge ratio when it
-    /// exceeds 1) for a weighted fit, else the fit's residual SD over √rows.
+    /// Its standard uncertainty, rad/s: the (weighted) scatter of the label's residuals
+    /// about their mean over √rows (the fit's residual SD for a single row).
     pub u_rad_s: f64,
 }
 

@@ -161,10 +161,7 @@ fn coverage(
         mean_u / sd,
         mean - K2_TRUE
     );
-    assert!(
-        expected.contains(&covered),
-        "{what}: coverage {covered}"
-    );
+    assert!(expected.contains(&covered), "{what}: coverage {covered}");
     assert!(
         (0.8..=1.2).contains(&(mean_u / sd)),
         "{what}: u/sd = {}",
@@ -301,3 +298,186 @@ fn bad_calibration_input_is_a_typed_error() {
     assert!(message.contains("piga.csv:3"), "{message}");
 }
 
+#[test]
+fn bad_raw_recording_input_is_a_typed_error() {
+    let data = campaign(5);
+    let text = study_text("adaptive");
+
+    // A file declared at a rate its encoder does not turn at (a file attached to the wrong
+    // rate): the recording's error, naming the field.
+    let e = error_of(
+        &text.replace(
+            "(rate_deg_s: 110.0, file: \"campaign/piga_110",
+            "(rate_deg_s: 115.0, file: \"campaign/piga_110",
+        ),
+        &data,
+    );
+    let message = crate::chain(&e);
+    assert!(
+        matches!(&e, PipelineError::Recording { field, .. } if field == "calibration.recordings.files[9]"),
+        "{message}"
+    );
+    assert!(message.contains("piga_110.0000deg_s.csv"), "{message}");
+
+    // Both a table and recordings, or neither.
+    let both = text.replace(
+        "        recordings: (",
+        "        table: (file: \"campaign/piga.csv\"),\n        recordings: (",
+    );
+    let e = error_of(&both, &data);
+    assert!(
+        matches!(&e, PipelineError::Unsupported { field, .. } if field == "calibration"),
+        "{e}"
+    );
+
+    // Six distinct rates.
+    let start = text
+        .find("(rate_deg_s: 80.0, file: \"campaign/piga")
+        .unwrap();
+    let end = text
+        .find("            ],\n        ),\n        compensate_with")
+        .unwrap();
+    let e = error_of(&format!("{}{}", &text[..start], &text[end..]), &data);
+    assert!(
+        matches!(&e, PipelineError::TooFewRates { field, distinct: 6, .. } if field == "calibration.recordings.files"),
+        "{e}"
+    );
+
+    // A rate that is not > 0, by its field.
+    let e = error_of(
+        &text.replace(
+            "(rate_deg_s: 20.0, file: \"campaign/piga",
+            "(rate_deg_s: -20.0, file: \"campaign/piga",
+        ),
+        &data,
+    );
+    assert!(
+        matches!(&e, PipelineError::InvalidField { field, .. } if field == "calibration.recordings.files[0].rate_deg_s"),
+        "{e}"
+    );
+
+    // A NaN output names the file and its line.
+    let mut bad = Campaign {
+        files: data.files.clone(),
+    };
+    let file = Path::new(DIR).join("piga_050.0000deg_s.csv");
+    let csv = String::from_utf8(bad.files[&file].clone()).unwrap();
+    let mut lines: Vec<String> = csv.lines().map(str::to_owned).collect();
+    let fields: Vec<String> = lines[4].split(',').map(str::to_owned).collect();
+    lines[4] = format!("{},NaN,{}", fields[0], fields[2]);
+    bad.files
+        .insert(file, format!("{}\n", lines.join("\n")).into_bytes());
+    let e = error_of(&text, &bad);
+    let message = crate::chain(&e);
+    assert!(
+        matches!(&e, PipelineError::Recording { field, .. } if field == "calibration.recordings.files[3]"),
+        "{message}"
+    );
+    assert!(message.contains("piga_050.0000deg_s.csv:5"), "{message}");
+
+    // A harmonic order outside 1–8.
+    let e = error_of(
+        &text.replace(
+            "        recordings: (",
+            "        recordings: (\n            order: 9,",
+        ),
+        &data,
+    );
+    assert!(
+        matches!(&e, PipelineError::InvalidField { field, .. } if field == "calibration.recordings.order"),
+        "{e}"
+    );
+}
+
+/// The campaign's table with a σ column and a label column: rows `b` carry an offset.
+fn labelled(data: &Campaign, offset_rad_s: f64) -> Campaign {
+    let table = Path::new(DIR).join("piga.csv");
+    let csv = String::from_utf8(data.files[&table].clone()).unwrap();
+    let mut out = String::from("rate_deg_s,output_rad_s,sigma_rad_s,run\n");
+    for (i, line) in csv.lines().skip(1).enumerate() {
+        let f: Vec<&str> = line.split(',').collect();
+        let label = if i % 2 == 0 { "a" } else { "b" };
+        let y: f64 = f[1].parse::<f64>().unwrap() + if i % 2 == 0 { 0.0 } else { offset_rad_s };
+        out.push_str(&format!("{},{y},1e-9,{label}\n", f[0]));
+    }
+    let mut files = data.files.clone();
+    files.insert(table, out.into_bytes());
+    Campaign { files }
+}
+
+#[test]
+fn a_sigma_column_weights_the_fit_and_labels_are_compared() {
+    let data = campaign(7);
+    let text = table_study_text("fixed(2000)").replace(
+        "table: (file: \"campaign/piga.csv\")",
+        "table: (file: \"campaign/piga.csv\", sigma_column: \"sigma_rad_s\", label_column: \"run\")",
+    );
+    let results = run(&text, &labelled(&data, 0.0)).unwrap();
+    let c = results.calibration.as_ref().unwrap();
+    assert!(c.weighted);
+    assert!(c.birge_ratio.is_some());
+    assert_eq!(c.labels.len(), 2);
+    assert_eq!(c.residuals[1].label.as_deref(), Some("b"));
+    assert_eq!(c.residuals[1].u_rad_s, Some(1e-9));
+    assert_eq!(c.residuals[1].line, Some(3));
+    assert!(
+        !results.warnings.iter().any(|w| w.code == "label_offset"),
+        "{:?}",
+        results.warnings
+    );
+    // Rows `b` 5 nrad/s off: the label sits apart, and says so.
+    let results = run(&text, &labelled(&data, 5e-9)).unwrap();
+    let w = results
+        .warnings
+        .iter()
+        .find(|w| w.code == "label_offset")
+        .expect("label_offset");
+    assert!(
+        w.message.contains("`b`") || w.message.contains("`a`"),
+        "{}",
+        w.message
+    );
+
+    // σ ≤ 0 names the file, line and column.
+    let mut zero = labelled(&data, 0.0);
+    let table = Path::new(DIR).join("piga.csv");
+    let csv = String::from_utf8(zero.files[&table].clone())
+        .unwrap()
+        .replacen(",1e-9,b", ",0,b", 1);
+    zero.files.insert(table.clone(), csv.into_bytes());
+    let e = error_of(&text, &zero);
+    assert!(
+        matches!(&e, PipelineError::TableValue { line: 3, column, .. } if column == "sigma_rad_s"),
+        "{e}"
+    );
+    // A named label column the table lacks.
+    let e = error_of(
+        &text.replace("label_column: \"run\"", "label_column: \"orientation\""),
+        &labelled(&data, 0.0),
+    );
+    let message = crate::chain(&e);
+    assert!(message.contains("orientation"), "{message}");
+}
+
+#[test]
+fn calibration_rates_beyond_the_phase_are_flagged() {
+    let data = campaign(8);
+    // The phase measured C_r at 20–200 deg/s; drop its two top rates.
+    let text = table_study_text("fixed(2000)")
+        .replace("                    (rate_deg_s: 195.0, file: \"campaign/probe_195.0000deg_s.csv\"),\n", "")
+        .replace("                    (rate_deg_s: 200.0, file: \"campaign/probe_200.0000deg_s.csv\"),\n", "");
+    let results = run(&text, &data).unwrap();
+    let w = results
+        .warnings
+        .iter()
+        .find(|w| w.code == "rate_outside_phase")
+        .expect("rate_outside_phase");
+    assert!(w.message.contains("195, 200"), "{}", w.message);
+    let plain = run(&table_study_text("fixed(2000)"), &data).unwrap();
+    assert!(
+        !plain
+            .warnings
+            .iter()
+            .any(|w| w.code == "rate_outside_phase")
+    );
+}
