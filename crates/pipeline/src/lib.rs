@@ -9,7 +9,11 @@
 //! each point to the PIGA plane (eq. 22), fits the radius error `Δr(ω) = a + C_r·ω²` (eq. 16)
 //! and gives the pseudo-second-order error `Δk2 = k1·C_r·g/R²` (eq. 19); with a `mechanism`
 //! section, it simulates the PIGA calibration of eq. 18 with each phase's C_r and identifies
-//! k2 with and without compensation (eq. 17–19). The `report` crate writes the outputs.
+//! k2 with and without compensation (eq. 17–19); with a `calibration` section, it fits the
+//! PIGA's measured outputs — a table, or raw output recordings each reduced to its mean over
+//! whole spindle revolutions — by eq. 18, weighted by each point's σ when there is one,
+//! removes the named phase's Δk2 (eq. 19) and evaluates the coefficients' uncertainty (JCGM
+//! 100 and 101). The `report` crate writes the outputs.
 //!
 //! Only the `load` module touches files.
 //!
@@ -57,9 +61,9 @@ pub use calibration::CalibrationModel;
 pub use config::{BalanceConfig, TrialMassConfig};
 pub use config::{
     CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
-    PhaseConfig, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName, RadiusPoint,
-    RecordingPoint, RecordingSet, StudyConfig, TrialsConfig, UncertaintyConfig, Weighting,
-    model_name,
+    PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName,
+    RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TrialsConfig, UncertaintyConfig,
+    Weighting, model_name,
 };
 pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, Inputs};
