@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 c=fuzz/corpus
-mkdir -p "$c"/{csv_probe,number,piga_table,study_ron,scenario_ron,strd,lstsq,harmonics_analyze}
+mkdir -p "$c"/{csv_probe,number,piga_table,study_ron,scenario_ron,strd,lstsq,harmonics_analyze,piga_recording}
 
 # csv_probe: the first byte picks the format (0 = comma, µm, degrees); then a recording.
 # The committed recordings are cut to their first 200 lines: the shape matters, not the length.
@@ -40,5 +40,11 @@ fi
 for k in 1 2 3 4; do
   head -c $((64 * k)) fixtures/recordings/probe_120deg_s.csv > "$c/lstsq/bytes-$k"
   head -c $((2048 * k)) fixtures/recordings/probe_120deg_s.csv > "$c/harmonics_analyze/bytes-$k"
+done
+# piga_recording: the first byte picks the unit, order and rate (0 = rad, order 1, 1 deg/s;
+# 0x80 = 100 deg/s); then a raw output recording of the campaign.
+for f in fixtures/campaign/piga_100.0000deg_s.csv fixtures/campaign/piga_200.0000deg_s.csv; do
+  n=$(basename "$f" .csv)
+  { printf '\200'; head -n 300 "$f"; } > "$c/piga_recording/fixture-$n"
 done
 echo "seeded $(find "$c" -type f | wc -l) corpus files under $c"

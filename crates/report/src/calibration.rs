@@ -4,6 +4,13 @@ use std::fmt::Write as _;
 
 use pipeline::{BudgetLine, CalibrationResults, Coefficient, DegreesOfFreedom};
 
+/// A rate to six decimals at most, trailing zeros dropped (a measured rate is not exactly
+/// the declared one).
+fn rate(rate_deg_s: f64) -> String {
+    let text = format!("{rate_deg_s:.6}");
+    text.trim_end_matches('0').trim_end_matches('.').to_owned()
+}
+
 fn dof(d: DegreesOfFreedom) -> String {
     match d {
         DegreesOfFreedom::Finite(nu) => format!("{nu:.1}"),
@@ -193,7 +200,7 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         let _ = writeln!(
             out,
             "| {} | {:.9e} | {} | {:+.2e} | {} | {} | {} |",
-            r.rate_deg_s,
+            rate(r.rate_deg_s),
             r.output_rad_s,
             r.u_rad_s
                 .map_or_else(|| "—".to_owned(), |u| format!("{u:.2e}")),
