@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 c=fuzz/corpus
-mkdir -p "$c"/{csv_probe,number,piga_table,study_ron,scenario_ron,strd,lstsq,harmonics_analyze,piga_recording}
+mkdir -p "$c"/{csv_probe,number,piga_table,study_ron,scenario_ron,strd,lstsq,harmonics_analyze,piga_recording,binary}
 
 # csv_probe: the first byte picks the format (0 = comma, µm, degrees); then a recording.
 # The committed recordings are cut to their first 200 lines: the shape matters, not the length.
@@ -46,5 +46,14 @@ done
 for f in fixtures/campaign/piga_100.0000deg_s.csv fixtures/campaign/piga_200.0000deg_s.csv; do
   n=$(basename "$f" .csv)
   { printf '\200'; head -n 300 "$f"; } > "$c/piga_recording/fixture-$n"
+done
+# binary: the first byte picks the reader (bit 0: MAT), the group (bit 1: top level) and
+# the time channel (bit 2: none); then the fixtures written by npTDMS and scipy.
+for f in fixtures/recordings/binary/*.tdms; do
+  { printf '\000'; cat "$f"; } > "$c/binary/$(basename "$f")"
+  { printf '\004'; cat "$f"; } > "$c/binary/no-time-$(basename "$f")"
+done
+for f in fixtures/recordings/binary/*.mat; do
+  { printf '\001'; cat "$f"; } > "$c/binary/$(basename "$f")"
 done
 echo "seeded $(find "$c" -type f | wc -l) corpus files under $c"
