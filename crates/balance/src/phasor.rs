@@ -158,6 +158,9 @@ impl Complex {
     pub(crate) fn abs(self) -> f64 {
         self.re.hypot(self.im)
     }
+    pub(crate) fn add(self, o: Self) -> Self {
+        Self::new(self.re + o.re, self.im + o.im)
+    }
     pub(crate) fn sub(self, o: Self) -> Self {
         Self::new(self.re - o.re, self.im - o.im)
     }
