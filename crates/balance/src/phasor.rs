@@ -94,6 +94,12 @@ impl Phasor {
         }
     }
 
+    /// `self + other` for independent phasors (the covariances add).
+    #[must_use]
+    pub fn plus(&self, other: &Self) -> Self {
+        self.plus_independent(other)
+    }
+
     /// The complex product `c·self`, with `c` taken as exact.
     #[must_use]
     pub(crate) fn times(&self, c: Complex) -> Self {

@@ -2,18 +2,215 @@
 //! in results.json's terms.
 
 use balance::{
-    CalibrationContext, Correction, CorrectionPlane, Fields, Phasor, PhasorFit, Prediction,
-    ProbePhase, ProbePoint, TrialMass, fit_phasors, influence_correction, stiffness_correction,
+    AxisMotion, CalibrationContext, Correction, CorrectionPlane, Fields, HeightPlane, Phasor,
+    PhasorFit, Prediction, ProbePhase, ProbePlane, ProbePoint, Stiffness, TrialMass,
+    TwoPlaneCorrection, TwoPlaneFields, axis_motion, fit_phasors, influence_correction,
+    static_couple, stiffness_correction, two_plane_influence_correction,
+    two_plane_stiffness_correction,
 };
 use harmonics::LeverGeometry;
 
 use crate::results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, DynamicPhasor, Influence,
-    PhaseResults, PredictedResult, SplitMass, StaticPhasor, StiffnessResult,
+    PhaseResults, PhasorResult, PlaneCorrection, PredictedResult, SplitMass, StaticPhasor,
+    StiffnessResult, TwoPlaneCorrectionResult, TwoPlaneResults,
 };
 
 /// What one probe plane cannot separate, stated in the results.
 pub(crate) const ONE_PLANE: &str = "one probe plane: the first-harmonic motion is taken as a cone about the tilt pivot (eq. 22), so translation and tilt, static and couple unbalance, are not separated; the correction is a single-plane one";
+
+/// What two probe planes separate, stated in the results.
+pub(crate) const TWO_PLANES: &str = "two probe planes: the first-harmonic motion is the spindle axis as a line, translation at the PIGA plane plus tilt times height (eq. 5), with no cone assumption (`two_plane`); `static`, `dynamic`, `correction` and `predicted` are the first probe's single-plane reading through the cone of eq. 22, kept for comparison";
+
+type Failure = (String, balance::BalanceError);
+
+/// The two-plane part of the advisor: translation and tilt, static and couple unbalance,
+/// the two-plane correction and its check.
+fn two_planes(
+    b: &BalanceInputs,
+    q: &SecondProbeInputs,
+    phases: &[PhaseResults],
+    s: &Setting,
+    context: &CalibrationContext,
+    fit_with: &dyn Fn(usize, LeverGeometry) -> Result<PhasorFit, Failure>,
+) -> Result<TwoPlaneResults, Failure> {
+    // The second probe's fits use only their probe-plane phasors: a lever of ratio 1.
+    let second_lever = LeverGeometry {
+        pivot_to_probe_mm: 1.0,
+        probe_to_piga_mm: 0.0,
+        probe_direction: q.probe_direction,
+    };
+    let heights_m = [-s.lever.probe_to_piga_mm * 1e-3, -q.probe_to_piga_mm * 1e-3];
+    let field = "balance.second_probe";
+    let motion = |i: usize| -> Result<AxisMotion, Failure> {
+        let f1 = fit_with(i, s.lever)?;
+        let j = q.phase_of[&i];
+        let f2 = fit_with(j, second_lever)?;
+        axis_motion(
+            &ProbePlane {
+                fit: &f1,
+                height_m: heights_m[0],
+            },
+            &ProbePlane {
+                fit: &f2,
+                height_m: heights_m[1],
+            },
+            field,
+        )
+        .map_err(|e| (field.to_owned(), e))
+    };
+    let at = |f: &'static str| move |e| (f.to_owned(), e);
+    let m0 = motion(b.initial)?;
+    let stiffness = match (b.radial_stiffness_n_m, b.angular_stiffness_n_m_rad) {
+        (Some(radial_n_m), Some(angular_n_m_rad)) => Some(Stiffness {
+            radial_n_m,
+            angular_n_m_rad,
+        }),
+        _ => None,
+    };
+    let fields = TwoPlaneFields {
+        trials: ["balance.trial", "balance.two_plane.trial"],
+        trial_masses: ["balance.trial_mass", "balance.two_plane.trial_mass"],
+        planes: [
+            "balance.two_plane.heights_m.0",
+            "balance.two_plane.heights_m.1",
+        ],
+        context: "balance",
+    };
+    let mut corrections = Vec::new();
+    let mut from_influence = None;
+    if let Some(t) = &b.two_plane {
+        if let (Some((ta, ma)), Some((tb, mb))) = (b.trial, t.trial) {
+            let (xa, xb) = (motion(ta)?, motion(tb)?);
+            let c = two_plane_influence_correction(
+                &m0,
+                [&xa, &xb],
+                [&ma, &mb],
+                &t.planes,
+                context,
+                &fields,
+            )
+            .map_err(at("balance.two_plane"))?;
+            from_influence = Some(unbalance_of(&c, &t.planes));
+            corrections.push(two_plane_result("influence_coefficient", &c, &t.planes));
+        }
+        if let Some(k) = &stiffness {
+            let c = two_plane_stiffness_correction(&m0, k, "balance", &t.planes, context, &fields)
+                .map_err(at("balance.two_plane"))?;
+            corrections.push(two_plane_result("stiffness_model", &c, &t.planes));
+        }
+    }
+    // static and couple unbalance: by the stiffnesses (eq. 1–2), else from the influence
+    // correction (the unbalance it cancels)
+    let unbalance = match &stiffness {
+        Some(k) => {
+            let sc = static_couple(&m0, k, "balance").map_err(at("balance"))?;
+            Some(("stiffness_model", sc.static_kg_m, sc.couple_kg_m2))
+        }
+        None => from_influence.map(|(st, co)| ("influence_coefficient", st, co)),
+    };
+    let check = match (b.check, corrections.first()) {
+        (Some(i), Some(first)) => {
+            let mc = motion(i)?;
+            let t = mc.dynamic.a;
+            let c_r_m_s2 = t.x * 1e-6;
+            let c_r_u_m_s2 = t.covariance[0][0].max(0.0).sqrt() * 1e-6;
+            let p = &first.predicted;
+            let sigma = p.c_r_u_m_s2.hypot(c_r_u_m_s2);
+            let reduction = m0.dynamic.a.x / t.x;
+            Some(CheckResult {
+                phase: phases[i].name.clone(),
+                c_r_m_s2,
+                c_r_u_m_s2,
+                z: if sigma > 0.0 {
+                    (c_r_m_s2 - p.c_r_m_s2) / sigma
+                } else {
+                    0.0
+                },
+                reduction: if reduction.is_finite() {
+                    reduction
+                } else {
+                    f64::MAX
+                },
+            })
+        }
+        _ => None,
+    };
+    let t = m0.dynamic.a;
+    Ok(TwoPlaneResults {
+        probe_heights_m: heights_m,
+        second_probe_phase: phases[q.phase_of[&b.initial]].name.clone(),
+        static_translation_um: phasor_result(&m0.static_translation_um),
+        static_tilt_urad: phasor_result(&m0.static_tilt_urad),
+        dynamic_translation_um_s2: phasor_result(&t),
+        dynamic_tilt_urad_s2: phasor_result(&m0.dynamic.b),
+        c_r_m_s2: t.x * 1e-6,
+        c_r_u_m_s2: t.covariance[0][0].max(0.0).sqrt() * 1e-6,
+        unbalance_method: unbalance.map(|u| u.0.to_owned()),
+        static_kg_m: unbalance.map(|u| phasor_result(&u.1)),
+        couple_kg_m2: unbalance.map(|u| phasor_result(&u.2)),
+        per_rate: m0
+            .per_rate
+            .iter()
+            .map(|p| {
+                [
+                    p.rate_rad_s.to_degrees(),
+                    p.translation_um.x,
+                    p.translation_um.y,
+                    p.tilt_urad.x,
+                    p.tilt_urad.y,
+                ]
+            })
+            .collect(),
+        corrections,
+        check,
+    })
+}
+
+/// The static and couple unbalance a two-plane correction cancels: `−(U_A + U_B)` and
+/// `−(z_A·U_A + z_B·U_B)`.
+fn unbalance_of(c: &TwoPlaneCorrection, planes: &[HeightPlane; 2]) -> (Phasor, Phasor) {
+    let [a, b] = [&c.planes[0].unbalance_kg_m, &c.planes[1].unbalance_kg_m];
+    // the two planes' unbalances are correlated; their joint covariance is not kept, so the
+    // sums take them as independent (an upper bound for positively correlated errors)
+    let st = a.scaled(-1.0).plus(&b.scaled(-1.0));
+    let co = a
+        .scaled(-planes[0].height_m)
+        .plus(&b.scaled(-planes[1].height_m));
+    (st, co)
+}
+
+fn two_plane_result(
+    method: &str,
+    c: &TwoPlaneCorrection,
+    planes: &[HeightPlane; 2],
+) -> TwoPlaneCorrectionResult {
+    TwoPlaneCorrectionResult {
+        method: method.to_owned(),
+        planes: c
+            .planes
+            .iter()
+            .zip(planes)
+            .map(|(k, p)| PlaneCorrection {
+                height_m: p.height_m,
+                correction: correction_result(method, k),
+            })
+            .collect(),
+        predicted: predicted_result(&c.predicted),
+        residual_tilt_u_urad_s2: c.residual_tilt_urad_s2.max_sigma(),
+    }
+}
+
+fn phasor_result(p: &Phasor) -> PhasorResult {
+    PhasorResult {
+        magnitude: p.magnitude(),
+        magnitude_u: p.magnitude_sigma(),
+        azimuth_deg: p.azimuth_deg(),
+        azimuth_u_deg: p.azimuth_sigma_deg(),
+        x: p.x,
+        y: p.y,
+    }
+}
 
 /// The validated balance section.
 #[derive(Debug, Clone)]
@@ -27,6 +224,29 @@ pub(crate) struct BalanceInputs {
     pub(crate) rotor_mass_kg: Option<f64>,
     /// Index of the check phase.
     pub(crate) check: Option<usize>,
+    /// The second probe, when there is one.
+    pub(crate) second: Option<SecondProbeInputs>,
+    pub(crate) angular_stiffness_n_m_rad: Option<f64>,
+    /// The two-plane correction, when configured (with a second probe).
+    pub(crate) two_plane: Option<TwoPlaneInputs>,
+}
+
+/// The validated second probe.
+#[derive(Debug, Clone)]
+pub(crate) struct SecondProbeInputs {
+    pub(crate) probe_to_piga_mm: f64,
+    pub(crate) probe_direction: harmonics::ProbeDirection,
+    /// Phase index (first probe) → phase index of the same run seen by the second probe.
+    pub(crate) phase_of: std::collections::HashMap<usize, usize>,
+}
+
+/// The validated two-plane section.
+#[derive(Debug, Clone)]
+pub(crate) struct TwoPlaneInputs {
+    /// Planes A and B.
+    pub(crate) planes: [balance::HeightPlane; 2],
+    /// The trial run in plane B and its mass.
+    pub(crate) trial: Option<(usize, TrialMass)>,
 }
 
 /// The study's numbers the advisor needs.
@@ -44,27 +264,29 @@ pub(crate) fn run(
     phases: &[PhaseResults],
     s: &Setting,
 ) -> Result<BalanceResults, (String, balance::BalanceError)> {
-    let fit = |i: usize| -> Result<PhasorFit, (String, balance::BalanceError)> {
-        let points: Vec<ProbePoint> = phases[i]
-            .points
-            .iter()
-            .filter_map(|p| {
-                Some(ProbePoint {
-                    rate_rad_s: p.rate_rad_s,
-                    dc1_um: p.dc1_um?,
-                    ds1_um: p.ds1_um?,
-                    sigma_um: p.radius_error_sigma_um.map(|r| r / s.lever_ratio),
+    let fit_with =
+        |i: usize, lever: LeverGeometry| -> Result<PhasorFit, (String, balance::BalanceError)> {
+            let points: Vec<ProbePoint> = phases[i]
+                .points
+                .iter()
+                .filter_map(|p| {
+                    Some(ProbePoint {
+                        rate_rad_s: p.rate_rad_s,
+                        dc1_um: p.dc1_um?,
+                        ds1_um: p.ds1_um?,
+                        sigma_um: p.radius_error_sigma_um.map(|r| r / s.lever_ratio),
+                    })
                 })
+                .collect();
+            let field = format!("phases[{i}]");
+            fit_phasors(&ProbePhase {
+                field: &field,
+                points: &points,
+                lever,
             })
-            .collect();
-        let field = format!("phases[{i}]");
-        fit_phasors(&ProbePhase {
-            field: &field,
-            points: &points,
-            lever: s.lever,
-        })
-        .map_err(|e| (field.clone(), e))
-    };
+            .map_err(|e| (field.clone(), e))
+        };
+    let fit = |i: usize| fit_with(i, s.lever);
     let top_rate_rad_s = phases[b.initial]
         .points
         .iter()
@@ -176,10 +398,22 @@ pub(crate) fn run(
         ..c
     });
 
+    let two_plane = b
+        .second
+        .as_ref()
+        .map(|q| two_planes(b, q, phases, s, &context, &fit_with))
+        .transpose()?;
+
     Ok(BalanceResults {
         initial: phases[b.initial].name.clone(),
         trial: b.trial.map(|(t, _)| phases[t].name.clone()),
-        assumption: ONE_PLANE.to_owned(),
+        assumption: if two_plane.is_some() {
+            TWO_PLANES
+        } else {
+            ONE_PLANE
+        }
+        .to_owned(),
+        two_plane,
         static_phasor: static_phasor(&initial),
         dynamic: dynamic_phasor(&initial),
         phases: fitted

@@ -79,6 +79,52 @@ pub struct BalanceConfig {
     /// A phase run after the correction, by name, compared with the prediction.
     #[serde(default)]
     pub check: Option<String>,
+    /// A second probe at another height (absent: one probe, the cone assumption of eq. 22):
+    /// its height and, for each phase above, the phase that holds its first harmonics.
+    #[serde(default)]
+    pub second_probe: Option<SecondProbeConfig>,
+    /// Angular stiffness `k_θ` of the spindle bearing, N·m/rad: with `radial_stiffness_n_m`
+    /// and a second probe, the couple unbalance (eq. 2) and the stiffness-model two-plane
+    /// correction.
+    #[serde(default)]
+    pub angular_stiffness_n_m_rad: Option<f64>,
+    /// The two-plane correction's planes and its second trial run (needs `second_probe`).
+    #[serde(default)]
+    pub two_plane: Option<TwoPlaneConfig>,
+}
+
+/// The second probe of a balance section (`second_probe: (...)`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SecondProbeConfig {
+    /// Height from the second probe's plane up to the PIGA plane, mm (positive below it, as
+    /// `lever.probe_to_piga_mm`; it must differ from the first probe's).
+    pub probe_to_piga_mm: f64,
+    /// Its measuring direction (default: against O1X1).
+    #[serde(default)]
+    pub probe_direction: ProbeDirectionName,
+    /// For each phase the advisor uses (`initial`, `trial`, `check`, `two_plane.trial`), by
+    /// name, the phase of the same run seen by the second probe, e.g.
+    /// `{"before": "before_lower"}`.
+    pub phases: std::collections::BTreeMap<String, String>,
+}
+
+/// The two-plane correction (`two_plane: (...)`): planes A and B, and the trial run in B
+/// (the balance section's `trial` and `trial_mass` are the trial run in A).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TwoPlaneConfig {
+    /// Heights of correction planes A and B above the PIGA plane, m (distinct).
+    pub heights_m: (f64, f64),
+    /// Radius at which masses go in plane B, m (default: `correction_radius_m`).
+    #[serde(default)]
+    pub radius_b_m: Option<f64>,
+    /// The phase run with `trial_mass` in plane B (alone), by name.
+    #[serde(default)]
+    pub trial: Option<String>,
+    /// The trial mass of that run.
+    #[serde(default)]
+    pub trial_mass: Option<TrialMassConfig>,
 }
 
 /// A trial mass: mass, radius from the axis and azimuth in `O2` (from `O2X2`, the arm, towards
@@ -92,7 +138,8 @@ pub struct TrialMassConfig {
     pub radius_m: f64,
     /// Azimuth, deg.
     pub azimuth_deg: f64,
-    /// Height of the trial mass above the pivot, m (recorded; one probe plane cannot use it).
+    /// Height of the trial mass above the PIGA plane, m (recorded; the two-plane correction
+    /// takes its planes' heights from `two_plane.heights_m`).
     #[serde(default)]
     pub height_m: Option<f64>,
 }

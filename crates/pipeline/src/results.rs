@@ -532,6 +532,88 @@ pub struct BalanceResults {
     pub stiffness: Option<StiffnessResult>,
     /// The check run against the prediction, when configured.
     pub check: Option<CheckResult>,
+    /// Two probe planes: translation and tilt, static and couple unbalance, the two-plane
+    /// correction (absent with one probe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub two_plane: Option<TwoPlaneResults>,
+}
+
+/// A phasor in `O2` with standard uncertainties; its unit is named by the key holding it
+/// (`static_translation_um`, `couple_kg_m2`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PhasorResult {
+    /// Magnitude, in the key's unit.
+    pub magnitude: f64,
+    /// Its standard uncertainty.
+    pub magnitude_u: f64,
+    /// Azimuth from O2X2 towards O2Y2, deg.
+    pub azimuth_deg: f64,
+    /// Its standard uncertainty, deg.
+    pub azimuth_u_deg: f64,
+    /// Component along O2X2.
+    pub x: f64,
+    /// Component along O2Y2.
+    pub y: f64,
+}
+
+/// Two probe planes (`balance.two_plane`): the axis as a line, no cone assumption.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TwoPlaneResults {
+    /// Heights of the first and the second probe plane above the PIGA plane, m.
+    pub probe_heights_m: [f64; 2],
+    /// The second probe's phase of the initial run.
+    pub second_probe_phase: String,
+    /// Static translation of the axis at the PIGA plane, µm.
+    pub static_translation_um: PhasorResult,
+    /// Static lean of the axis, µrad.
+    pub static_tilt_urad: PhasorResult,
+    /// Dynamic (∝ ω²) translation at the PIGA plane, µm·s²; its `x` is C_r.
+    pub dynamic_translation_um_s2: PhasorResult,
+    /// Dynamic lean, µrad·s².
+    pub dynamic_tilt_urad_s2: PhasorResult,
+    /// C_r at the PIGA plane from the two planes, m·s².
+    pub c_r_m_s2: f64,
+    /// Its standard uncertainty, m·s².
+    pub c_r_u_m_s2: f64,
+    /// How static and couple unbalance were obtained: `stiffness_model` (both stiffnesses
+    /// given) or `influence_coefficient` (from the two-plane correction); absent: neither.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unbalance_method: Option<String>,
+    /// Static unbalance `Σ m·r·e^{iθ}`, kg·m.
+    #[serde(rename = "static", default, skip_serializing_if = "Option::is_none")]
+    pub static_kg_m: Option<PhasorResult>,
+    /// Couple unbalance about the PIGA plane `Σ m·r·l·e^{iθ}`, kg·m².
+    #[serde(rename = "couple", default, skip_serializing_if = "Option::is_none")]
+    pub couple_kg_m2: Option<PhasorResult>,
+    /// Per rate: `[rate_deg_s, translation x µm, y µm, tilt x µrad, y µrad]`.
+    pub per_rate: Vec<[f64; 5]>,
+    /// The two-plane corrections (influence coefficient first, then stiffness model).
+    pub corrections: Vec<TwoPlaneCorrectionResult>,
+    /// The check run's C_r from the two planes against the first correction's prediction.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check: Option<CheckResult>,
+}
+
+/// A two-plane correction.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TwoPlaneCorrectionResult {
+    /// `influence_coefficient` or `stiffness_model`.
+    pub method: String,
+    /// Planes A and B.
+    pub planes: Vec<PlaneCorrection>,
+    /// What it leaves at the PIGA plane.
+    pub predicted: PredictedResult,
+    /// Standard uncertainty of the residual dynamic lean (largest axis), µrad·s².
+    pub residual_tilt_u_urad_s2: f64,
+}
+
+/// The correction in one plane.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlaneCorrection {
+    /// Height of the plane above the PIGA plane, m.
+    pub height_m: f64,
+    /// The mass, radius and azimuth in it.
+    pub correction: CorrectionResult,
 }
 
 /// A static phasor, µm, with standard uncertainties.
