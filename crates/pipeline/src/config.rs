@@ -47,6 +47,26 @@ pub struct StudyConfig {
     /// k2 error it leaves (absent: not run; `docs/BALANCING.md`).
     #[serde(default)]
     pub balance: Option<BalanceConfig>,
+    /// The counterweight one published change of radius error stands for (the paper check:
+    /// a `radius_change` phase and a stated radial stiffness; absent: not run).
+    #[serde(default)]
+    pub counterweight: Option<CounterweightConfig>,
+}
+
+/// The counterweight section (`counterweight: (...)`): what a `radius_change` phase, one
+/// number, determines of the correction (eq. 1, 19), with a stated radial stiffness.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CounterweightConfig {
+    /// The `radius_change` phase, by name.
+    pub phase: String,
+    /// Radial stiffness `k_r` of the spindle bearing, N/m (an input: the paper gives none).
+    pub radial_stiffness_n_m: f64,
+    /// Where that stiffness comes from (shown beside it in the report).
+    #[serde(default)]
+    pub stiffness_source: String,
+    /// Radius at which the counterweight would be mounted, m.
+    pub correction_radius_m: f64,
 }
 
 /// The balance section (`balance: (...)`): which phases were run without and with a trial

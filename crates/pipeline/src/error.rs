@@ -318,6 +318,9 @@ pub enum UnsupportedReason {
     /// Correction planes A and B at one height.
     #[error("the two correction planes must be at different heights")]
     PlanesAtOneHeight,
+    /// The counterweight section reads one published change of radius error.
+    #[error("the counterweight section needs a phase given as radius_change")]
+    CounterweightNeedsRadiusChange,
 }
 
 impl PipelineError {

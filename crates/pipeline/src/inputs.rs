@@ -84,6 +84,8 @@ pub struct Inputs {
     pub(crate) type_b_given: bool,
     /// The balance section, validated.
     pub(crate) balance: Option<crate::balancing::BalanceInputs>,
+    /// The counterweight section, validated.
+    pub(crate) counterweight: Option<crate::balancing::CounterweightInputs>,
 }
 
 /// One validated phase.
@@ -212,6 +214,11 @@ impl Inputs {
             .as_ref()
             .map(|b| check.balance(b, &config.phases, &names, config.lever.probe_to_piga_mm))
             .transpose()?;
+        let counterweight = config
+            .counterweight
+            .as_ref()
+            .map(|c| check.counterweight(c, &config.phases, &names))
+            .transpose()?;
         let phases = load_phases(&config.phases, checked, base, source, load)?;
         let calibration = match (config.calibration.as_ref(), calibration_config) {
             (Some(c), Some((phase, k1))) => {
@@ -234,6 +241,7 @@ impl Inputs {
             type_b_given: type_b.is_some(),
             type_b: type_b.unwrap_or_default(),
             balance,
+            counterweight,
         })
     }
 
@@ -980,6 +988,47 @@ impl Check<'_> {
             },
             rotor_mass_kg: b.rotor_mass_kg,
             check,
+        })
+    }
+
+    /// The counterweight section: a known `radius_change` phase, a positive stiffness and
+    /// radius.
+    fn counterweight(
+        &self,
+        c: &crate::config::CounterweightConfig,
+        phases: &[crate::config::PhaseConfig],
+        names: &HashMap<&str, usize>,
+    ) -> Result<crate::balancing::CounterweightInputs> {
+        let Some(&i) = names.get(c.phase.as_str()) else {
+            return Err(PipelineError::UnknownPhase {
+                path: self.path.to_owned(),
+                field: "counterweight.phase".to_owned(),
+                name: c.phase.clone(),
+                known: sorted_names(names),
+            });
+        };
+        let Points::RadiusChange {
+            from_rate_deg_s,
+            to_rate_deg_s,
+            change_um,
+        } = phases[i].points
+        else {
+            return Err(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: "counterweight.phase".to_owned(),
+                reason: UnsupportedReason::CounterweightNeedsRadiusChange,
+            });
+        };
+        self.positive("counterweight.radial_stiffness_n_m", c.radial_stiffness_n_m)?;
+        self.positive("counterweight.correction_radius_m", c.correction_radius_m)?;
+        Ok(crate::balancing::CounterweightInputs {
+            phase: i,
+            from_rate_deg_s,
+            to_rate_deg_s,
+            change_um,
+            radial_stiffness_n_m: c.radial_stiffness_n_m,
+            stiffness_source: c.stiffness_source.clone(),
+            correction_radius_m: c.correction_radius_m,
         })
     }
 

@@ -27,6 +27,9 @@ pub struct StudyResults {
     /// The balance advisor (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub balance: Option<BalanceResults>,
+    /// The counterweight a published change of radius error stands for (when configured).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub counterweight: Option<CounterweightResults>,
 }
 
 /// A diagnostic: the numbers were computed, but something may make them wrong.
@@ -756,4 +759,42 @@ pub struct CheckResult {
     pub z: f64,
     /// `C_r(initial)/C_r(check)`: the reduction achieved.
     pub reduction: f64,
+}
+
+/// What one change of radius error between two rates determines of the correction
+/// (`counterweight` in results.json; the paper check of `docs/BALANCING.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CounterweightResults {
+    /// The `radius_change` phase.
+    pub phase: String,
+    /// The change of radius error, µm.
+    pub change_um: f64,
+    /// The lower rate, deg/s.
+    pub from_rate_deg_s: f64,
+    /// The higher rate, deg/s.
+    pub to_rate_deg_s: f64,
+    /// The stated radial stiffness `k_r`, N/m (a study input).
+    pub radial_stiffness_n_m: f64,
+    /// Where it comes from.
+    pub stiffness_source: String,
+    /// `C_r = Δr/(ω₂² − ω₁²)`: the O2X2 component of the dynamic phasor, m·s².
+    pub c_r_m_s2: f64,
+    /// `Δk2 = k1·C_r·g/R²` (eq. 19), rad/(s·g²).
+    pub delta_k2_rad_s_g2: f64,
+    /// The empirical formula's coefficient, `k_r/(ω₂² − ω₁²)`: unbalance along O2X2 per µm
+    /// of radius change, g·mm per µm.
+    pub unbalance_per_um_g_mm: f64,
+    /// The unbalance along O2X2 the change stands for, `k_r·C_r` (eq. 1), g·mm: the
+    /// imbalance's magnitude if it lies on the arm's line, a lower bound otherwise.
+    pub unbalance_x_g_mm: f64,
+    /// The counterweight under that assumption, kg at `correction_radius_m`.
+    pub correction_mass_kg: f64,
+    /// The counterweight's radius, m.
+    pub correction_radius_m: f64,
+    /// Its azimuth under that assumption, deg (180 for a radius that grows with rate).
+    pub correction_azimuth_deg: f64,
+    /// What the one number determines.
+    pub determined: Vec<String>,
+    /// What it does not.
+    pub not_determined: Vec<String>,
 }

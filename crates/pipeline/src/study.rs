@@ -159,6 +159,24 @@ pub fn run_with_progress(
         })
         .transpose()?;
     warnings.extend(calibration_warnings);
+    let counterweight = inputs
+        .counterweight
+        .as_ref()
+        .map(|c| {
+            crate::balancing::counterweight(
+                c,
+                &phases[c.phase].name,
+                inputs.k1_rad_s_g,
+                inputs.radius_m,
+                inputs.g_m_s2,
+            )
+            .map_err(|source| PipelineError::Balance {
+                path: inputs.source.clone(),
+                field: "counterweight".to_owned(),
+                source: Box::new(source),
+            })
+        })
+        .transpose()?;
     let results = StudyResults {
         study: inputs.name.clone(),
         inputs: StudyInputs {
@@ -172,6 +190,7 @@ pub fn run_with_progress(
         calibration,
         warnings,
         balance,
+        counterweight,
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {

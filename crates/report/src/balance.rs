@@ -5,7 +5,10 @@ use std::fmt::Write as _;
 use plotters::prelude::*;
 
 use crate::error::{ReportError, Result};
-use pipeline::{BalanceResults, CorrectionResult, PhasorResult, PredictedResult, TwoPlaneResults};
+use pipeline::{
+    BalanceResults, CorrectionResult, CounterweightResults, PhasorResult, PredictedResult,
+    TwoPlaneResults,
+};
 
 fn opt(value: Option<f64>, fmt: impl Fn(f64) -> String) -> String {
     value.map_or_else(|| "—".to_owned(), fmt)
@@ -216,6 +219,43 @@ fn two_plane_section(out: &mut String, t: &TwoPlaneResults) {
             "\nCheck run `{}` (two planes): C_r = {:.4e} ± {:.4e} m·s², {:.3}σ from the prediction; C_r fell by {:.1}×.",
             c.phase, c.c_r_m_s2, c.c_r_u_m_s2, c.z, c.reduction
         );
+    }
+    let _ = writeln!(out);
+}
+
+/// Appends the counterweight section (the paper check) to report.md.
+pub(crate) fn counterweight_section(out: &mut String, c: &CounterweightResults) {
+    let _ = writeln!(out, "## Counterweight from one change of radius error\n");
+    let _ = writeln!(
+        out,
+        "Phase `{}` gives only the change of radius error between {} and {} deg/s, {} µm. \
+         With the radial stiffness k_r = {:e} N/m{}, the stiffness model (eq. 1) turns it into \
+         the \"empirical formula\" of a counterweight: {:.4e} g·mm of unbalance per µm, \
+         {:.4e} g·mm in all ({:.4} kg at {} m, at {}°, if the imbalance lies on the arm's line). \
+         Procedure: `docs/BALANCING.md`.\n",
+        c.phase,
+        c.from_rate_deg_s,
+        c.to_rate_deg_s,
+        c.change_um,
+        c.radial_stiffness_n_m,
+        if c.stiffness_source.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", c.stiffness_source)
+        },
+        c.unbalance_per_um_g_mm,
+        c.unbalance_x_g_mm,
+        c.correction_mass_kg,
+        c.correction_radius_m,
+        c.correction_azimuth_deg,
+    );
+    let _ = writeln!(out, "What the one number determines:\n");
+    for d in &c.determined {
+        let _ = writeln!(out, "- {d}");
+    }
+    let _ = writeln!(out, "\nWhat it does not determine:\n");
+    for d in &c.not_determined {
+        let _ = writeln!(out, "- {d}");
     }
     let _ = writeln!(out);
 }

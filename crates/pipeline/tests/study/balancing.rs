@@ -445,3 +445,61 @@ fn two_plane_errors_name_the_field() {
             if field == "balance.two_plane.heights_m"
     ));
 }
+
+/// The paper study's counterweight section: the one published change with the study's
+/// stated stiffness; the stiffness is an input (the mass scales with it), and a phase that is
+/// not a radius change is a typed error.
+#[test]
+fn the_counterweight_of_the_papers_pre_balance_change() {
+    let path = root().join("fixtures/studies/paper-2025.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let run_text = |t: &str| {
+        let config = StudyConfig::from_ron(t, &path)?;
+        let inputs = pipeline::Inputs::new(config, &path, &pipeline::Files)?;
+        pipeline::run(&inputs)
+    };
+    let r = run_text(&text).unwrap();
+    let c = r.counterweight.expect("configured");
+    let pre = r.phases.iter().find(|p| p.name == "pre_balance").unwrap();
+    assert_eq!(c.c_r_m_s2, pre.fit.c_r_m_s2);
+    assert!(
+        (c.unbalance_x_g_mm - 19.4640 * c.unbalance_per_um_g_mm).abs() < 1e-6 * c.unbalance_x_g_mm
+    );
+    assert!((c.correction_mass_kg - c.unbalance_x_g_mm * 1e-6 / 2.5).abs() < 1e-9);
+    assert_eq!(c.correction_azimuth_deg, 180.0);
+    assert!(c.not_determined.iter().any(|s| s.contains("azimuth")));
+    assert!(
+        c.not_determined
+            .iter()
+            .any(|s| s.contains("static and dynamic"))
+    );
+    assert!(c.not_determined.iter().any(|s| s.contains("plane")));
+    // twice the stiffness, twice the counterweight
+    let doubled =
+        run_text(&text.replace("radial_stiffness_n_m: 5.0e7", "radial_stiffness_n_m: 1.0e8"))
+            .unwrap()
+            .counterweight
+            .unwrap();
+    assert!((doubled.correction_mass_kg / c.correction_mass_kg - 2.0).abs() < 1e-12);
+    // a first-harmonic phase is not one number
+    let err = run_text(&text.replace(
+        "phase: \"pre_balance\",\n        radial",
+        "phase: \"post_balance\",\n        radial",
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(
+            &err,
+            PipelineError::Unsupported { field, reason: UnsupportedReason::CounterweightNeedsRadiusChange, .. }
+                if field == "counterweight.phase"
+        ),
+        "{err:?}"
+    );
+    let err = run_text(&text.replace("radial_stiffness_n_m: 5.0e7", "radial_stiffness_n_m: 0.0"))
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        PipelineError::InvalidField { field, reason: InvalidReason::NotPositive, .. }
+            if field == "counterweight.radial_stiffness_n_m"
+    ));
+}
