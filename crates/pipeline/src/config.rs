@@ -405,6 +405,12 @@ pub struct HarmonicPoint {
     pub dc1_um: f64,
     /// Sine coefficient of the probe's first harmonic, µm.
     pub ds1_um: f64,
+    /// Standard uncertainty of `dc1_um` and of `ds1_um` (each; taken equal and independent,
+    /// as for white noise), µm (> 0; absent: unknown). The balance advisor's phasor fit weighs
+    /// by `1/σ²` when every point of a phase has one, and `inverse_variance` weighting of the
+    /// radius-error fit may use them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma_um: Option<f64>,
 }
 
 /// Radius error at the PIGA plane at one rate.

@@ -273,8 +273,11 @@ pub enum InvalidReason {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum UnsupportedReason {
-    /// Inverse-variance weighting needs each point's σ, which only recordings give.
-    #[error("inverse_variance weighting needs points given as recordings")]
+    /// Inverse-variance weighting needs each point's σ, which recordings give and
+    /// first-harmonic points may (`sigma_um`).
+    #[error(
+        "inverse_variance weighting needs points given as recordings, or first_harmonic points each with sigma_um"
+    )]
     WeightingNeedsRecordings,
     /// A recording's harmonic fit left no residual, so it has no σ to weigh it by.
     #[error(

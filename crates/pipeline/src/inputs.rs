@@ -628,9 +628,12 @@ impl Check<'_> {
         model: RadiusModelName,
     ) -> Result<(Weighting, Checked)> {
         let list = format!("{section}.points");
-        if phase.weighting == Weighting::InverseVariance
-            && !matches!(phase.points, Points::Recordings(_))
-        {
+        let every_sigma = match &phase.points {
+            Points::Recordings(_) => true,
+            Points::FirstHarmonic(points) => points.iter().all(|p| p.sigma_um.is_some()),
+            Points::RadiusError(_) | Points::RadiusChange { .. } => false,
+        };
+        if phase.weighting == Weighting::InverseVariance && !every_sigma {
             return Err(PipelineError::Unsupported {
                 path: self.path.to_owned(),
                 field: format!("{section}.weighting"),
@@ -643,6 +646,9 @@ impl Check<'_> {
                     self.rate(format!("{list}[{i}].rate_deg_s"), p.rate_deg_s)?;
                     self.finite(format!("{list}[{i}].dc1_um"), p.dc1_um)?;
                     self.finite(format!("{list}[{i}].ds1_um"), p.ds1_um)?;
+                    if let Some(sigma) = p.sigma_um {
+                        self.positive(&format!("{list}[{i}].sigma_um"), sigma)?;
+                    }
                 }
                 self.unique_rates(&list, &rates_of(points, |p| p.rate_deg_s))?;
                 (

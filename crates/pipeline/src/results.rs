@@ -82,13 +82,15 @@ pub struct PointResult {
     pub beta_deg: Option<f64>,
     /// Radius error `Δr_xd + Δr_xs` at the PIGA plane, µm.
     pub radius_error_um: f64,
-    /// Standard error of `dc1_um` across revolutions (recordings only), µm.
+    /// Standard error of `dc1_um` across revolutions (recordings), or the point's stated
+    /// `sigma_um` (first-harmonic points), µm.
     pub dc1_sigma_um: Option<f64>,
-    /// Standard error of `ds1_um` across revolutions (recordings only), µm.
+    /// Standard error of `ds1_um` across revolutions (recordings), or the point's stated
+    /// `sigma_um` (first-harmonic points), µm.
     pub ds1_sigma_um: Option<f64>,
-    /// Standard error of the radius error from the per-revolution fit residuals (recordings
-    /// only), µm: `lever ratio × √(Σᵣ 2s²/nᵣ)/K` for K revolutions of nᵣ samples and pooled
-    /// residual variance s². Unlike `dc1_sigma_um`, which rests on K − 1 degrees of freedom,
+    /// Standard error of the radius error from the per-revolution fit residuals (recordings),
+    /// µm: `lever ratio × √(Σᵣ 2s²/nᵣ)/K` for K revolutions of nᵣ samples and pooled
+    /// residual variance s²; for first-harmonic points with `sigma_um`, `lever ratio × σ`. Unlike `dc1_sigma_um`, which rests on K − 1 degrees of freedom,
     /// it rests on thousands, so it can weigh the points of a fit.
     pub radius_error_sigma_um: Option<f64>,
     /// Complete revolutions averaged (recordings only).

@@ -503,3 +503,67 @@ fn the_counterweight_of_the_papers_pre_balance_change() {
             if field == "counterweight.radial_stiffness_n_m"
     ));
 }
+
+/// `first_harmonic` points of `S + D·ω²` (probe plane, against O1X1) with a stated σ.
+fn points_with_sigma(sigma: &str) -> String {
+    let mut out = String::from("first_harmonic([");
+    for (k, deg) in [10.0_f64, 60.0, 110.0, 160.0, 200.0].iter().enumerate() {
+        let w = deg.to_radians();
+        // a little scatter (±1e-3 µm) so that the fit has residuals
+        let e = if k % 2 == 0 { 1e-3 } else { -1e-3 };
+        let (x, y) = (2.0 + 0.9 * w * w + e, -1.0 + 0.2 * w * w - e);
+        out.push_str(&format!(
+            "(rate_deg_s: {deg:?}, dc1_um: {:?}, ds1_um: {y:?}{sigma}),",
+            -x
+        ));
+    }
+    out.push_str("])");
+    out
+}
+
+/// `sigma_um` on first-harmonic points: the phasor fit weighs by it (its covariance scales
+/// with σ when the scatter is within it), the points carry it, and σ ≤ 0 names the field.
+#[test]
+fn first_harmonic_points_carry_sigma_for_the_phasor_fit() {
+    let balance = "(initial: \"before\", radial_stiffness_n_m: 5.0e7, correction_radius_m: 2.5)";
+    let fit = |sigma: &str| {
+        let r = run(&study(&[("before", points_with_sigma(sigma))], balance)).unwrap();
+        let p = r.phases[0].points[0];
+        (r.balance.unwrap().phases[0].clone(), p)
+    };
+    let (unweighted, p0) = fit("");
+    assert_eq!(unweighted.reduced_chi, None);
+    assert_eq!(p0.dc1_sigma_um, None);
+    let (one, p1) = fit(", sigma_um: 0.01");
+    let (two, _) = fit(", sigma_um: 0.02");
+    // weighted: χ²/dof is stated and below 1 (scatter 1e-3 against σ 1e-2)
+    let chi = one.reduced_chi.expect("weighted");
+    assert!(chi < 0.2, "{chi}");
+    assert_eq!(p1.dc1_sigma_um, Some(0.01));
+    assert!((p1.radius_error_sigma_um.unwrap() - 0.01 * 1210.0 / 700.0).abs() < 1e-15);
+    // the covariance follows σ (not the scatter): twice σ, twice the uncertainty
+    let ratio = two.dynamic.magnitude_u_um_s2 / one.dynamic.magnitude_u_um_s2;
+    assert!((ratio - 2.0).abs() < 1e-9, "{ratio}");
+    assert!(one.dynamic.magnitude_u_um_s2 > 2.0 * unweighted.dynamic.magnitude_u_um_s2);
+    // inverse_variance weighting of the radius-error fit accepts them
+    let text = study(
+        &[("before", points_with_sigma(", sigma_um: 0.01"))],
+        balance,
+    )
+    .replace(
+        "points: first_harmonic",
+        "weighting: inverse_variance, points: first_harmonic",
+    );
+    assert!(run(&text).is_ok());
+    // σ must be > 0, named by its point
+    let bad = points_with_sigma(", sigma_um: 0.01").replacen("sigma_um: 0.01", "sigma_um: 0.0", 1);
+    let err = run(&study(&[("before", bad)], balance)).unwrap_err();
+    assert!(
+        matches!(
+            &err,
+            PipelineError::InvalidField { field, reason: InvalidReason::NotPositive, .. }
+                if field == "phases[0].points[0].sigma_um"
+        ),
+        "{err:?}"
+    );
+}
