@@ -313,6 +313,27 @@ pub struct TwoPlaneCorrection {
     pub predicted: Prediction,
     /// The residual dynamic lean, µrad·s² (nominally zero; its covariance).
     pub residual_tilt_urad_s2: Phasor,
+    /// `(U_A, U_B)`, kg·m, with their joint covariance.
+    pub unbalance_kg_m: PhasorPair,
+    /// Heights of planes A and B, m.
+    pub heights_m: [f64; 2],
+}
+
+impl TwoPlaneCorrection {
+    /// The unbalance the correction cancels: static `U_s = −(U_A + U_B)` (kg·m) and couple
+    /// about the PIGA plane `U_c = −(z_A·U_A + z_B·U_B)` (kg·m²), with the joint covariance
+    /// of `(U_A, U_B)` propagated (the model-free reading of static and couple unbalance).
+    #[must_use]
+    pub fn cancelled_unbalance(&self) -> StaticCouple {
+        let r = |v: f64| Complex::new(v, 0.0);
+        let [za, zb] = self.heights_m;
+        let m = [[r(-1.0), r(-1.0)], [r(-za), r(-zb)]];
+        let sc = self.unbalance_kg_m.mapped(&m);
+        StaticCouple {
+            static_kg_m: sc.a,
+            couple_kg_m2: sc.b,
+        }
+    }
 }
 
 /// Paths of the two-plane inputs, for errors.
@@ -395,6 +416,8 @@ fn finish(
         planes: [a, b],
         predicted,
         residual_tilt_urad_s2: residual.b,
+        unbalance_kg_m: unbalance,
+        heights_m: [planes[0].height_m, planes[1].height_m],
     };
     let ok = out
         .influence

@@ -91,7 +91,8 @@ fn two_planes(
                 &fields,
             )
             .map_err(at("balance.two_plane"))?;
-            from_influence = Some(unbalance_of(&c, &t.planes));
+            let sc = c.cancelled_unbalance();
+            from_influence = Some((sc.static_kg_m, sc.couple_kg_m2));
             corrections.push(two_plane_result("influence_coefficient", &c, &t.planes));
         }
         if let Some(k) = &stiffness {
@@ -165,19 +166,6 @@ fn two_planes(
         corrections,
         check,
     })
-}
-
-/// The static and couple unbalance a two-plane correction cancels: `−(U_A + U_B)` and
-/// `−(z_A·U_A + z_B·U_B)`.
-fn unbalance_of(c: &TwoPlaneCorrection, planes: &[HeightPlane; 2]) -> (Phasor, Phasor) {
-    let [a, b] = [&c.planes[0].unbalance_kg_m, &c.planes[1].unbalance_kg_m];
-    // the two planes' unbalances are correlated; their joint covariance is not kept, so the
-    // sums take them as independent (an upper bound for positively correlated errors)
-    let st = a.scaled(-1.0).plus(&b.scaled(-1.0));
-    let co = a
-        .scaled(-planes[0].height_m)
-        .plus(&b.scaled(-planes[1].height_m));
-    (st, co)
 }
 
 fn two_plane_result(

@@ -275,3 +275,61 @@ fn probes_at_one_height_name_the_second_probe() {
         "{err}"
     );
 }
+
+#[test]
+fn a_trial_run_that_changes_nothing_is_a_singular_influence_naming_it() {
+    let m0 = motion(&two_probe(51, &[]));
+    let ma = motion(&two_probe(
+        52,
+        &[ImbalanceMass {
+            mass_kg: 8.0,
+            radius_m: 2.5,
+            azimuth_deg: 90.0,
+            arm_m: HEIGHTS_M[0],
+        }],
+    ));
+    let t = TrialMass {
+        mass_kg: 8.0,
+        radius_m: 2.5,
+        azimuth_deg: 90.0,
+    };
+    let fields = TwoPlaneFields {
+        trials: ["balance.trial", "balance.two_plane.trial"],
+        ..TwoPlaneFields::default()
+    };
+    let err =
+        two_plane_influence_correction(&m0, [&ma, &m0], [&t, &t], &planes(), &context(), &fields)
+            .unwrap_err();
+    assert!(
+        matches!(&err, balance::BalanceError::SingularInfluence { field, .. } if field == "balance.two_plane.trial"),
+        "{err}"
+    );
+    // the model-free static and couple unbalance of a good loop match the masses
+    let before = two_probe(61, &[]);
+    let (s, c) = truth(&before);
+    let mb = motion(&two_probe(
+        63,
+        &[ImbalanceMass {
+            mass_kg: 8.0,
+            radius_m: 2.5,
+            azimuth_deg: -30.0,
+            arm_m: HEIGHTS_M[1],
+        }],
+    ));
+    let tb = TrialMass {
+        azimuth_deg: -30.0,
+        ..t
+    };
+    let advice = two_plane_influence_correction(
+        &motion(&before),
+        [&ma, &mb],
+        [&t, &tb],
+        &planes(),
+        &context(),
+        &fields,
+    )
+    .unwrap();
+    let sc = advice.cancelled_unbalance();
+    assert_close("static kg·m (influence)", &sc.static_kg_m, s, 3.0);
+    assert_close("couple kg·m² (influence)", &sc.couple_kg_m2, c, 3.0);
+}
