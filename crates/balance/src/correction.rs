@@ -296,7 +296,8 @@ pub fn influence_correction(
 /// (D in m·s²) and the correction `−k_r·D`.
 ///
 /// The tilt of eq. 2 (`m·R_cm·l/k_θ`) is not seen by one probe under the cone assumption of
-/// eq. 22, so the angular stiffness cannot be used here; two probe planes would separate it.
+/// eq. 22, so the angular stiffness cannot be used here; two probe planes separate it
+/// ([`crate::axis_motion`], [`crate::static_couple`], [`crate::two_plane_stiffness_correction`]).
 ///
 /// # Errors
 /// [`BalanceError::InvalidField`] for a radial stiffness that is not > 0 (named
