@@ -127,7 +127,7 @@ pub struct StiffnessCorrection {
     pub predicted: Prediction,
 }
 
-fn validate_plane(plane: &CorrectionPlane, field: &str) -> Result<()> {
+pub(crate) fn validate_plane(plane: &CorrectionPlane, field: &str) -> Result<()> {
     check(
         format!("{field}.radius_m"),
         plane.radius_m,
@@ -143,7 +143,7 @@ fn validate_plane(plane: &CorrectionPlane, field: &str) -> Result<()> {
     Ok(())
 }
 
-fn validate_context(c: &CalibrationContext, field: &str) -> Result<()> {
+pub(crate) fn validate_context(c: &CalibrationContext, field: &str) -> Result<()> {
     check(
         format!("{field}.k1_rad_s_g"),
         c.k1_rad_s_g,
@@ -296,7 +296,8 @@ pub fn influence_correction(
 /// (D in m·s²) and the correction `−k_r·D`.
 ///
 /// The tilt of eq. 2 (`m·R_cm·l/k_θ`) is not seen by one probe under the cone assumption of
-/// eq. 22, so the angular stiffness cannot be used here; two probe planes would separate it.
+/// eq. 22, so the angular stiffness cannot be used here; two probe planes separate it
+/// ([`crate::axis_motion`], [`crate::static_couple`], [`crate::two_plane_stiffness_correction`]).
 ///
 /// # Errors
 /// [`BalanceError::InvalidField`] for a radial stiffness that is not > 0 (named
@@ -337,7 +338,11 @@ pub fn stiffness_correction(
     })
 }
 
-fn correction_from(u: Phasor, plane: &CorrectionPlane, field: &str) -> Result<Correction> {
+pub(crate) fn correction_from(
+    u: Phasor,
+    plane: &CorrectionPlane,
+    field: &str,
+) -> Result<Correction> {
     if !u.is_finite() {
         return Err(BalanceError::NonFiniteResult {
             field: field.to_owned(),
@@ -411,10 +416,20 @@ fn split(
 /// The prediction from a residual dynamic phasor at the PIGA plane and the influence
 /// coefficient that turns unbalance into it.
 fn predict(residual: Phasor, alpha: Complex, c: &CalibrationContext) -> Result<Prediction> {
+    let u_res = residual.times(Complex::new(1.0, 0.0).div(alpha));
+    predict_unbalance(residual, u_res, c)
+}
+
+/// The prediction from a residual dynamic phasor at the PIGA plane (µm·s²) and the residual
+/// static unbalance it stands for (kg·m).
+pub(crate) fn predict_unbalance(
+    residual: Phasor,
+    u_res: Phasor,
+    c: &CalibrationContext,
+) -> Result<Prediction> {
     let c_r_m_s2 = residual.x / UM_PER_M;
     let c_r_u_m_s2 = residual.covariance[0][0].max(0.0).sqrt() / UM_PER_M;
     let factor = c.k1_rad_s_g * c.g_m_s2 / (c.radius_m * c.radius_m);
-    let u_res = residual.times(Complex::new(1.0, 0.0).div(alpha));
     let trace = u_res.covariance[0][0] + u_res.covariance[1][1];
     let residual_unbalance_g_mm =
         (u_res.magnitude().powi(2) + trace.max(0.0)).sqrt() * G_MM_PER_KG_M;

@@ -97,6 +97,8 @@ pub enum Reason {
     Positive,
     /// Finite and not negative.
     NonNegative,
+    /// Finite and different from the other plane's height (two planes).
+    DistinctHeight,
 }
 
 impl std::fmt::Display for Reason {
@@ -105,13 +107,14 @@ impl std::fmt::Display for Reason {
             Self::Finite => "must be finite",
             Self::Positive => "must be finite and > 0",
             Self::NonNegative => "must be finite and >= 0",
+            Self::DistinctHeight => "must be finite and differ from the other plane's height",
         })
     }
 }
 
 pub(crate) fn check(field: impl Into<String>, value: f64, reason: Reason) -> Result<f64> {
     let ok = match reason {
-        Reason::Finite => value.is_finite(),
+        Reason::Finite | Reason::DistinctHeight => value.is_finite(),
         Reason::Positive => value.is_finite() && value > 0.0,
         Reason::NonNegative => value.is_finite() && value >= 0.0,
     };

@@ -24,9 +24,14 @@
 //!    pre-balance 19.4640 µm) determines: `C_r`, Δk2 and, with a stiffness, the unbalance per
 //!    µm of the empirical formula; not the azimuth, nor the `O2Y2` component.
 //!
-//! Two probe planes (which would separate translation from tilt and give static and couple
-//! unbalance with a two-plane correction) are not implemented: with one probe the cone
-//! assumption of eq. 22 stands.
+//! 5. Two probe planes ([`axis_motion`]): two probes at different heights see the spindle axis
+//!    as a line, `p(z) = T + z·L` (eq. 5: translation `T` at the PIGA plane, lean `L`), which
+//!    separates translation from tilt without the cone of eq. 22. With the stiffnesses,
+//!    [`static_couple`] gives the static unbalance `U_s = k_r·D_T` (eq. 1) and the couple
+//!    unbalance `U_c = k_θ·D_L` (eq. 2); a two-plane correction cancels both, by the
+//!    stiffness model ([`two_plane_stiffness_correction`]) or by a 2×2 complex influence
+//!    matrix from one trial run per correction plane ([`two_plane_influence_correction`]).
+//!    With one probe the cone assumption of eq. 22 stands, and results say so.
 //!
 //! The crate computes on values only: no files, no configuration formats.
 //!
@@ -38,6 +43,7 @@
 mod correction;
 mod error;
 mod phasor;
+mod two_plane;
 
 pub use correction::{
     BalanceQuality, CalibrationContext, Correction, CorrectionPlane, Fields, ISO_GRADES_MM_S,
@@ -46,3 +52,8 @@ pub use correction::{
 };
 pub use error::{BalanceError, Reason, Result};
 pub use phasor::{LackOfFit, MIN_RATES, Phasor, PhasorFit, ProbePhase, ProbePoint, fit_phasors};
+pub use two_plane::{
+    AxisMotion, AxisPoint, HeightPlane, PhasorPair, ProbePlane, StaticCouple, Stiffness,
+    TwoPlaneCorrection, TwoPlaneFields, axis_motion, static_couple, two_plane_influence_correction,
+    two_plane_stiffness_correction,
+};

@@ -94,6 +94,12 @@ impl Phasor {
         }
     }
 
+    /// `self + other` for independent phasors (the covariances add).
+    #[must_use]
+    pub fn plus(&self, other: &Self) -> Self {
+        self.plus_independent(other)
+    }
+
     /// The complex product `c·self`, with `c` taken as exact.
     #[must_use]
     pub(crate) fn times(&self, c: Complex) -> Self {
@@ -157,6 +163,9 @@ impl Complex {
     }
     pub(crate) fn abs(self) -> f64 {
         self.re.hypot(self.im)
+    }
+    pub(crate) fn add(self, o: Self) -> Self {
+        Self::new(self.re + o.re, self.im + o.im)
     }
     pub(crate) fn sub(self, o: Self) -> Self {
         Self::new(self.re - o.re, self.im - o.im)

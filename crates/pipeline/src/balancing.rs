@@ -2,18 +2,203 @@
 //! in results.json's terms.
 
 use balance::{
-    CalibrationContext, Correction, CorrectionPlane, Fields, Phasor, PhasorFit, Prediction,
-    ProbePhase, ProbePoint, TrialMass, fit_phasors, influence_correction, stiffness_correction,
+    AxisMotion, CalibrationContext, Correction, CorrectionPlane, Fields, HeightPlane, Phasor,
+    PhasorFit, Prediction, ProbePhase, ProbePlane, ProbePoint, Stiffness, TrialMass,
+    TwoPlaneCorrection, TwoPlaneFields, axis_motion, fit_phasors, influence_correction,
+    static_couple, stiffness_correction, two_plane_influence_correction,
+    two_plane_stiffness_correction,
 };
 use harmonics::LeverGeometry;
 
 use crate::results::{
-    BalancePhase, BalanceResults, CheckResult, CorrectionResult, DynamicPhasor, Influence,
-    PhaseResults, PredictedResult, SplitMass, StaticPhasor, StiffnessResult,
+    BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,
+    DynamicPhasor, Influence, PhaseResults, PhasorResult, PlaneCorrection, PredictedResult,
+    SplitMass, StaticPhasor, StiffnessResult, TwoPlaneCorrectionResult, TwoPlaneResults,
 };
 
 /// What one probe plane cannot separate, stated in the results.
 pub(crate) const ONE_PLANE: &str = "one probe plane: the first-harmonic motion is taken as a cone about the tilt pivot (eq. 22), so translation and tilt, static and couple unbalance, are not separated; the correction is a single-plane one";
+
+/// What two probe planes separate, stated in the results.
+pub(crate) const TWO_PLANES: &str = "two probe planes: the first-harmonic motion is the spindle axis as a line, translation at the PIGA plane plus tilt times height (eq. 5), with no cone assumption (`two_plane`); `static`, `dynamic`, `correction` and `predicted` are the first probe's single-plane reading through the cone of eq. 22, kept for comparison";
+
+type Failure = (String, balance::BalanceError);
+
+/// The two-plane part of the advisor: translation and tilt, static and couple unbalance,
+/// the two-plane correction and its check.
+fn two_planes(
+    b: &BalanceInputs,
+    q: &SecondProbeInputs,
+    phases: &[PhaseResults],
+    s: &Setting,
+    context: &CalibrationContext,
+    fit_with: &dyn Fn(usize, LeverGeometry) -> Result<PhasorFit, Failure>,
+) -> Result<TwoPlaneResults, Failure> {
+    // The second probe's fits use only their probe-plane phasors: a lever of ratio 1.
+    let second_lever = LeverGeometry {
+        pivot_to_probe_mm: 1.0,
+        probe_to_piga_mm: 0.0,
+        probe_direction: q.probe_direction,
+    };
+    let heights_m = [-s.lever.probe_to_piga_mm * 1e-3, -q.probe_to_piga_mm * 1e-3];
+    let field = "balance.second_probe";
+    let motion = |i: usize| -> Result<AxisMotion, Failure> {
+        let f1 = fit_with(i, s.lever)?;
+        let j = q.phase_of[&i];
+        let f2 = fit_with(j, second_lever)?;
+        axis_motion(
+            &ProbePlane {
+                fit: &f1,
+                height_m: heights_m[0],
+            },
+            &ProbePlane {
+                fit: &f2,
+                height_m: heights_m[1],
+            },
+            field,
+        )
+        .map_err(|e| (field.to_owned(), e))
+    };
+    let at = |f: &'static str| move |e| (f.to_owned(), e);
+    let m0 = motion(b.initial)?;
+    let stiffness = match (b.radial_stiffness_n_m, b.angular_stiffness_n_m_rad) {
+        (Some(radial_n_m), Some(angular_n_m_rad)) => Some(Stiffness {
+            radial_n_m,
+            angular_n_m_rad,
+        }),
+        _ => None,
+    };
+    let fields = TwoPlaneFields {
+        trials: ["balance.trial", "balance.two_plane.trial"],
+        trial_masses: ["balance.trial_mass", "balance.two_plane.trial_mass"],
+        planes: [
+            "balance.two_plane.heights_m.0",
+            "balance.two_plane.heights_m.1",
+        ],
+        context: "balance",
+    };
+    let mut corrections = Vec::new();
+    let mut from_influence = None;
+    if let Some(t) = &b.two_plane {
+        if let (Some((ta, ma)), Some((tb, mb))) = (b.trial, t.trial) {
+            let (xa, xb) = (motion(ta)?, motion(tb)?);
+            let c = two_plane_influence_correction(
+                &m0,
+                [&xa, &xb],
+                [&ma, &mb],
+                &t.planes,
+                context,
+                &fields,
+            )
+            .map_err(at("balance.two_plane"))?;
+            let sc = c.cancelled_unbalance();
+            from_influence = Some((sc.static_kg_m, sc.couple_kg_m2));
+            corrections.push(two_plane_result("influence_coefficient", &c, &t.planes));
+        }
+        if let Some(k) = &stiffness {
+            let c = two_plane_stiffness_correction(&m0, k, "balance", &t.planes, context, &fields)
+                .map_err(at("balance.two_plane"))?;
+            corrections.push(two_plane_result("stiffness_model", &c, &t.planes));
+        }
+    }
+    // static and couple unbalance: by the stiffnesses (eq. 1–2), else from the influence
+    // correction (the unbalance it cancels)
+    let unbalance = match &stiffness {
+        Some(k) => {
+            let sc = static_couple(&m0, k, "balance").map_err(at("balance"))?;
+            Some(("stiffness_model", sc.static_kg_m, sc.couple_kg_m2))
+        }
+        None => from_influence.map(|(st, co)| ("influence_coefficient", st, co)),
+    };
+    let check = match (b.check, corrections.first()) {
+        (Some(i), Some(first)) => {
+            let mc = motion(i)?;
+            let t = mc.dynamic.a;
+            let c_r_m_s2 = t.x * 1e-6;
+            let c_r_u_m_s2 = t.covariance[0][0].max(0.0).sqrt() * 1e-6;
+            let p = &first.predicted;
+            let sigma = p.c_r_u_m_s2.hypot(c_r_u_m_s2);
+            let reduction = m0.dynamic.a.x / t.x;
+            Some(CheckResult {
+                phase: phases[i].name.clone(),
+                c_r_m_s2,
+                c_r_u_m_s2,
+                z: if sigma > 0.0 {
+                    (c_r_m_s2 - p.c_r_m_s2) / sigma
+                } else {
+                    0.0
+                },
+                reduction: if reduction.is_finite() {
+                    reduction
+                } else {
+                    f64::MAX
+                },
+            })
+        }
+        _ => None,
+    };
+    let t = m0.dynamic.a;
+    Ok(TwoPlaneResults {
+        probe_heights_m: heights_m,
+        second_probe_phase: phases[q.phase_of[&b.initial]].name.clone(),
+        static_translation_um: phasor_result(&m0.static_translation_um),
+        static_tilt_urad: phasor_result(&m0.static_tilt_urad),
+        dynamic_translation_um_s2: phasor_result(&t),
+        dynamic_tilt_urad_s2: phasor_result(&m0.dynamic.b),
+        c_r_m_s2: t.x * 1e-6,
+        c_r_u_m_s2: t.covariance[0][0].max(0.0).sqrt() * 1e-6,
+        unbalance_method: unbalance.map(|u| u.0.to_owned()),
+        static_kg_m: unbalance.map(|u| phasor_result(&u.1)),
+        couple_kg_m2: unbalance.map(|u| phasor_result(&u.2)),
+        per_rate: m0
+            .per_rate
+            .iter()
+            .map(|p| {
+                [
+                    p.rate_rad_s.to_degrees(),
+                    p.translation_um.x,
+                    p.translation_um.y,
+                    p.tilt_urad.x,
+                    p.tilt_urad.y,
+                ]
+            })
+            .collect(),
+        corrections,
+        check,
+    })
+}
+
+fn two_plane_result(
+    method: &str,
+    c: &TwoPlaneCorrection,
+    planes: &[HeightPlane; 2],
+) -> TwoPlaneCorrectionResult {
+    TwoPlaneCorrectionResult {
+        method: method.to_owned(),
+        planes: c
+            .planes
+            .iter()
+            .zip(planes)
+            .map(|(k, p)| PlaneCorrection {
+                height_m: p.height_m,
+                correction: correction_result(method, k),
+            })
+            .collect(),
+        predicted: predicted_result(&c.predicted),
+        residual_tilt_u_urad_s2: c.residual_tilt_urad_s2.max_sigma(),
+    }
+}
+
+fn phasor_result(p: &Phasor) -> PhasorResult {
+    PhasorResult {
+        magnitude: p.magnitude(),
+        magnitude_u: p.magnitude_sigma(),
+        azimuth_deg: p.azimuth_deg(),
+        azimuth_u_deg: p.azimuth_sigma_deg(),
+        x: p.x,
+        y: p.y,
+    }
+}
 
 /// The validated balance section.
 #[derive(Debug, Clone)]
@@ -27,6 +212,29 @@ pub(crate) struct BalanceInputs {
     pub(crate) rotor_mass_kg: Option<f64>,
     /// Index of the check phase.
     pub(crate) check: Option<usize>,
+    /// The second probe, when there is one.
+    pub(crate) second: Option<SecondProbeInputs>,
+    pub(crate) angular_stiffness_n_m_rad: Option<f64>,
+    /// The two-plane correction, when configured (with a second probe).
+    pub(crate) two_plane: Option<TwoPlaneInputs>,
+}
+
+/// The validated second probe.
+#[derive(Debug, Clone)]
+pub(crate) struct SecondProbeInputs {
+    pub(crate) probe_to_piga_mm: f64,
+    pub(crate) probe_direction: harmonics::ProbeDirection,
+    /// Phase index (first probe) → phase index of the same run seen by the second probe.
+    pub(crate) phase_of: std::collections::HashMap<usize, usize>,
+}
+
+/// The validated two-plane section.
+#[derive(Debug, Clone)]
+pub(crate) struct TwoPlaneInputs {
+    /// Planes A and B.
+    pub(crate) planes: [balance::HeightPlane; 2],
+    /// The trial run in plane B and its mass.
+    pub(crate) trial: Option<(usize, TrialMass)>,
 }
 
 /// The study's numbers the advisor needs.
@@ -44,27 +252,29 @@ pub(crate) fn run(
     phases: &[PhaseResults],
     s: &Setting,
 ) -> Result<BalanceResults, (String, balance::BalanceError)> {
-    let fit = |i: usize| -> Result<PhasorFit, (String, balance::BalanceError)> {
-        let points: Vec<ProbePoint> = phases[i]
-            .points
-            .iter()
-            .filter_map(|p| {
-                Some(ProbePoint {
-                    rate_rad_s: p.rate_rad_s,
-                    dc1_um: p.dc1_um?,
-                    ds1_um: p.ds1_um?,
-                    sigma_um: p.radius_error_sigma_um.map(|r| r / s.lever_ratio),
+    let fit_with =
+        |i: usize, lever: LeverGeometry| -> Result<PhasorFit, (String, balance::BalanceError)> {
+            let points: Vec<ProbePoint> = phases[i]
+                .points
+                .iter()
+                .filter_map(|p| {
+                    Some(ProbePoint {
+                        rate_rad_s: p.rate_rad_s,
+                        dc1_um: p.dc1_um?,
+                        ds1_um: p.ds1_um?,
+                        sigma_um: p.radius_error_sigma_um.map(|r| r / s.lever_ratio),
+                    })
                 })
+                .collect();
+            let field = format!("phases[{i}]");
+            fit_phasors(&ProbePhase {
+                field: &field,
+                points: &points,
+                lever,
             })
-            .collect();
-        let field = format!("phases[{i}]");
-        fit_phasors(&ProbePhase {
-            field: &field,
-            points: &points,
-            lever: s.lever,
-        })
-        .map_err(|e| (field.clone(), e))
-    };
+            .map_err(|e| (field.clone(), e))
+        };
+    let fit = |i: usize| fit_with(i, s.lever);
     let top_rate_rad_s = phases[b.initial]
         .points
         .iter()
@@ -176,10 +386,22 @@ pub(crate) fn run(
         ..c
     });
 
+    let two_plane = b
+        .second
+        .as_ref()
+        .map(|q| two_planes(b, q, phases, s, &context, &fit_with))
+        .transpose()?;
+
     Ok(BalanceResults {
         initial: phases[b.initial].name.clone(),
         trial: b.trial.map(|(t, _)| phases[t].name.clone()),
-        assumption: ONE_PLANE.to_owned(),
+        assumption: if two_plane.is_some() {
+            TWO_PLANES
+        } else {
+            ONE_PLANE
+        }
+        .to_owned(),
+        two_plane,
         static_phasor: static_phasor(&initial),
         dynamic: dynamic_phasor(&initial),
         phases: fitted
@@ -258,4 +480,89 @@ fn predicted_result(p: &Prediction) -> PredictedResult {
         e_per_omega_mm_s: p.quality.map(|q| q.e_per_omega_mm_s),
         iso_grade_mm_s: p.quality.and_then(|q| q.grade_mm_s),
     }
+}
+
+/// The validated counterweight section.
+#[derive(Debug, Clone)]
+pub(crate) struct CounterweightInputs {
+    /// Index of the `radius_change` phase.
+    pub(crate) phase: usize,
+    pub(crate) from_rate_deg_s: f64,
+    pub(crate) to_rate_deg_s: f64,
+    pub(crate) change_um: f64,
+    pub(crate) radial_stiffness_n_m: f64,
+    pub(crate) stiffness_source: String,
+    pub(crate) correction_radius_m: f64,
+}
+
+/// What one change of radius error determines, and what it does not (the paper check).
+pub(crate) fn counterweight(
+    c: &CounterweightInputs,
+    phase: &str,
+    k1_rad_s_g: f64,
+    radius_m: f64,
+    g_m_s2: f64,
+) -> Result<CounterweightResults, balance::BalanceError> {
+    let to_rate_rad_s = c.to_rate_deg_s.to_radians();
+    let plane = CorrectionPlane {
+        radius_m: c.correction_radius_m,
+        fixed_azimuths_deg: Vec::new(),
+    };
+    let context = CalibrationContext {
+        k1_rad_s_g,
+        radius_m,
+        g_m_s2,
+        top_rate_rad_s: to_rate_rad_s,
+        rotor_mass_kg: None,
+    };
+    let a = balance::radius_change_advice(
+        c.change_um,
+        c.from_rate_deg_s.to_radians(),
+        to_rate_rad_s,
+        c.radial_stiffness_n_m,
+        &plane,
+        &context,
+    )?;
+    let determined = vec![
+        format!(
+            "C_r = Δr/(ω₂² − ω₁²) = {:.4e} m·s², the O2X2 component of the dynamic phasor D at the PIGA plane, hence |D| ≥ |C_r| (equal if the imbalance lies on the arm's line)",
+            a.c_r_m_s2
+        ),
+        format!(
+            "Δk2 = k1·C_r·g/R² = {:.4e} rad/(s·g²) (eq. 19)",
+            a.delta_k2_rad_s_g2
+        ),
+        format!(
+            "with k_r = {:e} N/m (eq. 1): {:.4e} g·mm of unbalance per µm of radius change, so m·R_cm ≥ k_r·|C_r| = {:.4e} g·mm; on the arm's line that is {:.4} kg at {} m, at {}°",
+            c.radial_stiffness_n_m,
+            a.unbalance_per_um_g_mm,
+            a.unbalance_x_g_mm.abs(),
+            a.correction_mass_kg,
+            c.correction_radius_m,
+            a.correction_azimuth_deg
+        ),
+    ];
+    let not_determined = vec![
+        "the azimuth of the imbalance: one number along O2X2 says nothing of the O2Y2 component, so the counterweight's azimuth (and its mass, beyond the lower bound) needs a phase of first harmonics (d_c1, d_s1) at several rates".to_owned(),
+        "the split between static and dynamic parts: a difference of two rates cancels the static part and cannot test that the change is ∝ ω² (three rates or more give S + D·ω² and its lack of fit)".to_owned(),
+        "the plane: one probe cannot separate translation from tilt (static from couple unbalance), so neither the height at which the counterweight goes nor a two-plane correction follows (two probe planes do)".to_owned(),
+        "the stiffness itself: k_r is a study input, not a measurement; the mass scales with it".to_owned(),
+    ];
+    Ok(CounterweightResults {
+        phase: phase.to_owned(),
+        change_um: c.change_um,
+        from_rate_deg_s: c.from_rate_deg_s,
+        to_rate_deg_s: c.to_rate_deg_s,
+        radial_stiffness_n_m: c.radial_stiffness_n_m,
+        stiffness_source: c.stiffness_source.clone(),
+        c_r_m_s2: a.c_r_m_s2,
+        delta_k2_rad_s_g2: a.delta_k2_rad_s_g2,
+        unbalance_per_um_g_mm: a.unbalance_per_um_g_mm,
+        unbalance_x_g_mm: a.unbalance_x_g_mm,
+        correction_mass_kg: a.correction_mass_kg,
+        correction_radius_m: c.correction_radius_m,
+        correction_azimuth_deg: a.correction_azimuth_deg,
+        determined,
+        not_determined,
+    })
 }

@@ -47,6 +47,26 @@ pub struct StudyConfig {
     /// k2 error it leaves (absent: not run; `docs/BALANCING.md`).
     #[serde(default)]
     pub balance: Option<BalanceConfig>,
+    /// The counterweight one published change of radius error stands for (the paper check:
+    /// a `radius_change` phase and a stated radial stiffness; absent: not run).
+    #[serde(default)]
+    pub counterweight: Option<CounterweightConfig>,
+}
+
+/// The counterweight section (`counterweight: (...)`): what a `radius_change` phase, one
+/// number, determines of the correction (eq. 1, 19), with a stated radial stiffness.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CounterweightConfig {
+    /// The `radius_change` phase, by name.
+    pub phase: String,
+    /// Radial stiffness `k_r` of the spindle bearing, N/m (an input: the paper gives none).
+    pub radial_stiffness_n_m: f64,
+    /// Where that stiffness comes from (shown beside it in the report).
+    #[serde(default)]
+    pub stiffness_source: String,
+    /// Radius at which the counterweight would be mounted, m.
+    pub correction_radius_m: f64,
 }
 
 /// The balance section (`balance: (...)`): which phases were run without and with a trial
@@ -79,6 +99,52 @@ pub struct BalanceConfig {
     /// A phase run after the correction, by name, compared with the prediction.
     #[serde(default)]
     pub check: Option<String>,
+    /// A second probe at another height (absent: one probe, the cone assumption of eq. 22):
+    /// its height and, for each phase above, the phase that holds its first harmonics.
+    #[serde(default)]
+    pub second_probe: Option<SecondProbeConfig>,
+    /// Angular stiffness `k_θ` of the spindle bearing, N·m/rad: with `radial_stiffness_n_m`
+    /// and a second probe, the couple unbalance (eq. 2) and the stiffness-model two-plane
+    /// correction.
+    #[serde(default)]
+    pub angular_stiffness_n_m_rad: Option<f64>,
+    /// The two-plane correction's planes and its second trial run (needs `second_probe`).
+    #[serde(default)]
+    pub two_plane: Option<TwoPlaneConfig>,
+}
+
+/// The second probe of a balance section (`second_probe: (...)`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SecondProbeConfig {
+    /// Height from the second probe's plane up to the PIGA plane, mm (positive below it, as
+    /// `lever.probe_to_piga_mm`; it must differ from the first probe's).
+    pub probe_to_piga_mm: f64,
+    /// Its measuring direction (default: against O1X1).
+    #[serde(default)]
+    pub probe_direction: ProbeDirectionName,
+    /// For each phase the advisor uses (`initial`, `trial`, `check`, `two_plane.trial`), by
+    /// name, the phase of the same run seen by the second probe, e.g.
+    /// `{"before": "before_lower"}`.
+    pub phases: std::collections::BTreeMap<String, String>,
+}
+
+/// The two-plane correction (`two_plane: (...)`): planes A and B, and the trial run in B
+/// (the balance section's `trial` and `trial_mass` are the trial run in A).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TwoPlaneConfig {
+    /// Heights of correction planes A and B above the PIGA plane, m (distinct).
+    pub heights_m: (f64, f64),
+    /// Radius at which masses go in plane B, m (default: `correction_radius_m`).
+    #[serde(default)]
+    pub radius_b_m: Option<f64>,
+    /// The phase run with `trial_mass` in plane B (alone), by name.
+    #[serde(default)]
+    pub trial: Option<String>,
+    /// The trial mass of that run.
+    #[serde(default)]
+    pub trial_mass: Option<TrialMassConfig>,
 }
 
 /// A trial mass: mass, radius from the axis and azimuth in `O2` (from `O2X2`, the arm, towards
@@ -92,7 +158,8 @@ pub struct TrialMassConfig {
     pub radius_m: f64,
     /// Azimuth, deg.
     pub azimuth_deg: f64,
-    /// Height of the trial mass above the pivot, m (recorded; one probe plane cannot use it).
+    /// Height of the trial mass above the PIGA plane, m (recorded; the two-plane correction
+    /// takes its planes' heights from `two_plane.heights_m`).
     #[serde(default)]
     pub height_m: Option<f64>,
 }
@@ -338,6 +405,12 @@ pub struct HarmonicPoint {
     pub dc1_um: f64,
     /// Sine coefficient of the probe's first harmonic, µm.
     pub ds1_um: f64,
+    /// Standard uncertainty of `dc1_um` and of `ds1_um` (each; taken equal and independent,
+    /// as for white noise), µm (> 0; absent: unknown). The balance advisor's phasor fit weighs
+    /// by `1/σ²` when every point of a phase has one, and `inverse_variance` weighting of the
+    /// radius-error fit may use them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma_um: Option<f64>,
 }
 
 /// Radius error at the PIGA plane at one rate.

@@ -273,8 +273,11 @@ pub enum InvalidReason {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum UnsupportedReason {
-    /// Inverse-variance weighting needs each point's σ, which only recordings give.
-    #[error("inverse_variance weighting needs points given as recordings")]
+    /// Inverse-variance weighting needs each point's σ, which recordings give and
+    /// first-harmonic points may (`sigma_um`).
+    #[error(
+        "inverse_variance weighting needs points given as recordings, or first_harmonic points each with sigma_um"
+    )]
     WeightingNeedsRecordings,
     /// A recording's harmonic fit left no residual, so it has no σ to weigh it by.
     #[error(
@@ -297,6 +300,30 @@ pub enum UnsupportedReason {
         "give `trial` with `trial_mass` (influence coefficient) or `radial_stiffness_n_m` (stiffness model)"
     )]
     BalanceNeedsMethod,
+    /// A run the advisor uses has no phase of the second probe.
+    #[error(
+        "with a second probe, every phase the advisor uses needs its second-probe phase in `balance.second_probe.phases`"
+    )]
+    SecondProbeNeedsPhase,
+    /// The second probe at the first probe's height sees the same line point.
+    #[error("the second probe must be at another height than the first (`lever.probe_to_piga_mm`)")]
+    SecondProbeAtFirstHeight,
+    /// A two-plane correction without the second probe that separates translation and tilt.
+    #[error(
+        "`two_plane` needs `second_probe`: one probe plane cannot separate translation from tilt"
+    )]
+    TwoPlaneNeedsSecondProbe,
+    /// A two-plane correction with neither a second trial run nor both stiffnesses.
+    #[error(
+        "give `two_plane.trial` with `two_plane.trial_mass` and the balance section's `trial` (influence coefficients), or `radial_stiffness_n_m` with `angular_stiffness_n_m_rad` (stiffness model)"
+    )]
+    TwoPlaneNeedsMethod,
+    /// Correction planes A and B at one height.
+    #[error("the two correction planes must be at different heights")]
+    PlanesAtOneHeight,
+    /// The counterweight section reads one published change of radius error.
+    #[error("the counterweight section needs a phase given as radius_change")]
+    CounterweightNeedsRadiusChange,
 }
 
 impl PipelineError {

@@ -84,6 +84,8 @@ pub struct Inputs {
     pub(crate) type_b_given: bool,
     /// The balance section, validated.
     pub(crate) balance: Option<crate::balancing::BalanceInputs>,
+    /// The counterweight section, validated.
+    pub(crate) counterweight: Option<crate::balancing::CounterweightInputs>,
 }
 
 /// One validated phase.
@@ -210,7 +212,12 @@ impl Inputs {
         let balance = config
             .balance
             .as_ref()
-            .map(|b| check.balance(b, &config.phases, &names))
+            .map(|b| check.balance(b, &config.phases, &names, config.lever.probe_to_piga_mm))
+            .transpose()?;
+        let counterweight = config
+            .counterweight
+            .as_ref()
+            .map(|c| check.counterweight(c, &config.phases, &names))
             .transpose()?;
         let phases = load_phases(&config.phases, checked, base, source, load)?;
         let calibration = match (config.calibration.as_ref(), calibration_config) {
@@ -234,6 +241,7 @@ impl Inputs {
             type_b_given: type_b.is_some(),
             type_b: type_b.unwrap_or_default(),
             balance,
+            counterweight,
         })
     }
 
@@ -620,9 +628,12 @@ impl Check<'_> {
         model: RadiusModelName,
     ) -> Result<(Weighting, Checked)> {
         let list = format!("{section}.points");
-        if phase.weighting == Weighting::InverseVariance
-            && !matches!(phase.points, Points::Recordings(_))
-        {
+        let every_sigma = match &phase.points {
+            Points::Recordings(_) => true,
+            Points::FirstHarmonic(points) => points.iter().all(|p| p.sigma_um.is_some()),
+            Points::RadiusError(_) | Points::RadiusChange { .. } => false,
+        };
+        if phase.weighting == Weighting::InverseVariance && !every_sigma {
             return Err(PipelineError::Unsupported {
                 path: self.path.to_owned(),
                 field: format!("{section}.weighting"),
@@ -635,6 +646,9 @@ impl Check<'_> {
                     self.rate(format!("{list}[{i}].rate_deg_s"), p.rate_deg_s)?;
                     self.finite(format!("{list}[{i}].dc1_um"), p.dc1_um)?;
                     self.finite(format!("{list}[{i}].ds1_um"), p.ds1_um)?;
+                    if let Some(sigma) = p.sigma_um {
+                        self.positive(&format!("{list}[{i}].sigma_um"), sigma)?;
+                    }
                 }
                 self.unique_rates(&list, &rates_of(points, |p| p.rate_deg_s))?;
                 (
@@ -758,6 +772,7 @@ impl Check<'_> {
         b: &crate::config::BalanceConfig,
         phases: &[crate::config::PhaseConfig],
         names: &HashMap<&str, usize>,
+        first_probe_to_piga_mm: f64,
     ) -> Result<crate::balancing::BalanceInputs> {
         let phase = |field: &str, name: &str| -> Result<usize> {
             let Some(&i) = names.get(name) else {
@@ -845,7 +860,131 @@ impl Check<'_> {
             .as_deref()
             .map(|name| phase("balance.check", name))
             .transpose()?;
+        if let Some(k) = b.angular_stiffness_n_m_rad {
+            self.positive("balance.angular_stiffness_n_m_rad", k)?;
+        }
+        let unsupported = |field: &str, reason| PipelineError::Unsupported {
+            path: self.path.to_owned(),
+            field: field.to_owned(),
+            reason,
+        };
+        let two_plane = b
+            .two_plane
+            .as_ref()
+            .map(|t| {
+                if b.second_probe.is_none() {
+                    return Err(unsupported(
+                        "balance.two_plane",
+                        UnsupportedReason::TwoPlaneNeedsSecondProbe,
+                    ));
+                }
+                let (za, zb) = t.heights_m;
+                self.finite("balance.two_plane.heights_m.0".to_owned(), za)?;
+                self.finite("balance.two_plane.heights_m.1".to_owned(), zb)?;
+                if za == zb {
+                    return Err(unsupported(
+                        "balance.two_plane.heights_m",
+                        UnsupportedReason::PlanesAtOneHeight,
+                    ));
+                }
+                let radius_b = t.radius_b_m.unwrap_or(b.correction_radius_m);
+                self.positive("balance.two_plane.radius_b_m", radius_b)?;
+                let trial_b = match (&t.trial, &t.trial_mass) {
+                    (Some(name), Some(m)) => {
+                        let i = phase("balance.two_plane.trial", name)?;
+                        self.positive("balance.two_plane.trial_mass.mass_kg", m.mass_kg)?;
+                        self.positive("balance.two_plane.trial_mass.radius_m", m.radius_m)?;
+                        self.finite(
+                            "balance.two_plane.trial_mass.azimuth_deg".to_owned(),
+                            m.azimuth_deg,
+                        )?;
+                        Some((
+                            i,
+                            balance::TrialMass {
+                                mass_kg: m.mass_kg,
+                                radius_m: m.radius_m,
+                                azimuth_deg: m.azimuth_deg,
+                            },
+                        ))
+                    }
+                    (None, None) => None,
+                    (Some(_), None) | (None, Some(_)) => {
+                        return Err(unsupported(
+                            if t.trial.is_some() {
+                                "balance.two_plane.trial_mass"
+                            } else {
+                                "balance.two_plane.trial"
+                            },
+                            UnsupportedReason::TrialNeedsTrialMass,
+                        ));
+                    }
+                };
+                let influence = trial_b.is_some() && trial.is_some();
+                let stiffness =
+                    b.radial_stiffness_n_m.is_some() && b.angular_stiffness_n_m_rad.is_some();
+                if !influence && !stiffness {
+                    return Err(unsupported(
+                        "balance.two_plane",
+                        UnsupportedReason::TwoPlaneNeedsMethod,
+                    ));
+                }
+                let plane = |height_m: f64, radius_m: f64| balance::HeightPlane {
+                    height_m,
+                    plane: balance::CorrectionPlane {
+                        radius_m,
+                        fixed_azimuths_deg: b.fixed_azimuths_deg.clone(),
+                    },
+                };
+                Ok(crate::balancing::TwoPlaneInputs {
+                    planes: [plane(za, b.correction_radius_m), plane(zb, radius_b)],
+                    trial: trial_b,
+                })
+            })
+            .transpose()?;
+        let second = b
+            .second_probe
+            .as_ref()
+            .map(|q| {
+                let field = "balance.second_probe.probe_to_piga_mm";
+                self.finite(field.to_owned(), q.probe_to_piga_mm)?;
+                if q.probe_to_piga_mm == first_probe_to_piga_mm {
+                    return Err(unsupported(
+                        field,
+                        UnsupportedReason::SecondProbeAtFirstHeight,
+                    ));
+                }
+                let mut of = HashMap::new();
+                for (key, value) in &q.phases {
+                    let first = phase(&format!("balance.second_probe.phases[{key:?}]"), key)?;
+                    let second = phase(&format!("balance.second_probe.phases[{key:?}]"), value)?;
+                    of.insert(first, second);
+                }
+                let used = [Some(initial), trial.map(|t| t.0), check]
+                    .into_iter()
+                    .chain([two_plane.as_ref().and_then(|t| t.trial.map(|x| x.0))])
+                    .flatten();
+                for i in used {
+                    if !of.contains_key(&i) {
+                        return Err(unsupported(
+                            "balance.second_probe.phases",
+                            UnsupportedReason::SecondProbeNeedsPhase,
+                        ));
+                    }
+                }
+                Ok(crate::balancing::SecondProbeInputs {
+                    probe_to_piga_mm: q.probe_to_piga_mm,
+                    probe_direction: match q.probe_direction {
+                        ProbeDirectionName::AgainstO1X1 => ProbeDirection::AgainstO1X1,
+                        ProbeDirectionName::AlongO1X1 => ProbeDirection::AlongO1X1,
+                    },
+                    phase_of: of,
+                })
+            })
+            .transpose()?;
         Ok(crate::balancing::BalanceInputs {
+            second,
+            angular_stiffness_n_m_rad: b.angular_stiffness_n_m_rad,
+            two_plane,
             initial,
             trial,
             radial_stiffness_n_m: b.radial_stiffness_n_m,
@@ -855,6 +994,47 @@ impl Check<'_> {
             },
             rotor_mass_kg: b.rotor_mass_kg,
             check,
+        })
+    }
+
+    /// The counterweight section: a known `radius_change` phase, a positive stiffness and
+    /// radius.
+    fn counterweight(
+        &self,
+        c: &crate::config::CounterweightConfig,
+        phases: &[crate::config::PhaseConfig],
+        names: &HashMap<&str, usize>,
+    ) -> Result<crate::balancing::CounterweightInputs> {
+        let Some(&i) = names.get(c.phase.as_str()) else {
+            return Err(PipelineError::UnknownPhase {
+                path: self.path.to_owned(),
+                field: "counterweight.phase".to_owned(),
+                name: c.phase.clone(),
+                known: sorted_names(names),
+            });
+        };
+        let Points::RadiusChange {
+            from_rate_deg_s,
+            to_rate_deg_s,
+            change_um,
+        } = phases[i].points
+        else {
+            return Err(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: "counterweight.phase".to_owned(),
+                reason: UnsupportedReason::CounterweightNeedsRadiusChange,
+            });
+        };
+        self.positive("counterweight.radial_stiffness_n_m", c.radial_stiffness_n_m)?;
+        self.positive("counterweight.correction_radius_m", c.correction_radius_m)?;
+        Ok(crate::balancing::CounterweightInputs {
+            phase: i,
+            from_rate_deg_s,
+            to_rate_deg_s,
+            change_um,
+            radial_stiffness_n_m: c.radial_stiffness_n_m,
+            stiffness_source: c.stiffness_source.clone(),
+            correction_radius_m: c.correction_radius_m,
         })
     }
 

@@ -58,7 +58,9 @@ mod results;
 mod study;
 
 pub use calibration::CalibrationModel;
-pub use config::{BalanceConfig, TrialMassConfig};
+pub use config::{
+    BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
+};
 pub use config::{
     CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
     PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName,
@@ -70,8 +72,9 @@ pub use inputs::{DataSource, Inputs};
 pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
 pub use probe_analysis::Progress;
 pub use results::{
-    BalancePhase, BalanceResults, CheckResult, CorrectionResult, DynamicPhasor, Influence,
-    PredictedResult, SplitMass, StaticPhasor, StiffnessResult,
+    BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,
+    DynamicPhasor, Influence, PhasorResult, PlaneCorrection, PredictedResult, SplitMass,
+    StaticPhasor, StiffnessResult, TwoPlaneCorrectionResult, TwoPlaneResults,
 };
 pub use results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,

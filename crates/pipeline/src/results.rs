@@ -27,6 +27,9 @@ pub struct StudyResults {
     /// The balance advisor (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub balance: Option<BalanceResults>,
+    /// The counterweight a published change of radius error stands for (when configured).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub counterweight: Option<CounterweightResults>,
 }
 
 /// A diagnostic: the numbers were computed, but something may make them wrong.
@@ -79,13 +82,15 @@ pub struct PointResult {
     pub beta_deg: Option<f64>,
     /// Radius error `Δr_xd + Δr_xs` at the PIGA plane, µm.
     pub radius_error_um: f64,
-    /// Standard error of `dc1_um` across revolutions (recordings only), µm.
+    /// Standard error of `dc1_um` across revolutions (recordings), or the point's stated
+    /// `sigma_um` (first-harmonic points), µm.
     pub dc1_sigma_um: Option<f64>,
-    /// Standard error of `ds1_um` across revolutions (recordings only), µm.
+    /// Standard error of `ds1_um` across revolutions (recordings), or the point's stated
+    /// `sigma_um` (first-harmonic points), µm.
     pub ds1_sigma_um: Option<f64>,
-    /// Standard error of the radius error from the per-revolution fit residuals (recordings
-    /// only), µm: `lever ratio × √(Σᵣ 2s²/nᵣ)/K` for K revolutions of nᵣ samples and pooled
-    /// residual variance s². Unlike `dc1_sigma_um`, which rests on K − 1 degrees of freedom,
+    /// Standard error of the radius error from the per-revolution fit residuals (recordings),
+    /// µm: `lever ratio × √(Σᵣ 2s²/nᵣ)/K` for K revolutions of nᵣ samples and pooled
+    /// residual variance s²; for first-harmonic points with `sigma_um`, `lever ratio × σ`. Unlike `dc1_sigma_um`, which rests on K − 1 degrees of freedom,
     /// it rests on thousands, so it can weigh the points of a fit.
     pub radius_error_sigma_um: Option<f64>,
     /// Complete revolutions averaged (recordings only).
@@ -532,6 +537,88 @@ pub struct BalanceResults {
     pub stiffness: Option<StiffnessResult>,
     /// The check run against the prediction, when configured.
     pub check: Option<CheckResult>,
+    /// Two probe planes: translation and tilt, static and couple unbalance, the two-plane
+    /// correction (absent with one probe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub two_plane: Option<TwoPlaneResults>,
+}
+
+/// A phasor in `O2` with standard uncertainties; its unit is named by the key holding it
+/// (`static_translation_um`, `couple_kg_m2`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PhasorResult {
+    /// Magnitude, in the key's unit.
+    pub magnitude: f64,
+    /// Its standard uncertainty.
+    pub magnitude_u: f64,
+    /// Azimuth from O2X2 towards O2Y2, deg.
+    pub azimuth_deg: f64,
+    /// Its standard uncertainty, deg.
+    pub azimuth_u_deg: f64,
+    /// Component along O2X2.
+    pub x: f64,
+    /// Component along O2Y2.
+    pub y: f64,
+}
+
+/// Two probe planes (`balance.two_plane`): the axis as a line, no cone assumption.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TwoPlaneResults {
+    /// Heights of the first and the second probe plane above the PIGA plane, m.
+    pub probe_heights_m: [f64; 2],
+    /// The second probe's phase of the initial run.
+    pub second_probe_phase: String,
+    /// Static translation of the axis at the PIGA plane, µm.
+    pub static_translation_um: PhasorResult,
+    /// Static lean of the axis, µrad.
+    pub static_tilt_urad: PhasorResult,
+    /// Dynamic (∝ ω²) translation at the PIGA plane, µm·s²; its `x` is C_r.
+    pub dynamic_translation_um_s2: PhasorResult,
+    /// Dynamic lean, µrad·s².
+    pub dynamic_tilt_urad_s2: PhasorResult,
+    /// C_r at the PIGA plane from the two planes, m·s².
+    pub c_r_m_s2: f64,
+    /// Its standard uncertainty, m·s².
+    pub c_r_u_m_s2: f64,
+    /// How static and couple unbalance were obtained: `stiffness_model` (both stiffnesses
+    /// given) or `influence_coefficient` (from the two-plane correction); absent: neither.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unbalance_method: Option<String>,
+    /// Static unbalance `Σ m·r·e^{iθ}`, kg·m.
+    #[serde(rename = "static", default, skip_serializing_if = "Option::is_none")]
+    pub static_kg_m: Option<PhasorResult>,
+    /// Couple unbalance about the PIGA plane `Σ m·r·l·e^{iθ}`, kg·m².
+    #[serde(rename = "couple", default, skip_serializing_if = "Option::is_none")]
+    pub couple_kg_m2: Option<PhasorResult>,
+    /// Per rate: `[rate_deg_s, translation x µm, y µm, tilt x µrad, y µrad]`.
+    pub per_rate: Vec<[f64; 5]>,
+    /// The two-plane corrections (influence coefficient first, then stiffness model).
+    pub corrections: Vec<TwoPlaneCorrectionResult>,
+    /// The check run's C_r from the two planes against the first correction's prediction.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check: Option<CheckResult>,
+}
+
+/// A two-plane correction.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TwoPlaneCorrectionResult {
+    /// `influence_coefficient` or `stiffness_model`.
+    pub method: String,
+    /// Planes A and B.
+    pub planes: Vec<PlaneCorrection>,
+    /// What it leaves at the PIGA plane.
+    pub predicted: PredictedResult,
+    /// Standard uncertainty of the residual dynamic lean (largest axis), µrad·s².
+    pub residual_tilt_u_urad_s2: f64,
+}
+
+/// The correction in one plane.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlaneCorrection {
+    /// Height of the plane above the PIGA plane, m.
+    pub height_m: f64,
+    /// The mass, radius and azimuth in it.
+    pub correction: CorrectionResult,
 }
 
 /// A static phasor, µm, with standard uncertainties.
@@ -674,4 +761,42 @@ pub struct CheckResult {
     pub z: f64,
     /// `C_r(initial)/C_r(check)`: the reduction achieved.
     pub reduction: f64,
+}
+
+/// What one change of radius error between two rates determines of the correction
+/// (`counterweight` in results.json; the paper check of `docs/BALANCING.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CounterweightResults {
+    /// The `radius_change` phase.
+    pub phase: String,
+    /// The change of radius error, µm.
+    pub change_um: f64,
+    /// The lower rate, deg/s.
+    pub from_rate_deg_s: f64,
+    /// The higher rate, deg/s.
+    pub to_rate_deg_s: f64,
+    /// The stated radial stiffness `k_r`, N/m (a study input).
+    pub radial_stiffness_n_m: f64,
+    /// Where it comes from.
+    pub stiffness_source: String,
+    /// `C_r = Δr/(ω₂² − ω₁²)`: the O2X2 component of the dynamic phasor, m·s².
+    pub c_r_m_s2: f64,
+    /// `Δk2 = k1·C_r·g/R²` (eq. 19), rad/(s·g²).
+    pub delta_k2_rad_s_g2: f64,
+    /// The empirical formula's coefficient, `k_r/(ω₂² − ω₁²)`: unbalance along O2X2 per µm
+    /// of radius change, g·mm per µm.
+    pub unbalance_per_um_g_mm: f64,
+    /// The unbalance along O2X2 the change stands for, `k_r·C_r` (eq. 1), g·mm: the
+    /// imbalance's magnitude if it lies on the arm's line, a lower bound otherwise.
+    pub unbalance_x_g_mm: f64,
+    /// The counterweight under that assumption, kg at `correction_radius_m`.
+    pub correction_mass_kg: f64,
+    /// The counterweight's radius, m.
+    pub correction_radius_m: f64,
+    /// Its azimuth under that assumption, deg (180 for a radius that grows with rate).
+    pub correction_azimuth_deg: f64,
+    /// What the one number determines.
+    pub determined: Vec<String>,
+    /// What it does not.
+    pub not_determined: Vec<String>,
 }

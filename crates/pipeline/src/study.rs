@@ -159,6 +159,24 @@ pub fn run_with_progress(
         })
         .transpose()?;
     warnings.extend(calibration_warnings);
+    let counterweight = inputs
+        .counterweight
+        .as_ref()
+        .map(|c| {
+            crate::balancing::counterweight(
+                c,
+                &phases[c.phase].name,
+                inputs.k1_rad_s_g,
+                inputs.radius_m,
+                inputs.g_m_s2,
+            )
+            .map_err(|source| PipelineError::Balance {
+                path: inputs.source.clone(),
+                field: "counterweight".to_owned(),
+                source: Box::new(source),
+            })
+        })
+        .transpose()?;
     let results = StudyResults {
         study: inputs.name.clone(),
         inputs: StudyInputs {
@@ -172,6 +190,7 @@ pub fn run_with_progress(
         calibration,
         warnings,
         balance,
+        counterweight,
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {
@@ -333,32 +352,42 @@ fn phase_points(
         revolutions: None,
         residual_rms_um: None,
     };
-    let harmonic_point = |i: usize, rate_deg_s: f64, dc1_um: f64, ds1_um: f64| {
-        let drift = inputs
-            .lever
-            .project(FirstHarmonic {
-                c1: dc1_um,
-                s1: ds1_um,
+    let harmonic_point =
+        |i: usize, rate_deg_s: f64, dc1_um: f64, ds1_um: f64| -> Result<PointResult> {
+            let drift = inputs
+                .lever
+                .project(FirstHarmonic {
+                    c1: dc1_um,
+                    s1: ds1_um,
+                })
+                .map_err(|source| PipelineError::Harmonics {
+                    path: path.to_owned(),
+                    field: format!("{section}.points[{i}]"),
+                    source,
+                })?;
+            Ok(PointResult {
+                dc1_um: Some(dc1_um),
+                ds1_um: Some(ds1_um),
+                amplitude_um: Some(drift.probe_amplitude),
+                beta_deg: Some(drift.beta_rad.to_degrees()),
+                ..radius_point(rate_deg_s, drift.radius_error)
             })
-            .map_err(|source| PipelineError::Harmonics {
-                path: path.to_owned(),
-                field: format!("{section}.points[{i}]"),
-                source,
-            })?;
-        Ok(PointResult {
-            dc1_um: Some(dc1_um),
-            ds1_um: Some(ds1_um),
-            amplitude_um: Some(drift.probe_amplitude),
-            beta_deg: Some(drift.beta_rad.to_degrees()),
-            ..radius_point(rate_deg_s, drift.radius_error)
-        })
-    };
+        };
     match &phase.data {
         PhaseData::FirstHarmonic(points) => Ok((
             points
                 .iter()
                 .enumerate()
-                .map(|(i, p)| harmonic_point(i, p.rate_deg_s, p.dc1_um, p.ds1_um))
+                .map(|(i, p)| {
+                    let point = harmonic_point(i, p.rate_deg_s, p.dc1_um, p.ds1_um)?;
+                    // a stated σ of the first harmonic: the radius error's is σ·lever ratio
+                    Ok(PointResult {
+                        dc1_sigma_um: p.sigma_um,
+                        ds1_sigma_um: p.sigma_um,
+                        radius_error_sigma_um: p.sigma_um.map(|s| s * inputs.lever_ratio),
+                        ..point
+                    })
+                })
                 .collect::<Result<_>>()?,
             Vec::new(),
             Vec::new(),

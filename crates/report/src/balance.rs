@@ -5,7 +5,10 @@ use std::fmt::Write as _;
 use plotters::prelude::*;
 
 use crate::error::{ReportError, Result};
-use pipeline::{BalanceResults, CorrectionResult, PredictedResult};
+use pipeline::{
+    BalanceResults, CorrectionResult, CounterweightResults, PhasorResult, PredictedResult,
+    TwoPlaneResults,
+};
 
 fn opt(value: Option<f64>, fmt: impl Fn(f64) -> String) -> String {
     value.map_or_else(|| "—".to_owned(), fmt)
@@ -121,6 +124,140 @@ pub(crate) fn section(out: &mut String, b: &BalanceResults) {
          phasors' covariances (the initial and the trial runs). Assumption: {}.\n",
         b.assumption
     );
+    if let Some(t) = &b.two_plane {
+        two_plane_section(out, t);
+    }
+}
+
+fn phasor_cell(p: &PhasorResult, decimals: usize, unit: &str) -> String {
+    format!(
+        "{:.d$} ± {:.d$} {unit} at {:.3}° ± {:.3}°",
+        p.magnitude,
+        p.magnitude_u,
+        p.azimuth_deg,
+        p.azimuth_u_deg,
+        d = decimals
+    )
+}
+
+/// The two-plane subsection: translation and tilt, static and couple unbalance, the
+/// two-plane corrections and their check.
+fn two_plane_section(out: &mut String, t: &TwoPlaneResults) {
+    let _ = writeln!(
+        out,
+        "### Two probe planes
+"
+    );
+    let _ = writeln!(
+        out,
+        "Probes at {:.3} m and {:.3} m from the PIGA plane (second probe's phase `{}`): the \
+         spindle axis is read as a line, translation at the PIGA plane plus tilt × height \
+         (eq. 5), with no cone assumption.\n",
+        t.probe_heights_m[0], t.probe_heights_m[1], t.second_probe_phase
+    );
+    let _ = writeln!(out, "| quantity | static | dynamic (∝ ω²) |");
+    let _ = writeln!(out, "|---|---|---|");
+    let _ = writeln!(
+        out,
+        "| translation at the PIGA plane | {} | {} |",
+        phasor_cell(&t.static_translation_um, 4, "µm"),
+        phasor_cell(&t.dynamic_translation_um_s2, 5, "µm·s²")
+    );
+    let _ = writeln!(
+        out,
+        "| tilt (lean of the axis) | {} | {} |",
+        phasor_cell(&t.static_tilt_urad, 4, "µrad"),
+        phasor_cell(&t.dynamic_tilt_urad_s2, 5, "µrad·s²")
+    );
+    let _ = writeln!(
+        out,
+        "\nC_r at the PIGA plane from the two planes: {:.4e} ± {:.4e} m·s².",
+        t.c_r_m_s2, t.c_r_u_m_s2
+    );
+    if let (Some(st), Some(co)) = (&t.static_kg_m, &t.couple_kg_m2) {
+        let _ = writeln!(
+            out,
+            "\nUnbalance ({}): static {}, couple about the PIGA plane {}.",
+            t.unbalance_method
+                .as_deref()
+                .unwrap_or("—")
+                .replace('_', " "),
+            phasor_cell(st, 4, "kg·m"),
+            phasor_cell(co, 4, "kg·m²")
+        );
+    }
+    if !t.corrections.is_empty() {
+        let _ = writeln!(
+            out,
+            "\n| two-plane correction | plane height (m) | mass (kg) | radius (m) | azimuth (deg) | residual C_r (m·s²) | residual Δk2 (rad/(s·g²)) |"
+        );
+        let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+        for c in &t.corrections {
+            for p in &c.planes {
+                let k = &p.correction;
+                let _ = writeln!(
+                    out,
+                    "| {} | {} | {:.4} ± {:.4} | {} | {:.3} ± {:.3} | {:.3e} ± {:.3e} | {:.3e} ± {:.3e} |",
+                    c.method.replace('_', " "),
+                    p.height_m,
+                    k.mass_kg,
+                    k.mass_u_kg,
+                    k.radius_m,
+                    k.azimuth_deg,
+                    k.azimuth_u_deg,
+                    c.predicted.c_r_m_s2,
+                    c.predicted.c_r_u_m_s2,
+                    c.predicted.delta_k2_rad_s_g2,
+                    c.predicted.delta_k2_u_rad_s_g2,
+                );
+            }
+        }
+    }
+    if let Some(c) = &t.check {
+        let _ = writeln!(
+            out,
+            "\nCheck run `{}` (two planes): C_r = {:.4e} ± {:.4e} m·s², {:.3}σ from the prediction; C_r fell by {:.1}×.",
+            c.phase, c.c_r_m_s2, c.c_r_u_m_s2, c.z, c.reduction
+        );
+    }
+    let _ = writeln!(out);
+}
+
+/// Appends the counterweight section (the paper check) to report.md.
+pub(crate) fn counterweight_section(out: &mut String, c: &CounterweightResults) {
+    let _ = writeln!(out, "## Counterweight from one change of radius error\n");
+    let _ = writeln!(
+        out,
+        "Phase `{}` gives only the change of radius error between {} and {} deg/s, {} µm. \
+         With the radial stiffness k_r = {:e} N/m{}, the stiffness model (eq. 1) turns it into \
+         the \"empirical formula\" of a counterweight: {:.4e} g·mm of unbalance per µm, \
+         {:.4e} g·mm in all ({:.4} kg at {} m, at {}°, if the imbalance lies on the arm's line). \
+         Procedure: `docs/BALANCING.md`.\n",
+        c.phase,
+        c.from_rate_deg_s,
+        c.to_rate_deg_s,
+        c.change_um,
+        c.radial_stiffness_n_m,
+        if c.stiffness_source.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", c.stiffness_source)
+        },
+        c.unbalance_per_um_g_mm,
+        c.unbalance_x_g_mm,
+        c.correction_mass_kg,
+        c.correction_radius_m,
+        c.correction_azimuth_deg,
+    );
+    let _ = writeln!(out, "What the one number determines:\n");
+    for d in &c.determined {
+        let _ = writeln!(out, "- {d}");
+    }
+    let _ = writeln!(out, "\nWhat it does not determine:\n");
+    for d in &c.not_determined {
+        let _ = writeln!(out, "- {d}");
+    }
+    let _ = writeln!(out);
 }
 
 fn plot_error(message: impl ToString) -> ReportError {
@@ -141,6 +278,11 @@ pub fn balance_polar_svg(b: &BalanceResults, title: &str) -> Result<String> {
     let mut reach: f64 = 1e-6;
     for p in &b.phases {
         for q in &p.points_um {
+            reach = reach.max(q[1].hypot(q[2]));
+        }
+    }
+    if let Some(t) = &b.two_plane {
+        for q in &t.per_rate {
             reach = reach.max(q[1].hypot(q[2]));
         }
     }
@@ -200,6 +342,20 @@ pub fn balance_polar_svg(b: &BalanceResults, title: &str) -> Result<String> {
                     colour.stroke_width(1),
                 )))
                 .map_err(plot_error)?;
+        }
+        if let Some(t) = &b.two_plane {
+            chart
+                .draw_series(
+                    t.per_rate
+                        .iter()
+                        .map(|q| TriangleMarker::new((q[1], q[2]), 6, BLACK.filled())),
+                )
+                .map_err(plot_error)?
+                .label(format!(
+                    "{}: translation at the PIGA plane (two planes, no cone)",
+                    b.initial
+                ))
+                .legend(|(x, y)| TriangleMarker::new((x + 10, y), 6, BLACK.filled()));
         }
         let ca = b.correction.azimuth_deg.to_radians();
         let dashes: Vec<PathElement<(f64, f64)>> = (0..20)

@@ -82,6 +82,9 @@ pub fn render(
     if let Some(b) = &results.balance {
         crate::balance::section(&mut out, b);
     }
+    if let Some(c) = &results.counterweight {
+        crate::balance::counterweight_section(&mut out, c);
+    }
 
     if let Some(outcomes) = outcomes {
         let _ = writeln!(out, "## Regression checks\n");

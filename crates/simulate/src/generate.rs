@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use super::scenario::{
     LoadedScenario, PigaRecordingSpec, ProbeSpec, Scenario, piga_recording_file_name,
-    recording_file_name,
+    recording_file_name, second_recording_file_name,
 };
 use crate::error::{Result, SimulateError};
 use units::m_to_um;
@@ -26,12 +26,17 @@ use units::m_to_um;
 const PROBE_STREAM: u64 = 1;
 const PIGA_STREAM: u64 = 2;
 const PIGA_RECORDING_STREAM: u64 = 3;
+const SECOND_PROBE_STREAM: u64 = 4;
 
 /// Everything a scenario produces, in memory.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Simulation {
     /// One probe recording per rate, in the scenario's order.
     pub recordings: Vec<SimulatedRecording>,
+    /// The second probe's recordings (`probe2_<rate>deg_s.csv`), one per rate, when the
+    /// scenario has a second probe; else empty.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub second_recordings: Vec<SimulatedRecording>,
     /// The PIGA calibration table (`piga.csv`), one row per rate.
     pub piga: Vec<PigaRow>,
     /// The raw PIGA output recordings (`piga_<rate>deg_s.csv`), one per rate, when the
@@ -139,6 +144,9 @@ pub struct TruthRate {
     pub radius_error_um: f64,
     /// The first harmonic the probe sees (eq. 21), without noise.
     pub probe_first_harmonic: ProbeTruth,
+    /// The first harmonic the second probe sees, without noise (with a second probe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub second_probe_first_harmonic: Option<ProbeTruth>,
     /// The recording's file name.
     pub recording: String,
     /// Whole revolutions in the recording.
@@ -234,6 +242,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
 
     let mut recordings = Vec::with_capacity(points.len());
     let mut piga_recordings = Vec::new();
+    let mut second_recordings = Vec::new();
     let mut piga = Vec::with_capacity(points.len());
     let mut rates = Vec::with_capacity(points.len());
     for (i, (point, &rate_deg_s)) in points.iter().zip(&s.rates_deg_s).enumerate() {
@@ -244,7 +253,13 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
                 source,
             }
         })?;
-        let recording = record(s, lever, &chain, rate_deg_s);
+        // the probes' readers: the cone of eq. 22, or two points of the axis line
+        let (first, second) = readers(s, lever, chain.offsets(), rate_deg_s);
+        let recording = record(s, &first, chain.rate_rad_s(), rate_deg_s);
+        let second_probe_first_harmonic = second.map(|reader| {
+            second_recordings.push(record(s, &reader, chain.rate_rad_s(), rate_deg_s));
+            reader.truth(chain.offsets())
+        });
         let noise = OutputNoise {
             sigma_rad_s: s.piga.noise_rad_s,
             seed: s.seed,
@@ -273,7 +288,8 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
                 .map(|_| piga_recording_file_name(rate_deg_s)),
             offsets,
             radius_error_um: m_to_um(offsets.dr_x_m),
-            probe_first_harmonic: probe_truth(lever, &offsets),
+            probe_first_harmonic: first.truth(&offsets),
+            second_probe_first_harmonic,
             recording: recording.file_name.clone(),
             revolutions: s.revolutions_at(rate_deg_s),
             samples: recording.time_s.len(),
@@ -303,6 +319,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
         .delta_k2_rad_s_g2;
     let simulation = Simulation {
         recordings,
+        second_recordings,
         piga,
         piga_recordings,
         truth: Truth {
@@ -348,17 +365,76 @@ impl Lever {
     }
 }
 
-/// The exact first harmonic of the gap: the axis point in the probe plane is
-/// `(Δr_x cos θ − Δr_y sin θ, …)/ratio` along `O1X1`, read with the probe's sign.
-fn probe_truth(lever: Lever, offsets: &SpindleOffsets) -> ProbeTruth {
-    let dc1_um = lever.sign * m_to_um(offsets.dr_x_m) / lever.ratio;
-    let ds1_um = -lever.sign * m_to_um(offsets.dr_y_m) / lever.ratio;
-    ProbeTruth {
-        dc1_um,
-        ds1_um,
-        amplitude_um: dc1_um.hypot(ds1_um),
-        beta_deg: offsets.drift_azimuth_rad().to_degrees(),
+/// How one probe reads the spindle axis at one rate: the axis point in its plane at spindle
+/// angle 0 (in `O1`, which then turns with the spindle), its sign and its noise stream.
+#[derive(Debug, Clone)]
+struct Reader {
+    /// `(x, y)` of the axis point in the probe plane at θ = 0, µm.
+    point_um: [f64; 2],
+    /// `+1` along `O1X1`, `−1` against.
+    sign: f64,
+    /// Noise stream tag.
+    purpose: u64,
+    file_name: String,
+}
+
+impl Reader {
+    /// The exact first harmonic of the gap: the axis point in the probe plane turned by θ,
+    /// `x cos θ − y sin θ` along `O1X1`, read with the probe's sign.
+    fn truth(&self, offsets: &SpindleOffsets) -> ProbeTruth {
+        let dc1_um = self.sign * self.point_um[0];
+        let ds1_um = -self.sign * self.point_um[1];
+        ProbeTruth {
+            dc1_um,
+            ds1_um,
+            amplitude_um: dc1_um.hypot(ds1_um),
+            beta_deg: offsets.drift_azimuth_rad().to_degrees(),
+        }
     }
+}
+
+/// The readers of a scenario's probes at one rate. One probe: the spindle-axis point at the
+/// PIGA plane carried down the cone of eq. 22 (`/ratio`). Two probes: each reads the axis
+/// line of the chain (eq. 5) at its own height, `T₂¹(0)·[0 0 −h 1]ᵀ` (translation plus tilt
+/// times height), with no cone.
+fn readers(
+    s: &Scenario,
+    lever: Lever,
+    offsets: &SpindleOffsets,
+    rate_deg_s: f64,
+) -> (Reader, Option<Reader>) {
+    let at_height = |below_piga_mm: f64| {
+        let p = spindle_transform(0.0, offsets)
+            .apply(Point::<Spindle>::new([0.0, 0.0, -below_piga_mm * 1e-3]))
+            .coords_m;
+        [m_to_um(p[0]), m_to_um(p[1])]
+    };
+    let Some(q) = &s.second_probe else {
+        let p0 = axis_point_at_piga(offsets, 0.0);
+        let first = Reader {
+            point_um: [m_to_um(p0[0]) / lever.ratio, m_to_um(p0[1]) / lever.ratio],
+            sign: lever.sign,
+            purpose: PROBE_STREAM,
+            file_name: recording_file_name(rate_deg_s),
+        };
+        return (first, None);
+    };
+    let first = Reader {
+        point_um: at_height(s.probe.lever.probe_to_piga_mm),
+        sign: lever.sign,
+        purpose: PROBE_STREAM,
+        file_name: recording_file_name(rate_deg_s),
+    };
+    let second = Reader {
+        point_um: at_height(q.probe_to_piga_mm),
+        sign: match q.probe_direction {
+            harmonics::ProbeDirection::AlongO1X1 => 1.0,
+            harmonics::ProbeDirection::AgainstO1X1 => -1.0,
+        },
+        purpose: SECOND_PROBE_STREAM,
+        file_name: second_recording_file_name(rate_deg_s),
+    };
+    (first, Some(second))
 }
 
 /// Number of samples that cover `revolutions` whole turns at `rate_deg_s`: every sample
@@ -386,21 +462,21 @@ fn spindle_angle_rad(probe: &ProbeSpec, rate_rad_s: f64, t_s: f64) -> f64 {
     theta0 + wt + ripple
 }
 
-/// The probe recording at one rate.
-fn record(s: &Scenario, lever: Lever, chain: &Chain, rate_deg_s: f64) -> SimulatedRecording {
+/// One probe's recording at one rate.
+fn record(s: &Scenario, reader: &Reader, rate_rad_s: f64, rate_deg_s: f64) -> SimulatedRecording {
     let probe = &s.probe;
     let n = sample_count(
         probe.sample_rate_hz,
         rate_deg_s,
         s.revolutions_at(rate_deg_s),
     );
-    let Lever { ratio, sign } = lever;
-    let mut rng = stream(s.seed, PROBE_STREAM, rate_deg_s.to_bits());
+    let sign = reader.sign;
+    let mut rng = stream(s.seed, reader.purpose, rate_deg_s.to_bits());
     let noise = normal(probe.noise_um);
-    // The spindle-axis point at the PIGA plane (the O2 origin) in the sleeve frame. Eq. 5
-    // begins with Rot(z₁, θ), so T₂¹(θ) = Rot(z₁, θ)·T₂¹(0) and the point at angle θ is the
-    // chain's point at θ = 0 turned by θ (equal to evaluating the chain at θ; tested).
-    let p0 = axis_point_at_piga(chain.offsets(), 0.0);
+    // The spindle-axis point in the probe plane, in the sleeve frame. Eq. 5 begins with
+    // Rot(z₁, θ), so T₂¹(θ) = Rot(z₁, θ)·T₂¹(0) and the point at angle θ is the chain's point
+    // at θ = 0 turned by θ (equal to evaluating the chain at θ; tested).
+    let p0 = reader.point_um;
     let harmonics: Vec<(usize, f64, f64)> = probe
         .sleeve_harmonics
         .iter()
@@ -415,11 +491,10 @@ fn record(s: &Scenario, lever: Lever, chain: &Chain, rate_deg_s: f64) -> Simulat
     let mut angle_deg = probe.encoder_angle.then(|| Vec::with_capacity(n));
     for i in 0..n {
         let t = i as f64 / probe.sample_rate_hz;
-        let theta = spindle_angle_rad(probe, chain.rate_rad_s(), t);
+        let theta = spindle_angle_rad(probe, rate_rad_s, t);
         let (sin1, cos1) = theta.sin_cos();
-        // X1 component of Rot(z, θ)·p0, carried down the cone to the probe plane
-        // (eq. 22 read backwards)
-        let x_probe_um = m_to_um(p0[0] * cos1 - p0[1] * sin1) / ratio;
+        // X1 component of Rot(z, θ)·p0
+        let x_probe_um = p0[0] * cos1 - p0[1] * sin1;
         // cos kθ, sin kθ by the angle-addition recurrence
         (cos_k[0], sin_k[0]) = (1.0, 0.0);
         for k in 1..=highest {
@@ -439,7 +514,7 @@ fn record(s: &Scenario, lever: Lever, chain: &Chain, rate_deg_s: f64) -> Simulat
     }
     SimulatedRecording {
         rate_deg_s,
-        file_name: recording_file_name(rate_deg_s),
+        file_name: reader.file_name.clone(),
         time_s,
         gap_um,
         angle_deg,

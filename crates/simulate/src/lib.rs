@@ -17,6 +17,12 @@
 //! `−d_c1·(h_p + h_a)/h_p = Δr_x = Δr_xs + C_r ω²` (eq. 22) hold exactly for the noise-free
 //! signal. See `docs/SIMULATION.md`.
 //!
+//! **Second probe.** A scenario's optional `second_probe` adds a probe at another height
+//! (`probe2_<rate>deg_s.csv`). With it, both probes read the spindle axis as the straight
+//! line of the chain, `T₂¹(θ)·[0 0 −h 1]ᵀ` at each probe's depth `h` below the PIGA plane
+//! (translation plus tilt times height, no cone), so that two probe planes separate the
+//! translation from the tilt (`balance::AxisMotion`).
+//!
 //! **PIGA.** Each row of `piga.csv` is `accel_model::rate_points` — eq. 15 evaluated on the
 //! exact inputs of eq. 12–13 and averaged over whole revolutions — plus N(0, σ²). With
 //! `piga.recordings`, each rate also gets a raw output recording `piga_<rate>deg_s.csv`
@@ -36,7 +42,7 @@ pub use generate::{
 };
 pub use scenario::{
     CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaRecordingSpec,
-    PigaSpec, ProbeSpec, Scenario, SleeveHarmonic, SpeedRipple, piga_recording_file_name,
-    recording_file_name,
+    PigaSpec, ProbeSpec, Scenario, SecondProbeSpec, SleeveHarmonic, SpeedRipple,
+    piga_recording_file_name, recording_file_name, second_recording_file_name,
 };
 pub use write::{SimulationFiles, piga_csv_text, write_simulation};

@@ -54,6 +54,26 @@ pub struct Scenario {
     /// variance, which is what an unweighted `C_r` fit assumes.
     #[serde(default)]
     pub min_duration_s: f64,
+    /// A second displacement probe at another height (absent: one probe). With it, both
+    /// probes read the spindle axis as the straight line of the chain (translation and tilt,
+    /// eq. 5) at their own heights, so that two probe planes separate translation from tilt;
+    /// without it, the probe keeps the cone of eq. 22.
+    #[serde(default)]
+    pub second_probe: Option<SecondProbeSpec>,
+}
+
+/// The second displacement probe: its height and direction. Sampling, noise, `l0`, sleeve
+/// harmonics, encoder and speed ripple are the first probe's; its noise is an independent
+/// stream. Its recordings are `probe2_<rate>deg_s.csv`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SecondProbeSpec {
+    /// Height from the second probe's plane up to the PIGA plane, mm (positive below the PIGA
+    /// plane, as the first probe's `probe_to_piga_mm`; it must differ from it).
+    pub probe_to_piga_mm: f64,
+    /// Its measuring direction (default: against `O1X1`).
+    #[serde(default)]
+    pub probe_direction: harmonics::ProbeDirection,
 }
 
 /// The centrifuge without its error motion (which has its own section).
@@ -271,6 +291,16 @@ impl Scenario {
             v.length_um(&format!("{field}.c_um"), h.c_um)?;
             v.length_um(&format!("{field}.s_um"), h.s_um)?;
         }
+        if let Some(q) = &self.second_probe {
+            v.finite("second_probe.probe_to_piga_mm", q.probe_to_piga_mm)?;
+            if q.probe_to_piga_mm == p.lever.probe_to_piga_mm {
+                return Err(v.invalid(
+                    "second_probe.probe_to_piga_mm",
+                    q.probe_to_piga_mm,
+                    "must differ from probe.lever.probe_to_piga_mm (two planes)",
+                ));
+            }
+        }
         if let Some(r) = &p.speed_ripple {
             v.finite("probe.speed_ripple.amplitude_deg", r.amplitude_deg)?;
             if r.amplitude_deg.abs().to_radians() >= 1.0 {
@@ -450,6 +480,17 @@ pub fn recording_file_name(rate_deg_s: f64) -> String {
 #[must_use]
 pub fn piga_recording_file_name(rate_deg_s: f64) -> String {
     format!("piga_{rate_deg_s:08.4}deg_s.csv")
+}
+
+/// The file name of the second probe's recording at `rate_deg_s`:
+/// `probe2_010.0000deg_s.csv`.
+///
+/// ```
+/// assert_eq!(simulate::second_recording_file_name(10.0), "probe2_010.0000deg_s.csv");
+/// ```
+#[must_use]
+pub fn second_recording_file_name(rate_deg_s: f64) -> String {
+    format!("probe2_{rate_deg_s:08.4}deg_s.csv")
 }
 
 /// Field checks that name the file and the field.

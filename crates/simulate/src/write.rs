@@ -14,7 +14,7 @@ use crate::error::{Result, SimulateError};
 /// The files a simulation wrote.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SimulationFiles {
-    /// One probe recording per rate, in the scenario's order.
+    /// One probe recording per rate, in the scenario's order, then the second probe's.
     pub recordings: Vec<PathBuf>,
     /// `piga.csv`.
     pub piga_csv: PathBuf,
@@ -28,6 +28,7 @@ pub struct SimulationFiles {
 const SIMULATION_FILES: &[&str] = &[
     "probe_*deg_s.csv",
     "piga_*deg_s.csv",
+    "probe2_*deg_s.csv",
     "piga.csv",
     "truth.json",
 ];
@@ -51,7 +52,7 @@ pub fn write_simulation(dir: &Path, sim: &Simulation) -> Result<SimulationFiles>
     })?;
     let mut set = OutputSet::create(dir, SIMULATION_FILES)?;
     let mut recordings = Vec::with_capacity(sim.recordings.len());
-    for r in &sim.recordings {
+    for r in sim.recordings.iter().chain(&sim.second_recordings) {
         recordings.push(set.write_with(&r.file_name, |mut out| r.write_csv(&mut out))?);
     }
     let mut piga_recordings = Vec::with_capacity(sim.piga_recordings.len());

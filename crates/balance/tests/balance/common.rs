@@ -34,9 +34,17 @@ pub(crate) fn with_masses(s: &mut Scenario, masses: &[ImbalanceMass]) {
 /// standard error (as the study computes it from the per-revolution fit residuals).
 pub(crate) fn probe_points(loaded: &LoadedScenario) -> Vec<ProbePoint> {
     let sim = simulate(loaded).expect("simulates");
-    sim.recordings
+    recording_points(&sim.recordings, &sim.truth.rates)
+}
+
+/// Per rate, the mean first harmonic of recordings and its white-noise standard error.
+pub(crate) fn recording_points(
+    recordings: &[simulate::SimulatedRecording],
+    rates: &[simulate::TruthRate],
+) -> Vec<ProbePoint> {
+    recordings
         .iter()
-        .zip(&sim.truth.rates)
+        .zip(rates)
         .map(|(rec, truth)| {
             let angle_rad = rec.angle_rad().expect("the fixture has an encoder");
             let signal = ProbeSignal {

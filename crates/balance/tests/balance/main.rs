@@ -5,3 +5,4 @@ mod closed_loop;
 mod common;
 mod errors;
 mod paper;
+mod two_plane;

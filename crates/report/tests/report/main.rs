@@ -65,6 +65,27 @@ fn the_balance_report_is_unchanged() {
     let files = report::write_outputs(&dir.0, &results, None, None, None).unwrap();
     let svg = std::fs::read_to_string(files.balance_polar_svg.expect("a balance figure")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("correction: 31.99"));
+    // one probe: the cone assumption of eq. 22 is stated, and there is no two-plane part
+    assert!(section.contains("Assumption: one probe plane"));
+    assert!(section.contains("cone about the tilt pivot (eq. 22)"));
+    assert!(!section.contains("### Two probe planes"));
+}
+
+/// The two-plane part of the balance section (two probes, masses at two heights), as a
+/// snapshot, and its figure.
+#[test]
+fn the_two_plane_balance_report_is_unchanged() {
+    let inputs =
+        pipeline::load_study(&root().join("fixtures/studies/balance-two-plane.ron")).unwrap();
+    let results = pipeline::run(&inputs).unwrap();
+    let text = report::render(&results, None, None);
+    let section = &text[text.find("### Two probe planes").expect("a two-plane part")..];
+    insta::assert_snapshot!("balance_two_plane_report_md", section);
+    assert!(text.contains("Assumption: two probe planes"));
+    let dir = Scratch::new("balance-two-plane");
+    let files = report::write_outputs(&dir.0, &results, None, None, None).unwrap();
+    let svg = std::fs::read_to_string(files.balance_polar_svg.expect("a balance figure")).unwrap();
+    assert!(svg.contains("translation at the PIGA plane (two planes, no cone)"));
 }
 
 /// A study without a balance section writes no balance figure and no section.

@@ -203,3 +203,64 @@ fn fit_uniform(rec: &SimulatedRecording, rate_rad_s: f64) -> harmonics::Harmonic
     )
     .unwrap()
 }
+
+/// Two probes: each reads the axis line `T + z·L` at its own height (no cone), so the two
+/// noise-free first harmonics give back the chain's translation at the PIGA plane and the
+/// lean; the second probe's recordings have their own names.
+#[test]
+fn two_probes_read_the_axis_line_at_their_heights() {
+    let loaded = modified(&noise_free(&pre_balance()), |s| {
+        s.second_probe = Some(simulate::SecondProbeSpec {
+            probe_to_piga_mm: 1110.0,
+            probe_direction: ProbeDirection::AlongO1X1,
+        });
+    });
+    let s = &loaded.scenario;
+    let sim = simulate(&loaded).unwrap();
+    assert_eq!(sim.second_recordings.len(), sim.recordings.len());
+    let order = fit_order(s);
+    let start = s.probe.start_angle_deg.to_radians();
+    for ((r1, r2), truth) in sim
+        .recordings
+        .iter()
+        .zip(&sim.second_recordings)
+        .zip(&sim.truth.rates)
+    {
+        assert_eq!(
+            r2.file_name,
+            simulate::second_recording_file_name(r1.rate_deg_s)
+        );
+        let h1 = fit(r1, truth.rate_rad_s, start, order)
+            .first_harmonic()
+            .unwrap();
+        let h2 = fit(r2, truth.rate_rad_s, start, order)
+            .first_harmonic()
+            .unwrap();
+        // the probes' axis points in O2 (µm): against O1X1 x = −d_c1, along x = d_c1
+        let p1 = (-h1.c1, h1.s1);
+        let p2 = (h2.c1, -h2.s1);
+        let (z1, z2) = (-0.51, -1.11);
+        let o = truth.offsets;
+        // lean L = (Δφ_y, −Δφ_x) in µrad; translation T = Δr at the PIGA plane in µm
+        let lean = ((p1.0 - p2.0) / (z1 - z2), (p1.1 - p2.1) / (z1 - z2));
+        let t = (p1.0 - z1 * lean.0, p1.1 - z1 * lean.1);
+        let tol = 1e-6;
+        assert!((t.0 - o.dr_x_m * 1e6).abs() < tol, "{t:?} vs {o:?}");
+        assert!((t.1 - o.dr_y_m * 1e6).abs() < tol, "{t:?} vs {o:?}");
+        assert!(
+            (lean.0 - o.dphi_y_rad * 1e6).abs() < tol,
+            "{lean:?} vs {o:?}"
+        );
+        assert!(
+            (lean.1 + o.dphi_x_rad * 1e6).abs() < tol,
+            "{lean:?} vs {o:?}"
+        );
+        let second = truth.second_probe_first_harmonic.unwrap();
+        assert_relative_eq!(second.dc1_um, h2.c1, epsilon = 1e-6);
+        assert_relative_eq!(second.ds1_um, h2.s1, epsilon = 1e-6);
+    }
+    // a scenario without a second probe writes none and its truth has none
+    let one = simulate(&noise_free(&pre_balance())).unwrap();
+    assert!(one.second_recordings.is_empty());
+    assert!(one.truth.rates[0].second_probe_first_harmonic.is_none());
+}

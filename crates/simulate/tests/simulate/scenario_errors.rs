@@ -479,3 +479,16 @@ fn a_hundred_thousand_rates_are_checked_in_linear_time() {
         other => panic!("expected RecordingNameCollision, got {other:?}"),
     }
 }
+
+#[test]
+fn a_second_probe_at_the_first_probes_depth_names_its_field() {
+    let at = |mm: &str| {
+        parse_with(
+            "revolutions:",
+            &format!("second_probe: (probe_to_piga_mm: {mm}), revolutions:"),
+        )
+    };
+    assert!(at("1110.0").is_ok());
+    assert_invalid(at("510.0"), "second_probe.probe_to_piga_mm");
+    assert_invalid(at("inf"), "second_probe.probe_to_piga_mm");
+}
