@@ -288,6 +288,23 @@ impl CalibrationModel {
     }
 }
 
+/// The Monte Carlo method and the GUM framework evaluate the model directly: it never fails,
+/// and a non-finite output (a drawn R or g of zero) is a failed trial.
+impl uncertainty::MeasurementModel for CalibrationModel {
+    fn output_names(&self) -> Vec<String> {
+        OUTPUTS.iter().map(|&name| name.to_owned()).collect()
+    }
+
+    fn evaluate(&self, x: &[f64], y: &mut [f64]) -> Result<(), uncertainty::ModelError> {
+        CalibrationModel::evaluate(self, x, y);
+        Ok(())
+    }
+
+    fn input_count(&self) -> Option<usize> {
+        Some(self.inputs())
+    }
+}
+
 /// The compensation of a phase's C_r, for `identify`.
 pub(crate) fn compensation(c_r_m_s2: f64, c_r_sigma_m_s2: f64, k1: K1Choice) -> Compensation {
     Compensation {
@@ -394,15 +411,27 @@ pub(crate) struct Setting<'a> {
     pub(crate) c_r_sigma: Option<(f64, usize)>,
 }
 
-/// Fits, builds the measurement model and evaluates its uncertainty (GUM and Monte Carlo).
-pub(crate) fn evaluate(
+/// The calibration's uncertainty evaluation, set up: the eq. 18 fit, the measurement model,
+/// its input quantities (validated, with the fit's correlations) and the Monte Carlo options.
+pub(crate) struct Setup {
+    pub(crate) cal: CompensatedCalibration,
+    pub(crate) model: CalibrationModel,
+    pub(crate) vif: [f64; 5],
+    pub(crate) quantities: Vec<uncertainty::InputQuantity>,
+    pub(crate) set: uncertainty::Inputs,
+    pub(crate) options: uncertainty::McOptions,
+    pub(crate) noise_dof: usize,
+    pub(crate) excess_u_rad_s: Option<f64>,
+    pub(crate) birge_ratio: Option<f64>,
+}
+
+/// Fits and builds the measurement model with its input quantities.
+pub(crate) fn setup(
     inputs: &CalibrationInputs,
     points: &PigaPoints,
     setting: &Setting<'_>,
-) -> Result<Evaluated, CalibrationFailure> {
-    use uncertainty::{
-        Dof, Evaluation, GumOptions, InputQuantity, McOptions, gum, monte_carlo, validate,
-    };
+) -> Result<Setup, CalibrationFailure> {
+    use uncertainty::{Dof, Evaluation, InputQuantity, McOptions};
     let n = setting.nominal;
     let rates_rad_s: Vec<f64> = points
         .rates_deg_s
@@ -528,26 +557,48 @@ pub(crate) fn evaluate(
     }
     let set = uncertainty::Inputs::with_correlation(quantities.clone(), &correlation)
         .map_err(CalibrationFailure::Uncertainty)?;
-    let measurement = uncertainty::model_fn(OUTPUTS, |x: &[f64], y: &mut [f64]| {
-        model.evaluate(x, y);
-        Ok(())
-    })
-    .with_input_count(quantities.len());
-    let gum_result =
-        gum(&measurement, &set, &GumOptions::default()).map_err(CalibrationFailure::Uncertainty)?;
-    let mc = monte_carlo(
-        &measurement,
-        &set,
-        &McOptions {
-            seed: inputs.seed,
-            trials: match inputs.trials {
-                None => McOptions::default().trials,
-                Some(n) => uncertainty::Trials::Fixed(n),
-            },
-            ..McOptions::default()
+    let options = McOptions {
+        seed: inputs.seed,
+        trials: match inputs.trials {
+            None => McOptions::default().trials,
+            Some(n) => uncertainty::Trials::Fixed(n),
         },
-    )
-    .map_err(CalibrationFailure::Uncertainty)?;
+        ..McOptions::default()
+    };
+    Ok(Setup {
+        cal,
+        model,
+        vif,
+        quantities,
+        set,
+        options,
+        noise_dof,
+        excess_u_rad_s,
+        birge_ratio: first_birge,
+    })
+}
+
+/// Fits, builds the measurement model and evaluates its uncertainty (GUM and Monte Carlo).
+pub(crate) fn evaluate(
+    inputs: &CalibrationInputs,
+    points: &PigaPoints,
+    setting: &Setting<'_>,
+) -> Result<Evaluated, CalibrationFailure> {
+    use uncertainty::{GumOptions, gum, monte_carlo, validate};
+    let Setup {
+        cal,
+        model,
+        vif,
+        quantities,
+        set,
+        options,
+        noise_dof,
+        excess_u_rad_s,
+        birge_ratio,
+    } = setup(inputs, points, setting)?;
+    let gum_result =
+        gum(&model, &set, &GumOptions::default()).map_err(CalibrationFailure::Uncertainty)?;
+    let mc = monte_carlo(&model, &set, &options).map_err(CalibrationFailure::Uncertainty)?;
     let validation = validate(&gum_result, &mc, 2).map_err(CalibrationFailure::Uncertainty)?;
     Ok(Evaluated {
         cal,
@@ -559,7 +610,7 @@ pub(crate) fn evaluate(
         quantities,
         noise_dof,
         excess_u_rad_s,
-        birge_ratio: first_birge,
+        birge_ratio,
     })
 }
 

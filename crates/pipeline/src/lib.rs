@@ -82,4 +82,4 @@ pub use results::{
     MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult, PigaResult,
     PointResult, ProbeTrace, StudyInputs, StudyResults, Warning,
 };
-pub use study::{run, run_with_progress};
+pub use study::{CalibrationMeasurement, calibration_measurement, run, run_with_progress};

@@ -8,7 +8,7 @@ use harmonics::FirstHarmonic;
 use identify::RadiusModel;
 use units::{deg_s_to_rad_s, m_to_um, um_to_m};
 
-use crate::calibration::{self, CalibrationFailure, Nominal, Setting};
+use crate::calibration::{self, CalibrationFailure, CalibrationModel, Nominal, Setting};
 use crate::config::{RadiusModelName, Weighting};
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Inputs, Phase, PhaseData, radius_model};
@@ -99,31 +99,11 @@ pub fn run_with_progress(
         .map(|c| {
             let _span = tracing::info_span!("calibration").entered();
             let phase = &phases[c.phase];
-            let setting = Setting {
-                nominal: Nominal {
-                    radius_m: inputs.radius_m,
-                    g_m_s2: inputs.g_m_s2,
-                    pivot_to_probe_mm: inputs.lever.pivot_to_probe_mm,
-                    probe_to_piga_mm: inputs.lever.probe_to_piga_mm,
-                    c_r_m_s2: phase.fit.c_r_m_s2,
-                },
-                type_b: &inputs.type_b,
-                c_r_sigma: phase.fit.c_r_sigma_m_s2.map(|s| (s, phase.fit.dof)),
-            };
+            let setting = setting(inputs, phase);
             let (points, more) = c.points(&inputs.source)?;
             calibration_warnings.extend(more);
-            let evaluated = calibration::evaluate(c, &points, &setting).map_err(|e| match e {
-                CalibrationFailure::Identify(source) => PipelineError::Identify {
-                    path: inputs.source.clone(),
-                    field: "calibration".to_owned(),
-                    source,
-                },
-                CalibrationFailure::Uncertainty(source) => PipelineError::Uncertainty {
-                    path: inputs.source.clone(),
-                    field: "calibration".to_owned(),
-                    source: Box::new(source),
-                },
-            })?;
+            let evaluated = calibration::evaluate(c, &points, &setting)
+                .map_err(|e| calibration_error(inputs, e))?;
             let results = calibration::results(
                 c,
                 &points,
@@ -213,6 +193,72 @@ fn locate(failure: PhaseFailure, path: &Path, field: &str) -> PipelineError {
             path: path.to_owned(),
             field: field.to_owned(),
             source,
+        },
+    }
+}
+
+/// The calibration's measurement model with its validated input quantities and the Monte
+/// Carlo options, set up as [`run`] sets them up before its GUM and Monte Carlo evaluations
+/// (the compensating phase's C_r fit, the calibration's points, then the eq. 18 fit), for a
+/// benchmark or an outside check of the uncertainty evaluation. `None` when the study has no
+/// calibration section.
+///
+/// Errors: those of [`run`] for the compensating phase and the calibration.
+pub fn calibration_measurement(inputs: &Inputs) -> Result<Option<CalibrationMeasurement>> {
+    let Some(c) = inputs.calibration.as_ref() else {
+        return Ok(None);
+    };
+    let (phase, _) = run_phase(inputs, &inputs.phases[c.phase], &|_| {})?;
+    let setting = setting(inputs, &phase);
+    let (points, _) = c.points(&inputs.source)?;
+    let setup =
+        calibration::setup(c, &points, &setting).map_err(|e| calibration_error(inputs, e))?;
+    Ok(Some(CalibrationMeasurement {
+        model: setup.model,
+        inputs: setup.set,
+        options: setup.options,
+    }))
+}
+
+/// The calibration's uncertainty evaluation as [`calibration_measurement`] sets it up.
+#[derive(Debug, Clone)]
+pub struct CalibrationMeasurement {
+    /// The measurement model (14 inputs, 6 outputs; see [`CalibrationModel`]).
+    pub model: CalibrationModel,
+    /// Its input quantities, validated, with the eq. 18 fit's coefficients as one correlated
+    /// Type A group.
+    pub inputs: uncertainty::Inputs,
+    /// The Monte Carlo options the study asks for (its seed and trials).
+    pub options: uncertainty::McOptions,
+}
+
+/// The nominal values and uncertainties of the calibration, with the compensating `phase`.
+fn setting<'a>(inputs: &'a Inputs, phase: &PhaseResults) -> Setting<'a> {
+    Setting {
+        nominal: Nominal {
+            radius_m: inputs.radius_m,
+            g_m_s2: inputs.g_m_s2,
+            pivot_to_probe_mm: inputs.lever.pivot_to_probe_mm,
+            probe_to_piga_mm: inputs.lever.probe_to_piga_mm,
+            c_r_m_s2: phase.fit.c_r_m_s2,
+        },
+        type_b: &inputs.type_b,
+        c_r_sigma: phase.fit.c_r_sigma_m_s2.map(|s| (s, phase.fit.dof)),
+    }
+}
+
+/// A calibration failure located in the study file.
+fn calibration_error(inputs: &Inputs, e: CalibrationFailure) -> PipelineError {
+    match e {
+        CalibrationFailure::Identify(source) => PipelineError::Identify {
+            path: inputs.source.clone(),
+            field: "calibration".to_owned(),
+            source,
+        },
+        CalibrationFailure::Uncertainty(source) => PipelineError::Uncertainty {
+            path: inputs.source.clone(),
+            field: "calibration".to_owned(),
+            source: Box::new(source),
         },
     }
 }
