@@ -152,6 +152,8 @@ fn write_json(path: &Path, m: &CalibrationMeasurement, options: &McOptions) {
     let json = serde_json::json!({
         "inputs": inputs,
         "correlation": correlation,
+        // The study fits k1 (the model ignores the "k1 (given)" input).
+        "k1_fitted": true,
         "rust": { "trials": mc.trials, "seed": options.seed, "outputs": outputs },
     });
     std::fs::write(path, serde_json::to_string_pretty(&json).expect("json"))
