@@ -1,9 +1,9 @@
 //! Propagation of distributions by the Monte Carlo method (JCGM 101:2008 §5–§7), adaptive
 //! (§7.9), seeded and parallel.
 
-use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rand_distr::{ChiSquared, StandardNormal, StudentT};
+use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 
 use crate::error::{ModelError, Result, Statistic, UncertaintyError};
@@ -124,6 +124,12 @@ impl McResult {
 /// `100/(1 − p)` trials, 10⁶ here.
 const MAX_COVERAGE_PROBABILITY: f64 = 0.9999;
 
+/// The generator of the Monte Carlo draws: xoshiro256++ (Blackman & Vigna), a fixed
+/// algorithm whose output for a seed is the same on every platform and every version of
+/// `rand_xoshiro`; it passes BigCrush and has a period of 2²⁵⁶ − 1. Each chunk of trials has
+/// its own stream, seeded through SplitMix64 (see [`stream`]).
+type McRng = Xoshiro256PlusPlus;
+
 /// Trials per random stream. Fixed, so that the streams, and therefore the results, do not
 /// depend on the number of threads.
 const CHUNK: usize = 1000;
@@ -169,7 +175,7 @@ impl Draw {
     /// Fills this draw's column(s) of `cols` (column-major, `SUB` rows per input) for the
     /// first `len` trials of a sub-block. `z` holds at least as many values as the largest
     /// group has members.
-    fn fill(&self, rng: &mut StdRng, cols: &mut [f64], len: usize, z: &mut [f64]) {
+    fn fill(&self, rng: &mut McRng, cols: &mut [f64], len: usize, z: &mut [f64]) {
         let col = |index: usize| index * SUB..index * SUB + len;
         match self {
             Draw::Constant { index, value } => {
@@ -310,14 +316,15 @@ fn draws(inputs: &Inputs) -> Result<Vec<Draw>> {
 }
 
 /// An independent random stream per (seed, batch, chunk): a SplitMix64 finaliser over the
-/// three numbers gives unrelated seeds for `StdRng`.
-fn stream(seed: u64, batch: u64, chunk: u64) -> StdRng {
+/// three numbers gives unrelated seeds, which `seed_from_u64` expands into the generator's
+/// 256-bit state by SplitMix64 again.
+fn stream(seed: u64, batch: u64, chunk: u64) -> McRng {
     let mut z = seed
         ^ batch.wrapping_mul(0x9E37_79B9_7F4A_7C15)
         ^ chunk.wrapping_mul(0xD1B5_4A32_D192_ED03);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    StdRng::seed_from_u64(z ^ (z >> 31))
+    McRng::seed_from_u64(z ^ (z >> 31))
 }
 
 /// The failures of one chunk: how many, and the first (trial index in the batch, error).
@@ -396,6 +403,12 @@ fn coverage_indices(count: usize, p: f64) -> (usize, usize) {
 /// The coverage interval of `values` (reordered in place by selection).
 fn coverage_interval(values: &mut [f64], p: f64) -> (f64, f64) {
     let (lo, hi) = coverage_indices(values.len(), p);
+    order_statistics(values, lo, hi)
+}
+
+/// The order statistics of 0-based ranks `lo ≤ hi` of `values` in the order of
+/// [`f64::total_cmp`], by selection (`values` is reordered).
+fn select_two(values: &mut [f64], lo: usize, hi: usize) -> (f64, f64) {
     let (_, low, upper) = values.select_nth_unstable_by(lo, f64::total_cmp);
     let low = *low;
     let high = if hi == lo {
@@ -405,6 +418,136 @@ fn coverage_interval(values: &mut [f64], p: f64) -> (f64, f64) {
     };
     (low, high)
 }
+
+/// An integer key that orders as [`f64::total_cmp`] orders the floats.
+fn total_key(v: f64) -> i64 {
+    let bits = v.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
+}
+
+/// Fewest values for which [`order_statistics`] brackets the ranks from a sample; fewer are
+/// selected directly.
+const BRACKET_MIN: usize = 4096;
+
+/// The order statistics of 0-based ranks `lo ≤ hi` of `values` (in the order of
+/// [`f64::total_cmp`]; `values` may be reordered): the same numbers as two selections, at
+/// the cost of about one pass for large slices.
+///
+/// Floyd and Rivest's bracketing: the ranks' neighbourhoods in an evenly strided sample of
+/// about `n^(2/3)` values give two brackets that hold the wanted order statistics with
+/// overwhelming probability; one pass counts the values below each bracket and gathers those
+/// inside, and the order statistic is selected among the gathered few. A bracket that missed
+/// (its count says so, exactly) falls back to selecting over all values, so the result never
+/// depends on the sample.
+///
+/// # References
+/// R. W. Floyd, R. L. Rivest, "Expected time bounds for selection", Commun. ACM 18 (1975).
+fn order_statistics(values: &mut [f64], lo: usize, hi: usize) -> (f64, f64) {
+    let n = values.len();
+    if n < BRACKET_MIN || hi < lo {
+        return select_two(values, lo, hi);
+    }
+    let stride = (n as f64).cbrt().ceil() as usize;
+    let mut sample: Vec<f64> = values.iter().step_by(stride).copied().collect();
+    let s = sample.len();
+    // Sample ranks k·s/n ± 4 standard deviations of a sample rank (and 2 for rounding).
+    let bracket = |k: usize, sample: &mut [f64]| -> (i64, i64) {
+        let q = k as f64 / n as f64;
+        let centre = q * s as f64;
+        let margin = 4.0 * (s as f64 * q * (1.0 - q)).sqrt() + 2.0;
+        let a = centre - margin;
+        let b = centre + margin;
+        let low = if a < 0.0 {
+            i64::MIN
+        } else {
+            total_key(*sample.select_nth_unstable_by(a as usize, f64::total_cmp).1)
+        };
+        let high = if b >= (s - 1) as f64 {
+            i64::MAX
+        } else {
+            total_key(
+                *sample
+                    .select_nth_unstable_by(b.ceil() as usize, f64::total_cmp)
+                    .1,
+            )
+        };
+        (low, high)
+    };
+    let (a1, b1) = bracket(lo, &mut sample);
+    let (a2, b2) = bracket(hi, &mut sample);
+    if b1 >= a2 {
+        return select_two(values, lo, hi);
+    }
+    // One pass: below the first bracket, inside it, between the brackets, inside the second.
+    let (mut below, mut between) = (0usize, 0usize);
+    let mut first = Vec::with_capacity(4 * s);
+    let mut second = Vec::with_capacity(4 * s);
+    for &v in values.iter() {
+        // Branch-free counts; the rare values inside a bracket take the one branch.
+        let k = total_key(v);
+        below += usize::from(k < a1);
+        between += usize::from(k > b1 && k < a2);
+        if (k >= a1 && k <= b1) || (k >= a2 && k <= b2) {
+            if k <= b1 {
+                first.push(v);
+            } else {
+                second.push(v);
+            }
+        }
+    }
+    let below_second = below + first.len() + between;
+    let found_low = (below..below + first.len()).contains(&lo);
+    let found_high = (below_second..below_second + second.len()).contains(&hi);
+    if !(found_low && found_high) {
+        return select_two(values, lo, hi);
+    }
+    let low = *first.select_nth_unstable_by(lo - below, f64::total_cmp).1;
+    let high = *second
+        .select_nth_unstable_by(hi - below_second, f64::total_cmp)
+        .1;
+    (low, high)
+}
+
+/// Partial sums kept apart by [`lane_sum`] and [`centered_dot`]: independent additions the
+/// compiler can vectorise, in an order fixed by the data alone.
+const LANES: usize = 8;
+
+/// `Σ a_i`, in [`LANES`] interleaved partial sums.
+fn lane_sum(a: &[f64]) -> f64 {
+    let mut acc = [0.0; LANES];
+    let chunks = a.chunks_exact(LANES);
+    let rest: f64 = chunks.remainder().iter().sum();
+    for c in chunks {
+        for (s, v) in acc.iter_mut().zip(c) {
+            *s += v;
+        }
+    }
+    acc.iter().sum::<f64>() + rest
+}
+
+/// `Σ (a_i − ma)·(b_i − mb)` over the common length, in [`LANES`] interleaved partial sums.
+fn centered_dot(a: &[f64], b: &[f64], ma: f64, mb: f64) -> f64 {
+    let len = a.len().min(b.len());
+    let (a, b) = (&a[..len], &b[..len]);
+    let mut acc = [0.0; LANES];
+    let (ca, cb) = (a.chunks_exact(LANES), b.chunks_exact(LANES));
+    let rest: f64 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| (x - ma) * (y - mb))
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for ((s, x), y) in acc.iter_mut().zip(x).zip(y) {
+            *s += (x - ma) * (y - mb);
+        }
+    }
+    acc.iter().sum::<f64>() + rest
+}
+
+/// Trials per block of the final covariance: the outputs' values of a block stay in cache
+/// while all the pairs are summed.
+const COVARIANCE_BLOCK: usize = 4096;
 
 /// The running state of one output.
 #[derive(Debug, Default)]
@@ -424,8 +567,8 @@ impl Accumulator {
         self.scratch
             .extend(rows.chunks_exact(m).map(|r| r[k]).filter(|v| !v.is_nan()));
         let c = self.scratch.len();
-        let mean = self.scratch.iter().sum::<f64>() / c as f64;
-        let m2: f64 = self.scratch.iter().map(|v| (v - mean) * (v - mean)).sum();
+        let mean = lane_sum(&self.scratch) / c as f64;
+        let m2 = centered_dot(&self.scratch, &self.scratch, mean, mean);
         // Chan et al.'s update of the running mean and sum of squares.
         let n0 = self.values.len() as f64;
         let total = n0 + c as f64;
@@ -559,6 +702,13 @@ pub fn monte_carlo<M: MeasurementModel + ?Sized>(
         Trials::Adaptive { .. } => batch_size,
     };
     let mut rows = vec![0.0; largest as usize * m];
+    if let Trials::Fixed(total) = options.trials {
+        // Every value is kept (for the coverage intervals): room for all at once, not by
+        // doubling and copying.
+        for acc in &mut accumulators {
+            acc.values.reserve_exact(total as usize);
+        }
+    }
     let (mut trials, mut failed, mut first_failure, mut batches) = (0u64, 0u64, None, 0u64);
     loop {
         let this = match options.trials {
@@ -645,18 +795,30 @@ fn finish(
 ) -> Result<McResult> {
     let m = names.len();
     // Covariance from the aligned columns (before the selections reorder them).
+    // Sums over fixed blocks of trials, added in block order: the same on any thread count.
     let pairs: Vec<(usize, usize)> = (0..m).flat_map(|a| (0..=a).map(move |b| (a, b))).collect();
-    let cov: Vec<f64> = pairs
-        .par_iter()
-        .map(|&(a, b)| {
-            let (va, vb) = (&accumulators[a].values, &accumulators[b].values);
-            let (ma, mb) = (accumulators[a].mean, accumulators[b].mean);
-            let s: f64 = va.iter().zip(vb).map(|(x, y)| (x - ma) * (y - mb)).sum();
-            s / (va.len() - 1) as f64
+    let count = accumulators[0].values.len();
+    let blocks: Vec<Vec<f64>> = (0..count.div_ceil(COVARIANCE_BLOCK))
+        .into_par_iter()
+        .map(|block| {
+            let r = block * COVARIANCE_BLOCK..count.min((block + 1) * COVARIANCE_BLOCK);
+            pairs
+                .iter()
+                .map(|&(a, b)| {
+                    let (ea, eb) = (&accumulators[a], &accumulators[b]);
+                    centered_dot(
+                        &ea.values[r.clone()],
+                        &eb.values[r.clone()],
+                        ea.mean,
+                        eb.mean,
+                    )
+                })
+                .collect()
         })
         .collect();
     let mut covariance = vec![0.0; m * m];
-    for (&(a, b), c) in pairs.iter().zip(cov) {
+    for (p, &(a, b)) in pairs.iter().enumerate() {
+        let c = blocks.iter().map(|sums| sums[p]).sum::<f64>() / (count - 1) as f64;
         covariance[a * m + b] = c;
         covariance[b * m + a] = c;
     }
@@ -734,6 +896,50 @@ mod tests {
     fn coverage_interval_selects_order_statistics() {
         let mut v: Vec<f64> = (1..=10_000).rev().map(f64::from).collect();
         assert_eq!(coverage_interval(&mut v, 0.95), (250.0, 9750.0));
+    }
+
+    #[test]
+    fn bracketed_order_statistics_equal_selection() {
+        // Normal draws, heavy ties (rounded), signed zeros and a sorted, a reversed and a
+        // constant run: the bracketing gives exactly the selected values.
+        let mut rng = stream(7, 0, 0);
+        let normal: Vec<f64> = (0..50_000).map(|_| rng.sample(StandardNormal)).collect();
+        let ties: Vec<f64> = normal.iter().map(|v| (v * 4.0).round() / 4.0).collect();
+        let zeros: Vec<f64> = (0..10_000)
+            .map(|i| if i % 2 == 0 { 0.0 } else { -0.0 })
+            .collect();
+        let sorted: Vec<f64> = (0..20_000).map(f64::from).collect();
+        let reversed: Vec<f64> = sorted.iter().rev().copied().collect();
+        let constant = vec![1.5; 8192];
+        for (case, values) in [normal, ties, zeros, sorted, reversed, constant]
+            .into_iter()
+            .enumerate()
+        {
+            for p in [0.5, 0.9, 0.95, 0.99, 0.9999] {
+                let (lo, hi) = coverage_indices(values.len(), p);
+                let mut a = values.clone();
+                let mut b = values.clone();
+                let got = order_statistics(&mut a, lo, hi);
+                let want = select_two(&mut b, lo, hi);
+                assert_eq!(
+                    (got.0.to_bits(), got.1.to_bits()),
+                    (want.0.to_bits(), want.1.to_bits()),
+                    "case {case}, p = {p}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn lane_sums_match_plain_sums() {
+        let a: Vec<f64> = (0..1003).map(|i| f64::from(i) * 0.5).collect();
+        let b: Vec<f64> = (0..1003).map(|i| f64::from(i % 7)).collect();
+        let plain: f64 = a.iter().sum();
+        assert!((lane_sum(&a) - plain).abs() <= 1e-12 * plain);
+        let (ma, mb) = (3.0, 1.0);
+        let plain: f64 = a.iter().zip(&b).map(|(x, y)| (x - ma) * (y - mb)).sum();
+        assert!((centered_dot(&a, &b, ma, mb) - plain).abs() <= 1e-12 * plain.abs());
+        assert_eq!(lane_sum(&[]), 0.0);
     }
 
     #[test]
