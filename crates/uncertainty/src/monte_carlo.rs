@@ -2,7 +2,7 @@
 //! (§7.9), seeded and parallel.
 
 use rand::{Rng, SeedableRng};
-use rand_distr::{ChiSquared, StandardNormal, StudentT};
+use rand_distr::{ChiSquared, StandardNormal};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 
@@ -154,11 +154,13 @@ enum Draw {
         mean: f64,
         half_width: f64,
     },
+    /// `x = μ + u·z·√(ν/w)`, `z` standard normal, `w` χ² with ν degrees of freedom.
     StudentT {
         index: usize,
         mean: f64,
         scale: f64,
-        t: StudentT<f64>,
+        chi: ChiSquared<f64>,
+        nu: f64,
     },
     /// `x = μ + diag(u)·L·z·√(ν/w)` (multivariate normal, or t when `chi` is present;
     /// JCGM 101 §6.4.8, JCGM 102 §6.5.3).
@@ -173,9 +175,11 @@ enum Draw {
 
 impl Draw {
     /// Fills this draw's column(s) of `cols` (column-major, `SUB` rows per input) for the
-    /// first `len` trials of a sub-block. `z` holds at least as many values as the largest
-    /// group has members.
-    fn fill(&self, rng: &mut McRng, cols: &mut [f64], len: usize, z: &mut [f64]) {
+    /// first `len` trials of a sub-block. Each draw takes its random numbers column by column:
+    /// a t input its `len` normals, then its `len` chi-squares; a group its members' normals
+    /// one member at a time, then one chi-square per trial. The arithmetic then runs over
+    /// whole columns.
+    fn fill(&self, rng: &mut McRng, cols: &mut [f64], len: usize, scratch: &mut Scratch) {
         let col = |index: usize| index * SUB..index * SUB + len;
         match self {
             Draw::Constant { index, value } => {
@@ -204,11 +208,19 @@ impl Draw {
                 index,
                 mean,
                 scale,
-                t,
+                chi,
+                nu,
             } => {
-                let r = col(*index);
-                for v in &mut cols[r] {
-                    *v = mean + scale * rng.sample(t);
+                let column = &mut cols[col(*index)];
+                for v in column.iter_mut() {
+                    *v = rng.sample(StandardNormal);
+                }
+                let w = &mut scratch.w[..len];
+                for w in w.iter_mut() {
+                    *w = rng.sample(chi);
+                }
+                for (v, w) in column.iter_mut().zip(w.iter()) {
+                    *v = mean + scale * *v * (nu / w).sqrt();
                 }
             }
             Draw::Group {
@@ -219,25 +231,57 @@ impl Draw {
                 chi,
             } => {
                 let k = members.len();
-                let z = &mut z[..k];
-                for trial in 0..len {
-                    for zi in z.iter_mut() {
-                        *zi = rng.sample(StandardNormal);
+                let z = &mut scratch.z[..k * SUB];
+                for c in 0..k {
+                    for v in &mut z[c * SUB..c * SUB + len] {
+                        *v = rng.sample(StandardNormal);
                     }
-                    let s = match chi {
-                        Some((chi, nu)) => (nu / rng.sample(chi)).sqrt(),
-                        None => 1.0,
-                    };
-                    for (r, &index) in members.iter().enumerate() {
-                        let lz: f64 = factor[r * k..r * k + r + 1]
-                            .iter()
-                            .zip(z.iter())
-                            .map(|(l, z)| l * z)
-                            .sum();
-                        cols[index * SUB + trial] = means[r] + scales[r] * lz * s;
+                }
+                let w = &mut scratch.w[..len];
+                match chi {
+                    Some((chi, nu)) => {
+                        for w in w.iter_mut() {
+                            let draw: f64 = rng.sample(chi);
+                            *w = (nu / draw).sqrt();
+                        }
+                    }
+                    None => w.fill(1.0),
+                }
+                let lz = &mut scratch.lz[..len];
+                for (r, &index) in members.iter().enumerate() {
+                    // (L·z)_r over the sub-block, column by column of L.
+                    lz.fill(0.0);
+                    for (c, &l) in factor[r * k..r * k + r + 1].iter().enumerate() {
+                        for (a, z) in lz.iter_mut().zip(&z[c * SUB..c * SUB + len]) {
+                            *a += l * z;
+                        }
+                    }
+                    let (mean, scale) = (means[r], scales[r]);
+                    for ((x, a), w) in cols[col(index)].iter_mut().zip(lz.iter()).zip(w.iter()) {
+                        *x = mean + scale * a * w;
                     }
                 }
             }
+        }
+    }
+}
+
+/// Work space of [`Draw::fill`] for one sub-block.
+struct Scratch {
+    /// A group's normals, member-major (`SUB` per member).
+    z: Vec<f64>,
+    /// The chi-squares of a t input, or a group's `√(ν/w)`.
+    w: Vec<f64>,
+    /// `L·z` of one group member.
+    lz: Vec<f64>,
+}
+
+impl Scratch {
+    fn new(max_group: usize) -> Self {
+        Scratch {
+            z: vec![0.0; max_group * SUB],
+            w: vec![0.0; SUB],
+            lz: vec![0.0; SUB],
         }
     }
 }
@@ -266,7 +310,8 @@ fn draws(inputs: &Inputs) -> Result<Vec<Draw>> {
                         index,
                         mean,
                         scale: u,
-                        t: StudentT::new(nu).map_err(|_| UncertaintyError::InvalidDof {
+                        nu,
+                        chi: ChiSquared::new(nu).map_err(|_| UncertaintyError::InvalidDof {
                             input: q[index].name.clone(),
                             dof: nu,
                         })?,
@@ -356,13 +401,13 @@ fn run_batch<M: MeasurementModel + ?Sized>(
             let mut rng = stream(seed, batch, chunk as u64);
             let mut cols = vec![0.0; n * SUB];
             let mut x = vec![0.0; n];
-            let mut z = vec![0.0; max_group];
+            let mut scratch = Scratch::new(max_group);
             let mut failed = 0;
             let mut first = None;
             for (sub, rows) in rows.chunks_mut(SUB * m).enumerate() {
                 let len = rows.len() / m;
                 for d in draws {
-                    d.fill(&mut rng, &mut cols, len, &mut z);
+                    d.fill(&mut rng, &mut cols, len, &mut scratch);
                 }
                 for (t, y) in rows.chunks_exact_mut(m).enumerate() {
                     for (i, xi) in x.iter_mut().enumerate() {
@@ -419,15 +464,9 @@ fn select_two(values: &mut [f64], lo: usize, hi: usize) -> (f64, f64) {
     (low, high)
 }
 
-/// An integer key that orders as [`f64::total_cmp`] orders the floats.
-fn total_key(v: f64) -> i64 {
-    let bits = v.to_bits() as i64;
-    bits ^ (((bits >> 63) as u64) >> 1) as i64
-}
-
 /// Fewest values for which [`order_statistics`] brackets the ranks from a sample; fewer are
 /// selected directly.
-const BRACKET_MIN: usize = 4096;
+const BRACKET_MIN: usize = 65_536;
 
 /// The order statistics of 0-based ranks `lo ≤ hi` of `values` (in the order of
 /// [`f64::total_cmp`]; `values` may be reordered): the same numbers as two selections, at
@@ -451,55 +490,59 @@ fn order_statistics(values: &mut [f64], lo: usize, hi: usize) -> (f64, f64) {
     let mut sample: Vec<f64> = values.iter().step_by(stride).copied().collect();
     let s = sample.len();
     // Sample ranks k·s/n ± 4 standard deviations of a sample rank (and 2 for rounding).
-    let bracket = |k: usize, sample: &mut [f64]| -> (i64, i64) {
+    let bracket = |k: usize, sample: &mut [f64]| -> (f64, f64) {
         let q = k as f64 / n as f64;
         let centre = q * s as f64;
         let margin = 4.0 * (s as f64 * q * (1.0 - q)).sqrt() + 2.0;
         let a = centre - margin;
         let b = centre + margin;
         let low = if a < 0.0 {
-            i64::MIN
+            f64::NEG_INFINITY
         } else {
-            total_key(*sample.select_nth_unstable_by(a as usize, f64::total_cmp).1)
+            *sample.select_nth_unstable_by(a as usize, f64::total_cmp).1
         };
         let high = if b >= (s - 1) as f64 {
-            i64::MAX
+            f64::INFINITY
         } else {
-            total_key(
-                *sample
-                    .select_nth_unstable_by(b.ceil() as usize, f64::total_cmp)
-                    .1,
-            )
+            *sample
+                .select_nth_unstable_by(b.ceil() as usize, f64::total_cmp)
+                .1
         };
         (low, high)
     };
     let (a1, b1) = bracket(lo, &mut sample);
     let (a2, b2) = bracket(hi, &mut sample);
-    if b1 >= a2 {
+    // The passes compare with `<` and `<=`, which order the values as `total_cmp` does when
+    // none is NaN (counted, and failed trials are left out before) and no bound is a zero
+    // (−0 = +0 to `<`).
+    if [a1, b1, a2, b2].iter().any(|&b| b == 0.0 || b.is_nan()) || b1 >= a2 {
         return select_two(values, lo, hi);
     }
-    // One pass: below the first bracket, inside it, between the brackets, inside the second.
-    let (mut below, mut between) = (0usize, 0usize);
-    let mut first = Vec::with_capacity(4 * s);
-    let mut second = Vec::with_capacity(4 * s);
+    // First pass, counts only (vectorised): values below and up to each bracket's ends.
+    let mut counts = [0usize; 5];
     for &v in values.iter() {
-        // Branch-free counts; the rare values inside a bracket take the one branch.
-        let k = total_key(v);
-        below += usize::from(k < a1);
-        between += usize::from(k > b1 && k < a2);
-        if (k >= a1 && k <= b1) || (k >= a2 && k <= b2) {
-            if k <= b1 {
+        counts[0] += usize::from(v < a1);
+        counts[1] += usize::from(v <= b1);
+        counts[2] += usize::from(v < a2);
+        counts[3] += usize::from(v <= b2);
+        counts[4] += usize::from(v.is_nan());
+    }
+    let [below, upto_first, below_second, upto_second, nan] = counts;
+    if nan > 0 || !((below..upto_first).contains(&lo) && (below_second..upto_second).contains(&hi))
+    {
+        return select_two(values, lo, hi);
+    }
+    // Second pass: gather the few values inside the brackets.
+    let mut first = Vec::with_capacity(upto_first - below);
+    let mut second = Vec::with_capacity(upto_second - below_second);
+    for &v in values.iter() {
+        if v >= a1 && v <= b2 && (v <= b1 || v >= a2) {
+            if v <= b1 {
                 first.push(v);
             } else {
                 second.push(v);
             }
         }
-    }
-    let below_second = below + first.len() + between;
-    let found_low = (below..below + first.len()).contains(&lo);
-    let found_high = (below_second..below_second + second.len()).contains(&hi);
-    if !(found_low && found_high) {
-        return select_two(values, lo, hi);
     }
     let low = *first.select_nth_unstable_by(lo - below, f64::total_cmp).1;
     let high = *second
