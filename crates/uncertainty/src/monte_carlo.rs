@@ -512,6 +512,14 @@ fn order_statistics(values: &mut [f64], lo: usize, hi: usize) -> (f64, f64) {
     };
     let (a1, b1) = bracket(lo, &mut sample);
     let (a2, b2) = bracket(hi, &mut sample);
+    within_brackets(values, lo, hi, [a1, b1, a2, b2])
+}
+
+/// The order statistics of ranks `lo ≤ hi`, as [`select_two`] gives them, found among the
+/// values inside the brackets `[a1, b1]` and `[a2, b2]` when they hold them (one counting
+/// pass tells), by selection over all values otherwise.
+fn within_brackets(values: &mut [f64], lo: usize, hi: usize, brackets: [f64; 4]) -> (f64, f64) {
+    let [a1, b1, a2, b2] = brackets;
     // The passes compare with `<` and `<=`, which order the values as `total_cmp` does when
     // none is NaN (counted, and failed trials are left out before) and no bound is a zero
     // (−0 = +0 to `<`).
@@ -592,6 +600,17 @@ fn centered_dot(a: &[f64], b: &[f64], ma: f64, mb: f64) -> f64 {
 /// while all the pairs are summed.
 const COVARIANCE_BLOCK: usize = 4096;
 
+/// Mean and standard deviation of a series of at least two batch results.
+fn spread(series: &[f64]) -> Option<(f64, f64)> {
+    let h = series.len();
+    if h < 2 {
+        return None;
+    }
+    let mean = series.iter().sum::<f64>() / h as f64;
+    let ss: f64 = series.iter().map(|v| (v - mean) * (v - mean)).sum();
+    Some((mean, (ss / (h - 1) as f64).sqrt()))
+}
+
 /// The running state of one output.
 #[derive(Debug, Default)]
 struct Accumulator {
@@ -619,7 +638,24 @@ impl Accumulator {
         self.mean += delta * c as f64 / total;
         self.m2 += m2 + delta * delta * n0 * c as f64 / total;
         self.values.extend_from_slice(&self.scratch);
-        let (low, high) = coverage_interval(&mut self.scratch, p);
+        // The batch's limits lie, with overwhelming probability, within five batch-to-batch
+        // standard deviations of the previous batches' mean limits: those brackets spare a
+        // full selection (a miss falls back to it, with the same result).
+        let (lo, hi) = coverage_indices(c, p);
+        let (low, high) = match (spread(&self.batch[2]), spread(&self.batch[3])) {
+            (Some((m_low, s_low)), Some((m_high, s_high))) => within_brackets(
+                &mut self.scratch,
+                lo,
+                hi,
+                [
+                    m_low - 5.0 * s_low,
+                    m_low + 5.0 * s_low,
+                    m_high - 5.0 * s_high,
+                    m_high + 5.0 * s_high,
+                ],
+            ),
+            _ => select_two(&mut self.scratch, lo, hi),
+        };
         for (series, v) in
             self.batch
                 .iter_mut()
@@ -964,11 +1000,19 @@ mod tests {
                 let mut b = values.clone();
                 let got = order_statistics(&mut a, lo, hi);
                 let want = select_two(&mut b, lo, hi);
-                assert_eq!(
-                    (got.0.to_bits(), got.1.to_bits()),
-                    (want.0.to_bits(), want.1.to_bits()),
-                    "case {case}, p = {p}"
-                );
+                let bits = |(x, y): (f64, f64)| (x.to_bits(), y.to_bits());
+                assert_eq!(bits(got), bits(want), "case {case}, p = {p}");
+                // Given brackets: ones that hold the limits, and ones that miss (fallback).
+                let (w0, w1) = want;
+                for brackets in [
+                    [w0 - 1.0, w0 + 0.5, w1 - 0.5, w1 + 1.0],
+                    [w0 + 0.25, w0 + 0.5, w1 - 0.5, w1 - 0.25],
+                    [-1e300, -1e299, 1e299, 1e300],
+                ] {
+                    let mut c = values.clone();
+                    let got = within_brackets(&mut c, lo, hi, brackets);
+                    assert_eq!(bits(got), bits(want), "case {case}, p = {p}, {brackets:?}");
+                }
             }
         }
     }
