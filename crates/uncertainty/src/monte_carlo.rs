@@ -544,8 +544,11 @@ fn within_brackets(values: &mut [f64], lo: usize, hi: usize, brackets: [f64; 4])
     let mut first = Vec::with_capacity(upto_first - below);
     let mut second = Vec::with_capacity(upto_second - below_second);
     for &v in values.iter() {
-        if v >= a1 && v <= b2 && (v <= b1 || v >= a2) {
-            if v <= b1 {
+        // Non-short-circuit operators: one branch, rarely taken, instead of a chain.
+        let in_first = (v >= a1) & (v <= b1);
+        let in_second = (v >= a2) & (v <= b2);
+        if in_first | in_second {
+            if in_first {
                 first.push(v);
             } else {
                 second.push(v);
