@@ -20,7 +20,7 @@
 //!   chunk of 1000 trials, not from the `StdRng` (ChaCha12) the rest of the workspace uses:
 //!   the Monte Carlo method needs a statistically sound generator, not an unpredictable one,
 //!   and xoshiro256++ is a fixed algorithm (the same numbers for a seed on every platform and
-//!   version) that costs about a quarter as much per random word.
+//!   version) that costs several times less per random word.
 //! * [`validate`]: the validation of the GUM framework by the Monte Carlo method
 //!   (JCGM 101 §8).
 //!
