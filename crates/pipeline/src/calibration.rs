@@ -242,14 +242,22 @@ pub(crate) struct Nominal {
 /// Outputs: k0, k1, k2 (compensated), k3, k2 uncompensated, Δk2.
 #[derive(Debug, Clone, Copy)]
 pub struct CalibrationModel {
-    nominal: Nominal,
     k1_fitted: bool,
+    /// `R₀/g₀`, s² (computed once: the same numbers as per trial, without the divisions).
+    radius_over_g_s2: f64,
+    /// The nominal lever ratio `(h_p + h_a)/h_p`, 1.
+    lever0: f64,
 }
 
 impl CalibrationModel {
     /// The model around `nominal`.
     pub(crate) fn new(nominal: Nominal, k1_fitted: bool) -> Self {
-        Self { nominal, k1_fitted }
+        let n = nominal;
+        Self {
+            k1_fitted,
+            radius_over_g_s2: n.radius_m / n.g_m_s2,
+            lever0: (n.pivot_to_probe_mm + n.probe_to_piga_mm) / n.pivot_to_probe_mm,
+        }
     }
 
     /// Number of input quantities.
@@ -259,13 +267,12 @@ impl CalibrationModel {
 
     /// Evaluates the six outputs at the inputs `x`.
     pub fn evaluate(&self, x: &[f64], out: &mut [f64]) {
-        let n = self.nominal;
         let (radius, g, s) = (x[0], x[1], x[2]);
         let (h_p, h_a, gain, c_r, k1_given) = (x[3], x[4], x[5], x[6], x[7]);
         let mut beta = [0.0; TERMS];
         beta.copy_from_slice(&x[FIRST_COEFFICIENT..FIRST_COEFFICIENT + TERMS]);
         // X' = X·D with D = diag(1, s, s², s³, ρ², ρ³), ρ = (R s²/g)/(R₀/g₀): β' = D⁻¹β.
-        let rho = (radius * s * s / g) / (n.radius_m / n.g_m_s2);
+        let rho = (radius * s * s / g) / self.radius_over_g_s2;
         let d = [1.0, s, s * s, s * s * s, rho * rho, rho * rho * rho];
         for (b, d) in beta.iter_mut().zip(d) {
             *b /= d;
@@ -276,8 +283,7 @@ impl CalibrationModel {
             k1_given
         };
         let lever = (h_p + h_a) / h_p;
-        let lever0 = (n.pivot_to_probe_mm + n.probe_to_piga_mm) / n.pivot_to_probe_mm;
-        let c_r_true = c_r * gain * (lever / lever0) / (s * s);
+        let c_r_true = c_r * gain * (lever / self.lever0) / (s * s);
         let delta_k2 = k1 * c_r_true * g / (radius * radius);
         out[0] = beta[0];
         out[1] = k1;
