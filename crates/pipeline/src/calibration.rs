@@ -267,6 +267,13 @@ impl CalibrationModel {
 
     /// Evaluates the six outputs at the inputs `x`.
     pub fn evaluate(&self, x: &[f64], out: &mut [f64]) {
+        let inputs: [f64; FIRST_COEFFICIENT + TERMS] = std::array::from_fn(|i| x[i]);
+        out[..OUTPUTS.len()].copy_from_slice(&self.outputs(&inputs));
+    }
+
+    /// The six outputs at the fourteen inputs (one trial).
+    #[inline(always)]
+    fn outputs(&self, x: &[f64; FIRST_COEFFICIENT + TERMS]) -> [f64; 6] {
         let (radius, g, s) = (x[0], x[1], x[2]);
         let (h_p, h_a, gain, c_r, k1_given) = (x[3], x[4], x[5], x[6], x[7]);
         let mut beta = [0.0; TERMS];
@@ -285,12 +292,7 @@ impl CalibrationModel {
         let lever = (h_p + h_a) / h_p;
         let c_r_true = c_r * gain * (lever / self.lever0) / (s * s);
         let delta_k2 = k1 * c_r_true * g / (radius * radius);
-        out[0] = beta[0];
-        out[1] = k1;
-        out[2] = beta[4] - delta_k2;
-        out[3] = beta[5];
-        out[4] = beta[4];
-        out[5] = delta_k2;
+        [beta[0], k1, beta[4] - delta_k2, beta[5], beta[4], delta_k2]
     }
 }
 
@@ -308,6 +310,33 @@ impl uncertainty::MeasurementModel for CalibrationModel {
 
     fn input_count(&self) -> Option<usize> {
         Some(self.inputs())
+    }
+
+    /// The trials' columns evaluated in one loop, without a copy of each trial's inputs.
+    fn evaluate_trials(
+        &self,
+        x: &[f64],
+        stride: usize,
+        len: usize,
+        y: &mut [f64],
+    ) -> Option<(usize, uncertainty::ModelError)> {
+        const N: usize = FIRST_COEFFICIENT + TERMS;
+        let columns: [&[f64]; N] =
+            std::array::from_fn(|i| x.get(i * stride..i * stride + len).unwrap_or(&[]));
+        if columns.iter().any(|c| c.len() != len) {
+            y.fill(f64::NAN);
+            return Some((
+                0,
+                uncertainty::ModelError::Failed {
+                    reason: "fewer input columns than the model's fourteen inputs",
+                },
+            ));
+        }
+        for (t, out) in y.chunks_exact_mut(OUTPUTS.len()).take(len).enumerate() {
+            let inputs: [f64; N] = std::array::from_fn(|i| columns[i][t]);
+            out.copy_from_slice(&self.outputs(&inputs));
+        }
+        None
     }
 }
 
@@ -1097,6 +1126,50 @@ mod tests {
         let (points, warnings) = inputs.points(Path::new("study.ron")).unwrap();
         assert!(warnings.is_empty());
         (inputs, points)
+    }
+
+    #[test]
+    fn trials_by_columns_equal_trial_by_trial() {
+        use uncertainty::MeasurementModel;
+        let nominal = Nominal {
+            radius_m: 2.5,
+            g_m_s2: 9.8,
+            pivot_to_probe_mm: 700.0,
+            probe_to_piga_mm: 510.0,
+            c_r_m_s2: 1.6e-6,
+        };
+        let model = CalibrationModel::new(nominal, true);
+        let (len, stride) = (5, 7);
+        let base = [
+            2.5, 9.8, 1.0, 700.0, 510.0, 1.0, 1.6e-6, 0.0, 1e-5, 2e-6, 0.14, -3e-9, 5e-7, 2e-8,
+        ];
+        // Trial t perturbs every input by a different relative amount.
+        let x: Vec<f64> = (0..model.inputs())
+            .flat_map(|i| {
+                (0..stride)
+                    .map(move |t| base[i] * (1.0 + 1e-4 * (t as f64 - 2.0) * (i as f64 + 1.0)))
+            })
+            .collect();
+        let mut by_columns = vec![0.0; len * 6];
+        assert!(
+            model
+                .evaluate_trials(&x, stride, len, &mut by_columns)
+                .is_none()
+        );
+        for t in 0..len {
+            let xt: Vec<f64> = (0..model.inputs()).map(|i| x[i * stride + t]).collect();
+            let mut y = [0.0; 6];
+            CalibrationModel::evaluate(&model, &xt, &mut y);
+            assert_eq!(&by_columns[t * 6..t * 6 + 6], &y[..], "trial {t}");
+        }
+        // Too few columns: every trial fails, nothing panics.
+        let mut y = vec![0.0; len * 6];
+        assert!(
+            model
+                .evaluate_trials(&x[..3 * stride], stride, len, &mut y)
+                .is_some()
+        );
+        assert!(y.iter().all(|v| v.is_nan()));
     }
 
     #[test]

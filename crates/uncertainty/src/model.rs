@@ -22,6 +22,37 @@ pub trait MeasurementModel: Sync {
     fn input_count(&self) -> Option<usize> {
         None
     }
+
+    /// Evaluates the model at `len` trials at once; the Monte Carlo method calls this.
+    ///
+    /// Input `i` of trial `t` is `x[i·stride + t]` (one column of `stride ≥ len` values per
+    /// input); output `k` of trial `t` goes to `y[t·m + k]` for `m` outputs
+    /// (`y.len() = len·m`). A trial that fails has all its outputs set to NaN, and the first
+    /// failure is returned with its trial index. The default calls
+    /// [`evaluate`](Self::evaluate) trial by trial; a model may override it with a loop over
+    /// the trials that the compiler can vectorise, which must give the same values.
+    fn evaluate_trials(
+        &self,
+        x: &[f64],
+        stride: usize,
+        len: usize,
+        y: &mut [f64],
+    ) -> Option<(usize, ModelError)> {
+        let n = x.len().checked_div(stride).unwrap_or(0);
+        let m = y.len().checked_div(len).unwrap_or(0);
+        let mut xt = vec![0.0; n];
+        let mut first = None;
+        for (t, yt) in y.chunks_exact_mut(m.max(1)).take(len).enumerate() {
+            for (i, v) in xt.iter_mut().enumerate() {
+                *v = x[i * stride + t];
+            }
+            if let Err(e) = self.evaluate(&xt, yt) {
+                yt.fill(f64::NAN);
+                first.get_or_insert((t, e));
+            }
+        }
+        first
+    }
 }
 
 /// A measurement model made of a closure, from [`model_fn`].
@@ -102,6 +133,16 @@ impl<M: MeasurementModel + ?Sized> MeasurementModel for &M {
 
     fn input_count(&self) -> Option<usize> {
         (**self).input_count()
+    }
+
+    fn evaluate_trials(
+        &self,
+        x: &[f64],
+        stride: usize,
+        len: usize,
+        y: &mut [f64],
+    ) -> Option<(usize, ModelError)> {
+        (**self).evaluate_trials(x, stride, len, y)
     }
 }
 

@@ -400,7 +400,6 @@ fn run_batch<M: MeasurementModel + ?Sized>(
         .map(|(chunk, rows)| {
             let mut rng = stream(seed, batch, chunk as u64);
             let mut cols = vec![0.0; n * SUB];
-            let mut x = vec![0.0; n];
             let mut scratch = Scratch::new(max_group);
             let mut failed = 0;
             let mut first = None;
@@ -409,22 +408,28 @@ fn run_batch<M: MeasurementModel + ?Sized>(
                 for d in draws {
                     d.fill(&mut rng, &mut cols, len, &mut scratch);
                 }
+                let mut error = model.evaluate_trials(&cols, SUB, len, rows);
+                if let Some((t, _)) = error
+                    && let Some(y) = rows.chunks_exact_mut(m).nth(t)
+                {
+                    y.fill(f64::NAN);
+                }
                 for (t, y) in rows.chunks_exact_mut(m).enumerate() {
-                    for (i, xi) in x.iter_mut().enumerate() {
-                        *xi = cols[i * SUB + t];
+                    if y.iter().all(|v| v.is_finite()) {
+                        continue;
                     }
-                    let outcome = match model.evaluate(&x, y) {
-                        Ok(()) if y.iter().all(|v| v.is_finite()) => None,
-                        Ok(()) => Some(ModelError::Failed {
-                            reason: "non-finite output",
-                        }),
-                        Err(e) => Some(e),
+                    y.fill(f64::NAN);
+                    failed += 1;
+                    let e = match error.take() {
+                        Some((at, e)) if at == t => e,
+                        other => {
+                            error = other;
+                            ModelError::Failed {
+                                reason: "non-finite output",
+                            }
+                        }
                     };
-                    if let Some(e) = outcome {
-                        y.fill(f64::NAN);
-                        failed += 1;
-                        first.get_or_insert((chunk * CHUNK + sub * SUB + t, e));
-                    }
+                    first.get_or_insert((chunk * CHUNK + sub * SUB + t, e));
                 }
             }
             (failed, first)
