@@ -37,10 +37,16 @@ const DIR: &str = "/nonexistent/campaign";
 /// `table_noise_rad_s`²) (the scenario's own table is noise-free: its noise is in the raw
 /// recordings).
 fn campaign_with(seed: u64, table_noise_rad_s: f64) -> Campaign {
+    campaign_of(seed, table_noise_rad_s, |_| {})
+}
+
+/// [`campaign_with`] with the scenario changed by `change` first.
+fn campaign_of(seed: u64, table_noise_rad_s: f64, change: impl Fn(&mut Scenario)) -> Campaign {
     let text = std::fs::read_to_string(root().join("fixtures/scenarios/campaign.ron")).unwrap();
     let mut loaded = Scenario::parse(&text, Path::new("campaign.ron")).unwrap();
     loaded.scenario.seed = seed;
     loaded.scenario.piga.noise_rad_s = table_noise_rad_s;
+    change(&mut loaded.scenario);
     let simulation = simulate::simulate(&loaded).unwrap();
     let mut files = HashMap::new();
     for r in &simulation.recordings {
@@ -479,5 +485,28 @@ fn calibration_rates_beyond_the_phase_are_flagged() {
             .warnings
             .iter()
             .any(|w| w.code == "rate_outside_phase")
+    );
+}
+
+#[test]
+fn noise_free_recordings_give_an_unweighted_fit_that_says_so() {
+    // Neither noise nor ripple: every revolution's slope is the same, no point has a σ.
+    let data = campaign_of(3, 1e-9, |s| {
+        if let Some(r) = s.piga.recordings.as_mut() {
+            r.angle_noise_rad = 0.0;
+            r.ripple_rad = 0.0;
+        }
+    });
+    let results = run(&study_text("fixed(2000)"), &data).unwrap();
+    let c = results.calibration.as_ref().unwrap();
+    assert!(!c.weighted);
+    assert!(c.residuals.iter().all(|r| r.u_rad_s.is_none()));
+    assert!(
+        results
+            .warnings
+            .iter()
+            .any(|w| w.code == "calibration_unweighted"),
+        "{:?}",
+        results.warnings
     );
 }
