@@ -820,6 +820,19 @@ pub(crate) fn results(
             "the C_r of phase `{phase_name}` has no standard uncertainty (an exact fit); it is taken as exact"
         ));
     }
+    if e.mc.outputs.iter().any(|o| o.heavy_tailed) {
+        warnings.push(format!(
+            "a Type A input has ν ≤ 2 degrees of freedom (the eq. 18 fit: {}, points − 6; \
+             C_r of phase `{phase_name}`: {}): its t distribution has no variance, so the \
+             Monte Carlo mean and standard uncertainty do not settle and only its 95 % \
+             interval is meaningful; the GUM U95 takes k from Student's t. More rates, or \
+             repeats, give a smaller and steadier U95",
+            e.noise_dof,
+            setting
+                .c_r_sigma
+                .map_or_else(|| "exact".to_owned(), |(_, dof)| dof.to_string())
+        ));
+    }
     if !monte_carlo.gum_agrees {
         warnings.push(
             "the GUM result does not agree with the Monte Carlo one (JCGM 101 §8): the Monte Carlo \

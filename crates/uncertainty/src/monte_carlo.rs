@@ -88,6 +88,12 @@ pub struct McOutput {
     pub tolerance: f64,
     /// The batch spread at the end, when there was more than one batch.
     pub stability: Option<Stability>,
+    /// An input is drawn from a t with ν ≤ 2, which has no variance: the model values may
+    /// have none either, so the estimate and the standard uncertainty are those of the
+    /// trials drawn and do not settle as trials are added; the coverage interval does, and
+    /// is the result to use. The adaptive procedure then waits on the coverage limits only,
+    /// to `n_dig` significant digits of the interval's half-width.
+    pub heavy_tailed: bool,
 }
 
 /// The Monte Carlo evaluation of all output quantities.
@@ -697,8 +703,10 @@ impl Accumulator {
     }
 }
 
-/// The first statistic of `s` above `tolerance`, if any.
-fn unstable(s: &Stability, tolerance: f64) -> Option<Statistic> {
+/// The first statistic of `s` above `tolerance`, if any; with `heavy_tailed`, the coverage
+/// limits only (the estimate and standard deviation of draws without a variance never
+/// settle).
+fn unstable(s: &Stability, tolerance: f64, heavy_tailed: bool) -> Option<Statistic> {
     [
         (s.estimate, Statistic::Estimate),
         (s.standard_uncertainty, Statistic::StandardUncertainty),
@@ -706,8 +714,28 @@ fn unstable(s: &Stability, tolerance: f64) -> Option<Statistic> {
         (s.coverage_high, Statistic::CoverageHigh),
     ]
     .into_iter()
+    .skip(if heavy_tailed { 2 } else { 0 })
     .find(|(v, _)| v.is_nan() || *v > tolerance)
     .map(|(_, s)| s)
+}
+
+/// Whether an input is drawn from a t with ν ≤ 2 (no variance).
+fn has_heavy_tails(inputs: &Inputs) -> bool {
+    inputs.quantities().iter().any(|q| {
+        q.distribution == Distribution::StudentT && matches!(q.dof, Dof::Finite(nu) if nu <= 2.0)
+    })
+}
+
+/// The numerical tolerance of an output: δ of its standard uncertainty (§7.9.2), or with
+/// heavy tails (no variance) δ of the coverage interval's half-width (the same number of
+/// significant digits of the expanded uncertainty instead).
+fn output_tolerance(acc: &Accumulator, heavy_tailed: bool, n_dig: u32) -> f64 {
+    if heavy_tailed && !acc.batch[2].is_empty() {
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let (low, high) = (mean(&acc.batch[2]), mean(&acc.batch[3]));
+        return numerical_tolerance(0.5 * (high - low), n_dig);
+    }
+    numerical_tolerance(acc.standard_uncertainty(), n_dig)
 }
 
 fn check_options(options: &McOptions, batch_size: u64) -> Result<()> {
@@ -780,6 +808,7 @@ pub fn monte_carlo<M: MeasurementModel + ?Sized>(
     check_options(options, batch_size)?;
     let names = checked_output_names(model, inputs.len())?;
     let draws = draws(inputs)?;
+    let heavy_tailed = has_heavy_tails(inputs);
     let (n, m) = (inputs.len(), names.len());
     let mut accumulators: Vec<Accumulator> = (0..m).map(|_| Accumulator::default()).collect();
     // A fixed run's last batch takes the remainder (fewer than 2h trials), so that no batch
@@ -836,9 +865,9 @@ pub fn monte_carlo<M: MeasurementModel + ?Sized>(
                     continue;
                 }
                 let first_unstable = accumulators.iter().enumerate().find_map(|(k, acc)| {
-                    let tolerance = numerical_tolerance(acc.standard_uncertainty(), options.n_dig);
+                    let tolerance = output_tolerance(acc, heavy_tailed, options.n_dig);
                     let s = acc.stability()?;
-                    unstable(&s, tolerance).map(|stat| (k, stat))
+                    unstable(&s, tolerance, heavy_tailed).map(|stat| (k, stat))
                 });
                 match first_unstable {
                     None => break,
@@ -865,6 +894,7 @@ pub fn monte_carlo<M: MeasurementModel + ?Sized>(
         first_failure,
         batches,
         batch_size,
+        heavy_tailed,
     )
 }
 
@@ -879,6 +909,7 @@ fn finish(
     first_failure: Option<ModelError>,
     batches: u64,
     batch_size: u64,
+    heavy_tailed: bool,
 ) -> Result<McResult> {
     let m = names.len();
     // Covariance from the aligned columns (before the selections reorder them).
@@ -923,6 +954,7 @@ fn finish(
                 coverage_interval: interval,
                 tolerance: numerical_tolerance(u, options.n_dig),
                 stability,
+                heavy_tailed,
             }
         })
         .collect();

@@ -510,3 +510,39 @@ fn noise_free_recordings_give_an_unweighted_fit_that_says_so() {
         results.warnings
     );
 }
+
+#[test]
+fn eight_rates_leave_two_degrees_of_freedom_and_say_what_that_means() {
+    // A table of 8 rates: the eq. 18 fit has ν = 2, whose t has no variance. The adaptive
+    // Monte Carlo used to run to its cap of 10⁷ trials and fail; it settles on the coverage
+    // interval and the result says why its mean and u are not to be used.
+    let data = campaign(9);
+    let table = Path::new(DIR).join("piga.csv");
+    let csv = String::from_utf8(data.files[&table].clone()).unwrap();
+    let keep = ["20", "40", "60", "90", "120", "150", "180", "200"];
+    let eight: String = csv
+        .lines()
+        .filter(|l| l.starts_with("rate") || keep.contains(&l.split(',').next().unwrap()))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let mut files = data.files.clone();
+    files.insert(table, eight.into_bytes());
+    let results = run(&table_study_text("adaptive"), &Campaign { files }).unwrap();
+    let c = results.calibration.unwrap();
+    assert_eq!(c.dof, 2);
+    assert!(c.monte_carlo.trials < 10_000_000);
+    assert!(
+        c.warnings.iter().any(|w| w.contains("ν ≤ 2")),
+        "{:?}",
+        c.warnings
+    );
+    // The Monte Carlo interval is about the GUM one (k ≈ 4.3).
+    let k2 = c.coefficients.k2;
+    let mc = c.monte_carlo.k2;
+    let width = mc.high95 - mc.low95;
+    assert!(
+        (width / (2.0 * k2.u95) - 1.0).abs() < 0.1,
+        "{width} vs {}",
+        2.0 * k2.u95
+    );
+}

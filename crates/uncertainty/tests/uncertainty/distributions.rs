@@ -86,3 +86,27 @@ fn normal_and_constant() {
         (2.5, 0.0, (2.5, 2.5))
     );
 }
+
+#[test]
+fn a_t_without_variance_settles_on_its_coverage_interval() {
+    // ν = 2: the t has no variance, so the batches' standard deviations never settle; the
+    // adaptive procedure waits on the coverage limits only and stops (it used to run to the
+    // 10⁷ cap and fail). The 95 % interval is ±4.3027·u.
+    let o = identity(InputQuantity::type_a("X", 10.0, 0.74, Dof::Finite(2.0)));
+    assert!(o.heavy_tailed);
+    let half = 4.302_652_7 * 0.74;
+    let tolerance = 0.02 * half;
+    assert!(
+        (o.coverage_interval.0 - (10.0 - half)).abs() < tolerance,
+        "{:?}",
+        o.coverage_interval
+    );
+    assert!(
+        (o.coverage_interval.1 - (10.0 + half)).abs() < tolerance,
+        "{:?}",
+        o.coverage_interval
+    );
+    // ν = 3 has a variance: the usual procedure.
+    let o = identity(InputQuantity::type_a("X", 10.0, 0.74, Dof::Finite(3.0)));
+    assert!(!o.heavy_tailed);
+}
