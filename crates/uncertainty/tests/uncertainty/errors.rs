@@ -3,7 +3,7 @@
 
 use uncertainty::{
     Distribution, Dof, Evaluation, GumOptions, InputQuantity, Inputs, McOptions, ModelError,
-    Statistic, Trials, UncertaintyError, gum, model_fn, monte_carlo,
+    Trials, UncertaintyError, gum, model_fn, monte_carlo,
 };
 
 fn err(quantities: Vec<InputQuantity>) -> UncertaintyError {
