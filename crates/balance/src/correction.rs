@@ -522,7 +522,8 @@ pub fn radius_change_advice(
         });
     }
     let c_r_m_s2 = change_um / UM_PER_M / dw2;
-    let unbalance_per_um_g_mm = radial_stiffness_n_m / dw2 / UM_PER_M * G_MM_PER_KG_M;
+    // Per µm of the change, whichever way the two rates are given (|Δω²|).
+    let unbalance_per_um_g_mm = radial_stiffness_n_m / dw2.abs() / UM_PER_M * G_MM_PER_KG_M;
     let unbalance_x_g_mm = radial_stiffness_n_m * c_r_m_s2 * G_MM_PER_KG_M;
     let advice = RadiusChangeAdvice {
         c_r_m_s2,
@@ -531,7 +532,9 @@ pub fn radius_change_advice(
         unbalance_per_um_g_mm,
         unbalance_x_g_mm,
         correction_mass_kg: unbalance_x_g_mm.abs() / G_MM_PER_KG_M / plane.radius_m,
-        correction_azimuth_deg: if change_um >= 0.0 { 180.0 } else { 0.0 },
+        // Opposite the imbalance's O2X2 component: the sign of C_r, not of the change (a
+        // change given from the higher rate to the lower has the other sign).
+        correction_azimuth_deg: if c_r_m_s2 >= 0.0 { 180.0 } else { 0.0 },
     };
     let ok = [
         advice.c_r_m_s2,
@@ -550,6 +553,38 @@ pub fn radius_change_advice(
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn a_change_given_from_the_higher_rate_is_the_same_advice() {
+        let context = CalibrationContext {
+            k1_rad_s_g: 0.56,
+            g_m_s2: 9.8,
+            radius_m: 2.5,
+            top_rate_rad_s: 200f64.to_radians(),
+            rotor_mass_kg: None,
+        };
+        let plane = CorrectionPlane {
+            radius_m: 2.5,
+            fixed_azimuths_deg: Vec::new(),
+        };
+        let (w1, w2) = (10f64.to_radians(), 200f64.to_radians());
+        let up = radius_change_advice(19.464, w1, w2, 5e7, &plane, &context).unwrap();
+        let down = radius_change_advice(-19.464, w2, w1, 5e7, &plane, &context).unwrap();
+        assert_relative_eq!(up.c_r_m_s2, down.c_r_m_s2, max_relative = 1e-15);
+        assert_eq!(up.correction_azimuth_deg, 180.0);
+        assert_eq!(down.correction_azimuth_deg, 180.0);
+        assert!(down.unbalance_per_um_g_mm > 0.0);
+        assert_relative_eq!(
+            up.unbalance_per_um_g_mm,
+            down.unbalance_per_um_g_mm,
+            max_relative = 1e-15
+        );
+        assert_relative_eq!(
+            up.correction_mass_kg,
+            down.correction_mass_kg,
+            max_relative = 1e-15
+        );
+    }
 
     #[test]
     fn split_keeps_the_vector_sum() {

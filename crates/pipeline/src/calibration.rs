@@ -424,9 +424,15 @@ pub(crate) struct Evaluated {
     pub(crate) quantities: Vec<uncertainty::InputQuantity>,
     /// Residual degrees of freedom of the fit.
     pub(crate) noise_dof: usize,
+    /// Degrees of freedom of the fit's coefficients as an input group.
+    pub(crate) group_dof: uncertainty::Dof,
     /// The standard deviation common to every point that the points' σ miss (Paule–Mandel),
     /// when a weighted fit's χ²/ν exceeded 1.
     pub(crate) excess_u_rad_s: Option<f64>,
+    /// Whether no τ bringing χ²/ν to 1 was found (the covariance is then Birge-scaled).
+    pub(crate) tau_not_found: bool,
+    /// The σ the fit was weighted by (with τ), when weighted.
+    pub(crate) sigma_used: Option<Vec<f64>>,
     /// The Birge ratio of the weighted fit with the points' own σ.
     pub(crate) birge_ratio: Option<f64>,
 }
@@ -456,7 +462,10 @@ pub(crate) struct Setup {
     pub(crate) set: uncertainty::Inputs,
     pub(crate) options: uncertainty::McOptions,
     pub(crate) noise_dof: usize,
+    pub(crate) group_dof: uncertainty::Dof,
     pub(crate) excess_u_rad_s: Option<f64>,
+    pub(crate) tau_not_found: bool,
+    pub(crate) sigma_used: Option<Vec<f64>>,
     pub(crate) birge_ratio: Option<f64>,
 }
 
@@ -500,6 +509,7 @@ pub(crate) fn setup(
     // to every point (from run to run). Its variance τ² is the one that makes χ²/ν = 1
     // with σᵢ² + τ² (the Paule–Mandel estimate); the fit is weighted by those.
     let mut excess_u_rad_s = None;
+    let mut tau_not_found = false;
     let mut sigma_used = points.sigma_rad_s.clone();
     if let (Some(sigma), Some(birge)) = (&points.sigma_rad_s, cal.uncompensated.birge_ratio)
         && birge > 1.0
@@ -511,15 +521,31 @@ pub(crate) fn setup(
                 .ok()
                 .and_then(|c| c.uncompensated.birge_ratio)
         };
-        // χ²/ν falls as τ grows; at the residuals' RMS it is below 1.
-        let (mut low, mut high) = (
-            0.0,
-            cal.uncompensated
-                .residuals_rad_s
-                .iter()
-                .fold(0.0_f64, |m, r| m.max(r.abs())),
-        );
-        if birge_at(high).is_some_and(|b| b < 1.0) {
+        // χ²/ν falls towards 0 as τ grows: double τ from the largest residual until it is
+        // below 1 (with few degrees of freedom the largest residual may not be enough).
+        let mut low = 0.0;
+        let mut high = cal
+            .uncompensated
+            .residuals_rad_s
+            .iter()
+            .fold(0.0_f64, |m, r| m.max(r.abs()))
+            .max(f64::MIN_POSITIVE);
+        let mut bracketed = false;
+        for _ in 0..200 {
+            match birge_at(high) {
+                Some(b) if b < 1.0 => {
+                    bracketed = true;
+                    break;
+                }
+                Some(_) => {
+                    low = high;
+                    high *= 2.0;
+                }
+                None => break,
+            }
+        }
+        tau_not_found = !bracketed;
+        if bracketed {
             for _ in 0..60 {
                 let mid = 0.5 * (low + high);
                 match birge_at(mid) {
@@ -539,6 +565,14 @@ pub(crate) fn setup(
 
     let tb = setting.type_b;
     let noise_dof = cal.uncompensated.fit.dof;
+    // The group's degrees of freedom: the σᵢ taken as known (a weighted fit whose residuals
+    // stay within them, its covariance (XᵀWX)⁻¹ not scaled by them) have as many as their
+    // own estimates, many; a covariance scaled by the residuals (unweighted, or with τ
+    // estimated from them) has n − 6.
+    let group_dof = match (first_birge, excess_u_rad_s, tau_not_found) {
+        (Some(b), None, false) if b <= 1.0 => Dof::Infinite,
+        _ => Dof::Finite(noise_dof as f64),
+    };
     let (k1_value, k1_u) = match inputs.k1 {
         K1Choice::Given {
             k1_rad_s_g,
@@ -566,14 +600,14 @@ pub(crate) fn setup(
         InputQuantity::normal(NAMED_INPUTS[7], k1_value, k1_u),
     ];
     // The fit's coefficients: one Type A group, correlated through the fit's covariance, with
-    // the fit's residual degrees of freedom.
+    // `group_dof` degrees of freedom.
     let fit = &cal.uncompensated.fit;
     for (t, term) in TERM_NAMES.iter().enumerate() {
         quantities.push(InputQuantity::type_a(
             format!("fit coefficient of {term}"),
             fit.coefficients[t],
             fit.std_errors[t],
-            Dof::Finite(noise_dof as f64),
+            group_dof,
         ));
     }
     let m = quantities.len();
@@ -608,7 +642,10 @@ pub(crate) fn setup(
         set,
         options,
         noise_dof,
+        group_dof,
         excess_u_rad_s,
+        tau_not_found,
+        sigma_used,
         birge_ratio: first_birge,
     })
 }
@@ -628,7 +665,10 @@ pub(crate) fn evaluate(
         set,
         options,
         noise_dof,
+        group_dof,
         excess_u_rad_s,
+        tau_not_found,
+        sigma_used,
         birge_ratio,
     } = setup(inputs, points, setting)?;
     let gum_result =
@@ -644,7 +684,10 @@ pub(crate) fn evaluate(
         validation,
         quantities,
         noise_dof,
+        group_dof,
         excess_u_rad_s,
+        tau_not_found,
+        sigma_used,
         birge_ratio,
     })
 }
@@ -744,7 +787,8 @@ pub(crate) fn results(
             rate_deg_s: points.rates_deg_s[i],
             output_rad_s: points.outputs_rad_s[i],
             residual_rad_s: unc.residuals_rad_s[i],
-            u_rad_s: points.sigma_rad_s.as_ref().map(|s| s[i]),
+            // The σ the fit used: the point's own, with τ when one was added.
+            u_rad_s: e.sigma_used.as_ref().map(|s| s[i]),
             label: points.labels.as_ref().map(|l| l[i].clone()),
             line: match &points.origins[i] {
                 Origin::Line(l) => Some(*l),
@@ -763,7 +807,7 @@ pub(crate) fn results(
         fit.residual_sd
     };
     let labels = label_summaries(points, &unc.residuals_rad_s, residual_sd_rad_s);
-    let budget_of = |name: &str| budget(&out(name), &e.quantities, e.noise_dof, inputs.k1);
+    let budget_of = |name: &str| budget(&out(name), &e.quantities, e.group_dof, inputs.k1);
     let budget = PigaCoefficients {
         k0: budget_of("k0"),
         k1: budget_of("k1"),
@@ -819,6 +863,14 @@ pub(crate) fn results(
         warnings.push(format!(
             "the C_r of phase `{phase_name}` has no standard uncertainty (an exact fit); it is taken as exact"
         ));
+    }
+    if e.tau_not_found {
+        warnings.push(
+            "the points scatter more than their σ say (Birge ratio above 1), and no variation \
+             τ common to every point brings χ²/ν to 1: the fit keeps the points' σ as weights \
+             and its covariance is scaled by the Birge ratio"
+                .to_owned(),
+        );
     }
     if e.mc.outputs.iter().any(|o| o.heavy_tailed) {
         warnings.push(format!(
@@ -903,7 +955,7 @@ fn dof_value(dof: uncertainty::Dof) -> crate::results::DegreesOfFreedom {
 fn budget(
     output: &uncertainty::GumOutput,
     quantities: &[uncertainty::InputQuantity],
-    noise_dof: usize,
+    group_dof: uncertainty::Dof,
     k1: K1Choice,
 ) -> Vec<crate::results::BudgetLine> {
     use crate::results::BudgetLine;
@@ -945,7 +997,7 @@ fn budget(
         sensitivity: 1.0,
         contribution,
         percent: share,
-        dof: dof_value(uncertainty::Dof::Finite(noise_dof as f64)),
+        dof: dof_value(group_dof),
     });
     lines
 }
@@ -1050,7 +1102,8 @@ pub(crate) fn data_warnings(
         } else {
             f64::INFINITY
         };
-        if z.abs() > limit {
+        // A label without scatter has no u to measure an offset against.
+        if l.u_rad_s > 0.0 && z.abs() > limit {
             warnings.push(Warning {
                 code: "label_offset".into(),
                 message: format!(

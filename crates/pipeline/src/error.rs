@@ -292,6 +292,22 @@ pub enum UnsupportedReason {
     /// A trial phase without its trial mass, or a trial mass without its phase.
     #[error("`trial` and `trial_mass` go together: give both or neither")]
     TrialNeedsTrialMass,
+    /// A trial mass whose height is not its correction plane's.
+    #[error(
+        "a trial mass goes in its correction plane: its `height_m` must equal that plane's in `two_plane.heights_m` (or be left out)"
+    )]
+    TrialOutOfPlane,
+    /// A second probe's phase that is also read with the first probe.
+    #[error(
+        "the second probe's phase must be another phase than those the advisor reads with the first probe (`initial`, `trial`, `check`, `two_plane.trial`)"
+    )]
+    SecondProbePhaseIsFirst,
+    /// A phase measured by the second probe, used where a phase of the first probe's lever is
+    /// needed.
+    #[error(
+        "this phase holds the second probe's data (`balance.second_probe.phases`): its C_r is read with the first probe's lever and direction, so it cannot compensate or be simulated"
+    )]
+    SecondProbeData,
     /// A calibration with both or neither of a table and raw recordings.
     #[error("give exactly one of `table` and `recordings`")]
     CalibrationNeedsOneSource,

@@ -193,10 +193,19 @@ impl Inputs {
             }
             checked.push(check.phase(&key, phase, model)?);
         }
+        // Phases holding a second probe's data: read with the first probe's lever, their C_r
+        // is not the PIGA plane's (docs/BALANCING.md).
+        let second_probe_phases: Vec<usize> = config
+            .balance
+            .iter()
+            .flat_map(|b| b.second_probe.iter())
+            .flat_map(|q| q.phases.values())
+            .filter_map(|name| names.get(name.as_str()).copied())
+            .collect();
         let mechanism = config
             .mechanism
             .as_ref()
-            .map(|m| check.mechanism(m, config.k1_rad_s_g, &names))
+            .map(|m| check.mechanism(m, config.k1_rad_s_g, &names, &second_probe_phases))
             .transpose()?;
         let base = source.parent().unwrap_or_else(|| Path::new("."));
         let type_b = config
@@ -207,7 +216,7 @@ impl Inputs {
         let calibration_config = config
             .calibration
             .as_ref()
-            .map(|c| check.calibration(c, &names))
+            .map(|c| check.calibration(c, &names, &second_probe_phases))
             .transpose()?;
         let balance = config
             .balance
@@ -730,6 +739,7 @@ impl Check<'_> {
         &self,
         c: &CalibrationConfig,
         names: &HashMap<&str, usize>,
+        second_probe_phases: &[usize],
     ) -> Result<(usize, K1Choice)> {
         let Some(&phase) = names.get(c.compensate_with.as_str()) else {
             return Err(PipelineError::UnknownPhase {
@@ -739,6 +749,13 @@ impl Check<'_> {
                 known: sorted_names(names),
             });
         };
+        if second_probe_phases.contains(&phase) {
+            return Err(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: "calibration.compensate_with".to_owned(),
+                reason: UnsupportedReason::SecondProbeData,
+            });
+        }
         if let TrialsConfig::Fixed(n) = c.trials
             && n < MIN_TRIALS
         {
@@ -881,6 +898,22 @@ impl Check<'_> {
                 let (za, zb) = t.heights_m;
                 self.finite("balance.two_plane.heights_m.0".to_owned(), za)?;
                 self.finite("balance.two_plane.heights_m.1".to_owned(), zb)?;
+                // A trial mass goes in its correction plane: the influence coefficients
+                // hold for masses at that height only.
+                for (field, mass, plane) in [
+                    ("balance.trial_mass.height_m", b.trial_mass.as_ref(), za),
+                    (
+                        "balance.two_plane.trial_mass.height_m",
+                        t.trial_mass.as_ref(),
+                        zb,
+                    ),
+                ] {
+                    if let Some(h) = mass.and_then(|m| m.height_m)
+                        && h != plane
+                    {
+                        return Err(unsupported(field, UnsupportedReason::TrialOutOfPlane));
+                    }
+                }
                 if za == zb {
                     return Err(unsupported(
                         "balance.two_plane.heights_m",
@@ -941,46 +974,57 @@ impl Check<'_> {
                 })
             })
             .transpose()?;
-        let second = b
-            .second_probe
-            .as_ref()
-            .map(|q| {
-                let field = "balance.second_probe.probe_to_piga_mm";
-                self.finite(field.to_owned(), q.probe_to_piga_mm)?;
-                if q.probe_to_piga_mm == first_probe_to_piga_mm {
-                    return Err(unsupported(
-                        field,
-                        UnsupportedReason::SecondProbeAtFirstHeight,
-                    ));
-                }
-                let mut of = HashMap::new();
-                for (key, value) in &q.phases {
-                    let first = phase(&format!("balance.second_probe.phases[{key:?}]"), key)?;
-                    let second = phase(&format!("balance.second_probe.phases[{key:?}]"), value)?;
-                    of.insert(first, second);
-                }
-                let used = [Some(initial), trial.map(|t| t.0), check]
-                    .into_iter()
-                    .chain([two_plane.as_ref().and_then(|t| t.trial.map(|x| x.0))])
-                    .flatten();
-                for i in used {
-                    if !of.contains_key(&i) {
+        let second =
+            b.second_probe
+                .as_ref()
+                .map(|q| {
+                    let field = "balance.second_probe.probe_to_piga_mm";
+                    self.finite(field.to_owned(), q.probe_to_piga_mm)?;
+                    if q.probe_to_piga_mm == first_probe_to_piga_mm {
                         return Err(unsupported(
-                            "balance.second_probe.phases",
-                            UnsupportedReason::SecondProbeNeedsPhase,
+                            field,
+                            UnsupportedReason::SecondProbeAtFirstHeight,
                         ));
                     }
-                }
-                Ok(crate::balancing::SecondProbeInputs {
-                    probe_to_piga_mm: q.probe_to_piga_mm,
-                    probe_direction: match q.probe_direction {
-                        ProbeDirectionName::AgainstO1X1 => ProbeDirection::AgainstO1X1,
-                        ProbeDirectionName::AlongO1X1 => ProbeDirection::AlongO1X1,
-                    },
-                    phase_of: of,
+                    let mut of = HashMap::new();
+                    for (key, value) in &q.phases {
+                        let first = phase(&format!("balance.second_probe.phases[{key:?}]"), key)?;
+                        let second =
+                            phase(&format!("balance.second_probe.phases[{key:?}]"), value)?;
+                        of.insert(first, second);
+                    }
+                    let used: Vec<usize> = [Some(initial), trial.map(|t| t.0), check]
+                        .into_iter()
+                        .chain([two_plane.as_ref().and_then(|t| t.trial.map(|x| x.0))])
+                        .flatten()
+                        .collect();
+                    // The second probe's data is another phase than any the first probe gives.
+                    if let Some((key, _)) = q.phases.iter().find(|(_, value)| {
+                        names.get(value.as_str()).is_some_and(|i| used.contains(i))
+                    }) {
+                        return Err(unsupported(
+                            &format!("balance.second_probe.phases[{key:?}]"),
+                            UnsupportedReason::SecondProbePhaseIsFirst,
+                        ));
+                    }
+                    for i in used {
+                        if !of.contains_key(&i) {
+                            return Err(unsupported(
+                                "balance.second_probe.phases",
+                                UnsupportedReason::SecondProbeNeedsPhase,
+                            ));
+                        }
+                    }
+                    Ok(crate::balancing::SecondProbeInputs {
+                        probe_to_piga_mm: q.probe_to_piga_mm,
+                        probe_direction: match q.probe_direction {
+                            ProbeDirectionName::AgainstO1X1 => ProbeDirection::AgainstO1X1,
+                            ProbeDirectionName::AlongO1X1 => ProbeDirection::AlongO1X1,
+                        },
+                        phase_of: of,
+                    })
                 })
-            })
-            .transpose()?;
+                .transpose()?;
         Ok(crate::balancing::BalanceInputs {
             second,
             angular_stiffness_n_m_rad: b.angular_stiffness_n_m_rad,
@@ -1074,10 +1118,16 @@ impl Check<'_> {
         m: &MechanismConfig,
         k1_rad_s_g: f64,
         names: &HashMap<&str, usize>,
+        second_probe_phases: &[usize],
     ) -> Result<Mechanism> {
         let phases = match &m.phases {
+            // Every phase of the first probe.
             None => {
-                let mut all: Vec<usize> = names.values().copied().collect();
+                let mut all: Vec<usize> = names
+                    .values()
+                    .copied()
+                    .filter(|p| !second_probe_phases.contains(p))
+                    .collect();
                 all.sort_unstable();
                 all
             }
@@ -1093,6 +1143,13 @@ impl Check<'_> {
                             known: sorted_names(names),
                         });
                     };
+                    if second_probe_phases.contains(&p) {
+                        return Err(PipelineError::Unsupported {
+                            path: self.path.to_owned(),
+                            field,
+                            reason: UnsupportedReason::SecondProbeData,
+                        });
+                    }
                     if phases.contains(&p) {
                         return Err(PipelineError::DuplicateName {
                             path: self.path.to_owned(),

@@ -279,11 +279,11 @@ impl PigaOutputRate {
 ///
 /// Its standard uncertainty is the white-noise standard error of that mean — the pooled
 /// residual variance of the per-revolution fits (over their degrees of freedom) times each
-/// revolution's `1/Σ(t − t̄)²` and the variance inflation of the slope by the harmonics,
-/// `(π²/3)/(π²/3 − 2Σₖ≤N 1/k²)` — which stays steady with few revolutions; when the slopes
-/// scatter across revolutions beyond what white noise explains (a random walk of the
-/// output, a disturbance not synchronous with the spindle), the diagnostic `output_spread`
-/// says so and the standard error across revolutions, if larger, is used.
+/// revolution's exact `[(XᵀX)⁻¹]` of the slope at its own samples' times and angles — which
+/// stays steady with few revolutions; when the slopes scatter across revolutions beyond
+/// what white noise explains (above the 99 % quantile of χ²(K−1)/(K−1): a random walk of
+/// the output, a disturbance not synchronous with the spindle), the diagnostic
+/// `output_spread` says so and the standard error across revolutions, if larger, is used.
 ///
 /// # Errors
 /// Those of [`analyze_recording`] (an encoder rate more than 2 % from the declared one, too
@@ -353,15 +353,12 @@ pub fn reduce_piga_recording(
         .map(|r| r.samples.saturating_sub(parameters))
         .sum();
     let s2 = rss / dof.max(1) as f64;
-    let inflation = slope_inflation(order);
     let variances: Vec<f64> = a
         .revolutions
         .iter()
         .map(|r| {
-            let t = &samples.time_s[r.first_sample..r.first_sample + r.samples];
-            let mean = t.iter().sum::<f64>() / t.len() as f64;
-            let stt: f64 = t.iter().map(|v| (v - mean) * (v - mean)).sum();
-            s2 / stt * inflation
+            let range = r.first_sample..r.first_sample + r.samples;
+            s2 * slope_variance_factor(&detrended, range, declared_rate_rad_s, order)
         })
         .collect();
     let k = revolutions as f64;
@@ -380,11 +377,12 @@ pub fn reduce_piga_recording(
         .collect();
     let per_revolution_white = (variances.iter().sum::<f64>() / k).sqrt();
     let ratio = sd / per_revolution_white;
-    // ratio² ~ χ²(K−1)/(K−1) for white noise: mean 1, sd √(2/(K−1)).
-    let limit = crate::SPREAD_WARNING_RATIO
-        .powi(2)
-        .max(1.0 + 6.0 * (2.0 / (k - 1.0)).sqrt());
-    let mut u = white;
+    // ratio² ~ χ²(K−1)/(K−1) for white noise: its 99 % quantile (Wilson–Hilferty).
+    let nu = k - 1.0;
+    let limit = (1.0 - 2.0 / (9.0 * nu) + 2.326_348 * (2.0 / (9.0 * nu)).sqrt()).powi(3);
+    // A revolution whose design is singular has no white-noise variance: the spread across
+    // revolutions is all there is.
+    let mut u = if white.is_finite() { white } else { se };
     if revolutions >= 3 && per_revolution_white > 0.0 && ratio * ratio > limit {
         diagnostics.push(Diagnostic::OutputSpread { ratio, revolutions });
         u = u.max(se);
@@ -404,12 +402,70 @@ pub fn reduce_piga_recording(
     })
 }
 
-/// Variance inflation of a revolution's slope by the harmonics fitted beside it, for
-/// samples spread evenly over the revolution: the ramp `θ − π` has the Fourier series
-/// `−2 Σ sin kθ / k`, so the harmonics up to N explain `2 Σₖ≤N 1/k²` of its variance
-/// `π²/3`.
-fn slope_inflation(order: usize) -> f64 {
-    let total = std::f64::consts::PI.powi(2) / 3.0;
-    let explained = 2.0 * (1..=order).map(|k| 1.0 / (k * k) as f64).sum::<f64>();
-    total / (total - explained)
+/// `[(XᵀX)⁻¹]_bb` of one revolution's design `[1, t − t̄, cos kφ, sin kφ (k ≤ N)]` at its
+/// own samples' times and spindle angles: the slope's variance per unit noise variance,
+/// exact for any number of samples (the harmonics beside the slope inflate it, more so
+/// with few samples per revolution). Solved by Cholesky on the unit-diagonal scaled normal
+/// matrix; infinite if that is not positive definite.
+fn slope_variance_factor(
+    recording: &Recording,
+    range: std::ops::Range<usize>,
+    declared_rate_rad_s: f64,
+    order: usize,
+) -> f64 {
+    let p = 2 * order + 2;
+    let t = &recording.time_s[range.clone()];
+    let t_mean = t.iter().sum::<f64>() / t.len() as f64;
+    let mut a = vec![0.0; p * p];
+    let mut row = vec![0.0; p];
+    for i in range {
+        let phi = recording.angle_at(i, declared_rate_rad_s);
+        row[0] = 1.0;
+        row[1] = recording.time_s[i] - t_mean;
+        for k in 1..=order {
+            let (s, c) = (k as f64 * phi).sin_cos();
+            row[2 * k] = c;
+            row[2 * k + 1] = s;
+        }
+        for r in 0..p {
+            for c in 0..=r {
+                a[r * p + c] += row[r] * row[c];
+            }
+        }
+    }
+    // Scale to a unit diagonal, then Cholesky (lower, in place).
+    let d: Vec<f64> = (0..p).map(|r| a[r * p + r].sqrt().recip()).collect();
+    for r in 0..p {
+        for c in 0..=r {
+            a[r * p + c] *= d[r] * d[c];
+        }
+    }
+    for j in 0..p {
+        let mut diag = a[j * p + j];
+        for k in 0..j {
+            diag -= a[j * p + k] * a[j * p + k];
+        }
+        if diag.is_nan() || diag <= 1e-12 {
+            return f64::INFINITY;
+        }
+        let l = diag.sqrt();
+        a[j * p + j] = l;
+        for i in j + 1..p {
+            let mut v = a[i * p + j];
+            for k in 0..j {
+                v -= a[i * p + k] * a[j * p + k];
+            }
+            a[i * p + j] = v / l;
+        }
+    }
+    // [(A')⁻¹]_bb = ‖L⁻¹ e_b‖², then undo the scaling.
+    let mut y = vec![0.0; p];
+    for i in 0..p {
+        let mut v = if i == 1 { 1.0 } else { 0.0 };
+        for k in 0..i {
+            v -= a[i * p + k] * y[k];
+        }
+        y[i] = v / a[i * p + i];
+    }
+    y.iter().map(|v| v * v).sum::<f64>() * d[1] * d[1]
 }

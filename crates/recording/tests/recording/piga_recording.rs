@@ -143,6 +143,7 @@ fn the_standard_error_covers_the_truth_at_its_stated_rate() {
     let mut inside = 0;
     let mut across = 0.0;
     let mut white = 0.0;
+    let mut false_alarms = 0;
     let trials = 200;
     for seed in 0..trials {
         let spec = Spec {
@@ -159,7 +160,8 @@ fn the_standard_error_covers_the_truth_at_its_stated_rate() {
         let r = reduce_piga_recording(&rec, 100f64.to_radians(), 1).unwrap();
         let z = (r.output_rad_s - spec.output_rate_rad_s) / r.output_u_rad_s;
         inside += usize::from(z.abs() < 1.96);
-        assert_eq!(r.output_u_rad_s, r.white_noise_u_rad_s);
+        // White noise is flagged in about 1 % of recordings (the 99 % quantile).
+        false_alarms += usize::from(r.output_u_rad_s != r.white_noise_u_rad_s);
         across += r.across_revolutions_u_rad_s.powi(2);
         white += r.white_noise_u_rad_s.powi(2);
     }
@@ -167,6 +169,7 @@ fn the_standard_error_covers_the_truth_at_its_stated_rate() {
     assert!((0.92..=0.98).contains(&share), "{share}");
     let ratio = (across / white).sqrt();
     assert!((0.9..=1.1).contains(&ratio), "{ratio}");
+    assert!(false_alarms <= 8, "{false_alarms} of {trials}");
 }
 
 #[test]
@@ -281,4 +284,74 @@ fn an_output_that_walks_is_flagged_and_takes_the_spread_across_revolutions() {
     );
     assert_eq!(r.output_u_rad_s, r.across_revolutions_u_rad_s);
     assert!(r.across_revolutions_u_rad_s > 3.0 * r.white_noise_u_rad_s);
+}
+
+#[test]
+fn few_samples_per_revolution_keep_the_white_noise_u_honest() {
+    // 15.5 samples per revolution and order 4: the harmonics inflate the slope's variance
+    // beyond the continuous-sampling factor (by about 1.2 in u); the exact per-revolution
+    // design gives the spread of the outputs over 300 recordings.
+    let mut sum_sq = 0.0;
+    let mut sum_u2 = 0.0;
+    let n = 300;
+    for seed in 0..n {
+        let spec = Spec {
+            seed: seed + 500,
+            noise_rad: 1e-4,
+            ripple_rad: 0.0,
+            sample_rate_hz: 100.0 * 15.5 / 360.0,
+            revolutions: 10.5,
+            ..SPEC
+        };
+        let rec = parse_piga_recording(
+            text(&spec, AngleUnit::Rad, true).as_bytes(),
+            Path::new("piga.csv"),
+            &format(AngleUnit::Rad),
+        )
+        .unwrap();
+        let r = reduce_piga_recording(&rec, 100f64.to_radians(), 4).unwrap();
+        sum_sq += (r.output_rad_s - spec.output_rate_rad_s).powi(2);
+        sum_u2 += r.white_noise_u_rad_s.powi(2);
+    }
+    let ratio = (sum_sq / sum_u2).sqrt();
+    assert!((0.9..=1.1).contains(&ratio), "spread / u = {ratio}");
+}
+
+#[test]
+fn a_moderate_walk_is_caught_before_u_turns_optimistic() {
+    // A random walk that makes the true error about 1.25× the white-noise u (reviewer's
+    // case): flagged in most recordings, and then u is the spread across revolutions.
+    let mut flagged = 0;
+    for seed in 0..40 {
+        let spec = Spec {
+            seed: seed + 900,
+            noise_rad: 1e-6,
+            ..SPEC
+        };
+        let mut walk = Normal(seed + 77);
+        let mut level = 0.0;
+        let text: String = text(&spec, AngleUnit::Rad, true)
+            .lines()
+            .enumerate()
+            .map(|(i, line)| {
+                if i == 0 {
+                    return format!("{line}\n");
+                }
+                level += 4e-7 * walk.next();
+                let f: Vec<&str> = line.split(',').collect();
+                let out: f64 = f[1].parse::<f64>().unwrap() + level;
+                format!("{},{out},{}\n", f[0], f[2])
+            })
+            .collect();
+        let rec =
+            parse_piga_recording(text.as_bytes(), Path::new("p.csv"), &format(AngleUnit::Rad))
+                .unwrap();
+        let r = reduce_piga_recording(&rec, 100f64.to_radians(), 1).unwrap();
+        flagged += usize::from(
+            r.diagnostics
+                .iter()
+                .any(|d| matches!(d, Diagnostic::OutputSpread { .. })),
+        );
+    }
+    assert!(flagged >= 20, "{flagged} of 40 flagged");
 }
