@@ -174,6 +174,9 @@ pub struct ImbalanceMass {
     /// Azimuth in `O2` from `X2` towards `Y2`, degrees.
     pub azimuth_deg: f64,
     /// Lever arm relative to the rotor's centre of mass, m (as [`PhysicalImbalance::arm_m`]).
+    /// The tilt it gives turns the axis about the chain's `O2` origin, in the PIGA plane, so
+    /// the balance advisor reads the arm as a height above the PIGA plane
+    /// (`docs/BALANCING.md`: both stiffnesses about the PIGA plane).
     #[cfg_attr(feature = "serde", serde(default))]
     pub arm_m: f64,
 }

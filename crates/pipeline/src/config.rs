@@ -62,8 +62,8 @@ pub struct CounterweightConfig {
     pub phase: String,
     /// Radial stiffness `k_r` of the spindle bearing, N/m (an input: the paper gives none).
     pub radial_stiffness_n_m: f64,
-    /// Where that stiffness comes from (shown beside it in the report).
-    #[serde(default)]
+    /// Where that stiffness comes from (shown beside it in the report; required, not
+    /// blank).
     pub stiffness_source: String,
     /// Radius at which the counterweight would be mounted, m.
     pub correction_radius_m: f64,

@@ -292,6 +292,11 @@ pub enum UnsupportedReason {
     /// A trial phase without its trial mass, or a trial mass without its phase.
     #[error("`trial` and `trial_mass` go together: give both or neither")]
     TrialNeedsTrialMass,
+    /// A stiffness without its provenance.
+    #[error(
+        "say where the stiffness comes from (`stiffness_source`: a bearing datasheet, a static test, an assumption): the mass scales with it"
+    )]
+    StiffnessNeedsSource,
     /// A trial mass whose height is not its correction plane's.
     #[error(
         "a trial mass goes in its correction plane: its `height_m` must equal that plane's in `two_plane.heights_m` (or be left out)"

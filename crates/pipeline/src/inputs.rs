@@ -1071,6 +1071,15 @@ impl Check<'_> {
         };
         self.positive("counterweight.radial_stiffness_n_m", c.radial_stiffness_n_m)?;
         self.positive("counterweight.correction_radius_m", c.correction_radius_m)?;
+        // The mass scales with k_r, which no measurement here gives: its provenance is part
+        // of the result.
+        if c.stiffness_source.trim().is_empty() {
+            return Err(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: "counterweight.stiffness_source".to_owned(),
+                reason: UnsupportedReason::StiffnessNeedsSource,
+            });
+        }
         Ok(crate::balancing::CounterweightInputs {
             phase: i,
             from_rate_deg_s,

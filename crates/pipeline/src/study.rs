@@ -47,8 +47,29 @@ pub fn run_with_progress(
     }
     let mut warnings = Vec::new();
     let mut phases = Vec::with_capacity(inputs.phases.len());
-    for phase in &inputs.phases {
+    // Phases holding a second probe's data are fitted like the others, through the first
+    // probe's lever and direction: their C_r is not the PIGA plane's, and they say so.
+    let second_probe_phases: Vec<usize> = inputs
+        .balance
+        .as_ref()
+        .and_then(|b| b.second.as_ref())
+        .map(|s| s.phase_of.values().copied().collect())
+        .unwrap_or_default();
+    for (p, phase) in inputs.phases.iter().enumerate() {
         let (results, more) = run_phase(inputs, phase, progress)?;
+        if second_probe_phases.contains(&p) {
+            warnings.push(Warning {
+                code: "second_probe_phase".into(),
+                message: format!(
+                    "phase `{}` holds the second probe's data: its radius-error fit here reads \
+                     it with the first probe's lever and direction, so its C_r and Δk2 are not \
+                     the PIGA plane's; `balance.two_plane` gives C_r at the PIGA plane from both \
+                     probes",
+                    phase.name
+                ),
+                location: phase.key.clone(),
+            });
+        }
         phases.push(results);
         warnings.extend(more);
     }
@@ -139,6 +160,29 @@ pub fn run_with_progress(
         })
         .transpose()?;
     warnings.extend(calibration_warnings);
+    // With two probes, the initial phase's C_r through the cone of eq. 22 beside the one
+    // both probes give at the PIGA plane: the phase's number is the one a calibration or a
+    // mechanism section would use.
+    if let Some((b, t)) = balance
+        .as_ref()
+        .and_then(|b| b.two_plane.as_ref().map(|t| (b, t)))
+        && let Some(phase) = phases.iter().find(|p| p.name == b.initial)
+    {
+        let cone = phase.fit.c_r_m_s2;
+        if (cone - t.c_r_m_s2).abs() > 3.0 * t.c_r_u_m_s2 {
+            warnings.push(Warning {
+                code: "cone_c_r".into(),
+                message: format!(
+                    "phase `{}`'s C_r read by one probe through the cone of eq. 22 is {cone:.4e} \
+                     m·s²; both probes give {:.4e} ± {:.1e} m·s² at the PIGA plane: the spindle \
+                     does not move as a cone about the assumed pivot, and a calibration or \
+                     mechanism section that uses the phase's C_r is off by the difference",
+                    b.initial, t.c_r_m_s2, t.c_r_u_m_s2
+                ),
+                location: "balance.two_plane".into(),
+            });
+        }
+    }
     let counterweight = inputs
         .counterweight
         .as_ref()

@@ -371,10 +371,17 @@ pub fn balance_polar_svg(b: &BalanceResults, title: &str) -> Result<String> {
         chart
             .draw_series(dashes)
             .map_err(plot_error)?
-            .label(format!(
-                "correction: {:.4} kg at {:.2}°",
-                b.correction.mass_kg, b.correction.azimuth_deg
-            ))
+            .label(if b.two_plane.is_some() {
+                format!(
+                    "single-plane correction through the cone, for comparison only: {:.4} kg at {:.2}° (two planes: see the report)",
+                    b.correction.mass_kg, b.correction.azimuth_deg
+                )
+            } else {
+                format!(
+                    "correction: {:.4} kg at {:.2}°",
+                    b.correction.mass_kg, b.correction.azimuth_deg
+                )
+            })
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
         chart
             .configure_series_labels()

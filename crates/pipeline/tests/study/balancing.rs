@@ -567,3 +567,89 @@ fn first_harmonic_points_carry_sigma_for_the_phasor_fit() {
         "{err:?}"
     );
 }
+
+/// The two-plane fixture study with `from` replaced by `to`.
+fn two_plane_fixture(from: &str, to: &str) -> String {
+    let text =
+        std::fs::read_to_string(crate::root().join("fixtures/studies/balance-two-plane.ron"))
+            .unwrap();
+    assert!(text.contains(from), "{from}");
+    text.replacen(from, to, 1)
+}
+
+#[test]
+fn second_probe_data_is_kept_apart_from_the_first_probes() {
+    // Its phases are flagged, and the cone's C_r is set beside the two-plane one.
+    let results = run(&two_plane_fixture("", "")).unwrap();
+    let flagged: Vec<&str> = results
+        .warnings
+        .iter()
+        .filter(|w| w.code == "second_probe_phase")
+        .map(|w| w.location.as_str())
+        .collect();
+    assert_eq!(flagged.len(), 4, "{flagged:?}");
+    assert!(results.warnings.iter().any(|w| w.code == "cone_c_r"));
+    // A second probe's phase mapped to a phase the first probe gives.
+    let e = run(&two_plane_fixture(
+        "\"check\": \"check_low\"",
+        "\"check\": \"before\"",
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::Unsupported { field, reason: UnsupportedReason::SecondProbePhaseIsFirst, .. } if field.starts_with("balance.second_probe.phases")),
+        "{e}"
+    );
+    // A trial mass out of its plane.
+    let e = run(&two_plane_fixture(
+        "azimuth_deg: 90.0, height_m: 0.15",
+        "azimuth_deg: 90.0, height_m: 0.40",
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::Unsupported { field, reason: UnsupportedReason::TrialOutOfPlane, .. } if field == "balance.trial_mass.height_m"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_second_probe_phase_cannot_compensate_a_calibration_or_be_simulated() {
+    let with_mechanism = two_plane_fixture(
+        "    balance: (",
+        "    mechanism: (phases: [\"before_low\"], k2_rad_s_g2: 1e-6, rates_deg_s: [10.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0, 200.0]),\n    balance: (",
+    );
+    let e = run(&with_mechanism).unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::Unsupported { field, reason: UnsupportedReason::SecondProbeData, .. } if field == "mechanism.phases[0]"),
+        "{e}"
+    );
+    // Without a list, the mechanism takes every first-probe phase.
+    let every = two_plane_fixture(
+        "    balance: (",
+        "    mechanism: (k2_rad_s_g2: 1e-6, rates_deg_s: [10.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0, 200.0]),\n    balance: (",
+    );
+    let results = run(&every).unwrap();
+    let m = results.mechanism.unwrap();
+    assert!(
+        m.phases.iter().all(|p| !p.phase.ends_with("_low")),
+        "{:?}",
+        m.phases.iter().map(|p| &p.phase).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn a_counterweight_needs_its_stiffness_source() {
+    let text =
+        std::fs::read_to_string(crate::root().join("fixtures/studies/paper-2025.ron")).unwrap();
+    let blank = text.replace(
+        "stiffness_source: \"assumed: the bearing of fixtures/scenarios/pre-balance.ron; the paper gives none\",",
+        "stiffness_source: \" \",",
+    );
+    assert_ne!(blank, text);
+    let source = crate::root().join("fixtures/studies/paper-2025.ron");
+    let config = StudyConfig::from_ron(&blank, &source).unwrap();
+    let e = pipeline::Inputs::new(config, &source, &pipeline::Files).unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::Unsupported { field, reason: UnsupportedReason::StiffnessNeedsSource, .. } if field == "counterweight.stiffness_source"),
+        "{e}"
+    );
+}
