@@ -826,6 +826,7 @@ pub(crate) fn results(
             tolerance: v.tolerance,
             d_low: v.d_low,
             d_high: v.d_high,
+            heavy_tailed: o.heavy_tailed,
         }
     };
     let monte_carlo = MonteCarlo {

@@ -411,6 +411,9 @@ pub struct MonteCarloOutput {
     pub d_low: f64,
     /// |y + U95 − y_high| of the validation.
     pub d_high: f64,
+    /// An input is drawn from a t with ν ≤ 2 (no variance): `mean` and `u` are those of the
+    /// trials drawn and do not settle; the coverage interval is the result to use.
+    pub heavy_tailed: bool,
 }
 
 /// The Monte Carlo evaluation of the calibration's measurement model.

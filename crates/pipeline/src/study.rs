@@ -160,6 +160,37 @@ pub fn run_with_progress(
         })
         .transpose()?;
     warnings.extend(calibration_warnings);
+    // A correction known to no better than its own size (a near-singular influence
+    // coefficient, trial runs that barely moved the spindle) is not a correction to mount.
+    if let Some(b) = balance.as_ref() {
+        let mut corrections: Vec<(String, &crate::results::CorrectionResult)> =
+            vec![("balance.correction".to_owned(), &b.correction)];
+        if let Some(t) = &b.two_plane {
+            for (c, correction) in t.corrections.iter().enumerate() {
+                for (k, plane) in correction.planes.iter().enumerate() {
+                    corrections.push((
+                        format!("balance.two_plane.corrections[{c}].planes[{k}]"),
+                        &plane.correction,
+                    ));
+                }
+            }
+        }
+        for (location, c) in corrections {
+            if c.mass_u_kg >= c.mass_kg {
+                warnings.push(Warning {
+                    code: "correction_uncertain".into(),
+                    message: format!(
+                        "the correction's mass {:.4} kg has a standard uncertainty of {:.4} kg, \
+                         as large as itself: the trial run(s) did not move the spindle \
+                         clearly enough (near-parallel or small responses) — use a larger \
+                         trial mass, or another trial azimuth or plane",
+                        c.mass_kg, c.mass_u_kg
+                    ),
+                    location,
+                });
+            }
+        }
+    }
     // With two probes, the initial phase's C_r through the cone of eq. 22 beside the one
     // both probes give at the PIGA plane: the phase's number is the one a calibration or a
     // mechanism section would use.
