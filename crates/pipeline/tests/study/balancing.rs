@@ -653,3 +653,61 @@ fn a_counterweight_needs_its_stiffness_source() {
         "{e}"
     );
 }
+
+#[test]
+fn more_two_plane_and_counterweight_errors_name_the_field() {
+    // Two planes with neither trial runs in both planes nor both stiffnesses.
+    let e = run(&two_plane_fixture(
+        "        angular_stiffness_n_m_rad: 2.4e8,",
+        "",
+    )
+    .replacen(
+        "            trial: \"trial_b\",               // the run with the trial mass in plane B\n            trial_mass: (mass_kg: 8.0, radius_m: 2.5, azimuth_deg: -30.0),\n",
+        "",
+        1,
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::Unsupported { field, reason: UnsupportedReason::TwoPlaneNeedsMethod, .. } if field == "balance.two_plane"),
+        "{e}"
+    );
+    // A plane-B trial without its mass.
+    let e = run(&two_plane_fixture(
+        "            trial_mass: (mass_kg: 8.0, radius_m: 2.5, azimuth_deg: -30.0),\n",
+        "",
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::Unsupported { field, reason: UnsupportedReason::TrialNeedsTrialMass, .. } if field == "balance.two_plane.trial_mass"),
+        "{e}"
+    );
+    // A plane-B trial mass of 0.
+    let e = run(&two_plane_fixture(
+        "trial_mass: (mass_kg: 8.0, radius_m: 2.5, azimuth_deg: -30.0)",
+        "trial_mass: (mass_kg: 0.0, radius_m: 2.5, azimuth_deg: -30.0)",
+    ))
+    .unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::InvalidField { field, .. } if field == "balance.two_plane.trial_mass.mass_kg"),
+        "{e}"
+    );
+    // The counterweight's radius must be > 0.
+    let text = std::fs::read_to_string(root().join("fixtures/studies/paper-2025.ron")).unwrap();
+    let bad = text.replacen(
+        "        correction_radius_m: 2.5,\n    ),\n)",
+        "        correction_radius_m: 0.0,\n    ),\n)",
+        1,
+    );
+    assert_ne!(bad, text);
+    let source = root().join("fixtures/studies/paper-2025.ron");
+    let e = pipeline::Inputs::new(
+        StudyConfig::from_ron(&bad, &source).unwrap(),
+        &source,
+        &pipeline::Files,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&e, PipelineError::InvalidField { field, .. } if field == "counterweight.correction_radius_m"),
+        "{e}"
+    );
+}
