@@ -568,8 +568,8 @@ mod tests {
             fixed_azimuths_deg: Vec::new(),
         };
         let (w1, w2) = (10f64.to_radians(), 200f64.to_radians());
-        let up = radius_change_advice(19.464, w1, w2, 5e7, &plane, &context).unwrap();
-        let down = radius_change_advice(-19.464, w2, w1, 5e7, &plane, &context).unwrap();
+        let up = radius_change_advice(20.0, w1, w2, 5e7, &plane, &context).unwrap();
+        let down = radius_change_advice(-20.0, w2, w1, 5e7, &plane, &context).unwrap();
         assert_relative_eq!(up.c_r_m_s2, down.c_r_m_s2, max_relative = 1e-15);
         assert_eq!(up.correction_azimuth_deg, 180.0);
         assert_eq!(down.correction_azimuth_deg, 180.0);
