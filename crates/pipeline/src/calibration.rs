@@ -422,6 +422,12 @@ pub(crate) struct Evaluated {
     pub(crate) validation: uncertainty::Validation,
     /// The inputs of the uncertainty evaluation.
     pub(crate) quantities: Vec<uncertainty::InputQuantity>,
+    pub(crate) weighting: Weighting,
+}
+
+/// How the eq. 18 fit weighted its points, and the degrees of freedom that follow.
+#[derive(Debug, Clone)]
+pub(crate) struct Weighting {
     /// Residual degrees of freedom of the fit.
     pub(crate) noise_dof: usize,
     /// Degrees of freedom of the fit's coefficients as an input group.
@@ -461,12 +467,7 @@ pub(crate) struct Setup {
     pub(crate) quantities: Vec<uncertainty::InputQuantity>,
     pub(crate) set: uncertainty::Inputs,
     pub(crate) options: uncertainty::McOptions,
-    pub(crate) noise_dof: usize,
-    pub(crate) group_dof: uncertainty::Dof,
-    pub(crate) excess_u_rad_s: Option<f64>,
-    pub(crate) tau_not_found: bool,
-    pub(crate) sigma_used: Option<Vec<f64>>,
-    pub(crate) birge_ratio: Option<f64>,
+    pub(crate) weighting: Weighting,
 }
 
 /// Fits and builds the measurement model with its input quantities.
@@ -641,12 +642,14 @@ pub(crate) fn setup(
         quantities,
         set,
         options,
-        noise_dof,
-        group_dof,
-        excess_u_rad_s,
-        tau_not_found,
-        sigma_used,
-        birge_ratio: first_birge,
+        weighting: Weighting {
+            noise_dof,
+            group_dof,
+            excess_u_rad_s,
+            tau_not_found,
+            sigma_used,
+            birge_ratio: first_birge,
+        },
     })
 }
 
@@ -664,12 +667,7 @@ pub(crate) fn evaluate(
         quantities,
         set,
         options,
-        noise_dof,
-        group_dof,
-        excess_u_rad_s,
-        tau_not_found,
-        sigma_used,
-        birge_ratio,
+        weighting,
     } = setup(inputs, points, setting)?;
     let gum_result =
         gum(&model, &set, &GumOptions::default()).map_err(CalibrationFailure::Uncertainty)?;
@@ -683,12 +681,7 @@ pub(crate) fn evaluate(
         mc,
         validation,
         quantities,
-        noise_dof,
-        group_dof,
-        excess_u_rad_s,
-        tau_not_found,
-        sigma_used,
-        birge_ratio,
+        weighting,
     })
 }
 
@@ -788,7 +781,7 @@ pub(crate) fn results(
             output_rad_s: points.outputs_rad_s[i],
             residual_rad_s: unc.residuals_rad_s[i],
             // The σ the fit used: the point's own, with τ when one was added.
-            u_rad_s: e.sigma_used.as_ref().map(|s| s[i]),
+            u_rad_s: e.weighting.sigma_used.as_ref().map(|s| s[i]),
             label: points.labels.as_ref().map(|l| l[i].clone()),
             line: match &points.origins[i] {
                 Origin::Line(l) => Some(*l),
@@ -807,7 +800,8 @@ pub(crate) fn results(
         fit.residual_sd
     };
     let labels = label_summaries(points, &unc.residuals_rad_s, residual_sd_rad_s);
-    let budget_of = |name: &str| budget(&out(name), &e.quantities, e.group_dof, inputs.k1);
+    let budget_of =
+        |name: &str| budget(&out(name), &e.quantities, e.weighting.group_dof, inputs.k1);
     let budget = PigaCoefficients {
         k0: budget_of("k0"),
         k1: budget_of("k1"),
@@ -865,7 +859,7 @@ pub(crate) fn results(
             "the C_r of phase `{phase_name}` has no standard uncertainty (an exact fit); it is taken as exact"
         ));
     }
-    if e.tau_not_found {
+    if e.weighting.tau_not_found {
         warnings.push(
             "the points scatter more than their σ say (Birge ratio above 1), and no variation \
              τ common to every point brings χ²/ν to 1: the fit keeps the points' σ as weights \
@@ -880,7 +874,7 @@ pub(crate) fn results(
              Monte Carlo mean and standard uncertainty do not settle and only its 95 % \
              interval is meaningful; the GUM U95 takes k from Student's t. More rates, or \
              repeats, give a smaller and steadier U95",
-            e.noise_dof,
+            e.weighting.noise_dof,
             setting
                 .c_r_sigma
                 .map_or_else(|| "exact".to_owned(), |(_, dof)| dof.to_string())
@@ -897,8 +891,8 @@ pub(crate) fn results(
         table: points.table.as_ref().map(|t| t.display().to_string()),
         recordings: points.recordings.clone(),
         weighted: points.sigma_rad_s.is_some(),
-        birge_ratio: e.birge_ratio,
-        excess_u_rad_s: e.excess_u_rad_s,
+        birge_ratio: e.weighting.birge_ratio,
+        excess_u_rad_s: e.weighting.excess_u_rad_s,
         compensate_with: phase_name.to_owned(),
         k1_source: match inputs.k1 {
             K1Choice::Fitted => "fitted".to_owned(),

@@ -74,6 +74,25 @@ fn text(spec: &Spec, unit: AngleUnit, encoder: bool) -> String {
     out
 }
 
+/// A recording's text with a random walk of steps N(0, `step_rad`²) per sample added to its
+/// output column (rate noise of the output).
+fn with_walk(text: &str, step_rad: f64, seed: u64) -> String {
+    let mut walk = Normal(seed);
+    let mut level = 0.0;
+    text.lines()
+        .enumerate()
+        .map(|(i, line)| {
+            if i == 0 {
+                return format!("{line}\n");
+            }
+            level += step_rad * walk.next();
+            let f: Vec<&str> = line.split(',').collect();
+            let out: f64 = f[1].parse::<f64>().unwrap() + level;
+            format!("{},{out},{}\n", f[0], f[2])
+        })
+        .collect()
+}
+
 fn format(unit: AngleUnit) -> PigaRecordingFormat {
     PigaRecordingFormat {
         output: Column {
@@ -252,22 +271,7 @@ fn an_output_that_walks_is_flagged_and_takes_the_spread_across_revolutions() {
         noise_rad: 1e-6,
         ..SPEC
     };
-    let mut text = text(&spec, AngleUnit::Rad, true);
-    let mut walk = Normal(99);
-    let mut level = 0.0;
-    text = text
-        .lines()
-        .enumerate()
-        .map(|(i, line)| {
-            if i == 0 {
-                return format!("{line}\n");
-            }
-            level += 2e-4 * walk.next();
-            let f: Vec<&str> = line.split(',').collect();
-            let out: f64 = f[1].parse::<f64>().unwrap() + level;
-            format!("{},{out},{}\n", f[0], f[2])
-        })
-        .collect();
+    let text = with_walk(&text(&spec, AngleUnit::Rad, true), 2e-4, 99);
     let rec = parse_piga_recording(
         text.as_bytes(),
         Path::new("piga.csv"),
@@ -328,21 +332,7 @@ fn a_moderate_walk_is_caught_before_u_turns_optimistic() {
             noise_rad: 1e-6,
             ..SPEC
         };
-        let mut walk = Normal(seed + 77);
-        let mut level = 0.0;
-        let text: String = text(&spec, AngleUnit::Rad, true)
-            .lines()
-            .enumerate()
-            .map(|(i, line)| {
-                if i == 0 {
-                    return format!("{line}\n");
-                }
-                level += 4e-7 * walk.next();
-                let f: Vec<&str> = line.split(',').collect();
-                let out: f64 = f[1].parse::<f64>().unwrap() + level;
-                format!("{},{out},{}\n", f[0], f[2])
-            })
-            .collect();
+        let text = with_walk(&text(&spec, AngleUnit::Rad, true), 4e-7, seed + 77);
         let rec =
             parse_piga_recording(text.as_bytes(), Path::new("p.csv"), &format(AngleUnit::Rad))
                 .unwrap();
