@@ -1,7 +1,7 @@
 //! Centrifuge calibration of a PIGA (eq. 17–18) and its compensation for the spindle's dynamic
 //! radius error (eq. 19).
 
-use crate::design::Design;
+use crate::design::{Design, power};
 use crate::error::{IdentifyError, Requirement, Result};
 use crate::geometry::Geometry;
 use crate::lstsq::{Fit, LstsqOptions, lstsq_design_unchecked};
@@ -9,6 +9,54 @@ use crate::radius::{CrEstimate, PseudoSecondOrder, finite, pseudo_second_order, 
 
 /// Least number of distinct rates for the six-column design of eq. 18.
 pub const MIN_DISTINCT_RATES: usize = 6;
+
+/// The terms of the eq. 18 design, in coefficient order: `1, ω, ω², ω³, a², a³`, with
+/// `a = R·ω²/g` the nominal input in g. The one list of them in the workspace.
+pub const CALIBRATION_TERMS: [&str; 6] = ["1", "ω", "ω²", "ω³", "a²", "a³"];
+
+/// The power of ω in each eq. 18 column (`a² = (R/g)²·ω⁴`, `a³ = (R/g)³·ω⁶`).
+const CALIBRATION_POWERS: [u32; 6] = [0, 1, 2, 3, 4, 6];
+
+/// The factor of each eq. 18 column beyond its power of ω: `(R/g)²` and `(R/g)³` for the a²
+/// and a³ columns, 1 for the others.
+fn calibration_factors(geometry: Geometry) -> [f64; 6] {
+    let k = geometry.radius_m / geometry.g_m_s2;
+    [1.0, 1.0, 1.0, 1.0, k * k, k * k * k]
+}
+
+/// The eq. 18 design of the rates `rate_rad_s`, its entries formed in double-double: the
+/// design [`identify_calibration`] fits. Row i is [`calibration_row`]`(rate_rad_s[i])`.
+///
+/// # Errors
+/// [`IdentifyError::InvalidParameter`] when `(R/g)³` is not finite.
+pub fn calibration_design(rate_rad_s: &[f64], geometry: Geometry) -> Result<Design> {
+    Design::powers(rate_rad_s, &CALIBRATION_POWERS).scale_columns(&calibration_factors(geometry))
+}
+
+/// One row of the eq. 18 design at `rate_rad_s`, each entry formed in double-double and
+/// rounded once: `[1, ω, ω², ω³, a², a³]` with `a = R·ω²/g` (the terms
+/// [`CALIBRATION_TERMS`]). The planner's information matrices and the calibration's variance
+/// inflation factors use it; the fit uses the same entries through [`calibration_design`].
+///
+/// ```
+/// use identify::{Geometry, calibration_row};
+/// let geometry = Geometry { radius_m: 2.5, g_m_s2: 9.8 };
+/// let w = 3.0_f64;
+/// let a = geometry.input_g(w);
+/// let row = calibration_row(w, geometry);
+/// assert_eq!(row[..4], [1.0, 3.0, 9.0, 27.0]);
+/// assert!((row[4] / (a * a) - 1.0).abs() < 1e-15);
+/// assert!((row[5] / (a * a * a) - 1.0).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn calibration_row(rate_rad_s: f64, geometry: Geometry) -> [f64; 6] {
+    let factors = calibration_factors(geometry);
+    std::array::from_fn(|j| {
+        power(rate_rad_s, CALIBRATION_POWERS[j])
+            .mul_f64(factors[j])
+            .to_f64()
+    })
+}
 
 /// Result of [`identify_calibration`]: the coefficients of the eq. 18 design
 /// `[1, ω, ω², ω³, a², a³]` with `a = R·ω²/g`.
@@ -175,14 +223,7 @@ fn calibrate(
             requirement: Requirement::RadiusOverGravityInRange,
         });
     }
-    let design = Design::powers(rate_rad_s, &[0, 1, 2, 3, 4, 6]).scale_columns(&[
-        1.0,
-        1.0,
-        1.0,
-        1.0,
-        k * k,
-        k * k * k,
-    ])?;
+    let design = calibration_design(rate_rad_s, geometry)?;
     let (fit, residuals_rad_s, birge_ratio) = match sigma_rad_s {
         None => {
             let fit = lstsq_design_unchecked(&design, output_rad_s, &LstsqOptions::default())?;

@@ -55,9 +55,9 @@ mod radius;
 pub mod strd;
 
 pub use calibration::{
-    Calibration, CompensatedCalibration, Compensation, K1Source, MIN_DISTINCT_RATES,
-    identify_calibration, identify_calibration_weighted, identify_compensated,
-    identify_compensated_weighted,
+    CALIBRATION_TERMS, Calibration, CompensatedCalibration, Compensation, K1Source,
+    MIN_DISTINCT_RATES, calibration_design, calibration_row, identify_calibration,
+    identify_calibration_weighted, identify_compensated, identify_compensated_weighted,
 };
 pub use design::Design;
 pub use error::{IdentifyError, Requirement, Result};

@@ -16,16 +16,9 @@
 
 use std::path::PathBuf;
 
-use identify::{CompensatedCalibration, Compensation, K1Source};
+use identify::CompensatedCalibration;
 
-/// Number of coefficients of the eq. 18 design.
-pub(crate) const TERMS: usize = 6;
-
-/// Names of the model's outputs, in order.
-pub(crate) const OUTPUTS: [&str; 6] = ["k0", "k1", "k2", "k3", "k2_uncompensated", "delta_k2"];
-
-/// Index of the first fit coefficient among the model's inputs.
-pub(crate) const FIRST_COEFFICIENT: usize = 8;
+use ::calibration::{CalibrationModel, TERM_NAMES, TERMS, Weighting, input, output};
 
 /// The validated calibration section.
 #[derive(Debug, Clone)]
@@ -235,181 +228,6 @@ pub(crate) struct Nominal {
     pub(crate) c_r_m_s2: f64,
 }
 
-/// The calibration as a function of its input quantities, in this order: R (m), g (m/s²),
-/// rate scale s (1), pivot-to-probe height (mm), probe-to-PIGA height (mm), probe gain (1),
-/// C_r (m·s²), k1 given (rad/(s·g); ignored when k1 is fitted), then the six coefficients
-/// of the eq. 18 fit at the nominal R, g and rates (order `1, ω, ω², ω³, a², a³`).
-/// Outputs: k0, k1, k2 (compensated), k3, k2 uncompensated, Δk2.
-#[derive(Debug, Clone, Copy)]
-pub struct CalibrationModel {
-    k1_fitted: bool,
-    /// `R₀/g₀`, s² (computed once: the same numbers as per trial, without the divisions).
-    radius_over_g_s2: f64,
-    /// The nominal lever ratio `(h_p + h_a)/h_p`, 1.
-    lever0: f64,
-}
-
-impl CalibrationModel {
-    /// The model around `nominal`.
-    pub(crate) fn new(nominal: Nominal, k1_fitted: bool) -> Self {
-        let n = nominal;
-        Self {
-            k1_fitted,
-            radius_over_g_s2: n.radius_m / n.g_m_s2,
-            lever0: (n.pivot_to_probe_mm + n.probe_to_piga_mm) / n.pivot_to_probe_mm,
-        }
-    }
-
-    /// Number of input quantities.
-    pub const fn inputs(&self) -> usize {
-        FIRST_COEFFICIENT + TERMS
-    }
-
-    /// Evaluates the six outputs at the inputs `x`.
-    pub fn evaluate(&self, x: &[f64], out: &mut [f64]) {
-        let inputs: [f64; FIRST_COEFFICIENT + TERMS] = std::array::from_fn(|i| x[i]);
-        out[..OUTPUTS.len()].copy_from_slice(&self.outputs(&inputs));
-    }
-
-    /// The six outputs at the fourteen inputs (one trial).
-    #[inline(always)]
-    fn outputs(&self, x: &[f64; FIRST_COEFFICIENT + TERMS]) -> [f64; 6] {
-        let (radius, g, s) = (x[0], x[1], x[2]);
-        let (h_p, h_a, gain, c_r, k1_given) = (x[3], x[4], x[5], x[6], x[7]);
-        let mut beta = [0.0; TERMS];
-        beta.copy_from_slice(&x[FIRST_COEFFICIENT..FIRST_COEFFICIENT + TERMS]);
-        // X' = X·D with D = diag(1, s, s², s³, ρ², ρ³), ρ = (R s²/g)/(R₀/g₀): β' = D⁻¹β.
-        let rho = (radius * s * s / g) / self.radius_over_g_s2;
-        let d = [1.0, s, s * s, s * s * s, rho * rho, rho * rho * rho];
-        for (b, d) in beta.iter_mut().zip(d) {
-            *b /= d;
-        }
-        let k1 = if self.k1_fitted {
-            beta[2] * g / radius
-        } else {
-            k1_given
-        };
-        let lever = (h_p + h_a) / h_p;
-        let c_r_true = c_r * gain * (lever / self.lever0) / (s * s);
-        let delta_k2 = k1 * c_r_true * g / (radius * radius);
-        [beta[0], k1, beta[4] - delta_k2, beta[5], beta[4], delta_k2]
-    }
-}
-
-/// The Monte Carlo method and the GUM framework evaluate the model directly: it never fails,
-/// and a non-finite output (a drawn R or g of zero) is a failed trial.
-impl uncertainty::MeasurementModel for CalibrationModel {
-    fn output_names(&self) -> Vec<String> {
-        OUTPUTS.iter().map(|&name| name.to_owned()).collect()
-    }
-
-    fn evaluate(&self, x: &[f64], y: &mut [f64]) -> Result<(), uncertainty::ModelError> {
-        CalibrationModel::evaluate(self, x, y);
-        Ok(())
-    }
-
-    fn input_count(&self) -> Option<usize> {
-        Some(self.inputs())
-    }
-
-    /// The trials' columns evaluated in one loop, without a copy of each trial's inputs.
-    fn evaluate_trials(
-        &self,
-        x: &[f64],
-        stride: usize,
-        len: usize,
-        y: &mut [f64],
-    ) -> Option<(usize, uncertainty::ModelError)> {
-        const N: usize = FIRST_COEFFICIENT + TERMS;
-        let columns: [&[f64]; N] =
-            std::array::from_fn(|i| x.get(i * stride..i * stride + len).unwrap_or(&[]));
-        if columns.iter().any(|c| c.len() != len) {
-            y.fill(f64::NAN);
-            return Some((
-                0,
-                uncertainty::ModelError::Failed {
-                    reason: "fewer input columns than the model's fourteen inputs",
-                },
-            ));
-        }
-        for (t, out) in y.chunks_exact_mut(OUTPUTS.len()).take(len).enumerate() {
-            let inputs: [f64; N] = std::array::from_fn(|i| columns[i][t]);
-            out.copy_from_slice(&self.outputs(&inputs));
-        }
-        None
-    }
-}
-
-/// The compensation of a phase's C_r, for `identify`.
-pub(crate) fn compensation(c_r_m_s2: f64, c_r_sigma_m_s2: f64, k1: K1Choice) -> Compensation {
-    Compensation {
-        c_r: identify::CrEstimate {
-            c_r_m_s2,
-            c_r_sigma_m_s2,
-        },
-        k1: match k1 {
-            K1Choice::Fitted => K1Source::Fitted,
-            K1Choice::Given { k1_rad_s_g, .. } => K1Source::Given { k1_rad_s_g },
-        },
-    }
-}
-
-/// Variance inflation factors of the five non-constant columns, from the fit's unscaled
-/// covariance `(XᵀWX)⁻¹` and the columns' weighted sums of squares about their weighted
-/// means (`VIF_j = [(XᵀWX)⁻¹]_jj · Σᵢ wᵢ(x_ij − x̄_j)²`, valid with an intercept column;
-/// `wᵢ = 1/σᵢ²`, or 1 unweighted).
-pub(crate) fn variance_inflation(
-    cal: &CompensatedCalibration,
-    rates_rad_s: &[f64],
-    sigma_rad_s: Option<&[f64]>,
-) -> [f64; 5] {
-    let fit = &cal.uncompensated.fit;
-    let geometry = cal.uncompensated.geometry;
-    let k = geometry.radius_m / geometry.g_m_s2;
-    let columns: [Box<dyn Fn(f64) -> f64>; 5] = [
-        Box::new(|w| w),
-        Box::new(|w| w * w),
-        Box::new(|w| w * w * w),
-        Box::new(move |w| (k * w * w).powi(2)),
-        Box::new(move |w| (k * w * w).powi(3)),
-    ];
-    let weights: Vec<f64> = match sigma_rad_s {
-        Some(s) => s.iter().map(|s| 1.0 / (s * s)).collect(),
-        None => vec![1.0; rates_rad_s.len()],
-    };
-    let total: f64 = weights.iter().sum();
-    let mut vif = [0.0; 5];
-    for (j, column) in columns.iter().enumerate() {
-        let values: Vec<f64> = rates_rad_s.iter().map(|&w| column(w)).collect();
-        let mean = values.iter().zip(&weights).map(|(v, w)| v * w).sum::<f64>() / total;
-        let ss: f64 = values
-            .iter()
-            .zip(&weights)
-            .map(|(v, w)| w * (v - mean) * (v - mean))
-            .sum();
-        vif[j] = fit.unscaled_covariance[(j + 1, j + 1)] * ss;
-    }
-    vif
-}
-
-/// Input quantities of [`CalibrationModel`] beyond the mean outputs, in order.
-const NAMED_INPUTS: [&str; 8] = [
-    "R (working radius)",
-    "g (gravity)",
-    "rate scale (common to every rate)",
-    "pivot-to-probe height",
-    "probe-to-PIGA height",
-    "probe gain",
-    "C_r of the compensating phase",
-    "k1 (given)",
-];
-
-/// Terms of the eq. 18 design, in coefficient order.
-pub(crate) const TERM_NAMES: [&str; TERMS] = ["1", "ω", "ω²", "ω³", "a²", "a³"];
-
-/// A variance inflation factor above which terms are reported as hard to separate.
-pub(crate) const VIF_LIMIT: f64 = 1e3;
-
 /// Everything the calibration computes, before it becomes results.
 pub(crate) struct Evaluated {
     pub(crate) cal: CompensatedCalibration,
@@ -423,24 +241,6 @@ pub(crate) struct Evaluated {
     /// The inputs of the uncertainty evaluation.
     pub(crate) quantities: Vec<uncertainty::InputQuantity>,
     pub(crate) weighting: Weighting,
-}
-
-/// How the eq. 18 fit weighted its points, and the degrees of freedom that follow.
-#[derive(Debug, Clone)]
-pub(crate) struct Weighting {
-    /// Residual degrees of freedom of the fit.
-    pub(crate) noise_dof: usize,
-    /// Degrees of freedom of the fit's coefficients as an input group.
-    pub(crate) group_dof: uncertainty::Dof,
-    /// The standard deviation common to every point that the points' σ miss (Paule–Mandel),
-    /// when a weighted fit's χ²/ν exceeded 1.
-    pub(crate) excess_u_rad_s: Option<f64>,
-    /// Whether no τ bringing χ²/ν to 1 was found (the covariance is then Birge-scaled).
-    pub(crate) tau_not_found: bool,
-    /// The σ the fit was weighted by (with τ), when weighted.
-    pub(crate) sigma_used: Option<Vec<f64>>,
-    /// The Birge ratio of the weighted fit with the points' own σ.
-    pub(crate) birge_ratio: Option<f64>,
 }
 
 /// Where a calibration failed.
@@ -476,7 +276,7 @@ pub(crate) fn setup(
     points: &PigaPoints,
     setting: &Setting<'_>,
 ) -> Result<Setup, CalibrationFailure> {
-    use uncertainty::{Dof, Evaluation, InputQuantity, McOptions};
+    use uncertainty::McOptions;
     let n = setting.nominal;
     let rates_rad_s: Vec<f64> = points
         .rates_deg_s
@@ -488,145 +288,69 @@ pub(crate) fn setup(
         radius_m: n.radius_m,
         g_m_s2: n.g_m_s2,
     };
-    let compensation = compensation(n.c_r_m_s2, sigma_c_r, inputs.k1);
-    let fit_with = |sigma: Option<&[f64]>| match sigma {
-        None => identify::identify_compensated(
-            &rates_rad_s,
-            &points.outputs_rad_s,
-            geometry,
-            &compensation,
-        ),
-        Some(sigma) => identify::identify_compensated_weighted(
-            &rates_rad_s,
-            &points.outputs_rad_s,
-            sigma,
-            geometry,
-            &compensation,
-        ),
+    let k1_given = match inputs.k1 {
+        K1Choice::Fitted => None,
+        K1Choice::Given { k1_rad_s_g, .. } => Some(k1_rad_s_g),
     };
-    let mut cal = fit_with(points.sigma_rad_s.as_deref()).map_err(CalibrationFailure::Identify)?;
-    let first_birge = cal.uncompensated.birge_ratio;
-    // Points that scatter more than their σ say (χ²/ν > 1): the σ miss a variation common
-    // to every point (from run to run). Its variance τ² is the one that makes χ²/ν = 1
-    // with σᵢ² + τ² (the Paule–Mandel estimate); the fit is weighted by those.
-    let mut excess_u_rad_s = None;
-    let mut tau_not_found = false;
-    let mut sigma_used = points.sigma_rad_s.clone();
-    if let (Some(sigma), Some(birge)) = (&points.sigma_rad_s, cal.uncompensated.birge_ratio)
-        && birge > 1.0
-    {
-        let combined =
-            |tau: f64| -> Vec<f64> { sigma.iter().map(|s| s.hypot(tau)).collect::<Vec<_>>() };
-        let birge_at = |tau: f64| {
-            fit_with(Some(&combined(tau)))
-                .ok()
-                .and_then(|c| c.uncompensated.birge_ratio)
-        };
-        // χ²/ν falls towards 0 as τ grows: double τ from the largest residual until it is
-        // below 1 (with few degrees of freedom the largest residual may not be enough).
-        let mut low = 0.0;
-        let mut high = cal
-            .uncompensated
-            .residuals_rad_s
-            .iter()
-            .fold(0.0_f64, |m, r| m.max(r.abs()))
-            .max(f64::MIN_POSITIVE);
-        let mut bracketed = false;
-        for _ in 0..200 {
-            match birge_at(high) {
-                Some(b) if b < 1.0 => {
-                    bracketed = true;
-                    break;
-                }
-                Some(_) => {
-                    low = high;
-                    high *= 2.0;
-                }
-                None => break,
-            }
-        }
-        tau_not_found = !bracketed;
-        if bracketed {
-            for _ in 0..60 {
-                let mid = 0.5 * (low + high);
-                match birge_at(mid) {
-                    Some(b) if b > 1.0 => low = mid,
-                    _ => high = mid,
-                }
-            }
-            let tau = high;
-            let widened = combined(tau);
-            cal = fit_with(Some(&widened)).map_err(CalibrationFailure::Identify)?;
-            excess_u_rad_s = Some(tau);
-            sigma_used = Some(widened);
-        }
-    }
-    let model = CalibrationModel::new(n, inputs.k1 == K1Choice::Fitted);
-    let vif = variance_inflation(&cal, &rates_rad_s, sigma_used.as_deref());
-
+    let compensation = ::calibration::compensation(n.c_r_m_s2, sigma_c_r, k1_given);
+    let ::calibration::Fitted {
+        calibration: cal,
+        weighting,
+    } = ::calibration::fit(
+        &rates_rad_s,
+        &points.outputs_rad_s,
+        points.sigma_rad_s.as_deref(),
+        geometry,
+        &compensation,
+    )
+    .map_err(CalibrationFailure::Identify)?;
+    let nominal = ::calibration::Nominal {
+        radius_m: n.radius_m,
+        g_m_s2: n.g_m_s2,
+        pivot_to_probe_mm: n.pivot_to_probe_mm,
+        probe_to_piga_mm: n.probe_to_piga_mm,
+    };
+    let model = CalibrationModel::new(
+        nominal,
+        match inputs.k1 {
+            K1Choice::Fitted => ::calibration::K1Mode::Fitted,
+            K1Choice::Given { .. } => ::calibration::K1Mode::Given,
+        },
+    );
+    let vif =
+        ::calibration::variance_inflation(&cal, &rates_rad_s, weighting.sigma_used.as_deref());
     let tb = setting.type_b;
-    let noise_dof = cal.uncompensated.fit.dof;
-    // The group's degrees of freedom: the σᵢ taken as known (a weighted fit whose residuals
-    // stay within them, its covariance (XᵀWX)⁻¹ not scaled by them) have as many as their
-    // own estimates, many; a covariance scaled by the residuals (unweighted, or with τ
-    // estimated from them) has n − 6.
-    let group_dof = match (first_birge, excess_u_rad_s, tau_not_found) {
-        (Some(b), None, false) if b <= 1.0 => Dof::Infinite,
-        _ => Dof::Finite(noise_dof as f64),
+    let type_b = ::calibration::TypeB {
+        radius_u_m: tb.radius_u_m,
+        g_u_m_s2: tb.g_u_m_s2,
+        rate_u_relative: tb.rate_u_relative,
+        pivot_to_probe_u_mm: tb.pivot_to_probe_u_mm,
+        probe_to_piga_u_mm: tb.probe_to_piga_u_mm,
+        probe_gain_u_relative: tb.probe_gain_u_relative,
     };
-    let (k1_value, k1_u) = match inputs.k1 {
+    let k1 = match inputs.k1 {
+        K1Choice::Fitted => ::calibration::K1Input::Fitted,
         K1Choice::Given {
             k1_rad_s_g,
             u_rad_s_g,
-        } => (k1_rad_s_g, u_rad_s_g),
-        K1Choice::Fitted => (0.0, 0.0),
-    };
-    let c_r_input = match setting.c_r_sigma {
-        Some((sigma, dof)) if dof > 0 => {
-            InputQuantity::type_a(NAMED_INPUTS[6], n.c_r_m_s2, sigma, Dof::Finite(dof as f64))
-        }
-        _ => InputQuantity {
-            kind: Evaluation::TypeA,
-            ..InputQuantity::normal(NAMED_INPUTS[6], n.c_r_m_s2, 0.0)
+        } => ::calibration::K1Input::Given {
+            k1_rad_s_g,
+            u_rad_s_g,
         },
     };
-    let mut quantities = vec![
-        InputQuantity::normal(NAMED_INPUTS[0], n.radius_m, tb.radius_u_m),
-        InputQuantity::normal(NAMED_INPUTS[1], n.g_m_s2, tb.g_u_m_s2),
-        InputQuantity::normal(NAMED_INPUTS[2], 1.0, tb.rate_u_relative),
-        InputQuantity::normal(NAMED_INPUTS[3], n.pivot_to_probe_mm, tb.pivot_to_probe_u_mm),
-        InputQuantity::normal(NAMED_INPUTS[4], n.probe_to_piga_mm, tb.probe_to_piga_u_mm),
-        InputQuantity::normal(NAMED_INPUTS[5], 1.0, tb.probe_gain_u_relative),
-        c_r_input,
-        InputQuantity::normal(NAMED_INPUTS[7], k1_value, k1_u),
-    ];
-    // The fit's coefficients: one Type A group, correlated through the fit's covariance, with
-    // `group_dof` degrees of freedom.
-    let fit = &cal.uncompensated.fit;
-    for (t, term) in TERM_NAMES.iter().enumerate() {
-        quantities.push(InputQuantity::type_a(
-            format!("fit coefficient of {term}"),
-            fit.coefficients[t],
-            fit.std_errors[t],
-            group_dof,
-        ));
-    }
-    let m = quantities.len();
-    let mut correlation = vec![0.0; m * m];
-    for i in 0..m {
-        correlation[i * m + i] = 1.0;
-    }
-    for a in 0..TERMS {
-        for b in 0..TERMS {
-            let d = fit.std_errors[a] * fit.std_errors[b];
-            if a != b && d > 0.0 {
-                correlation[(FIRST_COEFFICIENT + a) * m + FIRST_COEFFICIENT + b] =
-                    fit.covariance[(a, b)] / d;
-            }
-        }
-    }
-    let set = uncertainty::Inputs::with_correlation(quantities.clone(), &correlation)
-        .map_err(CalibrationFailure::Uncertainty)?;
+    let c_r = ::calibration::CrInput {
+        c_r_m_s2: n.c_r_m_s2,
+        sigma: setting.c_r_sigma,
+    };
+    let (quantities, set) = ::calibration::measurement_inputs(
+        &nominal,
+        &type_b,
+        c_r,
+        k1,
+        &cal.uncompensated.fit,
+        weighting.group_dof,
+    )
+    .map_err(CalibrationFailure::Uncertainty)?;
     let options = McOptions {
         seed: inputs.seed,
         trials: match inputs.trials {
@@ -642,14 +366,7 @@ pub(crate) fn setup(
         quantities,
         set,
         options,
-        weighting: Weighting {
-            noise_dof,
-            group_dof,
-            excess_u_rad_s,
-            tau_not_found,
-            sigma_used,
-            birge_ratio: first_birge,
-        },
+        weighting,
     })
 }
 
@@ -743,7 +460,7 @@ pub(crate) fn results(
         },
     };
     // Ratios to k1 with the GUM covariance of the outputs (k0, k1, k2, k3 are outputs 0–3).
-    let m = OUTPUTS.len();
+    let m = output::NAMES.len();
     let cov = |i: usize, j: usize| e.gum.covariance[i * m + j];
     let ratio = |i: usize, value: f64| {
         let k1 = k1_value;
@@ -840,11 +557,11 @@ pub(crate) fn results(
             (0, 0.0_f64),
             |acc, (j, &v)| if v > acc.1 { (j + 1, v) } else { acc },
         );
-    if worst.1 > VIF_LIMIT {
+    if worst.1 > ::calibration::VIF_LIMIT {
         warnings.push(format!(
-            "terms hard to separate: the {} term's variance inflation factor is {:.3e} (above {VIF_LIMIT:e}); \
+            "terms hard to separate: the {} term's variance inflation factor is {:.3e} (above {:e}); \
              its coefficient is strongly correlated with the others' — more, and more widely spread, rates separate them",
-            TERM_NAMES[worst.0], worst.1
+            TERM_NAMES[worst.0], worst.1, ::calibration::VIF_LIMIT
         ));
     }
     if !type_b_given {
@@ -960,9 +677,9 @@ fn budget(
         .iter()
         .zip(quantities)
         .enumerate()
-        .take(FIRST_COEFFICIENT)
+        .take(input::FIRST_COEFFICIENT)
     {
-        if i == 7 && k1 == K1Choice::Fitted {
+        if i == input::K1_GIVEN && k1 == K1Choice::Fitted {
             continue;
         }
         lines.push(BudgetLine {
@@ -981,7 +698,7 @@ fn budget(
     }
     // The fit's coefficients as one line: their correlated contribution (the shares of the
     // group, which may be negative one by one, sum to the group's share).
-    let group = &output.contributions[FIRST_COEFFICIENT..];
+    let group = &output.contributions[input::FIRST_COEFFICIENT..];
     let share: f64 = group.iter().map(|c| c.variance_percent).sum();
     let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
     lines.push(BudgetLine {
@@ -1057,11 +774,6 @@ fn label_summaries(
         .collect()
 }
 
-/// Mean residual of a label, in its standard uncertainties, above which the label is
-/// reported as sitting apart (`label_offset`), for many rows (fewer widen it by Student's
-/// t).
-pub(crate) const LABEL_OFFSET_LIMIT: f64 = 3.0;
-
 /// The calibration's warnings about its data: a weighted fit whose residuals exceed the
 /// points' σ (`calibration_lack_of_fit`), a label whose rows sit apart (`label_offset`),
 /// and rates outside the range over which the compensating phase measured C_r
@@ -1074,7 +786,7 @@ pub(crate) fn data_warnings(
     let mut warnings = Vec::new();
     if let Some(b) = c.birge_ratio
         && c.dof > 0
-        && b > crate::study::lack_of_fit_limit(c.dof)
+        && b > ::calibration::lack_of_fit_limit(c.dof)
     {
         warnings.push(Warning {
             code: "calibration_lack_of_fit".into(),
@@ -1091,12 +803,7 @@ pub(crate) fn data_warnings(
     for l in &c.labels {
         let z = l.mean_residual_rad_s / l.u_rad_s;
         // About 3σ for many rows, wider for few (Student t, 99.73 %).
-        let limit = if l.rows >= 2 {
-            uncertainty::coverage_factor(0.9973, uncertainty::Dof::Finite((l.rows - 1) as f64))
-                .unwrap_or(LABEL_OFFSET_LIMIT)
-        } else {
-            f64::INFINITY
-        };
+        let limit = ::calibration::label_offset_limit(l.rows);
         // A label without scatter has no u to measure an offset against.
         if l.u_rad_s > 0.0 && z.abs() > limit {
             warnings.push(Warning {
@@ -1187,50 +894,6 @@ mod tests {
         let (points, warnings) = inputs.points(Path::new("study.ron")).unwrap();
         assert!(warnings.is_empty());
         (inputs, points)
-    }
-
-    #[test]
-    fn trials_by_columns_equal_trial_by_trial() {
-        use uncertainty::MeasurementModel;
-        let nominal = Nominal {
-            radius_m: 2.5,
-            g_m_s2: 9.8,
-            pivot_to_probe_mm: 700.0,
-            probe_to_piga_mm: 510.0,
-            c_r_m_s2: 1.6e-6,
-        };
-        let model = CalibrationModel::new(nominal, true);
-        let (len, stride) = (5, 7);
-        let base = [
-            2.5, 9.8, 1.0, 700.0, 510.0, 1.0, 1.6e-6, 0.0, 1e-5, 2e-6, 0.14, -3e-9, 5e-7, 2e-8,
-        ];
-        // Trial t perturbs every input by a different relative amount.
-        let x: Vec<f64> = (0..model.inputs())
-            .flat_map(|i| {
-                (0..stride)
-                    .map(move |t| base[i] * (1.0 + 1e-4 * (t as f64 - 2.0) * (i as f64 + 1.0)))
-            })
-            .collect();
-        let mut by_columns = vec![0.0; len * 6];
-        assert!(
-            model
-                .evaluate_trials(&x, stride, len, &mut by_columns)
-                .is_none()
-        );
-        for t in 0..len {
-            let xt: Vec<f64> = (0..model.inputs()).map(|i| x[i * stride + t]).collect();
-            let mut y = [0.0; 6];
-            CalibrationModel::evaluate(&model, &xt, &mut y);
-            assert_eq!(&by_columns[t * 6..t * 6 + 6], &y[..], "trial {t}");
-        }
-        // Too few columns: every trial fails, nothing panics.
-        let mut y = vec![0.0; len * 6];
-        assert!(
-            model
-                .evaluate_trials(&x[..3 * stride], stride, len, &mut y)
-                .is_some()
-        );
-        assert!(y.iter().all(|v| v.is_nan()));
     }
 
     #[test]

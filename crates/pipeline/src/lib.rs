@@ -57,7 +57,7 @@ mod probe_analysis;
 mod results;
 mod study;
 
-pub use calibration::CalibrationModel;
+pub use ::calibration::CalibrationModel;
 pub use config::{
     BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
 };

@@ -8,7 +8,9 @@ use harmonics::FirstHarmonic;
 use identify::RadiusModel;
 use units::{deg_s_to_rad_s, m_to_um, um_to_m};
 
-use crate::calibration::{self, CalibrationFailure, CalibrationModel, Nominal, Setting};
+use ::calibration::CalibrationModel;
+
+use crate::calibration::{self, CalibrationFailure, Nominal, Setting};
 use crate::config::{RadiusModelName, Weighting};
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Inputs, Phase, PhaseData, radius_model};
@@ -383,13 +385,6 @@ fn run_phase(
     Ok((results, warnings))
 }
 
-/// `√(χ²/dof)` of the radius-error residuals over their white-noise σ above which the fit
-/// is flagged as lacking (with few degrees of freedom the limit grows so that white noise
-/// alone rarely reaches it).
-pub(crate) fn lack_of_fit_limit(dof: usize) -> f64 {
-    (4.0_f64).max(1.0 + 6.0 * (2.0 / dof as f64).sqrt()).sqrt()
-}
-
 /// The warning `lack_of_fit` when the radius-error residuals are well above the σ of the
 /// points (recordings only).
 fn lack_of_fit(points: &[PointResult], fit: &ModelFit, section: &str) -> Option<Warning> {
@@ -402,7 +397,7 @@ fn lack_of_fit(points: &[PointResult], fit: &ModelFit, section: &str) -> Option<
         chi2 += (r / s).powi(2);
     }
     let ratio = (chi2 / fit.dof as f64).sqrt();
-    (ratio > lack_of_fit_limit(fit.dof)).then(|| Warning {
+    (ratio > ::calibration::lack_of_fit_limit(fit.dof)).then(|| Warning {
         code: "lack_of_fit".into(),
         message: format!(
             "the radius-error residuals are {ratio:.1}× their white-noise σ (√(χ²/dof), {} \

@@ -85,10 +85,18 @@ pub fn simulate_plan(
         });
     }
     let sigma: Vec<f64> = plan.points.iter().map(|q| q.sigma_mean_rad_s).collect();
-    let x = DMatrix::from_fn(n, UNKNOWNS, |r, j| {
-        let w = units::deg_s_to_rad_s(plan.points[r].rate_deg_s);
-        regressors(w, plan.radius_m, plan.g_m_s2)[j] / sigma[r]
-    });
+    let rows: Vec<[f64; UNKNOWNS]> = plan
+        .points
+        .iter()
+        .map(|q| {
+            regressors(
+                units::deg_s_to_rad_s(q.rate_deg_s),
+                plan.radius_m,
+                plan.g_m_s2,
+            )
+        })
+        .collect();
+    let x = DMatrix::from_fn(n, UNKNOWNS, |r, j| rows[r][j] / sigma[r]);
     let fit = |y: &[f64]| -> Result<f64> {
         let yw: Vec<f64> = y.iter().zip(&sigma).map(|(y, s)| y / s).collect();
         identify::lstsq(&x, &yw)

@@ -237,13 +237,13 @@ impl Default for Search {
     }
 }
 
-/// Unknowns of the eq. 18 design.
-pub const UNKNOWNS: usize = 6;
+/// Unknowns of the eq. 18 design ([`calibration::TERMS`]).
+pub const UNKNOWNS: usize = calibration::TERMS;
 /// The most revolutions a budget may hold at the fastest candidate (whole revolutions are
 /// counted in `u32`).
 const MAX_REVOLUTIONS: f64 = 1e9;
-/// Index of the a² coefficient (k2) in the eq. 18 design.
-pub const K2: usize = 4;
+/// Index of the a² coefficient (k2) in the eq. 18 design ([`calibration::A2_TERM`]).
+pub const K2: usize = calibration::A2_TERM;
 
 /// The validated problem: candidates in range with their regressors, costs and information
 /// per second.
@@ -289,10 +289,9 @@ fn finite(name: &'static str, value: f64) -> Result<()> {
     field(name, value, true, "must be finite")
 }
 
-/// The eq. 18 regressors `1, ω, ω², ω³, a², a³` at `w` rad/s.
+/// The eq. 18 regressors `1, ω, ω², ω³, a², a³` at `w` rad/s ([`calibration::design_row`]).
 pub(crate) fn regressors(w: f64, radius_m: f64, g_m_s2: f64) -> [f64; UNKNOWNS] {
-    let a = radius_m * w * w / g_m_s2;
-    [1.0, w, w * w, w * w * w, a * a, a * a * a]
+    calibration::design_row(w, identify::Geometry { radius_m, g_m_s2 })
 }
 
 impl Problem {

@@ -4,6 +4,8 @@ use nalgebra::DMatrix;
 
 use crate::design::{self, Allocated};
 use crate::error::{PlanningError, Result};
+use calibration::{input, output};
+
 use crate::inputs::{Criterion, K2, PlanInputs, Problem, UNKNOWNS, regressors};
 
 /// One point of the run sheet.
@@ -116,17 +118,21 @@ pub struct Plan {
     pub budget: Vec<BudgetLine>,
 }
 
-/// Names of the measurement model's inputs, in order.
-const INPUT_NAMES: [&str; 9] = [
-    "apparent k2 (a² coefficient of the eq. 18 fit)",
-    "R (working radius)",
-    "g (gravity)",
-    "rate scale (common to every rate)",
-    "pivot-to-probe height",
-    "probe-to-PIGA height",
-    "probe gain",
-    "C_r",
-    "k1",
+/// The planner's names of the calibration model's inputs it uses, in the order of its budget
+/// (the model's own order is [`calibration::input`]): the a² coefficient first.
+const BUDGET_INPUTS: [(usize, &str); 9] = [
+    (
+        input::FIRST_COEFFICIENT + calibration::A2_TERM,
+        "apparent k2 (a² coefficient of the eq. 18 fit)",
+    ),
+    (input::RADIUS, "R (working radius)"),
+    (input::G, "g (gravity)"),
+    (input::RATE_SCALE, "rate scale (common to every rate)"),
+    (input::PIVOT_TO_PROBE, "pivot-to-probe height"),
+    (input::PROBE_TO_PIGA, "probe-to-PIGA height"),
+    (input::PROBE_GAIN, "probe gain"),
+    (input::C_R, "C_r"),
+    (input::K1_GIVEN, "k1"),
 ];
 
 /// Plans the calibration: the rates, the revolutions at each, and the predicted U95(k2).
@@ -171,9 +177,11 @@ pub fn plan(inputs: &PlanInputs) -> Result<Plan> {
 /// The weighted eq. 18 design of a plan's points (rows `x_i/σ_i`, raw regressors).
 fn weighted_design(p: &Problem, design: &[usize], sigma: &[f64]) -> DMatrix<f64> {
     let c = &p.inputs.centrifuge;
-    DMatrix::from_fn(design.len(), UNKNOWNS, |r, j| {
-        regressors(p.rates_rad_s[design[r]], c.radius_m, c.g_m_s2)[j] / sigma[r]
-    })
+    let rows: Vec<[f64; UNKNOWNS]> = design
+        .iter()
+        .map(|&i| regressors(p.rates_rad_s[i], c.radius_m, c.g_m_s2))
+        .collect();
+    DMatrix::from_fn(design.len(), UNKNOWNS, |r, j| rows[r][j] / sigma[r])
 }
 
 /// u(k2) of the fit for σ known, through identify's QR (`(XᵀWX)⁻¹`, never a normal-equation
@@ -229,11 +237,12 @@ struct Gum {
     budget: Vec<BudgetLine>,
 }
 
-/// The GUM evaluation of the compensated and uncompensated k2 (the study's calibration model
-/// reduced to k2): `k2 = β/ρ² − k1·C_r·gain·(L/L₀)/s²·g/R²`, `k2_unc = β/ρ²`, with
-/// `ρ = (R·s²/g)/(R₀/g₀)` and `L = (h_p + h_a)/h_p`.
+/// The GUM evaluation of the compensated and uncompensated k2 through the study's calibration
+/// model ([`calibration::CalibrationModel`], k1 given): `k2 = β/ρ² − k1·C_r·gain·(L/L₀)/s²·g/R²`,
+/// `k2_uncompensated = β/ρ²`, with `ρ = (R·s²/g)/(R₀/g₀)` and `L = (h_p + h_a)/h_p`. The
+/// fit's other coefficients enter as exact (they do not reach k2).
 fn gum_k2(p: &Problem, u_fit: f64, fit_dof: usize, u_c_r: Option<(f64, usize)>) -> Result<Gum> {
-    use uncertainty::{Dof, GumOptions, InputQuantity, gum, model_fn};
+    use uncertainty::{Dof, GumOptions, InputQuantity, gum};
     let inputs = &p.inputs;
     let c = &inputs.centrifuge;
     let pr = &inputs.probe;
@@ -243,45 +252,52 @@ fn gum_k2(p: &Problem, u_fit: f64, fit_dof: usize, u_c_r: Option<(f64, usize)>) 
     let k1 = inputs.piga.k1_rad_s_g;
     let c_r = inputs.c_r.expected_m_s2;
     let apparent = inputs.piga.k2_rad_s_g2 + k1 * c_r * g0 / (r0 * r0);
+    let name = |i: usize| {
+        BUDGET_INPUTS
+            .iter()
+            .find(|(j, _)| *j == i)
+            .map_or_else(|| format!("fit coefficient {i}"), |(_, n)| (*n).to_owned())
+    };
     let c_r_input = match u_c_r {
         Some((u, dof)) if dof > 0 && u > 0.0 => {
-            InputQuantity::type_a(INPUT_NAMES[7], c_r, u, Dof::Finite(dof as f64))
+            InputQuantity::type_a(name(input::C_R), c_r, u, Dof::Finite(dof as f64))
         }
-        Some((u, _)) => InputQuantity::normal(INPUT_NAMES[7], c_r, u),
-        None => InputQuantity::normal(INPUT_NAMES[7], c_r, inputs.c_r.u_m_s2.unwrap_or(0.0)),
+        Some((u, _)) => InputQuantity::normal(name(input::C_R), c_r, u),
+        None => InputQuantity::normal(name(input::C_R), c_r, inputs.c_r.u_m_s2.unwrap_or(0.0)),
     };
+    let a2 = input::FIRST_COEFFICIENT + calibration::A2_TERM;
     let beta = if u_fit > 0.0 {
-        InputQuantity::type_a(INPUT_NAMES[0], apparent, u_fit, Dof::Finite(fit_dof as f64))
+        InputQuantity::type_a(name(a2), apparent, u_fit, Dof::Finite(fit_dof as f64))
     } else {
-        InputQuantity::normal(INPUT_NAMES[0], apparent, 0.0)
+        InputQuantity::normal(name(a2), apparent, 0.0)
     };
-    let quantities = vec![
-        beta,
-        InputQuantity::normal(INPUT_NAMES[1], r0, tb.radius_u_m),
-        InputQuantity::normal(INPUT_NAMES[2], g0, tb.g_u_m_s2),
-        InputQuantity::normal(INPUT_NAMES[3], 1.0, tb.rate_u_relative),
-        InputQuantity::normal(INPUT_NAMES[4], hp0, tb.pivot_to_probe_u_mm),
-        InputQuantity::normal(INPUT_NAMES[5], ha0, tb.probe_to_piga_u_mm),
-        InputQuantity::normal(INPUT_NAMES[6], 1.0, tb.probe_gain_u_relative),
+    let mut quantities = vec![
+        InputQuantity::normal(name(input::RADIUS), r0, tb.radius_u_m),
+        InputQuantity::normal(name(input::G), g0, tb.g_u_m_s2),
+        InputQuantity::normal(name(input::RATE_SCALE), 1.0, tb.rate_u_relative),
+        InputQuantity::normal(name(input::PIVOT_TO_PROBE), hp0, tb.pivot_to_probe_u_mm),
+        InputQuantity::normal(name(input::PROBE_TO_PIGA), ha0, tb.probe_to_piga_u_mm),
+        InputQuantity::normal(name(input::PROBE_GAIN), 1.0, tb.probe_gain_u_relative),
         c_r_input,
-        InputQuantity::normal(INPUT_NAMES[8], k1, inputs.piga.k1_u_rad_s_g),
+        InputQuantity::normal(name(input::K1_GIVEN), k1, inputs.piga.k1_u_rad_s_g),
     ];
-    let lever0 = (hp0 + ha0) / hp0;
-    let model = model_fn(
-        ["k2", "k2_uncompensated"],
-        move |x: &[f64], y: &mut [f64]| {
-            let (beta, radius, g, s) = (x[0], x[1], x[2], x[3]);
-            let (h_p, h_a, gain, c_r, k1) = (x[4], x[5], x[6], x[7], x[8]);
-            let rho = (radius * s * s / g) / (r0 / g0);
-            let k2_unc = beta / (rho * rho);
-            let lever = (h_p + h_a) / h_p;
-            let c_r_true = c_r * gain * (lever / lever0) / (s * s);
-            y[0] = k2_unc - k1 * c_r_true * g / (radius * radius);
-            y[1] = k2_unc;
-            Ok(())
+    for t in 0..calibration::TERMS {
+        let i = input::FIRST_COEFFICIENT + t;
+        quantities.push(if i == a2 {
+            beta.clone()
+        } else {
+            InputQuantity::normal(name(i), 0.0, 0.0)
+        });
+    }
+    let model = calibration::CalibrationModel::new(
+        calibration::Nominal {
+            radius_m: r0,
+            g_m_s2: g0,
+            pivot_to_probe_mm: hp0,
+            probe_to_piga_mm: ha0,
         },
-    )
-    .with_input_count(quantities.len());
+        calibration::K1Mode::Given,
+    );
     let set = uncertainty::Inputs::new(quantities.clone()).map_err(PlanningError::Uncertainty)?;
     let result = gum(&model, &set, &GumOptions::default()).map_err(PlanningError::Uncertainty)?;
     let expanded = |o: &uncertainty::GumOutput| Expanded {
@@ -293,13 +309,12 @@ fn gum_k2(p: &Problem, u_fit: f64, fit_dof: usize, u_c_r: Option<(f64, usize)>) 
         k: o.coverage_factor,
         u95_rad_s_g2: o.expanded_uncertainty,
     };
-    let comp = &result.outputs[0];
-    let uncomp = &result.outputs[1];
+    let comp = &result.outputs[output::K2];
+    let uncomp = &result.outputs[output::K2_UNCOMPENSATED];
     // The uncompensated k2 does not use C_r, k1 or the probe: its budget omits them.
-    let budget = comp
-        .contributions
+    let budget = BUDGET_INPUTS
         .iter()
-        .zip(&quantities)
+        .map(|&(i, _)| (&comp.contributions[i], &quantities[i]))
         .filter(|(c, _)| c.uncertainty > 0.0)
         .map(|(c, q)| BudgetLine {
             quantity: q.name.clone(),
