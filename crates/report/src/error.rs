@@ -83,6 +83,9 @@ pub enum ReportError {
         /// The backend's message.
         message: String,
     },
+    /// A certificate was asked of results without a calibration section.
+    #[error("a certificate needs a study with a `calibration` section; this study has none")]
+    NoCalibration,
     /// The results have no phase to draw.
     #[error("the results have no phase")]
     NoPhase,

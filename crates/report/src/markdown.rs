@@ -27,6 +27,7 @@ pub fn render(
     let published = |path: &str| expected.and_then(|e| e.published(path));
     let i = &results.inputs;
     let _ = writeln!(out, "# Study `{}`\n", results.study);
+    crate::summary::summary_markdown(&mut out, results);
     let _ = writeln!(
         out,
         "Inputs: R = {} m, g = {} m/s², k1 = {} rad/(s·g), lever ratio (probe → PIGA plane) = {:.6}.\n",
@@ -35,7 +36,7 @@ pub fn render(
     if let Some(e) = expected {
         let _ = writeln!(out, "Published values for comparison: {}.\n", e.source);
     }
-    if !results.warnings.is_empty() {
+    if !results.warnings.is_empty() && results.calibration.is_none() {
         let _ = writeln!(
             out,
             "## Warnings\n\nThe numbers below were computed, but these may make them wrong:\n"

@@ -20,6 +20,7 @@ const STUDY_FILES: &[&str] = &[
     "probe_signals_*.svg",
     "calibration_residuals.svg",
     "balance_polar.svg",
+    "certificate.html",
 ];
 
 /// The files a study wrote.

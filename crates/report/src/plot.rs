@@ -193,17 +193,18 @@ pub fn calibration_residuals_svg(
             .y_label_area_size(80)
             .build_cartesian_2d(0.0..x_max, -y_max..y_max)
             .map_err(|e| err(e.to_string()))?;
+        let (x_step, y_step) = (
+            crate::format::nice_step(x_max, 10.0),
+            crate::format::nice_step(2.0 * y_max, 10.0),
+        );
         chart
             .configure_mesh()
             .x_desc("rate (deg/s)")
             .y_desc("residual (rad/s)")
-            .y_label_formatter(&|v| {
-                if v.abs() < y_max * 1e-9 {
-                    "0".to_owned()
-                } else {
-                    format!("{v:.1e}")
-                }
-            })
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(200, 200, 200))
+            .x_label_formatter(&|v| crate::format::tick(*v, x_step))
+            .y_label_formatter(&|v| crate::format::tick(*v, y_step))
             .draw()
             .map_err(|e| err(e.to_string()))?;
         chart

@@ -2,6 +2,7 @@
 //! lost field changes the text, an em dash where a number was, and fails the test), the
 //! expected-value files and the study's output directory.
 
+mod certificate;
 mod expected;
 mod outputs;
 

@@ -1,0 +1,133 @@
+//! The calibration certificate of the simulated campaign: its HTML as a snapshot (a lost
+//! item, a renamed field or a changed number fails), what ISO/IEC 17025 §7.8 requires of it,
+//! and the headline and summary that read the same numbers.
+
+use std::path::Path;
+
+use report::{CertificateInfo, Provenance, Software};
+
+/// The campaign study, its results and provenance, read through paths relative to this
+/// crate (the test's working directory) so that the snapshot holds no absolute path.
+fn campaign() -> (pipeline::StudyResults, Provenance) {
+    let study = pipeline::load_study(Path::new("../../fixtures/studies/campaign.ron")).unwrap();
+    let results = pipeline::run(&study).unwrap();
+    let provenance = Provenance::of_study(&study, None).unwrap();
+    (results, provenance)
+}
+
+fn info() -> CertificateInfo {
+    let text = std::fs::read_to_string("../../fixtures/certificates/campaign.ron").unwrap();
+    ron::from_str(&text).unwrap()
+}
+
+fn software() -> Software {
+    Software {
+        version: "centrifuge-cal (test build)".to_owned(),
+        commit: "0000000000000000000000000000000000000000".to_owned(),
+    }
+}
+
+/// The HTML with its inline figure replaced by a marker (the figure has its own checks).
+fn without_svg(html: &str) -> String {
+    let start = html.find("<svg").expect("an inline figure");
+    let end = html[start..].find("</svg>").expect("a closed figure") + start + "</svg>".len();
+    format!("{}<svg>…</svg>{}", &html[..start], &html[end..])
+}
+
+#[test]
+fn the_campaign_certificate_is_unchanged() {
+    let (results, provenance) = campaign();
+    let html = report::certificate_html(&results, &info(), &provenance, &software()).unwrap();
+    insta::assert_snapshot!("campaign_certificate_html", without_svg(&html));
+}
+
+#[test]
+fn the_certificate_holds_what_iso_17025_asks_and_fetches_nothing() {
+    let (results, provenance) = campaign();
+    let info = info();
+    let html = report::certificate_html(&results, &info, &provenance, &software()).unwrap();
+    // self-contained: no external resource of any kind
+    for external in ["http://", "https://", "src=", "<link", "@import", "url("] {
+        let found = html
+            .match_indices(external)
+            .map(|(i, _)| &html[i.saturating_sub(40)..(i + 40).min(html.len())])
+            .find(|context| !context.contains("xmlns=\"http://www.w3.org/2000/svg\""));
+        assert!(found.is_none(), "{external} in {found:?}");
+    }
+    // the id and page x of y on every page (the @page margin boxes), A4
+    assert!(html.contains("size: A4"));
+    assert!(html.contains("counter(page) \" of \" counter(pages)"));
+    assert!(html.contains(&format!("\"Certificate {}\"", info.id)));
+    // §7.8.2.1 and §7.8.4.1 items
+    for item in [
+        &info.laboratory.name,
+        &info.laboratory.address,
+        &info.customer.name,
+        &info.item.model,
+        &info.item.serial,
+        &info.dates.received,
+        &info.dates.measured,
+        &info.dates.issued,
+        &info.operator,
+        &info.procedure,
+        &info.authorisation.name,
+        &info.authorisation.role,
+        &info.location,
+    ] {
+        assert!(html.contains(&report_escaped(item)), "{item}");
+    }
+    for e in &info.equipment {
+        assert!(html.contains(&report_escaped(&e.identity)));
+        assert!(html.contains(&e.calibration_due));
+    }
+    for t in &info.traceability {
+        assert!(
+            html.contains(&report_escaped(&t.statement)),
+            "{}",
+            t.statement
+        );
+    }
+    assert!(html.contains("The results relate only to the item calibrated"));
+    assert!(html.contains("End of certificate"));
+    // every input file with its digest, the software's version and commit
+    for f in provenance.inputs.iter().chain([&provenance.config]) {
+        assert!(html.contains(&f.sha256), "{}", f.path);
+    }
+    assert!(html.contains("0000000000000000000000000000000000000000"));
+    // the residual figure is inline and scales to the page
+    assert!(html.contains("<svg class=\"figure\""));
+    // the conformity statement for k2 under the guard-band rule
+    assert!(html.contains("non-binary statement with a guard band w = U"));
+    assert!(html.contains("class=\"verdict-pass\">pass<"));
+}
+
+fn report_escaped(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+        .replace('\'', "&#39;")
+}
+
+#[test]
+fn a_study_without_calibration_has_no_certificate() {
+    let study = pipeline::load_study(Path::new("../../fixtures/studies/paper-2025.ron")).unwrap();
+    let results = pipeline::run(&study).unwrap();
+    let provenance = Provenance::of_study(&study, None).unwrap();
+    let err = report::certificate_html(&results, &info(), &provenance, &software()).unwrap_err();
+    assert!(matches!(err, report::ReportError::NoCalibration), "{err}");
+}
+
+#[test]
+fn the_terminal_summary_gives_k2_with_its_u95_in_both_units() {
+    let (results, _) = campaign();
+    let text = report::summary_text(&results).expect("a calibration summary");
+    insta::assert_snapshot!("campaign_summary", text);
+    let k2 = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("k2 "))
+        .expect("a k2 line");
+    assert!(k2.contains("rad/(s·g²)") && k2.contains("µg/g²"), "{k2}");
+    assert!(k2.contains('±'), "{k2}");
+    assert!(text.contains("C_r = ") && text.contains("Δk2 = "));
+}
