@@ -2,7 +2,7 @@
 
 use std::f64::consts::TAU;
 
-use accel_model::{PigaCoefficients, rate_points};
+use accel_model::{PigaCoefficients, RatePoint, rate_points};
 use harmonics::{FirstHarmonic, LeverGeometry};
 use identify::{CrEstimate, Geometry, pseudo_second_order};
 use kinematics::{
@@ -13,6 +13,7 @@ use rand::rngs::StdRng;
 use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
 
+use super::mounting::{Mount, Orientation, mounted_rate_point};
 use super::scenario::{
     LoadedScenario, PigaRecordingSpec, ProbeSpec, Scenario, piga_recording_file_name,
     recording_file_name, second_recording_file_name,
@@ -27,6 +28,17 @@ const PROBE_STREAM: u64 = 1;
 const PIGA_STREAM: u64 = 2;
 const PIGA_RECORDING_STREAM: u64 = 3;
 const SECOND_PROBE_STREAM: u64 = 4;
+/// The mountings' tables and raw recordings: one stream each per orientation.
+const MOUNTING_STREAM: [u64; 2] = [5, 6];
+const MOUNTING_RECORDING_STREAM: [u64; 2] = [7, 8];
+
+/// Index of an orientation in the mounting stream tables.
+const fn orientation_index(o: Orientation) -> usize {
+    match o {
+        Orientation::IaIn => 0,
+        Orientation::IaOut => 1,
+    }
+}
 
 /// Everything a scenario produces, in memory.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -42,8 +54,28 @@ pub struct Simulation {
     /// The raw PIGA output recordings (`piga_<rate>deg_s.csv`), one per rate, when the
     /// scenario asks for them (`piga.recordings`); else empty.
     pub piga_recordings: Vec<SimulatedPigaRecording>,
+    /// The further mountings' tables and recordings, in the scenario's order (empty without
+    /// `mountings`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub mountings: Vec<SimulatedMounting>,
     /// Every parameter and the exact per-rate quantities (`truth.json`).
     pub truth: Truth,
+}
+
+/// One further mounting's PIGA data: `piga_ia_in.csv` or `piga_ia_out.csv` and, when asked
+/// for, its raw output recordings `piga_ia_out_<rate>deg_s.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SimulatedMounting {
+    /// IA in or out.
+    pub orientation: Orientation,
+    /// The mounting's static radius, m.
+    pub radius_m: f64,
+    /// The table's file name.
+    pub file_name: String,
+    /// One row per rate, in the scenario's order.
+    pub piga: Vec<PigaRow>,
+    /// The raw output recordings, one per rate (when `piga.recordings`); else empty.
+    pub piga_recordings: Vec<SimulatedPigaRecording>,
 }
 
 /// One probe recording: the columns of `probe_<rate>deg_s.csv`.
@@ -116,6 +148,65 @@ pub struct Truth {
     pub k2_apparent_predicted_rad_s_g2: f64,
     /// Per-rate truth, in the scenario's order.
     pub rates: Vec<TruthRate>,
+    /// The total dynamic radius growth at the PIGA, spindle plus arm (present when the
+    /// scenario has an arm stretch or further mountings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_growth: Option<RadiusGrowthTruth>,
+    /// The further mountings (issue 20), in the scenario's order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub mountings: Vec<MountingTruth>,
+}
+
+/// The dynamic radius growth at the PIGA: `C = C_r + C_a`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RadiusGrowthTruth {
+    /// `C_r`: the spindle's radial drift per ω² along `X2`, m·s² (what the probe measures).
+    pub c_r_m_s2: f64,
+    /// `C_a`: the arm's stretch per ω², m·s² (unseen by the probe).
+    pub c_a_m_s2: f64,
+    /// `C = C_r + C_a`, m·s².
+    pub c_m_s2: f64,
+    /// `Δk2,total = k1·C·g/R²` at the centrifuge's radius, rad/(s·g²).
+    pub delta_k2_total_predicted_rad_s_g2: f64,
+}
+
+/// The truth of one further mounting.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MountingTruth {
+    /// IA in or out.
+    pub orientation: Orientation,
+    /// `s`: +1 for IA in, −1 for IA out.
+    pub sign: f64,
+    /// Static radius `R_s`, m.
+    pub radius_m: f64,
+    /// The PIGA's coefficients in this mounting (k0 with the mounting's bias shift).
+    pub coefficients: PigaCoefficients,
+    /// `Δk2,total = k1·C·g/R_s²` at this mounting's radius, rad/(s·g²).
+    pub delta_k2_total_predicted_rad_s_g2: f64,
+    /// The table's file name.
+    pub table: String,
+    /// Per-rate truth, in the scenario's order.
+    pub rates: Vec<MountingRateTruth>,
+}
+
+/// The exact quantities of one mounting at one rate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MountingRateTruth {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// Nominal input magnitude `a_s = R_s·ω²/g`, g.
+    pub a_nominal_g: f64,
+    /// Exact mean specific force along the input axis over a revolution, g (negative for IA
+    /// out).
+    pub a_x_g: f64,
+    /// Exact mean angular rate about the input axis over a revolution, rad/s.
+    pub omega_i_rad_s: f64,
+    /// Mean PIGA output over a revolution without noise, rad/s.
+    pub output_noise_free_rad_s: f64,
+    /// The output written to the table (noise included), rad/s.
+    pub output_rad_s: f64,
+    /// The raw output recording's file name, when the scenario asks for one.
+    pub piga_recording: Option<String>,
 }
 
 /// The exact quantities at one rate.
@@ -233,12 +324,46 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     let lever_ratio = lever.ratio;
 
     let rates_rad_s: Vec<f64> = s.rates_deg_s.iter().map(|d| d.to_radians()).collect();
-    let points =
-        rate_points(&centrifuge, k, &rates_rad_s).map_err(|source| SimulateError::AccelModel {
-            path: loaded.path.clone(),
-            field: "piga".to_owned(),
+    let accel_error = |field: &str| {
+        let path = loaded.path.clone();
+        let field = field.to_owned();
+        move |source| SimulateError::AccelModel {
+            path,
+            field,
             source,
-        })?;
+        }
+    };
+    // Without an arm stretch, the paper's chain as `accel_model` evaluates it (the files of
+    // scenarios written before issue 20 stay byte for byte); with one, the mounted chain.
+    let points = if s.arm_stretch_m_s2 == 0.0 {
+        rate_points(&centrifuge, k, &rates_rad_s).map_err(accel_error("piga"))?
+    } else {
+        let mount = Mount {
+            arm_stretch_m_s2: s.arm_stretch_m_s2,
+            ..Mount::ia_in(radius)
+        };
+        mounted_points(&centrifuge, k, &mount, &rates_rad_s).map_err(accel_error("piga"))?
+    };
+    let mounted: Vec<Vec<RatePoint>> = s
+        .mountings
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            mounted_points(&centrifuge, k, &m.mount(s.arm_stretch_m_s2), &rates_rad_s)
+                .map_err(accel_error(&format!("mountings[{i}]")))
+        })
+        .collect::<Result<_>>()?;
+    let mut mountings: Vec<SimulatedMounting> = s
+        .mountings
+        .iter()
+        .map(|m| SimulatedMounting {
+            orientation: m.orientation,
+            radius_m: m.radius_m,
+            file_name: m.table_file_name(),
+            piga: Vec::with_capacity(points.len()),
+            piga_recordings: Vec::new(),
+        })
+        .collect();
 
     let mut recordings = Vec::with_capacity(points.len());
     let mut piga_recordings = Vec::new();
@@ -270,7 +395,33 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             output_rad_s,
         });
         if let Some(spec) = &s.piga.recordings {
-            piga_recordings.push(record_piga(s.seed, spec, &recording, output_rad_s));
+            piga_recordings.push(record_piga(
+                s.seed,
+                PIGA_RECORDING_STREAM,
+                spec,
+                &recording,
+                output_rad_s,
+                piga_recording_file_name(rate_deg_s),
+            ));
+        }
+        for (m, points) in mountings.iter_mut().zip(&mounted) {
+            let o = orientation_index(m.orientation);
+            let output_rad_s =
+                noise.added_to_stream(MOUNTING_STREAM[o], points[i].output_rad_s, rate_deg_s);
+            m.piga.push(PigaRow {
+                rate_deg_s,
+                output_rad_s,
+            });
+            if let Some(spec) = &s.piga.recordings {
+                m.piga_recordings.push(record_piga(
+                    s.seed,
+                    MOUNTING_RECORDING_STREAM[o],
+                    spec,
+                    &recording,
+                    output_rad_s,
+                    mounting_recording_file_name(m.orientation, rate_deg_s),
+                ));
+            }
         }
         let offsets = *chain.offsets();
         let w = point.rate_rad_s;
@@ -317,11 +468,49 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             source,
         })?
         .delta_k2_rad_s_g2;
+    let symmetric = s.arm_stretch_m_s2 != 0.0 || !s.mountings.is_empty();
+    let c_total = c_r + s.arm_stretch_m_s2;
+    let dk2_total = |radius_m: f64| k.k1_rad_s_g * c_total * g / (radius_m * radius_m);
+    let radius_growth = symmetric.then(|| RadiusGrowthTruth {
+        c_r_m_s2: c_r,
+        c_a_m_s2: s.arm_stretch_m_s2,
+        c_m_s2: c_total,
+        delta_k2_total_predicted_rad_s_g2: dk2_total(radius),
+    });
+    let mounting_truths = s
+        .mountings
+        .iter()
+        .zip(&mountings)
+        .zip(&mounted)
+        .map(|((spec, sim), points)| MountingTruth {
+            orientation: spec.orientation,
+            sign: spec.orientation.sign(),
+            radius_m: spec.radius_m,
+            coefficients: spec.mount(s.arm_stretch_m_s2).coefficients(k),
+            delta_k2_total_predicted_rad_s_g2: dk2_total(spec.radius_m),
+            table: spec.table_file_name(),
+            rates: points
+                .iter()
+                .zip(&sim.piga)
+                .enumerate()
+                .map(|(i, (p, row))| MountingRateTruth {
+                    rate_deg_s: row.rate_deg_s,
+                    a_nominal_g: spec.radius_m * p.rate_rad_s * p.rate_rad_s / g,
+                    a_x_g: p.a_x_g,
+                    omega_i_rad_s: p.omega_i_rad_s,
+                    output_noise_free_rad_s: p.output_rad_s,
+                    output_rad_s: row.output_rad_s,
+                    piga_recording: sim.piga_recordings.get(i).map(|r| r.file_name.clone()),
+                })
+                .collect(),
+        })
+        .collect();
     let simulation = Simulation {
         recordings,
         second_recordings,
         piga,
         piga_recordings,
+        mountings,
         truth: Truth {
             scenario: s.clone(),
             error_motion,
@@ -330,6 +519,8 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             delta_k2_predicted_rad_s_g2: delta_k2,
             k2_apparent_predicted_rad_s_g2: k.k2_rad_s_g2 + delta_k2,
             rates,
+            radius_growth,
+            mountings: mounting_truths,
         },
     };
     // Every number the simulation returns is finite (the libraries check their own results;
@@ -526,11 +717,13 @@ fn record(s: &Scenario, reader: &Reader, rate_rad_s: f64, rate_deg_s: f64) -> Si
 /// encoder's when the probe records one; the same formula of time otherwise).
 fn record_piga(
     seed: u64,
+    purpose: u64,
     spec: &PigaRecordingSpec,
     probe: &SimulatedRecording,
     output_rad_s: f64,
+    file_name: String,
 ) -> SimulatedPigaRecording {
-    let mut rng = stream(seed, PIGA_RECORDING_STREAM, probe.rate_deg_s.to_bits());
+    let mut rng = stream(seed, purpose, probe.rate_deg_s.to_bits());
     let noise = normal(spec.angle_noise_rad);
     let phase = spec.ripple_phase_deg.to_radians();
     let rate_rad_s = probe.rate_deg_s.to_radians();
@@ -549,7 +742,7 @@ fn record_piga(
         .collect();
     SimulatedPigaRecording {
         rate_deg_s: probe.rate_deg_s,
-        file_name: piga_recording_file_name(probe.rate_deg_s),
+        file_name,
         time_s: probe.time_s.clone(),
         output_rad,
         angle_deg: probe.angle_deg.clone(),
@@ -569,9 +762,77 @@ pub struct OutputNoise {
 impl OutputNoise {
     /// `output_rad_s` plus this rate's draw.
     fn added_to(&self, output_rad_s: f64, rate_deg_s: f64) -> f64 {
-        let mut rng = stream(self.seed, PIGA_STREAM, rate_deg_s.to_bits());
+        self.added_to_stream(PIGA_STREAM, output_rad_s, rate_deg_s)
+    }
+
+    /// `output_rad_s` plus this rate's draw from the stream `purpose`.
+    fn added_to_stream(&self, purpose: u64, output_rad_s: f64, rate_deg_s: f64) -> f64 {
+        let mut rng = stream(self.seed, purpose, rate_deg_s.to_bits());
         output_rad_s + normal(self.sigma_rad_s).map_or(0.0, |d| d.sample(&mut rng))
     }
+}
+
+/// The mean outputs of a mounting at each rate ([`mounted_rate_point`]).
+fn mounted_points(
+    centrifuge: &Centrifuge,
+    piga: &PigaCoefficients,
+    mount: &Mount,
+    rates_rad_s: &[f64],
+) -> std::result::Result<Vec<RatePoint>, accel_model::AccelModelError> {
+    if rates_rad_s.is_empty() {
+        return Err(accel_model::AccelModelError::NoRates);
+    }
+    rates_rad_s
+        .iter()
+        .enumerate()
+        .map(|(index, &w)| {
+            if !w.is_finite() {
+                return Err(accel_model::AccelModelError::NonFiniteRate { index, value: w });
+            }
+            mounted_rate_point(centrifuge, piga, mount, w)
+        })
+        .collect()
+}
+
+/// A PIGA calibration table in one mounting (issue 20): at each rate, eq. 15 averaged over
+/// whole revolutions of the exact chain with the mounting's orientation, radius, arm stretch
+/// and bias shift ([`mounted_rate_point`]), plus the output noise from the orientation's own
+/// stream (the tables of the two orientations have independent noise; the IA-in stream is
+/// not [`piga_table`]'s). The centrifuge's `radius_m` is not used.
+///
+/// # Errors
+/// The PIGA model's error for an input it refuses (a non-finite rate, coefficient or
+/// mounting field; no rates).
+pub fn piga_table_mounted(
+    centrifuge: &Centrifuge,
+    piga: &PigaCoefficients,
+    mount: &Mount,
+    rates_deg_s: &[f64],
+    noise: &OutputNoise,
+) -> std::result::Result<Vec<PigaRow>, accel_model::AccelModelError> {
+    let rates_rad_s: Vec<f64> = rates_deg_s.iter().map(|d| d.to_radians()).collect();
+    let points = mounted_points(centrifuge, piga, mount, &rates_rad_s)?;
+    let purpose = MOUNTING_STREAM[orientation_index(mount.orientation)];
+    Ok(points
+        .iter()
+        .zip(rates_deg_s)
+        .map(|(point, &rate_deg_s)| PigaRow {
+            rate_deg_s,
+            output_rad_s: noise.added_to_stream(purpose, point.output_rad_s, rate_deg_s),
+        })
+        .collect())
+}
+
+/// File name of a mounting's raw PIGA output recording at a rate:
+/// `piga_ia_out_<rate>deg_s.csv`.
+///
+/// ```
+/// use simulate::{Orientation, mounting_recording_file_name};
+/// assert_eq!(mounting_recording_file_name(Orientation::IaOut, 20.0), "piga_ia_out_020.0000deg_s.csv");
+/// ```
+#[must_use]
+pub fn mounting_recording_file_name(orientation: Orientation, rate_deg_s: f64) -> String {
+    format!("piga_{}_{rate_deg_s:08.4}deg_s.csv", orientation.tag())
 }
 
 /// A PIGA calibration table: at each rate, eq. 15 averaged over whole revolutions of the

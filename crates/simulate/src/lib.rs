@@ -29,20 +29,30 @@
 //! sampled with the probe: the output angle `ω̄_out·t + A·sin(θ + φ) + e` whose mean slope
 //! is that row's output, a once-per-revolution term that whole revolutions cancel, and white
 //! noise.
+//!
+//! **Two orientations and arm stretch** (issue 20, `docs/theory.md` section 11). A scenario's
+//! `mountings` record the PIGA again with its input axis in or out ([`Orientation`]), at its
+//! own radius and bias shift, and `arm_stretch_m_s2` (`C_a`) grows the radius at the PIGA by
+//! `C_a·ω²` beyond the spindle's motion, unseen by the probe: the mount of eq. 10 becomes
+//! `Trans(R_s + C_a ω², 0, 0)·Rot(z₂, 180°)` (IA in) or `Trans(R_s + C_a ω², 0, 0)` (IA out)
+//! ([`Mount`], [`mounted_rate_point`], [`piga_table_mounted`]).
 
 mod error;
 mod generate;
+mod mounting;
 mod scenario;
 mod write;
 
 pub use error::{Result, SimulateError};
 pub use generate::{
-    OutputNoise, PigaRow, ProbeTruth, SimulatedPigaRecording, SimulatedRecording, Simulation,
-    Truth, TruthRate, piga_table, simulate,
+    MountingRateTruth, MountingTruth, OutputNoise, PigaRow, ProbeTruth, RadiusGrowthTruth,
+    SimulatedMounting, SimulatedPigaRecording, SimulatedRecording, Simulation, Truth, TruthRate,
+    mounting_recording_file_name, piga_table, piga_table_mounted, simulate,
 };
+pub use mounting::{Mount, Orientation, mounted_rate_point};
 pub use scenario::{
-    CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, PigaRecordingSpec,
-    PigaSpec, ProbeSpec, Scenario, SecondProbeSpec, SleeveHarmonic, SpeedRipple,
+    CentrifugeSpec, LoadedScenario, MAX_SLEEVE_ORDER, MAX_TOTAL_SAMPLES, MountingSpec,
+    PigaRecordingSpec, PigaSpec, ProbeSpec, Scenario, SecondProbeSpec, SleeveHarmonic, SpeedRipple,
     piga_recording_file_name, recording_file_name, second_recording_file_name,
 };
 pub use write::{SimulationFiles, piga_csv_text, write_simulation};

@@ -9,6 +9,7 @@ use kinematics::{ErrorMotion, ErrorMotionSpec, Site};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, SimulateError};
+use crate::mounting::{Mount, Orientation};
 
 /// Highest sleeve harmonic a scenario may add to the probe signal (the harmonic fit supports
 /// orders up to 8).
@@ -17,6 +18,10 @@ pub const MAX_SLEEVE_ORDER: usize = 8;
 /// Most samples all recordings of one scenario may hold together (memory guard: 2·10⁸
 /// samples are about 5 GB of columns).
 pub const MAX_TOTAL_SAMPLES: f64 = 2.0e8;
+
+/// Largest magnitude of the arm stretch coefficient, m·s² (1.2 cm at 200 deg/s, far beyond
+/// any arm; the first-order model of `docs/theory.md` section 11 needs it small).
+const MAX_ARM_STRETCH_M_S2: f64 = 1e-3;
 
 /// Most revolutions per rate point.
 const MAX_REVOLUTIONS: usize = 10_000;
@@ -60,6 +65,54 @@ pub struct Scenario {
     /// without it, the probe keeps the cone of eq. 22.
     #[serde(default)]
     pub second_probe: Option<SecondProbeSpec>,
+    /// Arm stretch `C_a`, m·s² (default 0): the radius at the PIGA grows by `C_a·ω²` beyond
+    /// the spindle's own motion (the arm's elastic stretch under centrifugal load), which the
+    /// probe does not see. It applies to `piga.csv` and to every mounting.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub arm_stretch_m_s2: f64,
+    /// Further mountings of the PIGA (issue 20): each records the PIGA table again with its
+    /// input axis in or out, at its own radius (`piga_ia_in.csv`, `piga_ia_out.csv`, and
+    /// `piga_ia_out_<rate>deg_s.csv` raw recordings when `piga.recordings` asks for them).
+    /// At most one per orientation. Empty (the default): `piga.csv` only.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub mountings: Vec<MountingSpec>,
+}
+
+/// One mounting of the PIGA in a two-orientation (symmetric) calibration.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MountingSpec {
+    /// `ia_in` (towards the spindle axis) or `ia_out` (away from it).
+    pub orientation: Orientation,
+    /// Static radius of this mounting, m (PIGA centre of mass to the mean spindle axis).
+    pub radius_m: f64,
+    /// Added to the PIGA's k0 in this mounting, rad/s (default 0): remounting shifts the bias.
+    #[serde(default)]
+    pub bias_shift_rad_s: f64,
+}
+
+impl MountingSpec {
+    /// The mounting as the chain needs it, with the scenario's arm stretch.
+    #[must_use]
+    pub const fn mount(&self, arm_stretch_m_s2: f64) -> Mount {
+        Mount {
+            orientation: self.orientation,
+            radius_m: self.radius_m,
+            arm_stretch_m_s2,
+            bias_shift_rad_s: self.bias_shift_rad_s,
+        }
+    }
+
+    /// The file name of this mounting's PIGA table: `piga_ia_in.csv` / `piga_ia_out.csv`.
+    #[must_use]
+    pub fn table_file_name(&self) -> String {
+        format!("piga_{}.csv", self.orientation.tag())
+    }
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// The second displacement probe: its height and direction. Sampling, noise, `l0`, sleeve
@@ -323,6 +376,30 @@ impl Scenario {
             v.non_negative("piga.recordings.angle_noise_rad", r.angle_noise_rad)?;
             v.non_negative("piga.recordings.ripple_rad", r.ripple_rad)?;
             v.finite("piga.recordings.ripple_phase_deg", r.ripple_phase_deg)?;
+        }
+
+        v.finite("arm_stretch_m_s2", self.arm_stretch_m_s2)?;
+        if self.arm_stretch_m_s2.abs() > MAX_ARM_STRETCH_M_S2 {
+            return Err(v.invalid(
+                "arm_stretch_m_s2",
+                self.arm_stretch_m_s2,
+                "must be at most 1e-3 m·s² in magnitude (1.2 cm of stretch at 200 deg/s)",
+            ));
+        }
+        for (i, m) in self.mountings.iter().enumerate() {
+            let field = format!("mountings[{i}]");
+            v.positive(&format!("{field}.radius_m"), m.radius_m)?;
+            v.finite(&format!("{field}.bias_shift_rad_s"), m.bias_shift_rad_s)?;
+            if self.mountings[..i]
+                .iter()
+                .any(|q| q.orientation == m.orientation)
+            {
+                return Err(v.invalid(
+                    &format!("{field}.orientation"),
+                    m.orientation.sign(),
+                    "this orientation appears twice (one mounting per orientation)",
+                ));
+            }
         }
 
         if self.rates_deg_s.is_empty() {

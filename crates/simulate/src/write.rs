@@ -1,4 +1,5 @@
-//! Writing a simulation's files: probe recordings, `piga.csv`, `truth.json`.
+//! Writing a simulation's files: probe recordings, `piga.csv`, the mountings' tables
+//! (`piga_ia_in.csv`, `piga_ia_out.csv`), `truth.json`.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -18,8 +19,12 @@ pub struct SimulationFiles {
     pub recordings: Vec<PathBuf>,
     /// `piga.csv`.
     pub piga_csv: PathBuf,
-    /// One raw PIGA output recording per rate, when the scenario asks for them.
+    /// One raw PIGA output recording per rate, when the scenario asks for them (then the
+    /// further mountings' ones).
     pub piga_recordings: Vec<PathBuf>,
+    /// The further mountings' tables (`piga_ia_in.csv`, `piga_ia_out.csv`), in the
+    /// scenario's order.
+    pub mounting_tables: Vec<PathBuf>,
     /// `truth.json`.
     pub truth_json: PathBuf,
 }
@@ -30,6 +35,8 @@ const SIMULATION_FILES: &[&str] = &[
     "piga_*deg_s.csv",
     "probe2_*deg_s.csv",
     "piga.csv",
+    "piga_ia_in.csv",
+    "piga_ia_out.csv",
     "truth.json",
 ];
 
@@ -56,16 +63,27 @@ pub fn write_simulation(dir: &Path, sim: &Simulation) -> Result<SimulationFiles>
         recordings.push(set.write_with(&r.file_name, |mut out| r.write_csv(&mut out))?);
     }
     let mut piga_recordings = Vec::with_capacity(sim.piga_recordings.len());
-    for r in &sim.piga_recordings {
+    let mounted_recordings = sim.mountings.iter().flat_map(|m| &m.piga_recordings);
+    for r in sim.piga_recordings.iter().chain(mounted_recordings) {
         piga_recordings.push(set.write(&r.file_name, r.csv_text().as_bytes())?);
     }
     let piga_csv = set.write("piga.csv", piga_csv_text(&sim.piga).as_bytes())?;
+    let mut mounting_tables = Vec::with_capacity(sim.mountings.len());
+    for m in &sim.mountings {
+        edge_io::check_finite(&m.piga).map_err(|e| SimulateError::NonFiniteOutput {
+            what: "a mounting's PIGA table",
+            field: e.path,
+            value: e.value,
+        })?;
+        mounting_tables.push(set.write(&m.file_name, piga_csv_text(&m.piga).as_bytes())?);
+    }
     let truth_json = set.write("truth.json", json.as_bytes())?;
     set.commit()?;
     Ok(SimulationFiles {
         recordings,
         piga_csv,
         piga_recordings,
+        mounting_tables,
         truth_json,
     })
 }

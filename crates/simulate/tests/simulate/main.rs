@@ -4,3 +4,4 @@ mod common;
 mod files;
 mod probe_model;
 mod scenario_errors;
+mod symmetric;
