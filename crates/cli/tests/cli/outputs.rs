@@ -8,11 +8,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
+    Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args(args)
         .output()
         .expect("runs")
@@ -28,7 +28,7 @@ fn study_limited(out: &Path, trap: &str) -> Output {
         .args([
             "-c",
             &script,
-            env!("CARGO_BIN_EXE_xtask"),
+            env!("CARGO_BIN_EXE_centrifuge-cal"),
             out.to_str().unwrap(),
         ])
         .output()

@@ -10,7 +10,7 @@ use anyhow::Context as _;
 use planning::{Allocation, Plan, PlanInputs, SimulationCheck};
 
 use crate::console::Console;
-use crate::paths;
+use crate::paths::Places;
 
 /// Files `plan` writes into its output directory.
 const PLAN_FILES: &[&str] = &["plan.json", "run_sheet.csv", "run_sheet.md"];
@@ -24,7 +24,8 @@ pub(crate) struct PlanCmd {
     /// Print plan.json to standard output instead of the summary.
     #[arg(long)]
     json: bool,
-    /// Output directory. Default: target/plan.
+    /// Output directory. Default: target/plan (of the workspace for `cargo xtask`, of the
+    /// current directory for `centrifuge-cal`).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Also evaluate these rates (deg/s, comma-separated; e.g. the paper's six) within the
@@ -45,7 +46,7 @@ pub(crate) struct PlanCmd {
 const LATITUDE_DEG: f64 = 45.0;
 
 impl PlanCmd {
-    pub(crate) fn run(&self) -> anyhow::Result<()> {
+    pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
         let inputs = load(&self.config)?;
         let context = || format!("planning {}", self.config.display());
         let plan = planning::plan(&inputs).with_context(context)?;
@@ -81,10 +82,7 @@ impl PlanCmd {
             value["simulation"] = serde_json::to_value(c)?;
         }
         let json = serde_json::to_string_pretty(&value)?;
-        let out = self
-            .out
-            .clone()
-            .unwrap_or_else(|| paths::workspace_root().join("target/plan"));
+        let out = self.out.clone().unwrap_or_else(|| places.output("plan"));
         let mut set = edge_io::OutputSet::create(&out, PLAN_FILES)?;
         set.write("plan.json", json.as_bytes())?;
         set.write("run_sheet.csv", run_sheet_csv(&plan).as_bytes())?;

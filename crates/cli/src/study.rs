@@ -8,7 +8,7 @@ use pipeline::{Progress, StudyResults};
 use report::Expected;
 
 use crate::console::{Console, ConsoleError};
-use crate::paths;
+use crate::paths::Places;
 
 /// Arguments of `cargo xtask study`.
 #[derive(Debug, Args)]
@@ -16,11 +16,12 @@ pub(crate) struct Study {
     /// Study configuration (RON). Default: the paper's study, fixtures/studies/paper-2025.ron.
     #[arg(long)]
     config: Option<PathBuf>,
-    /// Output directory. Default: target/study.
+    /// Output directory. Default: target/study (of the workspace for `cargo xtask`, of the
+    /// current directory for `centrifuge-cal`).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Values to show beside the computed ones in the report. Default:
-    /// the file of the same name in fixtures/expected/, when it exists.
+    /// Values to show beside the computed ones in the report. Default: for a study of the
+    /// checkout's fixtures/studies/, the file of the same name in fixtures/expected/.
     #[arg(long)]
     expected: Option<PathBuf>,
     /// Do not compare with expected values.
@@ -29,9 +30,12 @@ pub(crate) struct Study {
 }
 
 impl Study {
-    pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let config = self.config.clone().unwrap_or_else(paths::paper_study);
-        let out = self.out.clone().unwrap_or_else(paths::study_out);
+    pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
+        let config = match &self.config {
+            Some(c) => c.clone(),
+            None => places.paper_study()?,
+        };
+        let out = self.out.clone().unwrap_or_else(|| places.output("study"));
         let study = pipeline::load_study(&config)?;
         let bar = indicatif::ProgressBar::hidden();
         let results = pipeline::run_with_progress(&study, &|event| match event {
@@ -60,7 +64,7 @@ impl Study {
         } else {
             self.expected
                 .clone()
-                .or_else(|| paths::expected_for(&config))
+                .or_else(|| places.expected_for(&config))
         };
         let expected = expected_path.as_deref().map(Expected::load).transpose()?;
         let outcomes = expected.as_ref().map(|e| e.compare(&results)).transpose()?;
@@ -75,6 +79,8 @@ impl Study {
         .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
         let mut console = Console::stdout();
         print_summary(&mut console, &results)?;
+        // The certificate's summary (issue 19) goes here, after the tables and before the
+        // regression line and the list of files written.
         if let Some(outcomes) = &outcomes {
             let failed = outcomes.iter().filter(|o| !o.passed).count();
             writeln!(
@@ -102,6 +108,18 @@ impl Study {
             writeln!(console, "wrote {}", svg.display())?;
         }
         Ok(())
+    }
+}
+
+/// A radius-error model in the user's words: its formula, from the name results.json gives it.
+fn model_words<T: serde::Serialize>(model: &T) -> String {
+    match serde_json::to_value(model) {
+        Ok(serde_json::Value::String(name)) => match name.as_str() {
+            "two_term" => "a + C_r·ω²".to_owned(),
+            "three_term" => "a + b·ω + C_r·ω²".to_owned(),
+            other => other.replace('_', " "),
+        },
+        _ => "—".to_owned(),
     }
 }
 
@@ -148,7 +166,7 @@ fn print_summary(out: &mut Console, results: &StudyResults) -> Result<(), Consol
                 out,
                 "{:<13} {:<18} {:>12.4e} {:>11} {:>14.3e} {:>11}",
                 name,
-                format!("{:?}", fit.model),
+                model_words(&fit.model),
                 fit.c_r_m_s2,
                 e(fit.c_r_sigma_m_s2),
                 fit.delta_k2_rad_s_g2,

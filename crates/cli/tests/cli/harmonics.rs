@@ -5,11 +5,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn fixture() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/recordings/probe_120deg_s.csv")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/recordings/probe_120deg_s.csv")
 }
 
 fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
+    Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .arg("harmonics")
         .args(args)
         .output()
@@ -281,7 +281,7 @@ fn bad_order() {
 
 fn binary_fixture(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../fixtures/recordings/binary")
+        .join("../../fixtures/recordings/binary")
         .join(name)
         .to_str()
         .unwrap()

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 /// Runs the command with standard output on `/dev/full`.
@@ -14,7 +14,7 @@ fn to_dev_full(args: &[&str]) -> Output {
         .write(true)
         .open("/dev/full")
         .expect("/dev/full");
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
+    Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args(args)
         .stdout(Stdio::from(full))
         .output()
@@ -112,7 +112,7 @@ fn a_pipe_closed_by_its_reader_is_a_quiet_exit_141() {
     // write everything into the pipe's buffer first and exit 0).
     let (reader, writer) = std::io::pipe().expect("a pipe");
     drop(reader);
-    let child = Command::new(env!("CARGO_BIN_EXE_xtask"))
+    let child = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args([
             "harmonics",
             fixture.to_str().unwrap(),

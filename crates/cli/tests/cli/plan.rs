@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 fn out_dir(tag: &str) -> PathBuf {
@@ -15,7 +15,7 @@ fn out_dir(tag: &str) -> PathBuf {
 #[test]
 fn plan_json_snapshot_and_files() {
     let dir = out_dir("json");
-    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+    let out = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args([
             "plan",
             "--config",
@@ -63,7 +63,7 @@ fn an_unreachable_target_names_the_binding_constraint() {
         .replace("u95_k2_rad_s_g2: 1.0e-6", "u95_k2_rad_s_g2: 1.0e-8");
     let config = dir.join("tight.ron");
     std::fs::write(&config, text).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+    let out = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args(["plan", "--config"])
         .arg(&config)
         .arg("--out")

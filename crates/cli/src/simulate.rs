@@ -7,7 +7,7 @@ use clap::Args;
 use simulate::Scenario;
 
 use crate::console::Console;
-use crate::paths;
+use crate::paths::Places;
 
 /// Arguments of `cargo xtask simulate`.
 #[derive(Debug, Args)]
@@ -15,17 +15,18 @@ pub(crate) struct Simulate {
     /// Scenario (RON), e.g. fixtures/scenarios/post-balance.ron. See docs/SIMULATION.md.
     #[arg(long)]
     config: PathBuf,
-    /// Output directory. Default: target/simulate.
+    /// Output directory. Default: target/simulate (of the workspace for `cargo xtask`, of the
+    /// current directory for `centrifuge-cal`).
     #[arg(long)]
     out: Option<PathBuf>,
 }
 
 impl Simulate {
-    pub(crate) fn run(&self) -> anyhow::Result<()> {
+    pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
         let out = self
             .out
             .clone()
-            .unwrap_or_else(|| paths::workspace_root().join("target/simulate"));
+            .unwrap_or_else(|| places.output("simulate"));
         let scenario = Scenario::load(&self.config)?;
         let sim = simulate::simulate(&scenario)?;
         let files = simulate::write_simulation(&out, &sim)

@@ -8,7 +8,7 @@ use identify::strd::{self, Accuracy as Scored};
 use identify::{Design, LstsqOptions, lstsq_design};
 
 use crate::console::{Console, ConsoleError};
-use crate::paths::workspace_root;
+use crate::paths::Places;
 
 /// The eleven NIST StRD linear-regression datasets, in NIST's order of difficulty.
 const DATASETS: [&str; 11] = [
@@ -36,11 +36,12 @@ pub(crate) struct Accuracy {
 }
 
 impl Accuracy {
-    pub(crate) fn run(&self) -> anyhow::Result<()> {
+    pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
         let dir = self
             .dir
             .clone()
-            .unwrap_or_else(|| workspace_root().join("../shared/reference/nist-strd"));
+            .or_else(|| places.nist_strd())
+            .unwrap_or_else(|| "nist-strd".into());
         anyhow::ensure!(
             dir.is_dir(),
             "NIST StRD directory {} not found (use --dir)",

@@ -5,12 +5,12 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 /// Runs `cargo xtask ARGS` and returns its stdout as JSON, without the `file` key.
 fn json(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+    let out = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args(args)
         .current_dir(root())
         .output()
@@ -41,7 +41,7 @@ fn harmonics_json() {
 #[test]
 fn identify_json() {
     let dir = std::env::temp_dir().join(format!("xtask-snapshot-{}", std::process::id()));
-    let status = Command::new(env!("CARGO_BIN_EXE_xtask"))
+    let status = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args([
             "simulate",
             "--config",

@@ -7,7 +7,7 @@ use clap::Args;
 use report::Expected;
 
 use crate::console::Console;
-use crate::paths;
+use crate::paths::Places;
 
 /// Arguments of `cargo xtask regress`.
 #[derive(Debug, Args)]
@@ -15,17 +15,21 @@ pub(crate) struct Regress {
     /// Study configuration. Default: the paper's study.
     #[arg(long)]
     config: Option<PathBuf>,
-    /// Expected values. Default: the file of the same name in fixtures/expected/.
+    /// Expected values. Default: for a study of the checkout's fixtures/studies/, the file of
+    /// the same name in fixtures/expected/.
     #[arg(long)]
     expected: Option<PathBuf>,
 }
 
 impl Regress {
-    pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let config = self.config.clone().unwrap_or_else(paths::paper_study);
+    pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
+        let config = match &self.config {
+            Some(c) => c.clone(),
+            None => places.paper_study()?,
+        };
         let expected_path = match &self.expected {
             Some(p) => p.clone(),
-            None => paths::expected_for(&config).with_context(|| {
+            None => places.expected_for(&config).with_context(|| {
                 format!(
                     "no expected values for {} in fixtures/expected/",
                     config.display()

@@ -1,0 +1,363 @@
+//! The layout of a delimited text file, guessed from its first lines: the delimiter, the
+//! decimal mark, the lines above the header, the header's column names and units. Works on
+//! bytes; the caller reads the file.
+
+use std::fmt;
+
+/// How many lines are looked at to guess the layout.
+pub(crate) const SNIFF_LINES: usize = 400;
+
+/// The field delimiter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Delim {
+    /// One character.
+    Char(char),
+    /// Runs of blanks.
+    Whitespace,
+}
+
+impl Delim {
+    /// The delimiter as the study file writes it (`';'`, `'\t'`, `whitespace`).
+    pub(crate) fn ron(self) -> String {
+        match self {
+            Self::Char('\t') => "'\\t'".to_owned(),
+            Self::Char(c) => format!("'{c}'"),
+            Self::Whitespace => "whitespace".to_owned(),
+        }
+    }
+
+    fn split(self, line: &str) -> Vec<&str> {
+        match self {
+            Self::Char(c) => line.split(c).map(clean).collect(),
+            Self::Whitespace => line.split_whitespace().map(clean).collect(),
+        }
+    }
+}
+
+impl fmt::Display for Delim {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Char('\t') => f.write_str("tab"),
+            Self::Char(';') => f.write_str("semicolon"),
+            Self::Char(',') => f.write_str("comma"),
+            Self::Char(' ') => f.write_str("space"),
+            Self::Char(c) => write!(f, "`{c}`"),
+            Self::Whitespace => f.write_str("blanks"),
+        }
+    }
+}
+
+/// A field without the blanks and quotes around it.
+fn clean(field: &str) -> &str {
+    field.trim().trim_matches('"').trim()
+}
+
+/// The layout of a text file's table.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Layout {
+    /// The delimiter.
+    pub(crate) delimiter: Delim,
+    /// Numbers written with a decimal comma.
+    pub(crate) decimal_comma: bool,
+    /// Lines before the header (its 0-based line index): the study's `skip_lines`.
+    pub(crate) skip_lines: usize,
+    /// The metadata lines above the header (neither blank nor `#` comments).
+    pub(crate) metadata: Vec<String>,
+    /// Line ends are CR LF.
+    pub(crate) crlf: bool,
+    /// The header's names, as written.
+    pub(crate) header: Vec<String>,
+    /// The first data rows, each as many numbers as the header has names (`None`: a field
+    /// that is not a number, e.g. a label).
+    pub(crate) rows: Vec<Vec<Option<f64>>>,
+}
+
+/// Why no layout was found.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum LayoutProblem {
+    /// Nothing but blank and comment lines.
+    Empty,
+    /// Not text (a NUL byte or invalid UTF-8 in the first lines).
+    Binary,
+    /// No run of lines with the same number (two or more) of numeric fields.
+    NoNumericRows,
+    /// Numeric rows, but no header line above them naming the columns.
+    NoHeader {
+        /// The first data line, 1-based.
+        first_data_line: usize,
+    },
+}
+
+impl fmt::Display for LayoutProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Empty => f.write_str("holds no data lines (only blank or `#` lines)"),
+            Self::Binary => f.write_str("is not text (binary bytes in its first lines)"),
+            Self::NoNumericRows => f.write_str(
+                "has no rows of two or more numbers separated by a comma, semicolon, tab, \
+                 `|` or blanks",
+            ),
+            Self::NoHeader { first_data_line } => write!(
+                f,
+                "has numbers from line {first_data_line} but no header line above them \
+                 naming the columns (add one, e.g. `time_s,gap_um,angle_deg`)"
+            ),
+        }
+    }
+}
+
+/// A number as a lab writes it, with a decimal point or comma.
+pub(crate) fn number(field: &str, decimal_comma: bool) -> Option<f64> {
+    let field = clean(field);
+    if field.is_empty() {
+        return None;
+    }
+    let parsed = if decimal_comma {
+        if field.contains('.') {
+            return None;
+        }
+        field.replace(',', ".").parse::<f64>().ok()
+    } else {
+        field.parse::<f64>().ok()
+    };
+    // `inf`, `nan` parse as numbers but say nothing about a layout.
+    parsed.filter(|v| v.is_finite() || field.eq_ignore_ascii_case("nan"))
+}
+
+/// The layout of `bytes`' first [`SNIFF_LINES`] lines.
+pub(crate) fn sniff(bytes: &[u8]) -> Result<Layout, LayoutProblem> {
+    let head = &bytes[..bytes.len().min(1 << 20)];
+    let bom = head.strip_prefix(b"\xef\xbb\xbf").unwrap_or(head);
+    if bom.iter().take(8192).any(|&b| b == 0) {
+        return Err(LayoutProblem::Binary);
+    }
+    // The last line may be cut at the 1 MiB mark: keep whole lines only.
+    let text = match std::str::from_utf8(bom) {
+        Ok(t) => t,
+        Err(e) if e.valid_up_to() > bom.len().saturating_sub(4) || bom.len() == head.len() => {
+            std::str::from_utf8(&bom[..e.valid_up_to()]).map_err(|_| LayoutProblem::Binary)?
+        }
+        Err(_) => return Err(LayoutProblem::Binary),
+    };
+    let crlf = text.contains("\r\n");
+    let lines: Vec<&str> = text
+        .split('\n')
+        .take(SNIFF_LINES)
+        .map(|l| l.trim_end_matches('\r'))
+        .collect();
+    let content = |l: &str| !l.trim().is_empty() && !l.trim_start().starts_with('#');
+    if !lines.iter().any(|l| content(l)) {
+        return Err(LayoutProblem::Empty);
+    }
+    let candidates = [
+        (Delim::Char('\t'), false),
+        (Delim::Char(';'), false),
+        (Delim::Char(';'), true),
+        (Delim::Char(','), false),
+        (Delim::Char('|'), false),
+        (Delim::Char('|'), true),
+        (Delim::Char('\t'), true),
+        (Delim::Whitespace, false),
+        (Delim::Whitespace, true),
+    ];
+    // For each candidate, the last block of content lines with the same number of fields,
+    // all numbers (a label column allowed): (numeric lines, fields, first data line).
+    let mut best: Option<(usize, usize, usize, Delim, bool)> = None;
+    for (delim, comma) in candidates {
+        let Some((count, fields, first)) = data_block(&lines, delim, comma) else {
+            continue;
+        };
+        let better = match best {
+            None => true,
+            Some((c, f, ..)) => count > c || (count == c && fields > f),
+        };
+        if better {
+            best = Some((count, fields, first, delim, comma));
+        }
+    }
+    let (_, fields, first, delimiter, decimal_comma) = best.ok_or(LayoutProblem::NoNumericRows)?;
+    // The header: the last content line above the data with as many fields, not all numbers.
+    let header_index = (0..first)
+        .rev()
+        .find(|&i| content(lines[i]))
+        .filter(|&i| {
+            let names = delimiter.split(lines[i]);
+            names.len() == fields
+                && names.iter().any(|n| number(n, decimal_comma).is_none())
+                && names.iter().all(|n| !n.is_empty())
+        })
+        .ok_or(LayoutProblem::NoHeader {
+            first_data_line: first + 1,
+        })?;
+    let header: Vec<String> = delimiter
+        .split(lines[header_index])
+        .into_iter()
+        .map(str::to_owned)
+        .collect();
+    let metadata = lines[..header_index]
+        .iter()
+        .filter(|l| content(l))
+        .map(|l| (*l).to_owned())
+        .collect();
+    let rows = lines[first..]
+        .iter()
+        .filter(|l| content(l))
+        .map(|l| {
+            delimiter
+                .split(l)
+                .iter()
+                .map(|f| number(f, decimal_comma))
+                .collect::<Vec<_>>()
+        })
+        .filter(|r| r.len() == fields)
+        .collect();
+    Ok(Layout {
+        delimiter,
+        decimal_comma,
+        skip_lines: header_index,
+        metadata,
+        crlf,
+        header,
+        rows,
+    })
+}
+
+/// The block of data lines at the end of the sniffed lines under one delimiter and decimal
+/// mark: (how many, fields per line, index of its first line). A data line has two or more
+/// fields, at least two of them numbers, and at most one that is not (a label).
+fn data_block(lines: &[&str], delim: Delim, comma: bool) -> Option<(usize, usize, usize)> {
+    if comma && delim == Delim::Char(',') {
+        return None;
+    }
+    let shape = |line: &str| -> Option<usize> {
+        let fields = delim.split(line);
+        let numbers = fields.iter().filter(|f| number(f, comma).is_some()).count();
+        (fields.len() >= 2 && numbers >= 2 && fields.len() - numbers <= 1).then_some(fields.len())
+    };
+    let content: Vec<usize> = (0..lines.len())
+        .filter(|&i| !lines[i].trim().is_empty() && !lines[i].trim_start().starts_with('#'))
+        .collect();
+    // The last line may be cut short by the sniffing window: ignore it when it does not fit.
+    let mut end = content.len();
+    while end > 0 && shape(lines[content[end - 1]]).is_none() {
+        end -= 1;
+        if content.len() - end > 1 {
+            return None;
+        }
+    }
+    let fields = shape(lines[content[end.checked_sub(1)?]])?;
+    let mut start = end - 1;
+    while start > 0 && shape(lines[content[start - 1]]) == Some(fields) {
+        start -= 1;
+    }
+    // With a decimal comma, the numbers must use it (else the point reading is the same).
+    if comma
+        && !content[start..end]
+            .iter()
+            .any(|&i| delim.split(lines[i]).iter().any(|f| f.contains(',')))
+    {
+        return None;
+    }
+    Some((end - start, fields, content[start]))
+}
+
+/// A header name split into its quantity and unit: `Spalt [mm]`, `Time (ms)`, `gap_um`,
+/// `rate_deg_s`, `Winkel/°`; `None` as the unit when the name carries none.
+pub(crate) fn name_and_unit(name: &str) -> (String, Option<String>) {
+    let trimmed = name.trim();
+    for (open, close) in [('[', ']'), ('(', ')'), ('{', '}')] {
+        if let Some(body) = trimmed.strip_suffix(close)
+            && let Some(at) = body.rfind(open)
+        {
+            let unit = body[at + open.len_utf8()..].trim();
+            let quantity = body[..at].trim().trim_end_matches(['_', ' ', '/']);
+            if !unit.is_empty() && !quantity.is_empty() {
+                return (quantity.to_owned(), Some(unit.to_owned()));
+            }
+        }
+    }
+    if let Some((quantity, unit)) = trimmed.rsplit_once(" in ")
+        && !unit.contains(' ')
+    {
+        return (quantity.trim().to_owned(), Some(unit.trim().to_owned()));
+    }
+    if let Some((quantity, unit)) = trimmed.rsplit_once('/')
+        && !quantity.is_empty()
+        && !unit.is_empty()
+        && !unit.contains(' ')
+    {
+        return (quantity.trim().to_owned(), Some(unit.trim().to_owned()));
+    }
+    // `name_unit`, the unit among those known (longest first: `rate_deg_s` is deg/s).
+    let lower = trimmed.to_lowercase();
+    for suffix in [
+        "_deg_s", "_rad_s", "_deg", "_rad", "_counts", "_cnt", "_ms", "_us", "_ns", "_um", "_mm",
+        "_nm", "_mv", "_v", "_s", "_m",
+    ] {
+        if lower.ends_with(suffix) && lower.len() > suffix.len() {
+            let cut = trimmed.len() - suffix.len();
+            let unit = trimmed[cut + 1..].replace('_', "/");
+            return (trimmed[..cut].to_owned(), Some(unit));
+        }
+    }
+    (trimmed.to_owned(), None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn european_export_with_metadata() {
+        let text = "Messgerät: XY-3000\r\nDatum: 2025-03-01\r\nKanal: 2\r\nAbtastrate: 200 Hz\r\n\r\n\
+                    Zeit [s];Spalt [mm];Winkel\r\n0,000000;0,05001;0\r\n0,005000;0,05002;1024\r\n\
+                    0,010000;0,05003;2048\r\n";
+        let l = sniff(text.as_bytes()).unwrap();
+        assert_eq!(l.delimiter, Delim::Char(';'));
+        assert!(l.decimal_comma);
+        assert_eq!(l.skip_lines, 5);
+        assert!(l.crlf);
+        assert_eq!(l.metadata.len(), 4);
+        assert_eq!(l.header, ["Zeit [s]", "Spalt [mm]", "Winkel"]);
+        assert_eq!(l.rows.len(), 3);
+        assert_eq!(l.rows[1][0], Some(0.005));
+    }
+
+    #[test]
+    fn documented_csv_and_tab_separated() {
+        let l = sniff(b"time_s,gap_um,angle_deg\n0.0,1.5,0.0\n0.01,1.6,1.0\n").unwrap();
+        assert_eq!(
+            (l.delimiter, l.decimal_comma, l.skip_lines),
+            (Delim::Char(','), false, 0)
+        );
+        let l = sniff(b"Time [s]\tGap [um]\tAngle [deg]\n0.0\t1.5\t0.0\n0.01\t1.6\t1.0\n").unwrap();
+        assert_eq!(l.delimiter, Delim::Char('\t'));
+        assert_eq!(l.header[1], "Gap [um]");
+    }
+
+    #[test]
+    fn problems_are_named() {
+        assert_eq!(sniff(b"# nothing\n\n"), Err(LayoutProblem::Empty));
+        assert_eq!(sniff(b"\x00\x01\x02"), Err(LayoutProblem::Binary));
+        assert_eq!(
+            sniff(b"0.0,1.0\n0.1,1.1\n"),
+            Err(LayoutProblem::NoHeader { first_data_line: 1 })
+        );
+        assert_eq!(
+            sniff(b"hello world\nno numbers\n"),
+            Err(LayoutProblem::NoNumericRows)
+        );
+    }
+
+    #[test]
+    fn units_from_headers() {
+        let u = |n: &str| name_and_unit(n);
+        assert_eq!(u("Spalt [mm]"), ("Spalt".into(), Some("mm".into())));
+        assert_eq!(u("Time (ms)"), ("Time".into(), Some("ms".into())));
+        assert_eq!(u("gap_um"), ("gap".into(), Some("um".into())));
+        assert_eq!(u("rate_deg_s"), ("rate".into(), Some("deg/s".into())));
+        assert_eq!(u("Winkel"), ("Winkel".into(), None));
+        assert_eq!(u("time_ms"), ("time".into(), Some("ms".into())));
+        assert_eq!(u("index"), ("index".into(), None));
+    }
+}
