@@ -3,7 +3,7 @@
 //! [`run_with`].
 //!
 //! Each subcommand is a module with a clap-derived argument struct and a `run` method. Every
-//! command prints through [`console::Console`], never `println!`: output that cannot be
+//! command prints through `console::Console`, never `println!`: output that cannot be
 //! written is an error (exit status 1 with a message) or, for a pipe closed by its reader, a
 //! quiet exit with status 141; never a panic. The commands call the libraries; they are the
 //! edge that touches files (`.ci/layering`).
