@@ -110,18 +110,24 @@ fn print_table(console: &mut Console, results: &[Scored]) -> Result<(), ConsoleE
         let warn = if a.fit.warnings.is_empty() {
             String::new()
         } else {
-            format!("  warnings: {:?}", a.fit.warnings)
+            let words: Vec<String> = a
+                .fit
+                .warnings
+                .iter()
+                .map(crate::words::fit_warning)
+                .collect();
+            format!("  warning: {}", words.join("; "))
         };
         writeln!(
             console,
-            "{:<9} {:>9.1} {:>9.1} {:>9.1} {:>10.2e} {:>6}  {:?}{}",
+            "{:<9} {:>9.1} {:>9.1} {:>9.1} {:>10.2e} {:>6}  {}{}",
             a.name,
             a.min_lre_coef,
             a.min_lre_se,
             a.lre_residual_sd,
             a.fit.condition_number,
             a.fit.refinement_iterations,
-            a.fit.path,
+            crate::words::solver(&a.fit.path),
             warn
         )?;
     }

@@ -9,7 +9,7 @@ use identify::{
     Calibration, CompensatedCalibration, Compensation, CrEstimate, Geometry, IdentifyError,
     K1Source, identify_calibration, identify_compensated,
 };
-use recording::{PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN};
+use recording::{TableColumn, TableFormat};
 
 /// A row of the PIGA table whose value takes the eq. 18 design (powers of ω up to ω⁶, or the
 /// compensated output) out of double precision, named by its line in the file.
@@ -23,24 +23,45 @@ use recording::{PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN};
 struct RowOutOfRange {
     path: PathBuf,
     line: usize,
-    column: &'static str,
+    column: String,
     value: f64,
 }
 
-/// Identify k0…k3 from a PIGA output table (CSV with header `rate_deg_s,output_rad_s`).
+/// Identify k0…k3 from a PIGA output table, read as a study reads its `calibration.table`.
 #[derive(Debug, clap::Args)]
 pub(crate) struct Identify {
-    /// CSV file with header `rate_deg_s,output_rad_s`: one row per rate point (mean output over
-    /// whole revolutions, rad/s); `#` comment lines and blank lines are skipped.
+    /// The PIGA table: a header, then one row per rate point (the rate in deg/s and the mean
+    /// output over whole revolutions in rad/s); `#` comment lines and blank lines are skipped.
+    /// Read by the study's table reader with the same options (the flags below, as a study's
+    /// `calibration.table` names them).
     file: PathBuf,
+    /// Header name of the rate column, deg/s (a study's `rate_column`).
+    #[arg(long, default_value = "rate_deg_s")]
+    rate_column: String,
+    /// Header name of the mean-output column, rad/s (a study's `output_column`).
+    #[arg(long, default_value = "output_rad_s")]
+    output_column: String,
+    /// Field delimiter, one character; a blank or a tab means runs of blanks (a study's
+    /// `delimiter`).
+    #[arg(long, default_value_t = ',')]
+    delimiter: char,
+    /// Header name of each output's standard uncertainty, rad/s: the fit is weighted by 1/σ
+    /// (a study's `sigma_column`).
+    #[arg(long)]
+    sigma_column: Option<String>,
+    /// Header name of a text column labelling each row (a study's `label_column`).
+    #[arg(long)]
+    label_column: Option<String>,
     /// Working radius R (m), used to form a = R·ω²/g (required unless --from).
     #[arg(long, required_unless_present = "from")]
     radius_m: Option<f64>,
-    /// Gravity g (m/s²). The default is the paper's value.
-    #[arg(long, default_value_t = 9.8, conflicts_with = "from")]
-    g: f64,
-    /// A study's results.json: R, g and k1 from its inputs, C_r and σ(C_r) from the phase
-    /// named by --phase (instead of --radius-m, --g, --k1, --c-r-m-s2, --c-r-sigma-m-s2).
+    /// Gravity g (m/s²), stated: there is no default (required unless --from).
+    #[arg(long, required_unless_present = "from", conflicts_with = "from")]
+    g: Option<f64>,
+    /// A study's results.json: R and g as the study used them, C_r and σ(C_r) of the phase
+    /// named by --phase, and k1 as the study chose it (fitted or given by its calibration;
+    /// without one, the k1 of its Δk2). Instead of --radius-m, --g, --k1, --c-r-m-s2,
+    /// --c-r-sigma-m-s2.
     #[arg(long, requires = "phase", conflicts_with_all = ["radius_m", "k1", "c_r_m_s2", "c_r_sigma_m_s2"])]
     from: Option<PathBuf>,
     /// The phase of --from whose C_r compensates.
@@ -63,18 +84,39 @@ pub(crate) struct Identify {
 }
 
 impl Identify {
+    /// The table format, built as the study builds it from `calibration.table`.
+    fn table_format(&self) -> TableFormat {
+        let mut columns = vec![
+            TableColumn::required(self.rate_column.clone()),
+            TableColumn::required(self.output_column.clone()),
+        ];
+        if let Some(sigma) = &self.sigma_column {
+            columns.push(TableColumn::required(sigma.clone()));
+        }
+        TableFormat {
+            delimiter: self.delimiter,
+            whitespace: matches!(self.delimiter, ' ' | '\t'),
+            label: self.label_column.clone(),
+            ..TableFormat::new(columns, true)
+        }
+    }
+
     pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let table = recording::load_piga_table(&self.file)?;
-        let rate_rad_s: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
-        let output_rad_s = &table.output_rad_s;
+        let table = recording::load_table(&self.file, &self.table_format())?;
+        let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
+        let rate_deg_s = column(&self.rate_column);
+        let output = column(&self.output_column);
+        let sigma = self.sigma_column.as_deref().map(column);
+        let rate_rad_s: Vec<f64> = rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let output_rad_s = &output;
         let context = || format!("identifying {}", self.file.display());
         // An error about a row of the design is an error about a line of the file.
         let located = |e: IdentifyError| -> anyhow::Error {
             match e {
                 IdentifyError::NonFinite { row, column } if row < table.len() => {
                     let (column, value) = match column {
-                        None => (PIGA_OUTPUT_COLUMN, table.output_rad_s[row]),
-                        Some(_) => (PIGA_RATE_COLUMN, table.rate_deg_s[row]),
+                        None => (self.output_column.clone(), output[row]),
+                        Some(_) => (self.rate_column.clone(), rate_deg_s[row]),
                     };
                     anyhow::Error::new(RowOutOfRange {
                         path: self.file.clone(),
@@ -96,11 +138,11 @@ impl Identify {
                 radius_m: self
                     .radius_m
                     .context("--radius-m is required without --from")?,
-                g_m_s2: self.g,
+                g_m_s2: self.g.context("--g is required without --from")?,
             },
         };
         let (c_r, k1) = match &from {
-            Some(f) => (Some(f.c_r), Some(f.k1_rad_s_g)),
+            Some(f) => (Some(f.c_r), f.k1_rad_s_g),
             None => (
                 self.c_r_m_s2
                     .zip(self.c_r_sigma_m_s2)
@@ -119,24 +161,79 @@ impl Identify {
                         k1_rad_s_g,
                     }),
                 };
-                let c = identify_compensated(&rate_rad_s, output_rad_s, geometry, &compensation)
-                    .map_err(located)?;
+                let c = match &sigma {
+                    Some(s) => identify::identify_compensated_weighted(
+                        &rate_rad_s,
+                        output_rad_s,
+                        s,
+                        geometry,
+                        &compensation,
+                    ),
+                    None => {
+                        identify_compensated(&rate_rad_s, output_rad_s, geometry, &compensation)
+                    }
+                }
+                .map_err(located)?;
                 (c.uncompensated.clone(), Some(c))
             }
             None => (
-                identify_calibration(&rate_rad_s, output_rad_s, geometry).map_err(located)?,
+                match &sigma {
+                    Some(s) => identify::identify_calibration_weighted(
+                        &rate_rad_s,
+                        output_rad_s,
+                        s,
+                        geometry,
+                    ),
+                    None => identify_calibration(&rate_rad_s, output_rad_s, geometry),
+                }
+                .map_err(located)?,
                 None,
             ),
+        };
+        let k1_words = match (&from, k1) {
+            (Some(f), _) => f.k1_words.clone(),
+            (None, Some(_)) => "given with --k1".to_owned(),
+            (None, None) => "implied by the fit (c₂·g/R); give --k1 to use another".to_owned(),
+        };
+        let g_words = match &from {
+            Some(f) => format!("as the study used it ({})", f.results.display()),
+            None => "given with --g".to_owned(),
         };
         let mut console = Console::stdout();
         if self.json {
             let value = to_json(&self.file, &result.0, result.1.as_ref());
             writeln!(console, "{}", edge_io::to_json_pretty(&value)?)?;
         } else {
-            print_report(&mut console, &self.file, &result.0, result.1.as_ref())?;
+            print_report(
+                &mut console,
+                &self.file,
+                &result.0,
+                result.1.as_ref(),
+                &Stated {
+                    g: &g_words,
+                    k1: &k1_words,
+                },
+            )?;
         }
         Ok(())
     }
+}
+
+/// Where g and k1 come from, in words.
+struct Stated<'a> {
+    g: &'a str,
+    k1: &'a str,
+}
+
+/// The coverage factor for 95 % with `dof` degrees of freedom (Student t; normal without a
+/// finite number).
+fn k95(dof: f64) -> f64 {
+    let dof = if dof.is_finite() && dof > 0.0 {
+        uncertainty::Dof::Finite(dof)
+    } else {
+        uncertainty::Dof::Infinite
+    };
+    uncertainty::coverage_factor(0.95, dof).unwrap_or(f64::NAN)
 }
 
 fn print_report(
@@ -144,26 +241,33 @@ fn print_report(
     path: &Path,
     cal: &Calibration,
     comp: Option<&CompensatedCalibration>,
+    stated: &Stated<'_>,
 ) -> Result<(), ConsoleError> {
     let fit = &cal.fit;
     writeln!(
         console,
-        "PIGA calibration from {}: {} points at {} distinct rates; R = {} m, g = {} m/s²",
+        "PIGA calibration from {}: {} points at {} distinct rates; R = {} m, g = {} m/s² ({})",
         path.display(),
         fit.residuals.len(),
         cal.distinct_rates,
         units::Compact(cal.geometry.radius_m),
-        units::Compact(cal.geometry.g_m_s2)
+        units::Compact(cal.geometry.g_m_s2),
+        stated.g
     )?;
     writeln!(
         console,
         "design [1, ω, ω², ω³, a², a³], a = R·ω²/g (eq. 18); condition number of the \
-         column-scaled design {:.3e}; residual SD {:.4e} rad/s ({} dof); solver {:?}",
-        fit.condition_number, fit.residual_sd, fit.dof, fit.path
+         column-scaled design {:.3e}; residual SD {:.4e} rad/s ({} dof); solver: {}",
+        fit.condition_number,
+        fit.residual_sd,
+        fit.dof,
+        crate::words::solver(&fit.path)
     )?;
     for w in &fit.warnings {
-        writeln!(console, "warning: {w:?}")?;
+        writeln!(console, "warning: {}", crate::words::fit_warning(w))?;
     }
+    #[allow(clippy::cast_precision_loss)]
+    let k = k95(fit.dof as f64);
     let s = &fit.std_errors;
     let rows = [
         ("1: k0 + k1·Δφ_ys", "rad/s", cal.bias_rad_s, s[0]),
@@ -186,35 +290,64 @@ fn print_report(
     ];
     writeln!(
         console,
-        "{:<30} {:>16} {:>12}  unit",
-        "coefficient", "value", "σ"
+        "{:<30} {:>16} {:>12} {:>12}  unit",
+        "coefficient", "value", "u", "U95"
     )?;
     for (label, unit, value, sigma) in rows {
-        writeln!(console, "{label:<30} {value:>16.8e} {sigma:>12.3e}  {unit}")?;
+        writeln!(
+            console,
+            "{label:<30} {value:>16.8e} {sigma:>12.3e} {:>12.3e}  {unit}",
+            k * sigma
+        )?;
     }
+    writeln!(
+        console,
+        "U95 = k·u with k = {k:.3} (Student t, {} degrees of freedom of the fit); the fit's \
+         uncertainty only: the study adds the Type B inputs",
+        fit.dof
+    )?;
     if let Some(c) = comp {
-        let source = match c.compensation.k1 {
-            K1Source::Fitted => "implied by the fit",
-            K1Source::Given { .. } => "given",
+        writeln!(
+            console,
+            "compensation: C_r = {:.5e} ± {:.3e} m·s², k1 = {:.8} rad/(s·g) ({})",
+            c.compensation.c_r.c_r_m_s2,
+            c.compensation.c_r.c_r_sigma_m_s2,
+            c.k1_used_rad_s_g,
+            stated.k1
+        )?;
+        writeln!(
+            console,
+            "{:<30} {:>16.8e} {:>12.3e} {:>12.3e}  rad/(s·g²)",
+            "Δk2 = k1·C_r·g/R² (eq. 19)",
+            c.delta_k2.delta_k2_rad_s_g2,
+            c.delta_k2.sigma_rad_s_g2,
+            k95(f64::INFINITY) * c.delta_k2.sigma_rad_s_g2
+        )?;
+        // The compensated k2's degrees of freedom: the fit's part has the fit's, C_r's part
+        // is taken as known (Welch–Satterthwaite).
+        let (u_fit, u_c) = (
+            c.compensated.k2_apparent_sigma_rad_s_g2,
+            c.k2_sigma_from_c_r_rad_s_g2,
+        );
+        #[allow(clippy::cast_precision_loss)]
+        let nu = if u_fit > 0.0 {
+            c.k2_sigma_rad_s_g2.powi(4) / (u_fit.powi(4) / fit.dof as f64)
+        } else {
+            f64::INFINITY
         };
         writeln!(
             console,
-            "compensation: C_r = {:.5e} ± {:.3e} m·s², k1 = {:.8} rad/(s·g) ({source})",
-            c.compensation.c_r.c_r_m_s2, c.compensation.c_r.c_r_sigma_m_s2, c.k1_used_rad_s_g
-        )?;
-        writeln!(
-            console,
-            "{:<30} {:>16.8e} {:>12.3e}  rad/(s·g²)",
-            "Δk2 = k1·C_r·g/R² (eq. 19)", c.delta_k2.delta_k2_rad_s_g2, c.delta_k2.sigma_rad_s_g2
-        )?;
-        writeln!(
-            console,
-            "{:<30} {:>16.8e} {:>12.3e}  rad/(s·g²)  (σ from the fit {:.3e}, from C_r {:.3e})",
+            "{:<30} {:>16.8e} {:>12.3e} {:>12.3e}  rad/(s·g²)  (u from the fit {u_fit:.3e}, \
+             from C_r {u_c:.3e}; ν_eff {})",
             "compensated k2",
             c.k2_rad_s_g2,
             c.k2_sigma_rad_s_g2,
-            c.compensated.k2_apparent_sigma_rad_s_g2,
-            c.k2_sigma_from_c_r_rad_s_g2
+            k95(nu) * c.k2_sigma_rad_s_g2,
+            if nu > 1e4 {
+                "above 10⁴".to_owned()
+            } else {
+                format!("{nu:.1}")
+            },
         )?;
     }
     Ok(())
@@ -299,8 +432,13 @@ mod tests {
         let f = TempFile::new("bad-number", "rate_deg_s,output_rad_s\n10,0.5\n20,abc\n");
         let args = Identify {
             file: f.0.clone(),
+            rate_column: "rate_deg_s".into(),
+            output_column: "output_rad_s".into(),
+            delimiter: ',',
+            sigma_column: None,
+            label_column: None,
             radius_m: Some(2.5),
-            g: 9.8,
+            g: Some(9.8),
             from: None,
             phase: None,
             k1: None,
@@ -326,8 +464,13 @@ mod tests {
         let f = TempFile::new("synthetic", &text);
         let args = Identify {
             file: f.0.clone(),
+            rate_column: "rate_deg_s".into(),
+            output_column: "output_rad_s".into(),
+            delimiter: ',',
+            sigma_column: None,
+            label_column: None,
             radius_m: Some(r),
-            g,
+            g: Some(g),
             from: None,
             phase: None,
             k1: None,
@@ -335,9 +478,14 @@ mod tests {
             c_r_sigma_m_s2: Some(1e-8),
             json: true,
         };
-        let table = recording::load_piga_table(&args.file).unwrap();
-        let rates: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
-        let outputs = table.output_rad_s;
+        let table = recording::load_table(&args.file, &args.table_format()).unwrap();
+        let rates: Vec<f64> = table
+            .column("rate_deg_s")
+            .unwrap()
+            .iter()
+            .map(|d| d.to_radians())
+            .collect();
+        let outputs = table.column("output_rad_s").unwrap().to_vec();
         let comp = Compensation {
             c_r: CrEstimate {
                 c_r_m_s2: c_r,
@@ -361,8 +509,12 @@ mod tests {
 /// What `--from results.json --phase NAME` takes from a study's results.
 #[derive(Debug)]
 struct FromStudy {
+    results: PathBuf,
     geometry: Geometry,
-    k1_rad_s_g: f64,
+    /// k1 given (`None`: fitted, as the study's calibration chose).
+    k1_rad_s_g: Option<f64>,
+    /// Where k1 comes from, in words.
+    k1_words: String,
     c_r: CrEstimate,
 }
 
@@ -404,12 +556,52 @@ impl FromStudy {
             .get("c_r_sigma_m_s2")
             .and_then(serde_json::Value::as_f64)
             .unwrap_or(0.0);
+        // k1 as the study chose it: its calibration's (fitted or given); without a
+        // calibration, the configured k1 its Δk2 used.
+        let calibration = json.get("calibration").filter(|c| c.is_object());
+        let (k1_rad_s_g, k1_words) = match calibration {
+            Some(cal) => match cal.get("k1_source").and_then(serde_json::Value::as_str) {
+                Some("fitted") => (
+                    None,
+                    "fitted, as the study's calibration chose (c₂·g/R)".to_owned(),
+                ),
+                Some("given") => {
+                    let k1 = cal
+                        .get("coefficients")
+                        .and_then(|c| c.get("k1"))
+                        .map(|k| number(k, "value"))
+                        .transpose()?
+                        .with_context(|| {
+                            format!("{}: no `calibration.coefficients.k1`", path.display())
+                        })?;
+                    (
+                        Some(k1),
+                        "given, as the study's calibration chose".to_owned(),
+                    )
+                }
+                other => anyhow::bail!(
+                    "{}: `calibration.k1_source` is {other:?}: expected \"fitted\" or \"given\"",
+                    path.display()
+                ),
+            },
+            None => (
+                Some(number(inputs, "k1_rad_s_g")?),
+                "the study's configured k1, which its Δk2 used (the study has no calibration)"
+                    .to_owned(),
+            ),
+        };
+        let g_m_s2 = match calibration {
+            Some(cal) => number(cal, "g_m_s2")?,
+            None => number(inputs, "g_m_s2")?,
+        };
         Ok(Self {
+            results: path.to_path_buf(),
             geometry: Geometry {
                 radius_m: number(inputs, "radius_m")?,
-                g_m_s2: number(inputs, "g_m_s2")?,
+                g_m_s2,
             },
-            k1_rad_s_g: number(inputs, "k1_rad_s_g")?,
+            k1_rad_s_g,
+            k1_words,
             c_r: CrEstimate {
                 c_r_m_s2: number(found, "c_r_m_s2")?,
                 c_r_sigma_m_s2: sigma,

@@ -9,15 +9,18 @@
 //! edge that touches files (`.ci/layering`).
 
 mod accuracy;
+mod check;
 mod console;
 mod harmonics;
 mod identify;
 mod init;
 mod paths;
 mod plan;
+mod problems;
 mod regress;
 mod simulate;
 mod study;
+mod words;
 
 use std::ffi::OsString;
 use std::io::Write as _;
@@ -60,6 +63,9 @@ enum Command {
     /// Write a commented study configuration from a lab's files: each file's format and
     /// rate guessed with its evidence, placeholders for what the files cannot tell.
     Init(init::Init),
+    /// Check a study configuration without running it: what the study will do, and every
+    /// problem found in it and its files, grouped, with hints.
+    Check(check::Check),
 }
 
 /// Runs the command line as the installed `centrifuge-cal` ([`Places::installed`]).
@@ -113,6 +119,7 @@ where
         Command::Harmonics(c) => c.run(),
         Command::Plan(c) => c.run(places),
         Command::Init(c) => c.run(),
+        Command::Check(c) => c.run(),
     };
     match outcome {
         Ok(()) => 0,

@@ -234,11 +234,11 @@ fn summary(plan: &Plan) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "plan: {} points from {} candidates (≤ {:.4} deg/s), criterion {:?}; {:.0} s of {:.0} s",
+        "plan: {} points from {} candidates (≤ {:.4} deg/s), criterion: {}; {:.0} s of {:.0} s",
         plan.points.len(),
         plan.candidates,
         plan.max_rate_deg_s,
-        plan.criterion,
+        crate::words::criterion(&plan.criterion),
         plan.total_time_s,
         plan.budget_s
     );

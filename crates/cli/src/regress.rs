@@ -36,7 +36,7 @@ impl Regress {
                 )
             })?,
         };
-        let results = pipeline::run(&pipeline::load_study(&config)?)?;
+        let results = pipeline::run(&crate::study::load(&config)?)?;
         let outcomes = Expected::load(&expected_path)?.compare(&results)?;
         let mut console = Console::stdout();
         let mut failed = 0;

@@ -1,6 +1,6 @@
 //! `cargo xtask study`: the pre/post-balance study.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use clap::Args;
@@ -36,7 +36,7 @@ impl Study {
             None => places.paper_study()?,
         };
         let out = self.out.clone().unwrap_or_else(|| places.output("study"));
-        let study = pipeline::load_study(&config)?;
+        let study = load(&config)?;
         let bar = indicatif::ProgressBar::hidden();
         let results = pipeline::run_with_progress(&study, &|event| match event {
             Progress::Recordings { total } => {
@@ -111,16 +111,36 @@ impl Study {
     }
 }
 
-/// A radius-error model in the user's words: its formula, from the name results.json gives it.
-fn model_words<T: serde::Serialize>(model: &T) -> String {
-    match serde_json::to_value(model) {
-        Ok(serde_json::Value::String(name)) => match name.as_str() {
-            "two_term" => "a + C_r·ω²".to_owned(),
-            "three_term" => "a + b·ω + C_r·ω²".to_owned(),
-            other => other.replace('_', " "),
-        },
-        _ => "—".to_owned(),
+/// The study of a configuration, refused while it holds a placeholder of `init`; every
+/// configuration problem at once, grouped (the same fault in several files is one entry).
+pub(crate) fn load(config: &Path) -> anyhow::Result<pipeline::Inputs> {
+    let text = edge_io::read_text_capped(config, pipeline::MAX_STUDY_BYTES)?;
+    let left = crate::init::config::placeholders(&text);
+    if !left.is_empty() {
+        let lines: Vec<String> = left
+            .iter()
+            .map(|(line, code)| format!("line {line}: `{code}`"))
+            .collect();
+        anyhow::bail!(
+            "{}: {} value{} not filled in ({}): {}; write them, then `check` lists anything \
+             else",
+            config.display(),
+            left.len(),
+            if left.len() == 1 { " is" } else { "s are" },
+            crate::init::PLACEHOLDER,
+            lines.join(", ")
+        );
     }
+    pipeline::parse_study(&text, config).map_err(|e| match &e {
+        pipeline::PipelineError::Several { errors } => anyhow::anyhow!(
+            "{}: {} problems ({} distinct):\n{}",
+            config.display(),
+            errors.len(),
+            crate::problems::group(&crate::problems::each(&e)).len(),
+            crate::problems::render(&crate::problems::each(&e)).trim_end()
+        ),
+        _ => anyhow::Error::new(e),
+    })
 }
 
 /// Prints the summary table.
@@ -166,7 +186,7 @@ fn print_summary(out: &mut Console, results: &StudyResults) -> Result<(), Consol
                 out,
                 "{:<13} {:<18} {:>12.4e} {:>11} {:>14.3e} {:>11}",
                 name,
-                model_words(&fit.model),
+                crate::words::radius_model(&fit.model),
                 fit.c_r_m_s2,
                 e(fit.c_r_sigma_m_s2),
                 fit.delta_k2_rad_s_g2,

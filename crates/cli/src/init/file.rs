@@ -228,6 +228,29 @@ fn table(f: &mut Finding, columns: &[Column], layout: &Layout) {
     let (Some(rate), Some(output)) = (pick(Role::Rate), pick(Role::Output)) else {
         return;
     };
+    // The study's table reader takes a delimiter only (no decimal comma, no lines above the
+    // header): say so rather than write a configuration it refuses.
+    if layout.decimal_comma {
+        f.problems.push(
+            "a PIGA table with a decimal comma: the study's table reader takes a decimal \
+             point only; write it with points"
+                .to_owned(),
+        );
+    }
+    if layout.skip_lines > 0 {
+        f.problems.push(format!(
+            "a PIGA table with {} lines above its header: the study's table reader skips only \
+             `#` comment lines; mark them with `#`",
+            layout.skip_lines
+        ));
+    }
+    f.format.retain(|s| s.ron.starts_with("delimiter"));
+    if layout.delimiter == Delim::Whitespace {
+        f.format = vec![Setting::new(
+            "delimiter: ' '",
+            "fields separated by blanks (a blank delimiter means runs of blanks)",
+        )];
+    }
     let unit_is = |c: &Column, want: &[&str]| {
         c.unit
             .as_deref()

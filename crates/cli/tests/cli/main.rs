@@ -1,8 +1,11 @@
 //! Command-line behaviour of the `centrifuge-cal` subcommands (one binary, a module per subcommand).
 
 mod harmonics;
+mod human;
+mod init;
 mod outputs;
 mod plan;
+mod readme_path;
 mod snapshots;
 mod stdout;
 mod workflow;

@@ -59,6 +59,8 @@ fn identify_json() {
         table.to_str().unwrap(),
         "--radius-m",
         "2.5",
+        "--g",
+        "9.8",
         "--c-r-m-s2=-4.05e-8",
         "--c-r-sigma-m-s2",
         "1e-9",

@@ -65,7 +65,14 @@ fn simulate_and_identify_to_a_full_device_exit_1() {
     let piga = out.join("piga.csv");
     assert!(piga.is_file());
     for json in [false, true] {
-        let mut args = vec!["identify", piga.to_str().unwrap(), "--radius-m", "2.5"];
+        let mut args = vec![
+            "identify",
+            piga.to_str().unwrap(),
+            "--radius-m",
+            "2.5",
+            "--g",
+            "9.8",
+        ];
         if json {
             args.push("--json");
         }

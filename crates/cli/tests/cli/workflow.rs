@@ -168,7 +168,10 @@ fn identify_takes_r_g_k1_and_c_r_from_a_studys_results() {
     };
     same(&c["c_r_m_s2"], &phase["c_r_m_s2"]);
     same(&c["c_r_sigma_m_s2"], &phase["c_r_sigma_m_s2"]);
-    same(&c["k1_used_rad_s_g"], &results["inputs"]["k1_rad_s_g"]);
+    // k1 as the study chose it: its calibration fitted k1, so identify fits it too (not the
+    // configured 0.56).
+    assert_eq!(results["calibration"]["k1_source"], "fitted");
+    same(&c["k1_used_rad_s_g"], &v["k1_implied_rad_s_g"]["value"]);
     // An unknown phase is named, with the study's phases.
     let out = xtask(&[
         "identify",
@@ -208,7 +211,14 @@ fn results_out_of_double_range_are_named_errors() {
         .collect();
     std::fs::write(&piga, format!("rate_deg_s,output_rad_s\n{rows}")).unwrap();
     for json in [false, true] {
-        let mut args = vec!["identify", piga.to_str().unwrap(), "--radius-m", "1e-80"];
+        let mut args = vec![
+            "identify",
+            piga.to_str().unwrap(),
+            "--radius-m",
+            "1e-80",
+            "--g",
+            "9.8",
+        ];
         if json {
             args.push("--json");
         }
@@ -272,7 +282,14 @@ fn a_design_row_out_of_range_names_the_file_line() {
         }
     }
     std::fs::write(&piga, text).unwrap();
-    let out = xtask(&["identify", piga.to_str().unwrap(), "--radius-m", "2.5"]);
+    let out = xtask(&[
+        "identify",
+        piga.to_str().unwrap(),
+        "--radius-m",
+        "2.5",
+        "--g",
+        "9.8",
+    ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     let expected = format!("{}:9: column `rate_deg_s` = 1e60", piga.display());

@@ -1,0 +1,341 @@
+//! `centrifuge-cal check CONFIG`: a dry run. It validates the whole configuration, reads
+//! every file it names, prints what the study will do, and lists every problem found,
+//! grouped (one message for the same fault in several files), each with its hint.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::bail;
+use serde_json::Value;
+
+use crate::console::Console;
+use crate::init::{PLACEHOLDER, config::placeholders};
+use crate::problems;
+
+/// Check a study configuration without running the study.
+#[derive(Debug, clap::Args)]
+pub(crate) struct Check {
+    /// The study configuration (RON).
+    config: PathBuf,
+}
+
+/// The configuration's text with each placeholder replaced by a value of the right type, so
+/// that the rest can be checked; the values chosen never reach a result.
+fn stand_ins(text: &str) -> String {
+    text.lines()
+        .map(|line| {
+            let (code, comment) = match line.find("//") {
+                Some(at) => line.split_at(at),
+                None => (line, ""),
+            };
+            if !code.contains(PLACEHOLDER) {
+                return line.to_owned();
+            }
+            let value = if code.contains(&format!("\"{PLACEHOLDER}\"")) {
+                PLACEHOLDER
+            } else if code.contains("probe_direction") {
+                "against_o1_x1"
+            } else if code.contains("time:") {
+                "s"
+            } else if code.contains("gap:") {
+                "um"
+            } else if code.contains("per_rev") {
+                "1"
+            } else if code.contains("unit:") {
+                "deg"
+            } else if code.contains("compensate_with") {
+                "\"\""
+            } else {
+                "1.0"
+            };
+            format!("{}{comment}", code.replace(PLACEHOLDER, value))
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+impl Check {
+    pub(crate) fn run(&self) -> anyhow::Result<()> {
+        let path = &self.config;
+        let text = edge_io::read_text_capped(path, pipeline::MAX_STUDY_BYTES)?;
+        let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+        let mut found: Vec<String> = placeholders(text)
+            .into_iter()
+            .map(|(line, code)| {
+                format!(
+                    "{}:{line}: `{code}` is not filled in (written by init as {PLACEHOLDER}: \
+                     the files could not tell it)",
+                    path.display()
+                )
+            })
+            .collect();
+        let filled = stand_ins(text);
+        let mut console = Console::stdout();
+        match pipeline::StudyConfig::from_ron(&filled, path) {
+            Err(e) => found.extend(problems::each(&e)),
+            Ok(config) => {
+                let plan = describe(&config, path);
+                console.write_str(&plan)?;
+                let files = count_files(&config);
+                let bar = progress(files);
+                match pipeline::Inputs::new(config, path, &pipeline::Files) {
+                    Ok(_) => {}
+                    Err(e) => found.extend(problems::each(&e)),
+                }
+                bar.finish_and_clear();
+            }
+        }
+        if found.is_empty() {
+            writeln!(
+                console,
+                "\nno problem found: every file named reads with its format"
+            )?;
+            return Ok(());
+        }
+        let groups = problems::group(&found);
+        writeln!(
+            console,
+            "\n{} problem{} ({} distinct):",
+            found.len(),
+            if found.len() == 1 { "" } else { "s" },
+            groups.len()
+        )?;
+        console.write_str(&problems::render(&found))?;
+        bail!(
+            "{}: {} problem{} found (listed above)",
+            path.display(),
+            found.len(),
+            if found.len() == 1 { "" } else { "s" }
+        )
+    }
+}
+
+/// A spinner on a terminal while the files are read; nothing in a pipe.
+fn progress(files: usize) -> indicatif::ProgressBar {
+    let bar =
+        indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr());
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} reading and checking {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.set_message(format!("{files} files"));
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar
+}
+
+/// The number of data files a configuration names.
+fn count_files(config: &pipeline::StudyConfig) -> usize {
+    let value = serde_json::to_value(config).unwrap_or(Value::Null);
+    let mut n = 0;
+    count(&value, &mut n);
+    n
+}
+
+fn count(v: &Value, n: &mut usize) {
+    match v {
+        Value::Object(map) => {
+            if map.contains_key("file") {
+                *n += 1;
+            }
+            map.values().for_each(|v| count(v, n));
+        }
+        Value::Array(items) => items.iter().for_each(|v| count(v, n)),
+        _ => {}
+    }
+}
+
+/// A number as written, or `—`.
+fn num(v: Option<&Value>) -> String {
+    v.and_then(Value::as_f64)
+        .map_or_else(|| "—".to_owned(), |x| format!("{x}"))
+}
+
+/// What the study will do, in words, from the configuration's own field names.
+fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
+    let v = serde_json::to_value(config).unwrap_or(Value::Null);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "study {:?} ({})",
+        v["name"].as_str().unwrap_or(""),
+        path.display()
+    );
+    let _ = writeln!(
+        s,
+        "centrifuge: R = {} m, g = {} m/s², PIGA k1 = {} rad/(s·g)",
+        num(v.get("radius_m")),
+        num(v.get("g_m_s2")),
+        num(v.get("k1_rad_s_g"))
+    );
+    let lever = &v["lever"];
+    let direction = match lever["probe_direction"].as_str() {
+        Some("along_o1_x1") => "along the sleeve axis O1X1",
+        _ => "against the sleeve axis O1X1 (the paper's set-up)",
+    };
+    let _ = writeln!(
+        s,
+        "probe: {} mm above the tilt pivot, {} mm below the PIGA's plane, measuring {direction}",
+        num(lever.get("pivot_to_probe_mm")),
+        num(lever.get("probe_to_piga_mm"))
+    );
+    for phase in v["phases"].as_array().into_iter().flatten() {
+        let name = phase["name"].as_str().unwrap_or("");
+        let points = &phase["points"];
+        let (kind, body) = match points.as_object().and_then(|m| m.iter().next()) {
+            Some((k, b)) => (k.as_str(), b),
+            None => ("", &Value::Null),
+        };
+        let line = match kind {
+            "recordings" => {
+                let files = body["files"].as_array().map_or(0, Vec::len);
+                let rates: Vec<String> = body["files"]
+                    .as_array()
+                    .into_iter()
+                    .flatten()
+                    .map(|f| num(f.get("rate_deg_s")))
+                    .collect();
+                format!(
+                    "{files} probe recordings at {} deg/s, read as {}; fitted per revolution \
+                     (order {}, drift {})",
+                    rates.join(", "),
+                    format_words(&body["format"]),
+                    num(body["fit"].get("order")),
+                    if body["fit"]["drift"].as_bool().unwrap_or(true) {
+                        "fitted"
+                    } else {
+                        "not fitted"
+                    }
+                )
+            }
+            "harmonics" => format!(
+                "{} first-harmonic coefficients given",
+                body.as_array().map_or(0, Vec::len)
+            ),
+            "radius_error" => format!(
+                "{} radius errors given",
+                body.as_array().map_or(0, Vec::len)
+            ),
+            "radius_change" => "one published change of radius error".to_owned(),
+            other => other.replace('_', " "),
+        };
+        let _ = writeln!(
+            s,
+            "phase {name}: {line}; C_r and Δk2 from the radius-error fit"
+        );
+    }
+    if let Some(cal) = v.get("calibration").filter(|c| !c.is_null()) {
+        let data = if cal["table"].is_object() {
+            format!(
+                "the PIGA table {}",
+                cal["table"]["file"].as_str().unwrap_or("")
+            )
+        } else {
+            format!(
+                "{} raw PIGA output recordings",
+                cal["recordings"]["files"].as_array().map_or(0, Vec::len)
+            )
+        };
+        let k1 = match &cal["k1"] {
+            Value::String(s) if s == "fitted" => "k1 fitted from the ω² coefficient".to_owned(),
+            Value::Object(m) if m.contains_key("given") => {
+                format!("k1 given: {} rad/(s·g)", num(m["given"].get("k1_rad_s_g")))
+            }
+            other => format!("k1 {other}"),
+        };
+        let _ = writeln!(
+            s,
+            "calibration: eq. 18 fitted to {data}, compensated with phase {}'s C_r; {k1}; \
+             GUM and Monte Carlo uncertainty",
+            cal["compensate_with"].as_str().unwrap_or("")
+        );
+    }
+    match v.get("uncertainty").filter(|u| !u.is_null()) {
+        Some(u) => {
+            let _ = writeln!(
+                s,
+                "Type B inputs: u(R) {} m, u(g) {} m/s² ({}), rate {} (relative), pivot-to-probe \
+                 {} mm, probe-to-PIGA {} mm, probe gain {} (relative)",
+                num(u.get("radius_u_m")),
+                num(u.get("g_u_m_s2")),
+                u["g_source"].as_str().unwrap_or(""),
+                num(u.get("rate_u_relative")),
+                num(u.get("pivot_to_probe_u_mm")),
+                num(u.get("probe_to_piga_u_mm")),
+                num(u.get("probe_gain_u_relative"))
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "Type B inputs: none given (the budget takes them as zero and says so)"
+            );
+        }
+    }
+    for (key, words) in [
+        ("mechanism", "the mechanism simulated with each phase's C_r"),
+        ("balance", "the balance advisor"),
+        ("counterweight", "the counterweight of the published change"),
+    ] {
+        if v.get(key).is_some_and(|x| !x.is_null()) {
+            let _ = writeln!(s, "also: {words}");
+        }
+    }
+    s
+}
+
+/// A recording format in words.
+fn format_words(f: &Value) -> String {
+    let mut parts = Vec::new();
+    match &f["delimiter"] {
+        Value::String(d) if d == "\t" => parts.push("tab-separated".to_owned()),
+        Value::String(d) => parts.push(format!("`{d}`-separated")),
+        Value::Null => {}
+        other => parts.push(format!("{} separated", other.as_str().unwrap_or("blank"))),
+    }
+    if f["decimal"].as_str() == Some("comma") {
+        parts.push("decimal comma".to_owned());
+    }
+    if let Some(n) = f["skip_lines"].as_u64().filter(|n| *n > 0) {
+        parts.push(format!("{n} lines skipped"));
+    }
+    for key in ["time", "gap"] {
+        if let Some(c) = f.get(key).filter(|c| c.is_object()) {
+            parts.push(format!(
+                "{key} `{}` in {}",
+                c["column"].as_str().unwrap_or(""),
+                c["unit"].as_str().unwrap_or("?")
+            ));
+        }
+    }
+    let angle = &f["angle"];
+    if let Some((kind, body)) = angle.as_object().and_then(|m| m.iter().next()) {
+        parts.push(match kind.as_str() {
+            "encoder" => format!(
+                "angle from the encoder `{}` in {}",
+                body["column"].as_str().unwrap_or(""),
+                match &body["unit"] {
+                    Value::String(u) => u.clone(),
+                    Value::Object(m) => m.get("counts").map_or_else(String::new, |c| format!(
+                        "counts, {} per revolution",
+                        num(c.get("per_rev"))
+                    )),
+                    _ => String::new(),
+                }
+            ),
+            "index_pulse" => format!(
+                "angle from the index pulse `{}`",
+                body["column"].as_str().unwrap_or("")
+            ),
+            "rate" => format!(
+                "angle from the declared rate, starting at {}° (nothing measures it)",
+                num(body.get("start_angle_deg"))
+            ),
+            other => other.to_owned(),
+        });
+    }
+    if parts.is_empty() {
+        "the documented time_s,gap_um[,angle_deg]".to_owned()
+    } else {
+        parts.join(", ")
+    }
+}

@@ -1,0 +1,489 @@
+//! `init` on the lab variants of docs/YOUR-DATA.md, with known truth: the simulated campaign
+//! of its worked examples (C_r = 1.2e-6 m·s²) rewritten as labs export them. For each, `init` writes a configuration that, with the geometry filled
+//! in, gives C_r within 3σ of the truth; or it states what it could not determine. Bad input
+//! (an empty folder, a file of unknown shape, two files at one rate, a header without units)
+//! is explained file by file and nothing is written.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn cli(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+/// A scratch folder, removed on drop.
+pub(crate) struct Scratch(pub(crate) PathBuf);
+
+impl Scratch {
+    pub(crate) fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("cli-init-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// One simulated recording: its declared rate and samples (time s, gap µm, angle deg).
+struct Simulated {
+    rate: f64,
+    rows: Vec<(f64, f64, f64)>,
+}
+
+/// The simulated campaign of docs/YOUR-DATA.md's worked examples (C_r = 1.2e-6 m·s², six
+/// rates, 72 s each at 200 Hz, an encoder, start angle 40°), written by `simulate` into `dir`.
+fn simulate_into(dir: &Path) {
+    let scenario = dir.join("lab.ron");
+    std::fs::write(
+        &scenario,
+        r#"(
+    name: "lab", seed: 11,
+    centrifuge: (radius_m: 2.5, site: (latitude_deg: 39.9, earth_rate_rad_s: 7.292115e-5, gravity_m_s2: 9.8)),
+    error_motion: Coefficients((dr_xs_m: 5.6e-6, dr_ys_m: -1.97e-6, c_r_m_s2: 1.2e-6, c_r_y_m_s2: 0.3e-6)),
+    probe: (
+        lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0, probe_direction: against_o1_x1),
+        sample_rate_hz: 200.0, noise_um: 0.05, l0_um: 50.0,
+        sleeve_harmonics: [(order: 2, c_um: 0.35, s_um: -0.12)],
+        encoder_angle: true, start_angle_deg: 40.0,
+    ),
+    piga: (coefficients: (k0_rad_s: 0.0, k1_rad_s_g: 0.56, k2_rad_s_g2: 5.0e-7, k3_rad_s_g3: 0.0)),
+    rates_deg_s: [20.1234, 40.1234, 80.1234, 110.1234, 160.1234, 200.1234], revolutions: 2, min_duration_s: 72.0,
+)"#,
+    )
+    .unwrap();
+    let out = cli(&[
+        "simulate",
+        "--config",
+        scenario.to_str().unwrap(),
+        "--out",
+        dir.join("sim").to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The campaign's six recordings (simulated once per test process).
+fn simulated() -> Vec<Simulated> {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    let dir = DIR.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("cli-init-sim-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        simulate_into(&dir);
+        dir.join("sim")
+    });
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let Some(rate) = name
+            .strip_prefix("probe_")
+            .and_then(|n| n.strip_suffix("deg_s.csv"))
+        else {
+            continue;
+        };
+        let text = std::fs::read_to_string(&path).unwrap();
+        let rows = text
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .skip(1)
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|f| f.parse().unwrap()).collect();
+                (v[0], v[1], v[2])
+            })
+            .collect();
+        out.push(Simulated {
+            rate: rate.parse().unwrap(),
+            rows,
+        });
+    }
+    out.sort_by(|a, b| a.rate.total_cmp(&b.rate));
+    assert_eq!(out.len(), 6);
+    out
+}
+
+/// The truth's C_r, m·s².
+fn c_r_true() -> f64 {
+    1.2e-6
+}
+
+/// Writes each recording into `dir` as `name(i, rate)`, `header`, then `row(i, t, gap, angle)`
+/// lines ended by `eol`.
+fn write_variant(
+    dir: &Path,
+    sims: &[Simulated],
+    name: &dyn Fn(usize, f64) -> String,
+    header: &str,
+    eol: &str,
+    row: &dyn Fn(usize, f64, f64, f64) -> String,
+) {
+    for (k, s) in sims.iter().enumerate() {
+        let mut text = String::from(header);
+        text.push_str(eol);
+        for (i, &(t, g, a)) in s.rows.iter().enumerate() {
+            text.push_str(&row(i, t, g, a));
+            text.push_str(eol);
+        }
+        std::fs::write(dir.join(name(k, s.rate)), text).unwrap();
+    }
+}
+
+/// The configuration's placeholders filled with the simulated centrifuge's geometry.
+pub(crate) fn fill_in(text: &str) -> String {
+    text.lines()
+        .map(|line| {
+            let (code, comment) = match line.find("//") {
+                Some(at) => line.split_at(at),
+                None => (line, ""),
+            };
+            if !code.contains("FILL_IN") {
+                return line.to_owned();
+            }
+            let key = code.trim().split(':').next().unwrap_or("").trim();
+            let value = match key {
+                "radius_m" => "2.5",
+                "g_m_s2" => "9.8",
+                "k1_rad_s_g" => "0.56",
+                "pivot_to_probe_mm" => "700.0",
+                "probe_to_piga_mm" => "510.0",
+                "probe_direction" => "against_o1_x1",
+                "g_source" => "\"the simulation's 9.8 m/s²\"",
+                _ => "0.0",
+            };
+            let filled = if key == "g_source" {
+                format!("    g_source: {value},")
+            } else {
+                code.replacen("FILL_IN", value, 1)
+            };
+            format!("{filled}{comment}")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// `init` on `dir`, the placeholders filled, the study run: (C_r, σ(C_r), init's output).
+fn init_and_study(dir: &Path) -> (f64, f64, String) {
+    let out = cli(&["init", dir.to_str().unwrap()]);
+    let printed = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "init failed:\n{printed}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let config = dir.join("study.ron");
+    let text = std::fs::read_to_string(&config).unwrap();
+    let filled = fill_in(&text);
+    assert!(
+        !filled
+            .lines()
+            .any(|l| l.split("//").next().unwrap_or("").contains("FILL_IN")),
+        "{filled}"
+    );
+    std::fs::write(&config, filled).unwrap();
+    let results = dir.join("out");
+    let study = cli(&[
+        "study",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        results.to_str().unwrap(),
+    ]);
+    assert!(
+        study.status.success(),
+        "study failed on\n{text}\n{}",
+        String::from_utf8_lossy(&study.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(results.join("results.json")).unwrap())
+            .unwrap();
+    let fit = &json["phases"][0];
+    (
+        fit["c_r_m_s2"].as_f64().unwrap(),
+        fit["c_r_sigma_m_s2"].as_f64().unwrap(),
+        printed,
+    )
+}
+
+#[track_caller]
+fn assert_within_3_sigma(what: &str, dir: &Path) -> String {
+    let (c, s, printed) = init_and_study(dir);
+    let truth = c_r_true();
+    assert!(
+        (c - truth).abs() < 3.0 * s,
+        "{what}: C_r = {c:e} ± {s:e}, truth {truth:e}"
+    );
+    printed
+}
+
+fn named(_: usize, rate: f64) -> String {
+    format!("probe_{rate:08.4}deg_s.csv")
+}
+
+#[test]
+fn documented_format() {
+    let tmp = Scratch::new("documented");
+    write_variant(
+        &tmp.0,
+        &simulated(),
+        &named,
+        "time_s,gap_um,angle_deg",
+        "\n",
+        &|_, t, g, a| format!("{t:.9},{g:.9},{a:.9}"),
+    );
+    let printed = assert_within_3_sigma("documented", &tmp.0);
+    assert!(
+        printed.contains("encoder `angle_deg` in degrees"),
+        "{printed}"
+    );
+    // The human output of init and check: snapshots, free of Rust identifiers.
+    let folder = tmp.0.file_name().unwrap().to_string_lossy().into_owned();
+    let tidy = |s: &str| {
+        s.replace(&tmp.0.display().to_string(), "<tmp>")
+            .replace(&folder, "<lab>")
+    };
+    let printed = tidy(&printed);
+    assert!(
+        crate::human::rust_identifiers(&printed).is_empty(),
+        "{printed}"
+    );
+    insta::assert_snapshot!("init_documented", printed);
+    let check = cli(&["check", tmp.0.join("study.ron").to_str().unwrap()]);
+    assert!(
+        check.status.success(),
+        "{}",
+        String::from_utf8_lossy(&check.stderr)
+    );
+    let text = tidy(&String::from_utf8_lossy(&check.stdout));
+    assert!(crate::human::rust_identifiers(&text).is_empty(), "{text}");
+    insta::assert_snapshot!("check_documented", text);
+}
+
+#[test]
+fn european_daq_export() {
+    // CRLF, five metadata lines, `;`, decimal comma, mm, an encoder in counts that wraps.
+    let tmp = Scratch::new("european");
+    let header = "Messgerät: XY-3000\r\nDatum: 2025-03-01\r\nKanal: 2\r\nAbtastrate: 25 Hz\r\n\r\n\
+                  Zeit [s];Spalt [mm];Winkel [cnt]";
+    write_variant(
+        &tmp.0,
+        &simulated(),
+        &named,
+        header,
+        "\r\n",
+        &|_, t, g, a| {
+            let counts = ((a / 360.0) * 1_048_576.0).round() as u64 % 1_048_576;
+            format!("{t:.6};{:.9};{counts}", g / 1000.0).replace('.', ",")
+        },
+    );
+    let printed = assert_within_3_sigma("european", &tmp.0);
+    let config = std::fs::read_to_string(tmp.0.join("study.ron")).unwrap();
+    assert!(config.contains("decimal: comma"), "{config}");
+    assert!(config.contains("skip_lines: 5"), "{config}");
+    assert!(config.contains("counts(per_rev: 1048576)"), "{config}");
+    assert!(printed.contains("semicolon"), "{printed}");
+}
+
+#[test]
+fn tab_separated_with_units_and_time_in_ms() {
+    let tmp = Scratch::new("tab-ms");
+    write_variant(
+        &tmp.0,
+        &simulated(),
+        &named,
+        "Time (ms)\tGap [um]\tAngle [deg]",
+        "\n",
+        &|_, t, g, a| format!("{:.6}\t{g:.9}\t{a:.9}", t * 1000.0),
+    );
+    assert_within_3_sigma("tab, ms", &tmp.0);
+    let config = std::fs::read_to_string(tmp.0.join("study.ron")).unwrap();
+    assert!(config.contains("unit: ms"), "{config}");
+}
+
+#[test]
+fn index_pulse_and_rates_measured() {
+    // No rate in the names (`run_1.csv`…): each rate is measured from the index pulses.
+    let tmp = Scratch::new("index");
+    let sims = simulated();
+    for (k, s) in sims.iter().enumerate() {
+        let mut text = String::from("time_s,gap_um,index\n");
+        for (i, &(t, g, a)) in s.rows.iter().enumerate() {
+            let prev = if i == 0 { a } else { s.rows[i - 1].2 };
+            let pulse = u8::from(i > 0 && a < prev);
+            text += &format!("{t:.9},{g:.9},{pulse}\n");
+        }
+        std::fs::write(tmp.0.join(format!("run_{}.csv", k + 1)), text).unwrap();
+    }
+    let printed = assert_within_3_sigma("index pulse", &tmp.0);
+    assert!(printed.contains("index pulse `index`"), "{printed}");
+    let config = std::fs::read_to_string(tmp.0.join("study.ron")).unwrap();
+    assert!(config.contains("measured from"), "{config}");
+}
+
+#[test]
+fn encoder_counts_and_epoch_time() {
+    let tmp = Scratch::new("epoch");
+    write_variant(
+        &tmp.0,
+        &simulated(),
+        &named,
+        "timestamp [s],gap [um],encoder",
+        "\n",
+        &|_, t, g, a| {
+            let counts = ((a / 360.0) * 4096.0).round() as u64 % 4096;
+            format!("{:.6},{g:.9},{counts}", 1.7e9 + t)
+        },
+    );
+    assert_within_3_sigma("epoch time, counts", &tmp.0);
+    let config = std::fs::read_to_string(tmp.0.join("study.ron")).unwrap();
+    assert!(config.contains("counts(per_rev: 4096)"), "{config}");
+    assert!(config.contains("epoch time"), "{config}");
+}
+
+#[test]
+fn a_header_without_units_leaves_placeholders_the_study_refuses() {
+    let tmp = Scratch::new("no-units");
+    write_variant(
+        &tmp.0,
+        &simulated(),
+        &named,
+        "time,gap,angle",
+        "\n",
+        &|_, t, g, a| format!("{t:.9},{g:.9},{a:.9}"),
+    );
+    let out = cli(&["init", tmp.0.to_str().unwrap()]);
+    assert!(out.status.success());
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert!(printed.contains("unit: FILL_IN"), "{printed}");
+    let config = tmp.0.join("study.ron");
+    let text = std::fs::read_to_string(&config).unwrap();
+    assert!(text.contains("has no unit"), "{text}");
+    // With only the geometry filled in, the study still refuses the units left open.
+    let partly: String = text
+        .lines()
+        .map(|l| {
+            if l.contains("unit: FILL_IN") {
+                l.to_owned()
+            } else {
+                fill_in(l)
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(&config, partly).unwrap();
+    let study = cli(&[
+        "study",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        tmp.0.join("out").to_str().unwrap(),
+    ]);
+    assert!(!study.status.success());
+    let err = String::from_utf8_lossy(&study.stderr);
+    assert!(err.contains("not filled in"), "{err}");
+    assert!(!tmp.0.join("out").exists());
+}
+
+#[test]
+fn bad_input_is_explained_file_by_file_and_nothing_is_written() {
+    // An empty folder.
+    let empty = Scratch::new("empty");
+    let out = cli(&["init", empty.0.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no data file"));
+
+    // Two files at one rate, and a file of unknown shape.
+    let tmp = Scratch::new("bad");
+    let sims = simulated();
+    write_variant(
+        &tmp.0,
+        &sims[..2],
+        &named,
+        "time_s,gap_um,angle_deg",
+        "\n",
+        &|_, t, g, a| format!("{t:.9},{g:.9},{a:.9}"),
+    );
+    std::fs::copy(
+        tmp.0.join(named(0, sims[0].rate)),
+        tmp.0.join("probe_020.1234deg_s_2.csv"),
+    )
+    .unwrap();
+    std::fs::write(tmp.0.join("notes.txt"), "spindle serviced 2025-02\nok\n").unwrap();
+    let out = cli(&["init", tmp.0.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert!(printed.contains("notes.txt: unknown shape"), "{printed}");
+    assert!(
+        printed.contains("probe_020.1234deg_s_2.csv: claims the rate 20.1234 deg/s"),
+        "{printed}"
+    );
+    assert!(!tmp.0.join("study.ron").exists());
+}
+
+#[test]
+fn no_overwrite_without_force() {
+    let tmp = Scratch::new("force");
+    write_variant(
+        &tmp.0,
+        &simulated(),
+        &named,
+        "time_s,gap_um,angle_deg",
+        "\n",
+        &|_, t, g, a| format!("{t:.9},{g:.9},{a:.9}"),
+    );
+    assert!(cli(&["init", tmp.0.to_str().unwrap()]).status.success());
+    std::fs::write(tmp.0.join("study.ron"), "my edits").unwrap();
+    let again = cli(&["init", tmp.0.to_str().unwrap()]);
+    assert_eq!(again.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
+    assert_eq!(
+        std::fs::read_to_string(tmp.0.join("study.ron")).unwrap(),
+        "my edits"
+    );
+    assert!(
+        cli(&["init", tmp.0.to_str().unwrap(), "--force"])
+            .status
+            .success()
+    );
+    assert_ne!(
+        std::fs::read_to_string(tmp.0.join("study.ron")).unwrap(),
+        "my edits"
+    );
+}
+
+#[test]
+fn binary_files_are_named_with_what_is_missing() {
+    let tmp = Scratch::new("binary");
+    for f in ["probe_120deg_s.tdms", "probe_120deg_s.mat"] {
+        std::fs::copy(
+            root().join("fixtures/recordings/binary").join(f),
+            tmp.0.join(f),
+        )
+        .unwrap();
+    }
+    let out = cli(&["init", tmp.0.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        printed.contains("probe_120deg_s.tdms: a NI TDMS file"),
+        "{printed}"
+    );
+    assert!(
+        printed.contains("probe_120deg_s.mat: a MATLAB file"),
+        "{printed}"
+    );
+}
