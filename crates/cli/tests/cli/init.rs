@@ -487,3 +487,52 @@ fn binary_files_are_named_with_what_is_missing() {
         "{printed}"
     );
 }
+
+#[test]
+fn seven_recordings_with_one_fault_give_one_grouped_message() {
+    // Seven files written with a decimal comma, a configuration that does not say so.
+    let tmp = Scratch::new("seven");
+    let mut files = String::new();
+    for k in 0..7 {
+        let name = format!("probe_{}deg_s.csv", 20 * (k + 1));
+        let mut text = String::from("time_s;gap_um;angle_deg\n");
+        for i in 0..50 {
+            text += &format!("0,{i:03};1,5;{}\n", i * 3);
+        }
+        std::fs::write(tmp.0.join(&name), text).unwrap();
+        files += &format!("(rate_deg_s: {}.0, file: {name:?}), ", 20 * (k + 1));
+    }
+    let config = tmp.0.join("study.ron");
+    std::fs::write(
+        &config,
+        format!(
+            "(name: \"seven\", radius_m: 2.5, g_m_s2: 9.8, k1_rad_s_g: 0.56,
+              lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0),
+              phases: [(name: \"spindle\", points: recordings((format: (delimiter: ';'), files: [{files}])))])"
+        ),
+    )
+    .unwrap();
+    let out = cli(&["check", config.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert!(printed.contains("7 problems (1 distinct)"), "{printed}");
+    assert_eq!(printed.matches("cannot parse").count(), 1, "{printed}");
+    assert!(
+        printed.contains(
+            "the same in 7 files: probe_20deg_s.csv, probe_40deg_s.csv, probe_60deg_s.csv, \
+             probe_80deg_s.csv, probe_100deg_s.csv, probe_120deg_s.csv, probe_140deg_s.csv"
+        ),
+        "{printed}"
+    );
+    // The study reports them the same way.
+    let study = cli(&[
+        "study",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        tmp.0.join("out").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&study.stderr);
+    assert!(err.contains("7 problems (1 distinct)"), "{err}");
+    assert!(err.contains("the same in 7 files"), "{err}");
+}
