@@ -77,16 +77,30 @@ fn simulate_into(dir: &Path) {
     );
 }
 
-/// The campaign's six recordings (simulated once per test process).
+/// The campaign's six recordings (simulated once per test process, in a scratch folder
+/// removed when the process ends its last use).
 fn simulated() -> Vec<Simulated> {
-    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
-    let dir = DIR.get_or_init(|| {
-        let dir = std::env::temp_dir().join(format!("cli-init-sim-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        simulate_into(&dir);
-        dir.join("sim")
-    });
+    static SIMULATED: std::sync::OnceLock<Vec<(f64, Vec<(f64, f64, f64)>)>> =
+        std::sync::OnceLock::new();
+    SIMULATED
+        .get_or_init(|| {
+            let scratch = Scratch::new("simulated");
+            simulate_into(&scratch.0);
+            read_simulated(&scratch.0.join("sim"))
+                .into_iter()
+                .map(|s| (s.rate, s.rows))
+                .collect()
+        })
+        .iter()
+        .map(|(rate, rows)| Simulated {
+            rate: *rate,
+            rows: rows.clone(),
+        })
+        .collect()
+}
+
+/// The probe recordings `simulate` wrote into `dir`.
+fn read_simulated(dir: &Path) -> Vec<Simulated> {
     let mut out = Vec::new();
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
