@@ -37,6 +37,7 @@ impl Drop for Scratch {
 }
 
 /// One simulated recording: its declared rate and samples (time s, gap µm, angle deg).
+#[derive(Clone)]
 struct Simulated {
     rate: f64,
     rows: Vec<(f64, f64, f64)>,
@@ -78,25 +79,16 @@ fn simulate_into(dir: &Path) {
 }
 
 /// The campaign's six recordings (simulated once per test process, in a scratch folder
-/// removed when the process ends its last use).
+/// removed after use).
 fn simulated() -> Vec<Simulated> {
-    static SIMULATED: std::sync::OnceLock<Vec<(f64, Vec<(f64, f64, f64)>)>> =
-        std::sync::OnceLock::new();
+    static SIMULATED: std::sync::OnceLock<Vec<Simulated>> = std::sync::OnceLock::new();
     SIMULATED
         .get_or_init(|| {
             let scratch = Scratch::new("simulated");
             simulate_into(&scratch.0);
             read_simulated(&scratch.0.join("sim"))
-                .into_iter()
-                .map(|s| (s.rate, s.rows))
-                .collect()
         })
-        .iter()
-        .map(|(rate, rows)| Simulated {
-            rate: *rate,
-            rows: rows.clone(),
-        })
-        .collect()
+        .clone()
 }
 
 /// The probe recordings `simulate` wrote into `dir`.
