@@ -13,6 +13,10 @@
 //!   [`label_offset_limit`].
 //! - [`measurement_inputs`]: the model's input quantities for a fit (the Type B inputs and
 //!   the fit's coefficients as one correlated Type A group).
+//! - [`fit_symmetric`] and [`evaluate_symmetric`]: the two-orientation (IA in / IA out)
+//!   calibration of issue 20 (`docs/theory.md` section 11, eq. 23): one joint fit of both
+//!   mountings giving k2 and the total radius growth C = C_r + C_a from the PIGA alone, its
+//!   [`SymmetricModel`] evaluated by the GUM and Monte Carlo, and `C − C_r` against a probe.
 //!
 //! Nothing here reads files, knows the study's configuration or writes results.
 //!
@@ -25,12 +29,19 @@ mod fit;
 mod limits;
 mod model;
 mod quantities;
+mod symmetric;
 mod vif;
 
 pub use fit::{Fitted, Weighting, compensation, fit};
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
 pub use quantities::{CrInput, K1Input, TypeB, measurement_inputs};
+pub use symmetric::{
+    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION, MountingFit, Orientation,
+    OrientationData, ProbeCr, SYMMETRIC_OUTPUTS, SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS,
+    SymmetricError, SymmetricEvaluation, SymmetricFit, SymmetricModel, SymmetricWarning, Z_LIMIT,
+    evaluate_symmetric, fit_symmetric, symmetric_inputs, symmetric_row,
+};
 pub use vif::{VIF_LIMIT, variance_inflation};
 
 /// Number of coefficients of the eq. 18 design.

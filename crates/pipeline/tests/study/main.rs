@@ -12,6 +12,7 @@ mod mechanism;
 mod paper;
 mod recordings;
 mod scenarios;
+mod symmetric;
 
 use std::path::{Path, PathBuf};
 
