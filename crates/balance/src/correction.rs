@@ -1,7 +1,7 @@
 //! The correction mass: by influence coefficient (trial weight) or by the stiffness model
 //! (eq. 1), and the residual it leaves (eq. 19).
 
-use crate::error::{BalanceError, Reason, Result, check, finite_result};
+use crate::error::{BalanceError, Result, finite_result};
 use crate::phasor::{Complex, Phasor, PhasorFit};
 
 /// Micrometres per metre.
@@ -128,36 +128,20 @@ pub struct StiffnessCorrection {
 }
 
 pub(crate) fn validate_plane(plane: &CorrectionPlane, field: &str) -> Result<()> {
-    check(
-        format!("{field}.radius_m"),
-        plane.radius_m,
-        Reason::Positive,
-    )?;
+    units::positive(format!("{field}.radius_m"), plane.radius_m)?;
     for (i, &a) in plane.fixed_azimuths_deg.iter().enumerate() {
-        check(
-            format!("{field}.fixed_azimuths_deg[{i}]"),
-            a,
-            Reason::Finite,
-        )?;
+        units::finite(format!("{field}.fixed_azimuths_deg[{i}]"), a)?;
     }
     Ok(())
 }
 
 pub(crate) fn validate_context(c: &CalibrationContext, field: &str) -> Result<()> {
-    check(
-        format!("{field}.k1_rad_s_g"),
-        c.k1_rad_s_g,
-        Reason::Positive,
-    )?;
-    check(format!("{field}.radius_m"), c.radius_m, Reason::Positive)?;
-    check(format!("{field}.g_m_s2"), c.g_m_s2, Reason::Positive)?;
-    check(
-        format!("{field}.top_rate_rad_s"),
-        c.top_rate_rad_s,
-        Reason::Positive,
-    )?;
+    units::positive(format!("{field}.k1_rad_s_g"), c.k1_rad_s_g)?;
+    units::positive(format!("{field}.radius_m"), c.radius_m)?;
+    units::positive(format!("{field}.g_m_s2"), c.g_m_s2)?;
+    units::positive(format!("{field}.top_rate_rad_s"), c.top_rate_rad_s)?;
     if let Some(m) = c.rotor_mass_kg {
-        check(format!("{field}.rotor_mass_kg"), m, Reason::Positive)?;
+        units::positive(format!("{field}.rotor_mass_kg"), m)?;
     }
     Ok(())
 }
@@ -209,21 +193,9 @@ pub fn influence_correction(
     fields: &Fields<'_>,
 ) -> Result<InfluenceCorrection> {
     let tm = fields.trial_mass;
-    check(
-        format!("{tm}.mass_kg"),
-        trial_mass.mass_kg,
-        Reason::Positive,
-    )?;
-    check(
-        format!("{tm}.radius_m"),
-        trial_mass.radius_m,
-        Reason::Positive,
-    )?;
-    check(
-        format!("{tm}.azimuth_deg"),
-        trial_mass.azimuth_deg,
-        Reason::Finite,
-    )?;
+    units::positive(format!("{tm}.mass_kg"), trial_mass.mass_kg)?;
+    units::positive(format!("{tm}.radius_m"), trial_mass.radius_m)?;
+    units::finite(format!("{tm}.azimuth_deg"), trial_mass.azimuth_deg)?;
     validate_plane(plane, fields.plane)?;
     validate_context(context, fields.context)?;
 
@@ -311,7 +283,7 @@ pub fn stiffness_correction(
     context: &CalibrationContext,
     fields: &Fields<'_>,
 ) -> Result<StiffnessCorrection> {
-    check(stiffness_field, radial_stiffness_n_m, Reason::Positive)?;
+    units::positive(stiffness_field, radial_stiffness_n_m)?;
     validate_plane(plane, fields.plane)?;
     validate_context(context, fields.context)?;
     let d0 = initial.dynamic_piga_um_s2;
@@ -503,14 +475,10 @@ pub fn radius_change_advice(
     plane: &CorrectionPlane,
     context: &CalibrationContext,
 ) -> Result<RadiusChangeAdvice> {
-    check("change_um", change_um, Reason::Finite)?;
-    check("from_rate_rad_s", from_rate_rad_s, Reason::NonNegative)?;
-    check("to_rate_rad_s", to_rate_rad_s, Reason::Positive)?;
-    check(
-        "radial_stiffness_n_m",
-        radial_stiffness_n_m,
-        Reason::Positive,
-    )?;
+    units::finite("change_um", change_um)?;
+    units::non_negative("from_rate_rad_s", from_rate_rad_s)?;
+    units::positive("to_rate_rad_s", to_rate_rad_s)?;
+    units::positive("radial_stiffness_n_m", radial_stiffness_n_m)?;
     validate_plane(plane, "correction")?;
     validate_context(context, "calibration")?;
     let dw2 = to_rate_rad_s * to_rate_rad_s - from_rate_rad_s * from_rate_rad_s;
@@ -518,7 +486,7 @@ pub fn radius_change_advice(
         return Err(BalanceError::InvalidField {
             field: "to_rate_rad_s".to_owned(),
             value: to_rate_rad_s,
-            reason: Reason::Positive,
+            requirement: units::Requirement::Positive,
         });
     }
     let c_r_m_s2 = change_um / UM_PER_M / dw2;

@@ -9,14 +9,22 @@ pub type Result<T> = std::result::Result<T, BalanceError>;
 #[non_exhaustive]
 pub enum BalanceError {
     /// A number outside its domain.
-    #[error("{field} = {value}: {reason}")]
+    #[error("{field} = {}: {requirement}", units::Compact(*value))]
     InvalidField {
         /// Path of the field.
         field: String,
         /// The value given.
         value: f64,
         /// What the field must be.
-        reason: Reason,
+        requirement: Requirement,
+    },
+    /// The two probe planes at the same height: the axis through them is not determined.
+    #[error("{field} = {}: must differ from the other plane's height", units::Compact(*value))]
+    SameHeight {
+        /// Path of the second plane's height.
+        field: String,
+        /// The height given, m.
+        value: f64,
     },
     /// A phase with fewer rates than the phasor fit needs.
     #[error("{field}: {got} rates, the static/dynamic phasor fit needs at least {need}")]
@@ -87,45 +95,26 @@ pub enum BalanceError {
     },
 }
 
-/// What a field must be.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Reason {
-    /// Finite.
-    Finite,
-    /// Finite and strictly positive.
-    Positive,
-    /// Finite and not negative.
-    NonNegative,
-    /// Finite and different from the other plane's height (two planes).
-    DistinctHeight,
-}
+/// What a field must be: the workspace's one requirement vocabulary.
+pub use units::Requirement;
 
-impl std::fmt::Display for Reason {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Self::Finite => "must be finite",
-            Self::Positive => "must be finite and > 0",
-            Self::NonNegative => "must be finite and >= 0",
-            Self::DistinctHeight => "must be finite and differ from the other plane's height",
-        })
+impl From<units::Unmet<String>> for BalanceError {
+    fn from(u: units::Unmet<String>) -> Self {
+        Self::InvalidField {
+            field: u.field,
+            value: u.value,
+            requirement: u.requirement,
+        }
     }
 }
 
-pub(crate) fn check(field: impl Into<String>, value: f64, reason: Reason) -> Result<f64> {
-    let ok = match reason {
-        Reason::Finite | Reason::DistinctHeight => value.is_finite(),
-        Reason::Positive => value.is_finite() && value > 0.0,
-        Reason::NonNegative => value.is_finite() && value >= 0.0,
-    };
-    if ok {
-        Ok(value)
-    } else {
-        Err(BalanceError::InvalidField {
-            field: field.into(),
-            value,
-            reason,
-        })
+impl From<units::Unmet<&str>> for BalanceError {
+    fn from(u: units::Unmet<&str>) -> Self {
+        Self::InvalidField {
+            field: u.field.to_owned(),
+            value: u.value,
+            requirement: u.requirement,
+        }
     }
 }
 

@@ -50,7 +50,7 @@ pub use correction::{
     InfluenceCorrection, Prediction, RadiusChangeAdvice, StiffnessCorrection, TrialMass,
     influence_correction, radius_change_advice, stiffness_correction,
 };
-pub use error::{BalanceError, Reason, Result};
+pub use error::{BalanceError, Requirement, Result};
 pub use phasor::{LackOfFit, MIN_RATES, Phasor, PhasorFit, ProbePhase, ProbePoint, fit_phasors};
 pub use two_plane::{
     AxisMotion, AxisPoint, HeightPlane, PhasorPair, ProbePlane, StaticCouple, Stiffness,

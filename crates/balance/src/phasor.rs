@@ -4,7 +4,7 @@ use harmonics::{LeverGeometry, ProbeDirection};
 use identify::{Design, LstsqOptions, lstsq_design};
 use nalgebra::DMatrix;
 
-use crate::error::{BalanceError, Reason, Result, check, finite_result};
+use crate::error::{BalanceError, Result, finite_result};
 
 /// A vector in the spindle's horizontal plane, `x` along `O2X2` (the arm towards the PIGA),
 /// `y` along `O2Y2`, with the 2×2 covariance of its components. Read as the complex number
@@ -318,11 +318,11 @@ pub fn fit_phasors(phase: &ProbePhase<'_>) -> Result<PhasorFit> {
         })?;
     for (i, p) in points.iter().enumerate() {
         let at = |name: &str| format!("{field}.points[{i}].{name}");
-        check(at("rate_rad_s"), p.rate_rad_s, Reason::Positive)?;
-        check(at("dc1_um"), p.dc1_um, Reason::Finite)?;
-        check(at("ds1_um"), p.ds1_um, Reason::Finite)?;
+        units::positive(at("rate_rad_s"), p.rate_rad_s)?;
+        units::finite(at("dc1_um"), p.dc1_um)?;
+        units::finite(at("ds1_um"), p.ds1_um)?;
         if let Some(s) = p.sigma_um {
-            check(at("sigma_um"), s, Reason::Positive)?;
+            units::positive(at("sigma_um"), s)?;
         }
         if points[..i].iter().any(|q| q.rate_rad_s == p.rate_rad_s) {
             return Err(BalanceError::DuplicateRate {

@@ -14,7 +14,7 @@ use crate::correction::{
     CalibrationContext, Correction, CorrectionPlane, Prediction, TrialMass, correction_from,
     predict_unbalance, validate_context, validate_plane,
 };
-use crate::error::{BalanceError, Reason, Result, check, finite_result};
+use crate::error::{BalanceError, Result, finite_result};
 use crate::phasor::{Complex, Phasor, PhasorFit};
 
 /// Micrometres per metre.
@@ -188,15 +188,14 @@ pub fn axis_motion(
     second: &ProbePlane<'_>,
     field: &str,
 ) -> Result<AxisMotion> {
-    check("first_probe.height_m", first.height_m, Reason::Finite)?;
-    check(format!("{field}.height_m"), second.height_m, Reason::Finite)?;
+    units::finite("first_probe.height_m", first.height_m)?;
+    units::finite(format!("{field}.height_m"), second.height_m)?;
     let (z1, z2) = (first.height_m, second.height_m);
     let dz = z1 - z2;
     if dz == 0.0 {
-        return Err(BalanceError::InvalidField {
+        return Err(BalanceError::SameHeight {
             field: format!("{field}.height_m"),
             value: z2,
-            reason: Reason::DistinctHeight,
         });
     }
     // (T, L) = M·(p₁, p₂), heights in m, phasors in µm: L in µm/m = µrad
@@ -270,15 +269,13 @@ pub fn static_couple(
     stiffness: &Stiffness,
     field: &str,
 ) -> Result<StaticCouple> {
-    check(
+    units::positive(
         format!("{field}.radial_stiffness_n_m"),
         stiffness.radial_n_m,
-        Reason::Positive,
     )?;
-    check(
+    units::positive(
         format!("{field}.angular_stiffness_n_m_rad"),
         stiffness.angular_n_m_rad,
-        Reason::Positive,
     )?;
     let out = StaticCouple {
         static_kg_m: motion.dynamic.a.scaled(stiffness.radial_n_m / UM_PER_M),
@@ -362,14 +359,13 @@ impl Default for TwoPlaneFields<'_> {
 
 fn validate_planes(planes: &[HeightPlane; 2], fields: &TwoPlaneFields<'_>) -> Result<()> {
     for (p, f) in planes.iter().zip(fields.planes) {
-        check(format!("{f}.height_m"), p.height_m, Reason::Finite)?;
+        units::finite(format!("{f}.height_m"), p.height_m)?;
         validate_plane(&p.plane, f)?;
     }
     if planes[0].height_m == planes[1].height_m {
-        return Err(BalanceError::InvalidField {
+        return Err(BalanceError::SameHeight {
             field: format!("{}.height_m", fields.planes[1]),
             value: planes[1].height_m,
-            reason: Reason::DistinctHeight,
         });
     }
     Ok(())
@@ -495,9 +491,9 @@ pub fn two_plane_influence_correction(
     fields: &TwoPlaneFields<'_>,
 ) -> Result<TwoPlaneCorrection> {
     for (m, f) in trial_masses.iter().zip(fields.trial_masses) {
-        check(format!("{f}.mass_kg"), m.mass_kg, Reason::Positive)?;
-        check(format!("{f}.radius_m"), m.radius_m, Reason::Positive)?;
-        check(format!("{f}.azimuth_deg"), m.azimuth_deg, Reason::Finite)?;
+        units::positive(format!("{f}.mass_kg"), m.mass_kg)?;
+        units::positive(format!("{f}.radius_m"), m.radius_m)?;
+        units::finite(format!("{f}.azimuth_deg"), m.azimuth_deg)?;
     }
     validate_planes(planes, fields)?;
     validate_context(context, fields.context)?;

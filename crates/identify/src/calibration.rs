@@ -5,7 +5,7 @@ use crate::design::{Design, power};
 use crate::error::{IdentifyError, Requirement, Result};
 use crate::geometry::Geometry;
 use crate::lstsq::{Fit, LstsqOptions, lstsq_design_unchecked};
-use crate::radius::{CrEstimate, PseudoSecondOrder, finite, pseudo_second_order, result_finite};
+use crate::radius::{CrEstimate, PseudoSecondOrder, pseudo_second_order, result_finite};
 
 /// Least number of distinct rates for the six-column design of eq. 18.
 pub const MIN_DISTINCT_RATES: usize = 6;
@@ -218,9 +218,12 @@ fn calibrate(
         // The a² and a³ columns are scaled by (R/g)² and (R/g)³: out of range, the design
         // would hold ∞ or a column of zeros (reported as a rank deficiency).
         return Err(IdentifyError::InvalidParameter {
-            name: "radius_m",
-            value: geometry.radius_m,
-            requirement: Requirement::RadiusOverGravityInRange,
+            name: "radius_m / g_m_s2",
+            value: k,
+            requirement: Requirement::InRange {
+                min: 1e-102,
+                max: 1e102,
+            },
         });
     }
     let design = calibration_design(rate_rad_s, geometry)?;
@@ -469,7 +472,7 @@ fn compensate(
 ) -> Result<CompensatedCalibration> {
     compensation.c_r.validate()?;
     if let K1Source::Given { k1_rad_s_g } = compensation.k1 {
-        finite("k1_rad_s_g", k1_rad_s_g)?;
+        units::finite("k1_rad_s_g", k1_rad_s_g)?;
     }
     let uncompensated = calibrate(rate_rad_s, output_rad_s, sigma_rad_s, geometry)?;
     let k1 = match compensation.k1 {

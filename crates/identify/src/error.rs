@@ -53,7 +53,7 @@ pub enum IdentifyError {
         expected: usize,
     },
     /// A scalar parameter is out of its domain (e.g. a non-positive radius).
-    #[error("invalid parameter {name} = {}: must be {requirement}", units::Compact(*value))]
+    #[error("invalid parameter {name} = {}: {requirement}", units::Compact(*value))]
     InvalidParameter {
         /// Name of the parameter, as in the function signature or the parameter struct.
         name: &'static str,
@@ -69,15 +69,6 @@ pub enum IdentifyError {
         distinct: usize,
         /// Distinct rates needed.
         need: usize,
-    },
-    /// An NIST StRD file does not have the expected layout (see [`crate::strd`]).
-    #[cfg(feature = "strd")]
-    #[error("StRD file{}: expected {expected}", match line { Some(l) => format!(", line {l}"), None => String::new() })]
-    StrdFormat {
-        /// 1-based line at fault, or `None` when something is missing from the whole file.
-        line: Option<usize>,
-        /// What was expected.
-        expected: crate::strd::Expected,
     },
     /// A result that is not finite (NaN or ±∞) although every input was: the inputs named
     /// take it out of the range of double precision.
@@ -98,34 +89,17 @@ pub enum IdentifyError {
     },
 }
 
-/// What a scalar parameter must satisfy ([`IdentifyError::InvalidParameter`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Requirement {
-    /// A finite number.
-    Finite,
-    /// A finite number greater than 0.
-    Positive,
-    /// A finite number, 0 or more.
-    NonNegative,
-    /// A finite number in `[0, 1)`.
-    UnitInterval,
-    /// A radius such that `radius_m / g_m_s2` lies within 1e-102 … 1e102, so that the eq. 18
-    /// design's `(R/g)³` is a normal double.
-    RadiusOverGravityInRange,
-}
+/// What a scalar parameter must satisfy ([`IdentifyError::InvalidParameter`]): the workspace's
+/// one requirement vocabulary.
+pub use units::Requirement;
 
-impl core::fmt::Display for Requirement {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(match self {
-            Self::Finite => "finite",
-            Self::Positive => "finite and > 0",
-            Self::NonNegative => "finite and ≥ 0",
-            Self::UnitInterval => "finite and in [0, 1)",
-            Self::RadiusOverGravityInRange => {
-                "such that radius_m / g_m_s2 lies within 1e-102 … 1e102 ((R/g)³ a normal double)"
-            }
-        })
+impl From<units::Unmet<&'static str>> for IdentifyError {
+    fn from(u: units::Unmet<&'static str>) -> Self {
+        Self::InvalidParameter {
+            name: u.field,
+            value: u.value,
+            requirement: u.requirement,
+        }
     }
 }
 

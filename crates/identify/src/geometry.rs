@@ -1,7 +1,6 @@
 //! The centrifuge geometry that turns rates into inputs in g.
 
 use crate::error::Result;
-use crate::radius::positive;
 
 /// Working radius and gravity: the two numbers that turn a spindle rate ω into the nominal
 /// input `a = R·ω²/g` (eq. 17–19).
@@ -28,8 +27,9 @@ impl Geometry {
     /// # Errors
     /// [`crate::IdentifyError::InvalidParameter`] naming `radius_m` or `g_m_s2`.
     pub fn validate(&self) -> Result<()> {
-        positive("radius_m", self.radius_m)?;
-        positive("g_m_s2", self.g_m_s2)
+        units::positive("radius_m", self.radius_m)?;
+        units::positive("g_m_s2", self.g_m_s2)?;
+        Ok(())
     }
 
     /// The nominal input `a = R·ω²/g` at `rate_rad_s`, in g.

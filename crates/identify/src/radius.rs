@@ -2,7 +2,7 @@
 
 use nalgebra::DMatrix;
 
-use crate::error::{IdentifyError, Requirement, Result};
+use crate::error::{IdentifyError, Result};
 use crate::geometry::Geometry;
 use crate::lstsq::{Fit, lstsq};
 
@@ -143,7 +143,7 @@ pub fn fit_radius_error_weighted(
         });
     }
     for &sigma in sigma_m {
-        positive("sigma_m", sigma)?;
+        units::positive("sigma_m", sigma)?;
     }
     fit(rate_rad_s, radius_error_m, Some(sigma_m), model)
 }
@@ -229,8 +229,9 @@ impl CrEstimate {
     /// # Errors
     /// [`IdentifyError::InvalidParameter`] naming `c_r_m_s2` or `c_r_sigma_m_s2`.
     pub fn validate(&self) -> Result<()> {
-        finite("c_r_m_s2", self.c_r_m_s2)?;
-        non_negative("c_r_sigma_m_s2", self.c_r_sigma_m_s2)
+        units::finite("c_r_m_s2", self.c_r_m_s2)?;
+        units::non_negative("c_r_sigma_m_s2", self.c_r_sigma_m_s2)?;
+        Ok(())
     }
 }
 
@@ -272,7 +273,7 @@ pub fn pseudo_second_order(
     c_r: CrEstimate,
     geometry: Geometry,
 ) -> Result<PseudoSecondOrder> {
-    finite("k1_rad_s_g", k1_rad_s_g)?;
+    units::finite("k1_rad_s_g", k1_rad_s_g)?;
     c_r.validate()?;
     geometry.validate()?;
     let Geometry { radius_m, g_m_s2 } = geometry;
@@ -307,42 +308,6 @@ pub(crate) fn result_finite(
             quantity,
             value,
             inputs: inputs.to_vec(),
-        })
-    }
-}
-
-pub(crate) fn finite(name: &'static str, value: f64) -> Result<()> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(IdentifyError::InvalidParameter {
-            name,
-            value,
-            requirement: Requirement::Finite,
-        })
-    }
-}
-
-pub(crate) fn positive(name: &'static str, value: f64) -> Result<()> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(IdentifyError::InvalidParameter {
-            name,
-            value,
-            requirement: Requirement::Positive,
-        })
-    }
-}
-
-pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<()> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(())
-    } else {
-        Err(IdentifyError::InvalidParameter {
-            name,
-            value,
-            requirement: Requirement::NonNegative,
         })
     }
 }

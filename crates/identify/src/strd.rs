@@ -18,7 +18,7 @@
 
 use crate::dd::Dd;
 use crate::design::{Design, power};
-use crate::error::{IdentifyError, Result};
+use crate::error::Result;
 use crate::lstsq::{Fit, LstsqOptions, lstsq_design};
 
 /// LREs are capped here: NIST certifies 15 significant digits.
@@ -105,7 +105,7 @@ pub struct Accuracy {
     pub fit: Fit,
 }
 
-/// What an StRD file lacks or holds malformed ([`IdentifyError::StrdFormat`]).
+/// What an StRD file lacks or holds malformed ([`StrdError`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Expected {
@@ -160,15 +160,26 @@ impl core::fmt::Display for Expected {
     }
 }
 
-fn format_error(line: usize, expected: Expected) -> IdentifyError {
-    IdentifyError::StrdFormat {
+/// An StRD file that does not have the expected layout: the parser's own error, apart from
+/// the solver's [`IdentifyError`](crate::IdentifyError) (a file is not a least-squares problem).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("StRD file{}: expected {expected}", match line { Some(l) => format!(", line {l}"), None => String::new() })]
+pub struct StrdError {
+    /// 1-based line at fault, or `None` when something is missing from the whole file.
+    pub line: Option<usize>,
+    /// What was expected.
+    pub expected: Expected,
+}
+
+fn format_error(line: usize, expected: Expected) -> StrdError {
+    StrdError {
         line: Some(line),
         expected,
     }
 }
 
-fn missing(expected: Expected) -> IdentifyError {
-    IdentifyError::StrdFormat {
+fn missing(expected: Expected) -> StrdError {
+    StrdError {
         line: None,
         expected,
     }
@@ -188,9 +199,8 @@ fn line_range(line: &str) -> Option<(usize, usize)> {
 /// Parses the text of an StRD linear-regression file.
 ///
 /// # Errors
-/// [`IdentifyError::StrdFormat`] naming the 1-based line (when one is at fault) and what was
-/// expected there.
-pub fn parse(text: &str) -> Result<Dataset> {
+/// [`StrdError`] naming the 1-based line (when one is at fault) and what was expected there.
+pub fn parse(text: &str) -> std::result::Result<Dataset, StrdError> {
     let lines: Vec<&str> = text.lines().collect();
     let name = lines
         .iter()
@@ -520,21 +530,18 @@ mod tests {
         let text = tiny().replace("   3   1", "   3   one");
         assert_eq!(
             parse(&text),
-            Err(IdentifyError::StrdFormat {
+            Err(StrdError {
                 line: Some(22),
                 expected: Expected::DataRow
             })
         );
         assert!(matches!(
             parse("nothing here"),
-            Err(IdentifyError::StrdFormat { line: None, .. })
+            Err(StrdError { line: None, .. })
         ));
         // A data block said to start on line 1 leaves no room for its `Data:` header.
         let text = tiny().replace("(lines 21 to 23)", "(lines 1 to 23)");
-        assert!(matches!(
-            parse(&text),
-            Err(IdentifyError::StrdFormat { line: None, .. })
-        ));
+        assert!(matches!(parse(&text), Err(StrdError { line: None, .. })));
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use core::f64::consts::PI;
 
-use crate::error::{Result, finite};
+use crate::error::Result;
 use crate::error_motion::SpindleOffsets;
 use crate::frames::{Ground, Piga, Sleeve, Spindle, Transform};
 use crate::homogeneous::{Axis, Homogeneous};
@@ -10,6 +10,7 @@ use crate::inputs::PigaInputs;
 use crate::jet::{Jet, Scalar};
 use crate::quadrature::RevolutionQuadrature;
 use crate::site::{Centrifuge, Site};
+use units::finite;
 
 /// Highest harmonic of the spindle angle `ωt` in every component of [`PigaInputs`] for the
 /// chain of eq. 5 with constant error motion.

@@ -64,36 +64,24 @@ pub enum KinematicsError {
 /// `Result` with this crate's [`KinematicsError`].
 pub type Result<T> = core::result::Result<T, KinematicsError>;
 
-/// Checks that `value` is finite.
-pub(crate) fn finite(field: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(KinematicsError::NonFinite { field, value })
-    }
-}
-
-/// Checks that `value` is finite and strictly positive.
-pub(crate) fn positive(field: &'static str, value: f64) -> Result<f64> {
-    finite(field, value)?;
-    if value > 0.0 {
-        Ok(value)
-    } else {
-        Err(KinematicsError::NotPositive { field, value })
-    }
-}
-
-/// Checks that `value` is finite and lies in `[min, max]`.
-pub(crate) fn in_range(field: &'static str, value: f64, min: f64, max: f64) -> Result<f64> {
-    finite(field, value)?;
-    if (min..=max).contains(&value) {
-        Ok(value)
-    } else {
-        Err(KinematicsError::OutOfRange {
+impl From<units::Unmet<&'static str>> for KinematicsError {
+    /// The shared checks (`units::finite`, `units::positive`, `units::require`) in this crate's
+    /// words: a value that is not a number is `NonFinite` whatever was asked of it.
+    fn from(u: units::Unmet<&'static str>) -> Self {
+        let units::Unmet {
             field,
             value,
-            min,
-            max,
-        })
+            requirement,
+        } = u;
+        match requirement {
+            _ if !value.is_finite() => Self::NonFinite { field, value },
+            units::Requirement::InRange { min, max } => Self::OutOfRange {
+                field,
+                value,
+                min,
+                max,
+            },
+            _ => Self::NotPositive { field, value },
+        }
     }
 }

@@ -1,6 +1,7 @@
 //! Spindle error motion: static and dynamic (∝ ω²) first-harmonic drift and tilt (eq. 1–7, 16).
 
-use crate::error::{Result, finite, positive};
+use crate::error::Result;
+use units::{finite, positive};
 
 /// The spindle error motion of eq. 5 and 16 as coefficients in the spindle frame `O2`.
 ///

@@ -1,7 +1,8 @@
 //! The laboratory: latitude, Earth rate, gravity; and the centrifuge description.
 
-use crate::error::{Result, finite, in_range, positive};
+use crate::error::Result;
 use crate::error_motion::ErrorMotion;
+use units::{finite, positive};
 
 /// Earth's sidereal rotation rate (WGS 84 / IERS value), rad/s. A convenience default for
 /// [`Site::earth_rate_rad_s`]; the chain itself always takes the rate as an input.
@@ -51,7 +52,14 @@ impl Site {
     /// [`crate::KinematicsError::NotPositive`] for gravity, [`crate::KinematicsError::NonFinite`]
     /// for a non-finite Earth rate.
     pub fn validate(&self) -> Result<()> {
-        in_range("latitude_deg", self.latitude_deg, -90.0, 90.0)?;
+        units::require(
+            "latitude_deg",
+            self.latitude_deg,
+            units::Requirement::InRange {
+                min: -90.0,
+                max: 90.0,
+            },
+        )?;
         finite("earth_rate_rad_s", self.earth_rate_rad_s)?;
         positive("gravity_m_s2", self.gravity_m_s2)?;
         Ok(())

@@ -859,15 +859,10 @@ pub fn piga_table(
         .collect())
 }
 
-/// An independent random stream per (seed, purpose, key).
+/// An independent random stream per (seed, purpose, key): the workspace's one seeding
+/// convention, [`units::stream_seed`].
 fn stream(seed: u64, purpose: u64, key: u64) -> StdRng {
-    // SplitMix64 finaliser over the three numbers: distinct inputs give unrelated seeds.
-    let mut z = seed
-        ^ purpose.wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ key.wrapping_mul(0xD1B5_4A32_D192_ED03);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    StdRng::seed_from_u64(z ^ (z >> 31))
+    StdRng::seed_from_u64(units::stream_seed(seed, purpose, key))
 }
 
 /// The spindle-axis point at the PIGA plane (the `O2` origin) in the sleeve frame at spindle

@@ -1,6 +1,6 @@
 //! The crate's error types: [`UncertaintyError`] for the engine, [`ModelError`] for a model.
 
-use crate::input::{Distribution, Dof};
+use crate::kind::{Distribution, Dof};
 
 /// Why a measurement model could not be evaluated at one point.
 ///
@@ -260,14 +260,26 @@ pub enum UncertaintyError {
         max_trials: u64,
     },
     /// An option is out of its domain.
-    #[error("option {name} = {value} is invalid: {requirement}")]
+    #[error("option {name} = {} is invalid: {requirement}", units::Compact(*value))]
     InvalidOption {
         /// The option's field name.
         name: &'static str,
         /// The value given.
         value: f64,
-        /// What it must satisfy.
-        requirement: &'static str,
+        /// What it must satisfy (the workspace's one requirement vocabulary).
+        requirement: units::Requirement,
+    },
+    /// Student's t quantile at this probability and so few degrees of freedom is beyond the
+    /// range of double precision.
+    #[error(
+        "the t quantile at probability {} with {dof} degrees of freedom is beyond the range of double precision",
+        units::Compact(*probability)
+    )]
+    QuantileOverflow {
+        /// The probability asked for.
+        probability: f64,
+        /// The degrees of freedom.
+        dof: Dof,
     },
     /// A GUM result and a Monte Carlo result to be compared do not describe the same outputs.
     #[error("GUM output {index} is {gum:?} but Monte Carlo output {index} is {mc:?}")]

@@ -2,7 +2,8 @@
 //! Welch–Satterthwaite formula (G.4) and the expanded uncertainty (§6, G.3).
 
 use crate::error::{ModelError, Result, UncertaintyError};
-use crate::input::{Dof, Inputs};
+use crate::input::Inputs;
+use crate::kind::Dof;
 use crate::model::{MeasurementModel, checked_output_names};
 use crate::student::coverage_factor;
 
@@ -137,7 +138,7 @@ pub fn gum<M: MeasurementModel + ?Sized>(
         return Err(UncertaintyError::InvalidOption {
             name: "coverage_probability",
             value: p,
-            requirement: "must lie strictly between 0 and 1",
+            requirement: units::Requirement::OpenUnitInterval,
         });
     }
     let names = checked_output_names(model, inputs.len())?;

@@ -1,59 +1,7 @@
 //! Input quantities and their validated set, with correlations.
 
 use crate::error::{Result, UncertaintyError};
-
-/// Degrees of freedom of a standard uncertainty (JCGM 100 G.3, G.4).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Dof {
-    /// Finite degrees of freedom, ν > 0 (e.g. `n − 1` for the mean of `n` observations).
-    Finite(f64),
-    /// Infinite degrees of freedom: the standard uncertainty is known exactly.
-    Infinite,
-}
-
-impl Dof {
-    /// The number, `None` for infinity.
-    pub fn finite(self) -> Option<f64> {
-        match self {
-            Dof::Finite(nu) => Some(nu),
-            Dof::Infinite => None,
-        }
-    }
-}
-
-impl std::fmt::Display for Dof {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Dof::Finite(nu) => write!(f, "{nu}"),
-            Dof::Infinite => f.write_str("∞"),
-        }
-    }
-}
-
-/// How a standard uncertainty was evaluated (JCGM 100 §4.2, §4.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Evaluation {
-    /// Statistical analysis of a series of observations.
-    TypeA,
-    /// Any other means (certificates, specifications, judgement).
-    TypeB,
-}
-
-/// The probability distribution a Monte Carlo trial draws an input from (JCGM 101 §6.4).
-///
-/// In every case `standard_uncertainty` is the standard uncertainty `u(x)` of the input; the
-/// distribution's parameters follow from it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Distribution {
-    /// Gaussian `N(x, u²)` (§6.4.7).
-    Normal,
-    /// Rectangular on `[x − √3·u, x + √3·u]` (§6.4.2).
-    Rectangular,
-    /// Scaled and shifted t: `x + u·t_ν` with ν the input's (finite) degrees of freedom
-    /// (§6.4.9: a Type A evaluation from `n` observations, `u = s/√n`, ν = `n − 1`). Its
-    /// standard deviation is `u·√(ν/(ν−2))`, larger than `u`, and infinite for ν ≤ 2.
-    StudentT,
-}
+use crate::kind::{Distribution, Dof, Evaluation};
 
 /// One input quantity `X_i` of a measurement model: its estimate, standard uncertainty,
 /// degrees of freedom, evaluation type and, for the Monte Carlo method, its distribution.

@@ -68,6 +68,7 @@
 mod error;
 mod gum;
 mod input;
+mod kind;
 mod model;
 mod monte_carlo;
 mod student;
@@ -76,7 +77,8 @@ mod validate;
 
 pub use error::{ModelError, Result, Statistic, UncertaintyError};
 pub use gum::{Contribution, DofRounding, GumOptions, GumOutput, GumResult, gum};
-pub use input::{Distribution, Dof, Evaluation, InputQuantity, Inputs};
+pub use input::{InputQuantity, Inputs};
+pub use kind::{Distribution, Dof, Evaluation};
 pub use model::{FnModel, MeasurementModel, model_fn};
 pub use monte_carlo::{McOptions, McOutput, McResult, Stability, Trials, monte_carlo};
 pub use student::{coverage_factor, student_t_quantile};

@@ -7,9 +7,11 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 
 use crate::error::{ModelError, Result, Statistic, UncertaintyError};
-use crate::input::{Distribution, Dof, Inputs};
+use crate::input::Inputs;
+use crate::kind::{Distribution, Dof};
 use crate::model::{MeasurementModel, checked_output_names};
 use crate::tolerance::numerical_tolerance;
+use units::Requirement;
 
 /// How many trials to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -366,16 +368,11 @@ fn draws(inputs: &Inputs) -> Result<Vec<Draw>> {
     Ok(out)
 }
 
-/// An independent random stream per (seed, batch, chunk): a SplitMix64 finaliser over the
-/// three numbers gives unrelated seeds, which `seed_from_u64` expands into the generator's
+/// An independent random stream per (seed, batch, chunk): the workspace's one seeding
+/// convention ([`units::stream_seed`]), which `seed_from_u64` expands into the generator's
 /// 256-bit state by SplitMix64 again.
 fn stream(seed: u64, batch: u64, chunk: u64) -> McRng {
-    let mut z = seed
-        ^ batch.wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ chunk.wrapping_mul(0xD1B5_4A32_D192_ED03);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    McRng::seed_from_u64(z ^ (z >> 31))
+    McRng::seed_from_u64(units::stream_seed(seed, batch, chunk))
 }
 
 /// The failures of one chunk: how many, and the first (trial index in the batch, error).
@@ -748,28 +745,43 @@ fn check_options(options: &McOptions, batch_size: u64) -> Result<()> {
     };
     let p = options.coverage_probability;
     if !(p > 0.0 && p <= MAX_COVERAGE_PROBABILITY) {
+        // batches of up to 10^6 trials
         return invalid(
             "coverage_probability",
             p,
-            "must lie in (0, 0.9999] for the Monte Carlo method (batches of up to 10^6 trials)",
+            Requirement::AboveAtMost {
+                min: 0.0,
+                max: MAX_COVERAGE_PROBABILITY,
+            },
         );
     }
     let f = options.max_failed_fraction;
     if !(0.0..=0.5).contains(&f) {
-        return invalid("max_failed_fraction", f, "must lie in [0, 0.5]");
+        return invalid(
+            "max_failed_fraction",
+            f,
+            Requirement::InRange { min: 0.0, max: 0.5 },
+        );
     }
     if options.n_dig == 0 || options.n_dig > 6 {
-        return invalid("n_dig", options.n_dig as f64, "must be 1 to 6");
+        return invalid(
+            "n_dig",
+            options.n_dig as f64,
+            Requirement::InRange { min: 1.0, max: 6.0 },
+        );
     }
     match options.trials {
         Trials::Adaptive { max_trials } if max_trials < 2 * batch_size => invalid(
             "max_trials",
             max_trials as f64,
-            "must allow two batches of max(100/(1 - p), 10^4) trials",
+            // two batches of max(100/(1 - p), 10^4) trials
+            Requirement::AtLeast((2 * batch_size) as f64),
         ),
-        Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 => {
-            invalid("trials", n as f64, "must be at least 100/(1 - p)")
-        }
+        Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 => invalid(
+            "trials",
+            n as f64,
+            Requirement::AtLeast((100.0 / (1.0 - p)).ceil()),
+        ),
         _ => Ok(()),
     }
 }

@@ -13,7 +13,8 @@
 //! (unit tests below).
 
 use crate::error::{Result, UncertaintyError};
-use crate::input::Dof;
+use crate::kind::Dof;
+use units::Requirement;
 
 /// Above this many degrees of freedom the quantile comes from the Cornish–Fisher expansion.
 const EXPANSION_DOF: f64 = 1e5;
@@ -30,7 +31,7 @@ pub fn student_t_quantile(probability: f64, dof: Dof) -> Result<f64> {
         return Err(UncertaintyError::InvalidOption {
             name: "probability",
             value: probability,
-            requirement: "must lie strictly between 0 and 1",
+            requirement: Requirement::OpenUnitInterval,
         });
     }
     if let Dof::Finite(nu) = dof
@@ -39,7 +40,7 @@ pub fn student_t_quantile(probability: f64, dof: Dof) -> Result<f64> {
         return Err(UncertaintyError::InvalidOption {
             name: "dof",
             value: nu,
-            requirement: "must be finite and positive (Dof::Infinite for ∞)",
+            requirement: Requirement::Positive,
         });
     }
     if probability == 0.5 {
@@ -59,14 +60,7 @@ pub fn student_t_quantile(probability: f64, dof: Dof) -> Result<f64> {
     if t.is_finite() {
         Ok(sign * t)
     } else {
-        Err(UncertaintyError::InvalidOption {
-            name: "dof",
-            value: match dof {
-                Dof::Finite(nu) => nu,
-                Dof::Infinite => f64::INFINITY,
-            },
-            requirement: "gives a t quantile beyond the range of f64",
-        })
+        Err(UncertaintyError::QuantileOverflow { probability, dof })
     }
 }
 
@@ -77,7 +71,7 @@ pub fn coverage_factor(coverage_probability: f64, dof: Dof) -> Result<f64> {
         return Err(UncertaintyError::InvalidOption {
             name: "coverage_probability",
             value: coverage_probability,
-            requirement: "must lie strictly between 0 and 1",
+            requirement: Requirement::OpenUnitInterval,
         });
     }
     student_t_quantile(0.5 + 0.5 * coverage_probability, dof)
@@ -463,7 +457,7 @@ mod tests {
         ));
         assert!(matches!(
             student_t_quantile(0.975, Dof::Finite(1e-4)),
-            Err(UncertaintyError::InvalidOption { name: "dof", .. })
+            Err(UncertaintyError::QuantileOverflow { .. })
         ));
     }
 }

@@ -1,7 +1,7 @@
 //! Bad input is a typed error naming the field.
 
 use balance::{
-    BalanceError, Fields, ProbePhase, ProbePoint, Reason, TrialMass, fit_phasors,
+    BalanceError, Fields, ProbePhase, ProbePoint, Requirement, TrialMass, fit_phasors,
     influence_correction,
 };
 use harmonics::{LeverGeometry, ProbeDirection};
@@ -79,7 +79,7 @@ fn a_trial_mass_of_zero_names_the_field() {
         BalanceError::InvalidField {
             field: "balance.trial_mass.mass_kg".to_owned(),
             value: 0.0,
-            reason: Reason::Positive,
+            requirement: Requirement::Positive,
         }
     );
 }

@@ -271,7 +271,7 @@ fn probes_at_one_height_name_the_second_probe() {
     };
     let err = axis_motion(&plane, &plane, "balance.second_probe").unwrap_err();
     assert!(
-        matches!(&err, balance::BalanceError::InvalidField { field, .. } if field == "balance.second_probe.height_m"),
+        matches!(&err, balance::BalanceError::SameHeight { field, .. } if field == "balance.second_probe.height_m"),
         "{err}"
     );
 }
