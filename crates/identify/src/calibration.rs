@@ -217,12 +217,13 @@ fn calibrate(
     if !(k * k).is_normal() || !(k * k * k).is_normal() {
         // The a² and a³ columns are scaled by (R/g)² and (R/g)³: out of range, the design
         // would hold ∞ or a column of zeros (reported as a rank deficiency).
+        // (R/g)³ a normal double: R/g within 1e-102 … 1e102.
         return Err(IdentifyError::InvalidParameter {
-            name: "radius_m / g_m_s2",
-            value: k,
+            name: "radius_m",
+            value: geometry.radius_m,
             requirement: Requirement::InRange {
-                min: 1e-102,
-                max: 1e102,
+                min: 1e-102 * geometry.g_m_s2,
+                max: 1e102 * geometry.g_m_s2,
             },
         });
     }
