@@ -6,7 +6,9 @@ Reads every module file of every crate under ROOT (`crates/*/src`, `xtask/src`),
 paths it names inside the crate (`use crate::a::B`, `super::x`, `self::y`, and inline
 `crate::a::f()`), resolves each to the module that defines the item (following `pub use`
 re-exports), and looks for cycles in that graph. A parent's `mod child;` is not an import.
-Test modules (`#[cfg(test)] mod … { … }`) are left out: a test may look anywhere.
+Test modules (`#[cfg(test)] mod … { … }`) are left out: a test may look anywhere. The crate
+root's `pub use` lines are its table of contents, not imports (a module may use an item the
+root defines); every other `pub use` is an import of the module that holds it.
 
 usage: module_circles.py [--known CRATE,CRATE] [ROOT]
   exit 1 and print each circle, or print "no module circle". A circle in a crate named by
@@ -192,9 +194,12 @@ class Crate:
                 absolute = self.absolute(segs, base)
                 if absolute is None:
                     continue
-                self.uses[module].append((absolute, line))
                 if is_pub and base == module and absolute:
                     self.reexports[module][absolute[-1]] = absolute
+                    if module == ():
+                        # the crate root's `pub use` is its table of contents, not an import
+                        continue
+                self.uses[module].append((absolute, line))
 
     def absolute(self, segs, base):
         """Absolute segments of a crate-relative path, or None for another crate's path."""
