@@ -1,0 +1,52 @@
+"""Type stubs of the native module (Rust, PyO3); the public API is in __init__.py."""
+
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+VERSION: str
+
+class NativeRecording:
+    def arrays(self) -> dict[str, Any]: ...
+    def analyze(
+        self,
+        rate_rad_s: float,
+        order: int,
+        drift: bool,
+        revolutions: int | None,
+        probe_along: bool,
+    ) -> dict[str, Any]: ...
+
+def fit_harmonics(
+    time_s: npt.NDArray[np.float64],
+    gap: npt.NDArray[np.float64],
+    angle_rad: npt.NDArray[np.float64] | None,
+    rate_rad_s: float,
+    start_angle_rad: float,
+    order: int,
+    drift: bool,
+    revolutions: int | None,
+    max_gap_intervals: float,
+    probe_along: bool,
+) -> dict[str, Any]: ...
+def read_recording(
+    path: str,
+    format_ron: str | None = None,
+    format_dict: dict[str, Any] | None = None,
+    group: str | None = None,
+    waveform_time: bool = False,
+) -> NativeRecording: ...
+def run_study_file(path: str) -> str: ...
+def run_study_dict(config: dict[str, Any], source: str, tables: dict[str, bytes]) -> str: ...
+def plan(ron_path: str | None = None, dict: dict[str, Any] | None = None) -> str: ...
+def fit_radius_error(
+    rate_rad_s: npt.NDArray[np.float64],
+    radius_error_m: npt.NDArray[np.float64],
+    sigma_m: npt.NDArray[np.float64] | None,
+    three_term: bool,
+) -> dict[str, Any]: ...
+def delta_k2(
+    k1_rad_s_g: float, c_r_m_s2: float, c_r_sigma_m_s2: float, radius_m: float, g_m_s2: float
+) -> tuple[float, float]: ...
+def cli_main(argv: list[str]) -> int: ...

@@ -1,0 +1,336 @@
+//! The per-revolution harmonic fit (eq. 20) on numpy arrays, and its results as plain
+//! Python values and numpy arrays.
+
+use std::f64::consts::{PI, TAU};
+use std::time::Instant;
+
+use harmonics::{
+    Coefficients, DeclaredRate, FitConfig, HarmonicAnalysis, ProbeDirection, ProbeSignal,
+    SpindleAngle,
+};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use recording::Diagnostic;
+
+use crate::errors::{self, Kind};
+
+/// A 1-D float64 array as a slice: borrowed when contiguous (the Python side makes it so),
+/// else copied.
+pub(crate) enum Samples<'a> {
+    Borrowed(&'a [f64]),
+    Owned(Vec<f64>),
+}
+
+impl Samples<'_> {
+    pub(crate) fn of<'a>(array: &'a PyReadonlyArray1<'_, f64>) -> Samples<'a> {
+        match array.as_slice() {
+            Ok(s) => Samples::Borrowed(s),
+            Err(_) => Samples::Owned(array.as_array().to_vec()),
+        }
+    }
+
+    pub(crate) fn get(&self) -> &[f64] {
+        match self {
+            Samples::Borrowed(s) => s,
+            Samples::Owned(v) => v,
+        }
+    }
+}
+
+/// `{l0, c, s, drift_per_s}` of a set of coefficients.
+pub(crate) fn coefficients<'py>(py: Python<'py>, c: &Coefficients) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("l0", c.l0)?;
+    d.set_item("c", c.c.clone())?;
+    d.set_item("s", c.s.clone())?;
+    d.set_item("drift_per_s", c.drift_per_s)?;
+    Ok(d)
+}
+
+/// The analysis as a dict: the statistics, the first harmonic, and the per-revolution
+/// values as numpy arrays (one row per revolution).
+pub(crate) fn analysis<'py>(
+    py: Python<'py>,
+    fit: &HarmonicAnalysis,
+    direction: ProbeDirection,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("order", fit.order)?;
+    d.set_item("drift", fit.drift)?;
+    d.set_item("revolutions_used", fit.revolutions_used())?;
+    d.set_item("revolutions_available", fit.revolutions_available)?;
+    d.set_item("nominal_interval_s", fit.nominal_interval_s)?;
+    d.set_item("mean", coefficients(py, &fit.mean)?)?;
+    d.set_item(
+        "std",
+        fit.std.as_ref().map(|c| coefficients(py, c)).transpose()?,
+    )?;
+    d.set_item(
+        "std_error",
+        fit.std_error
+            .as_ref()
+            .map(|c| coefficients(py, c))
+            .transpose()?,
+    )?;
+    match &fit.incomplete {
+        Some(i) => {
+            let inc = PyDict::new(py);
+            inc.set_item("first_sample", i.samples.start)?;
+            inc.set_item("samples", i.samples.len())?;
+            inc.set_item("turns", i.turns)?;
+            d.set_item("incomplete_revolution", inc)?;
+        }
+        None => d.set_item("incomplete_revolution", py.None())?,
+    }
+    let h = fit
+        .first_harmonic()
+        .map_err(|e| errors::from_error(py, Kind::Computation, &e))?;
+    let first = PyDict::new(py);
+    first.set_item("c1", h.c1)?;
+    first.set_item("s1", h.s1)?;
+    first.set_item("amplitude", h.amplitude())?;
+    first.set_item("beta_deg", direction.beta_rad(h).to_degrees())?;
+    first.set_item(
+        "probe_direction",
+        match direction {
+            ProbeDirection::AgainstO1X1 => "against_o1x1",
+            _ => "along_o1x1",
+        },
+    )?;
+    d.set_item("first_harmonic", first)?;
+
+    let revs = &fit.revolutions;
+    let k = revs.len();
+    let n = fit.order;
+    let per = PyDict::new(py);
+    let column =
+        |f: &dyn Fn(&harmonics::RevolutionFit) -> f64| -> Vec<f64> { revs.iter().map(f).collect() };
+    let matrix = |pick: &dyn Fn(&Coefficients) -> &[f64]| -> PyResult<Array2<f64>> {
+        let flat: Vec<f64> = revs
+            .iter()
+            .flat_map(|r| pick(&r.coefficients).iter().copied())
+            .collect();
+        Array2::from_shape_vec((k, n), flat)
+            .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
+    };
+    per.set_item(
+        "first_sample",
+        revs.iter()
+            .map(|r| r.first_sample as u64)
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    per.set_item(
+        "samples",
+        revs.iter()
+            .map(|r| r.samples as u64)
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    per.set_item("l0", column(&|r| r.coefficients.l0).into_pyarray(py))?;
+    per.set_item("c", matrix(&|c| &c.c)?.into_pyarray(py))?;
+    per.set_item("s", matrix(&|c| &c.s)?.into_pyarray(py))?;
+    per.set_item(
+        "drift_per_s",
+        if fit.drift {
+            Some(column(&|r| r.coefficients.drift_per_s.unwrap_or(f64::NAN)).into_pyarray(py))
+        } else {
+            None
+        },
+    )?;
+    per.set_item("residual_rms", column(&|r| r.residual_rms).into_pyarray(py))?;
+    per.set_item("condition", column(&|r| r.condition).into_pyarray(py))?;
+    d.set_item("per_revolution", per)?;
+    Ok(d)
+}
+
+/// `[{code, message}]` of a recording's diagnostics.
+pub(crate) fn warnings<'py>(
+    py: Python<'py>,
+    diagnostics: &[Diagnostic],
+) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for w in diagnostics {
+        let d = PyDict::new(py);
+        d.set_item("code", w.code())?;
+        d.set_item("message", w.to_string())?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// The encoder's mean rate over samples `from..=to` (unwrapped: a turn for each step
+/// beyond ±π), rad/s.
+fn encoder_rate(time_s: &[f64], angle: &[f64], from: usize, to: usize) -> Option<f64> {
+    let to = to.min(angle.len().checked_sub(1)?);
+    if to <= from {
+        return None;
+    }
+    let wraps: i64 = angle[from..=to]
+        .windows(2)
+        .map(|w| {
+            let d = w[1] - w[0];
+            i64::from(d < -PI) - i64::from(d > PI)
+        })
+        .sum();
+    let span = angle[to] - angle[from] + TAU * wraps as f64;
+    Some(span / (time_s[to] - time_s[from]))
+}
+
+/// What the Rust side of `fit_harmonics` computes, before it becomes Python values.
+struct ArrayFit {
+    analysis: HarmonicAnalysis,
+    measured_rate_rad_s: Option<f64>,
+    diagnostics: Vec<Diagnostic>,
+    seconds: f64,
+}
+
+/// Fit eq. 20 to each complete revolution of arrays (the GIL released meanwhile).
+#[allow(clippy::too_many_arguments)]
+#[pyfunction]
+#[pyo3(signature = (time_s, gap, angle_rad, rate_rad_s, start_angle_rad, order, drift, revolutions, max_gap_intervals, probe_along))]
+pub(crate) fn fit_harmonics<'py>(
+    py: Python<'py>,
+    time_s: PyReadonlyArray1<'py, f64>,
+    gap: PyReadonlyArray1<'py, f64>,
+    angle_rad: Option<PyReadonlyArray1<'py, f64>>,
+    rate_rad_s: f64,
+    start_angle_rad: f64,
+    order: usize,
+    drift: bool,
+    revolutions: Option<usize>,
+    max_gap_intervals: f64,
+    probe_along: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let t = Samples::of(&time_s);
+    let g = Samples::of(&gap);
+    let a = angle_rad.as_ref().map(Samples::of);
+    let (t, g, a) = (t.get(), g.get(), a.as_ref().map(Samples::get));
+    if g.len() != t.len() {
+        return Err(errors::input(
+            py,
+            "gap",
+            format!(
+                "gap has {} samples and time_s {}: one gap per time is needed",
+                g.len(),
+                t.len()
+            ),
+        ));
+    }
+    if let Some(a) = a
+        && a.len() != t.len()
+    {
+        return Err(errors::input(
+            py,
+            "angle_rad",
+            format!(
+                "angle_rad has {} samples and time_s {}: one angle per time is needed",
+                a.len(),
+                t.len()
+            ),
+        ));
+    }
+    let config = FitConfig {
+        order,
+        drift,
+        revolutions,
+        max_gap_intervals,
+    };
+    let outcome = py.detach(|| -> harmonics::Result<ArrayFit> {
+        let start = Instant::now();
+        let signal = ProbeSignal {
+            time_s: t,
+            gap: g,
+            angle: match a {
+                Some(a) => SpindleAngle::Encoder(a),
+                None => SpindleAngle::Rate {
+                    rate_rad_s,
+                    start_angle_rad,
+                },
+            },
+        };
+        if a.is_some() {
+            harmonics::check_encoder_rate(&signal, DeclaredRate::new(rate_rad_s))?;
+        }
+        let analysis = harmonics::analyze(&signal, &config)?;
+        let measured_rate_rad_s =
+            match (a, analysis.revolutions.first(), analysis.revolutions.last()) {
+                (Some(a), Some(first), Some(last)) => {
+                    encoder_rate(t, a, first.first_sample, last.first_sample + last.samples)
+                }
+                _ => None,
+            };
+        let mut diagnostics = Vec::new();
+        if a.is_none() {
+            diagnostics.push(Diagnostic::AngleFromRate {
+                unread_columns: Vec::new(),
+            });
+        }
+        if let Some(m) = measured_rate_rad_s
+            && (m / rate_rad_s - 1.0).abs() > recording::RATE_WARNING_TOLERANCE
+        {
+            diagnostics.push(Diagnostic::RateDiffers {
+                declared_rad_s: rate_rad_s,
+                measured_rad_s: m,
+            });
+        }
+        Ok(ArrayFit {
+            analysis,
+            measured_rate_rad_s,
+            diagnostics,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    });
+    let fit = outcome.map_err(|e| {
+        let kind = match e {
+            harmonics::HarmonicsError::IllConditioned { .. }
+            | harmonics::HarmonicsError::NonFiniteResult { .. } => Kind::Computation,
+            _ => Kind::Input,
+        };
+        let message = errors::chain_message(&e);
+        let mut located = errors::Located::of(&format!("{e:?}"), &message);
+        // the argument the error is about
+        located.field = match &e {
+            harmonics::HarmonicsError::NonFinite { column, .. }
+            | harmonics::HarmonicsError::LengthMismatch { column, .. } => Some(match *column {
+                "angle" => "angle_rad".to_owned(),
+                "time" => "time_s".to_owned(),
+                c => c.to_owned(),
+            }),
+            harmonics::HarmonicsError::TimeNotIncreasing { .. }
+            | harmonics::HarmonicsError::SampleGap { .. }
+            | harmonics::HarmonicsError::NonFiniteInterval { .. } => Some("time_s".to_owned()),
+            harmonics::HarmonicsError::AngleNotIncreasing { .. }
+            | harmonics::HarmonicsError::RateMismatch { .. } => Some("angle_rad".to_owned()),
+            harmonics::HarmonicsError::InvalidOrder { .. } => Some("order".to_owned()),
+            _ => located.field,
+        };
+        errors::raise(py, kind, message, located)
+    })?;
+    let direction = if probe_along {
+        ProbeDirection::AlongO1X1
+    } else {
+        ProbeDirection::AgainstO1X1
+    };
+    let d = analysis(py, &fit.analysis, direction)?;
+    d.set_item("samples", t.len())?;
+    d.set_item(
+        "angle_source",
+        if a.is_some() {
+            "encoder"
+        } else {
+            "declared_rate"
+        },
+    )?;
+    d.set_item("rate_deg_s", rate_rad_s.to_degrees())?;
+    d.set_item(
+        "measured_rate_deg_s",
+        fit.measured_rate_rad_s.map(f64::to_degrees),
+    )?;
+    d.set_item("dropped_revolutions", 0)?;
+    d.set_item("warnings", warnings(py, &fit.diagnostics)?)?;
+    d.set_item("rust_seconds", fit.seconds)?;
+    Ok(d)
+}
