@@ -518,7 +518,8 @@ const fn default_earth_rate() -> f64 {
 
 impl StudyConfig {
     /// Parses RON text into the file's data-transfer types, unvalidated; `path` only names the
-    /// source in errors. Optional sections are written without `Some(...)`.
+    /// source in errors, which name the configuration's own keys (`calibration.table`), never
+    /// a type of this crate. Optional sections are written without `Some(...)`.
     pub fn from_ron(text: &str, path: &Path) -> Result<Self> {
         edge_io::ron_options()
             .from_str(text)
@@ -526,15 +527,139 @@ impl StudyConfig {
                 path: path.to_owned(),
                 line: e.span.start.line,
                 column: e.span.start.col,
-                message: e.code.to_string(),
+                message: parse_message(&e.code),
             })
     }
 }
 
-/// A human name of a radius-error model.
-pub const fn model_name(model: RadiusModelName) -> &'static str {
-    match model {
-        RadiusModelName::TwoTerm => "a + C_r·ω²",
-        RadiusModelName::ThreeTerm => "a + b·ω + C_r·ω²",
+/// The configuration key a data-transfer type of the study file stands for, as a person
+/// writes it (`calibration.table`); `None` for the top level.
+fn config_key(type_name: &str) -> Option<&'static str> {
+    Some(match type_name {
+        "StudyConfig" => return None,
+        "LeverConfig" => "lever",
+        "ProbeDirectionName" => "lever.probe_direction (or balance.second_probe.probe_direction)",
+        "RadiusModelName" => "radius_model",
+        "PhaseConfig" => "phases[…]",
+        "Weighting" => "phases[…].weighting",
+        "Points" => "phases[…].points",
+        "HarmonicPoint" => "phases[…].points (first_harmonic)",
+        "RadiusPoint" => "phases[…].points (radius_error)",
+        "RecordingSet" => "phases[…].points (recordings)",
+        "RecordingPoint" => "phases[…].points.files[…] (or calibration.recordings.files[…])",
+        "FitSettings" => "phases[…].points.fit",
+        "MechanismConfig" => "mechanism",
+        "CalibrationConfig" => "calibration",
+        "PigaTableConfig" => "calibration.table",
+        "PigaRecordingSet" => "calibration.recordings",
+        "K1Config" => "calibration.k1",
+        "TrialsConfig" => "calibration.trials",
+        "UncertaintyConfig" => "uncertainty",
+        "BalanceConfig" => "balance",
+        "TrialMassConfig" => "balance.trial_mass (or balance.two_plane.trial_mass)",
+        "SecondProbeConfig" => "balance.second_probe",
+        "TwoPlaneConfig" => "balance.two_plane",
+        "CounterweightConfig" => "counterweight",
+        "RecordingFormat" | "PigaRecordingFormat" => "format",
+        _ => "this section",
+    })
+}
+
+/// `in `key``, or nothing at the top level.
+fn in_key(outer: Option<&String>) -> String {
+    match outer.and_then(|o| config_key(o)) {
+        Some(key) => format!(" in `{key}`"),
+        None if outer.is_none() => String::new(),
+        None => " at the top level".to_owned(),
+    }
+}
+
+/// `one of `a`, `b``.
+fn one_of(names: &[&str]) -> String {
+    match names {
+        [] => "none".to_owned(),
+        [one] => format!("`{one}`"),
+        _ => format!(
+            "one of {}",
+            names
+                .iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// The parser's error in the configuration's words: the keys it concerns, not the types
+/// that read them.
+fn parse_message(code: &ron::Error) -> String {
+    use ron::Error as E;
+    match code {
+        E::NoSuchStructField {
+            expected,
+            found,
+            outer,
+        } => format!(
+            "unknown field `{found}`{}; expected {}",
+            in_key(outer.as_ref()),
+            one_of(expected)
+        ),
+        E::MissingStructField { field, outer } => {
+            format!("missing field `{field}`{}", in_key(outer.as_ref()))
+        }
+        E::DuplicateStructField { field, outer } => {
+            format!("field `{field}` given twice{}", in_key(outer.as_ref()))
+        }
+        E::NoSuchEnumVariant {
+            expected,
+            found,
+            outer,
+        } => format!(
+            "unknown choice `{found}`{}; expected {}",
+            in_key(outer.as_ref()),
+            one_of(expected)
+        ),
+        E::ExpectedDifferentStructName { expected, found } => format!(
+            "`{found}(…)` where `{}` is expected: write the section as `(…)`",
+            config_key(expected).unwrap_or("the study")
+        ),
+        other => other.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn message(text: &str) -> String {
+        match StudyConfig::from_ron(text, Path::new("s.ron")) {
+            Err(PipelineError::Parse { message, .. }) => message,
+            other => panic!("expected a parse error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn parse_errors_name_the_configuration_keys_not_rust_types() {
+        let m = message(
+            "(name: \"x\", radius_m: 1.0, g_m_s2: 9.8, k1_rad_s_g: 1.0, lever: (pivot_to_probe_mm: 1.0, probe_to_piga_mm: 1.0), phases: [], uncertainty: (radius_u_mm: 1.0))",
+        );
+        assert!(
+            m.contains("`radius_u_mm`") && m.contains("in `uncertainty`"),
+            "{m}"
+        );
+        assert!(!m.contains("UncertaintyConfig"), "{m}");
+        let m = message(
+            "(name: \"x\", radius_m: 1.0, g_m_s2: 9.8, k1_rad_s_g: 1.0, lever: (pivot_to_probe_mm: 1.0, probe_to_piga_mm: 1.0), phases: [], calibration: (compensate_with: \"a\", table: (rate_column: \"r\", output_column: \"y\")))",
+        );
+        assert!(
+            m.contains("missing field `file` in `calibration.table`"),
+            "{m}"
+        );
+        assert!(!m.contains("PigaTableConfig"), "{m}");
+        let m = message(
+            "(name: \"x\", radius_m: 1.0, g_m_s2: 9.8, k1_rad_s_g: 1.0, lever: (pivot_to_probe_mm: 1.0, probe_to_piga_mm: 1.0), radius_model: four_term, phases: [])",
+        );
+        assert!(m.contains("`four_term` in `radius_model`"), "{m}");
+        assert!(!m.contains("RadiusModelName"), "{m}");
     }
 }

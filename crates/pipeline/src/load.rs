@@ -5,7 +5,8 @@ use std::path::Path;
 
 use crate::config::StudyConfig;
 use crate::error::Result;
-use crate::inputs::{DataSource, Inputs};
+use crate::inputs::DataSource;
+use crate::study::Inputs;
 
 /// The data files of a study, read from disk.
 #[derive(Debug, Clone, Copy, Default)]

@@ -117,7 +117,11 @@ impl DataSource for Texts {
 /// C_r, its σ and the warning codes.
 fn c_r(results: &StudyResults) -> (f64, f64, Vec<String>) {
     let fit = &results.phases[0].fit;
-    let codes = results.warnings.iter().map(|w| w.code.clone()).collect();
+    let codes = results
+        .warnings
+        .iter()
+        .map(|w| w.code.to_string())
+        .collect();
     (fit.c_r_m_s2, fit.c_r_sigma_m_s2.unwrap(), codes)
 }
 

@@ -170,7 +170,7 @@ fn inverse_variance_weighting_uses_each_recordings_standard_error() {
     let study = pipeline::parse_study(&text, &study_path()).unwrap();
     let results = pipeline::run(&study).unwrap();
     let fit = &results.phase("pre_balance").unwrap().fit;
-    assert_eq!(fit.weighting, pipeline::Weighting::InverseVariance);
+    assert_eq!(fit.weighting, pipeline::FitWeighting::InverseVariance);
     let chi = fit.reduced_chi.unwrap();
     assert!(chi > 0.1 && chi < 5.0, "√(χ²/dof) = {chi}");
     // The weighted C_r also recovers the scenario's 1.6e-6 (3σ of the probe noise).

@@ -1,26 +1,27 @@
-//! The balance section: the study's phases handed to the `balance` advisor, and its results
-//! in results.json's terms.
+//! The balance advisor's run on the phases' results, and its results in results.json's terms.
 
 use balance::{
-    AxisMotion, CalibrationContext, Correction, CorrectionPlane, Fields, HeightPlane, Phasor,
-    PhasorFit, Prediction, ProbePhase, ProbePlane, ProbePoint, Stiffness, TrialMass,
-    TwoPlaneCorrection, TwoPlaneFields, axis_motion, fit_phasors, influence_correction,
-    static_couple, stiffness_correction, two_plane_influence_correction,
-    two_plane_stiffness_correction,
+    AxisMotion, CalibrationContext, Correction, Fields, HeightPlane, Phasor, PhasorFit, Prediction,
+    ProbePhase, ProbePlane, ProbePoint, Stiffness, TwoPlaneCorrection, TwoPlaneFields, axis_motion,
+    fit_phasors, influence_correction, static_couple, stiffness_correction,
+    two_plane_influence_correction, two_plane_stiffness_correction,
 };
 use harmonics::LeverGeometry;
 
+use super::validate::{BalanceInputs, SecondProbeInputs};
+use crate::error::{PipelineError, Result};
+use crate::inputs::Core;
 use crate::results::{
-    BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,
-    DynamicPhasor, Influence, PhaseResults, PhasorResult, PlaneCorrection, PredictedResult,
-    SplitMass, StaticPhasor, StiffnessResult, TwoPlaneCorrectionResult, TwoPlaneResults,
+    BalancePhase, BalanceResults, CheckResult, CorrectionResult, DynamicPhasor, Influence,
+    PhaseResults, PhasorResult, PlaneCorrection, PredictedResult, SplitMass, StaticPhasor,
+    StiffnessResult, TwoPlaneCorrectionResult, TwoPlaneResults, Warning,
 };
 
 /// What one probe plane cannot separate, stated in the results.
-pub(crate) const ONE_PLANE: &str = "one probe plane: the first-harmonic motion is taken as a cone about the tilt pivot (eq. 22), so translation and tilt, static and couple unbalance, are not separated; the correction is a single-plane one";
+const ONE_PLANE: &str = "one probe plane: the first-harmonic motion is taken as a cone about the tilt pivot (eq. 22), so translation and tilt, static and couple unbalance, are not separated; the correction is a single-plane one";
 
 /// What two probe planes separate, stated in the results.
-pub(crate) const TWO_PLANES: &str = "two probe planes: the first-harmonic motion is the spindle axis as a line, translation at the PIGA plane plus tilt times height (eq. 5), with no cone assumption (`two_plane`); `static`, `dynamic`, `correction` and `predicted` are the first probe's single-plane reading through the cone of eq. 22, kept for comparison";
+const TWO_PLANES: &str = "two probe planes: the first-harmonic motion is the spindle axis as a line, translation at the PIGA plane plus tilt times height (eq. 5), with no cone assumption (`two_plane`); `static`, `dynamic`, `correction` and `predicted` are the first probe's single-plane reading through the cone of eq. 22, kept for comparison";
 
 type Failure = (String, balance::BalanceError);
 
@@ -32,8 +33,8 @@ fn two_planes(
     phases: &[PhaseResults],
     s: &Setting,
     context: &CalibrationContext,
-    fit_with: &dyn Fn(usize, LeverGeometry) -> Result<PhasorFit, Failure>,
-) -> Result<TwoPlaneResults, Failure> {
+    fit_with: &dyn Fn(usize, LeverGeometry) -> std::result::Result<PhasorFit, Failure>,
+) -> std::result::Result<TwoPlaneResults, Failure> {
     // The second probe's fits use only their probe-plane phasors: a lever of ratio 1.
     let second_lever = LeverGeometry {
         pivot_to_probe_mm: 1.0,
@@ -42,7 +43,7 @@ fn two_planes(
     };
     let heights_m = [-s.lever.probe_to_piga_mm * 1e-3, -q.probe_to_piga_mm * 1e-3];
     let field = "balance.second_probe";
-    let motion = |i: usize| -> Result<AxisMotion, Failure> {
+    let motion = |i: usize| -> std::result::Result<AxisMotion, Failure> {
         let f1 = fit_with(i, s.lever)?;
         let j = q.phase_of[&i];
         let f2 = fit_with(j, second_lever)?;
@@ -200,80 +201,44 @@ fn phasor_result(p: &Phasor) -> PhasorResult {
     }
 }
 
-/// The validated balance section.
-#[derive(Debug, Clone)]
-pub(crate) struct BalanceInputs {
-    /// Index of the initial phase.
-    pub(crate) initial: usize,
-    /// Index of the trial phase and its trial mass.
-    pub(crate) trial: Option<(usize, TrialMass)>,
-    pub(crate) radial_stiffness_n_m: Option<f64>,
-    pub(crate) plane: CorrectionPlane,
-    pub(crate) rotor_mass_kg: Option<f64>,
-    /// Index of the check phase.
-    pub(crate) check: Option<usize>,
-    /// The second probe, when there is one.
-    pub(crate) second: Option<SecondProbeInputs>,
-    pub(crate) angular_stiffness_n_m_rad: Option<f64>,
-    /// The two-plane correction, when configured (with a second probe).
-    pub(crate) two_plane: Option<TwoPlaneInputs>,
-}
-
-/// The validated second probe.
-#[derive(Debug, Clone)]
-pub(crate) struct SecondProbeInputs {
-    pub(crate) probe_to_piga_mm: f64,
-    pub(crate) probe_direction: harmonics::ProbeDirection,
-    /// Phase index (first probe) → phase index of the same run seen by the second probe.
-    pub(crate) phase_of: std::collections::HashMap<usize, usize>,
-}
-
-/// The validated two-plane section.
-#[derive(Debug, Clone)]
-pub(crate) struct TwoPlaneInputs {
-    /// Planes A and B.
-    pub(crate) planes: [balance::HeightPlane; 2],
-    /// The trial run in plane B and its mass.
-    pub(crate) trial: Option<(usize, TrialMass)>,
-}
-
 /// The study's numbers the advisor needs.
-pub(crate) struct Setting {
-    pub(crate) lever: LeverGeometry,
-    pub(crate) lever_ratio: f64,
-    pub(crate) k1_rad_s_g: f64,
-    pub(crate) radius_m: f64,
-    pub(crate) g_m_s2: f64,
+struct Setting {
+    lever: LeverGeometry,
+    lever_ratio: f64,
+    k1_rad_s_g: f64,
+    radius_m: f64,
+    g_m_s2: f64,
 }
 
 /// Runs the advisor on the phases' results. Errors carry the field they name.
-pub(crate) fn run(
+fn advise(
     b: &BalanceInputs,
     phases: &[PhaseResults],
     s: &Setting,
-) -> Result<BalanceResults, (String, balance::BalanceError)> {
-    let fit_with =
-        |i: usize, lever: LeverGeometry| -> Result<PhasorFit, (String, balance::BalanceError)> {
-            let points: Vec<ProbePoint> = phases[i]
-                .points
-                .iter()
-                .filter_map(|p| {
-                    Some(ProbePoint {
-                        rate_rad_s: p.rate_rad_s,
-                        dc1_um: p.dc1_um?,
-                        ds1_um: p.ds1_um?,
-                        sigma_um: p.radius_error_sigma_um.map(|r| r / s.lever_ratio),
-                    })
+) -> std::result::Result<BalanceResults, (String, balance::BalanceError)> {
+    let fit_with = |i: usize,
+                    lever: LeverGeometry|
+     -> std::result::Result<PhasorFit, (String, balance::BalanceError)> {
+        let points: Vec<ProbePoint> = phases[i]
+            .points
+            .iter()
+            .filter_map(|p| {
+                Some(ProbePoint {
+                    rate_rad_s: p.rate_rad_s,
+                    dc1_um: p.dc1_um?,
+                    ds1_um: p.ds1_um?,
+                    sigma_um: p.radius_error_sigma_um.map(|r| r / s.lever_ratio),
                 })
-                .collect();
-            let field = format!("phases[{i}]");
-            fit_phasors(&ProbePhase {
-                field: &field,
-                points: &points,
-                lever,
             })
-            .map_err(|e| (field.clone(), e))
-        };
+            .collect();
+        let field = format!("phases[{i}]");
+        fit_phasors(&ProbePhase {
+            field: &field,
+            points: &points,
+            lever,
+        })
+        .map_err(|e| (field.clone(), e))
+    };
     let fit = |i: usize| fit_with(i, s.lever);
     let top_rate_rad_s = phases[b.initial]
         .points
@@ -482,87 +447,67 @@ fn predicted_result(p: &Prediction) -> PredictedResult {
     }
 }
 
-/// The validated counterweight section.
-#[derive(Debug, Clone)]
-pub(crate) struct CounterweightInputs {
-    /// Index of the `radius_change` phase.
-    pub(crate) phase: usize,
-    pub(crate) from_rate_deg_s: f64,
-    pub(crate) to_rate_deg_s: f64,
-    pub(crate) change_um: f64,
-    pub(crate) radial_stiffness_n_m: f64,
-    pub(crate) stiffness_source: String,
-    pub(crate) correction_radius_m: f64,
-}
-
-/// What one change of radius error determines, and what it does not (the paper check).
-pub(crate) fn counterweight(
-    c: &CounterweightInputs,
-    phase: &str,
-    k1_rad_s_g: f64,
-    radius_m: f64,
-    g_m_s2: f64,
-) -> Result<CounterweightResults, balance::BalanceError> {
-    let to_rate_rad_s = c.to_rate_deg_s.to_radians();
-    let plane = CorrectionPlane {
-        radius_m: c.correction_radius_m,
-        fixed_azimuths_deg: Vec::new(),
+/// Runs the balance section on the phases' results: the advisor, then its warnings — a
+/// correction known no better than its own size, and (two probes) a cone C_r that differs
+/// from the two probes' at the PIGA plane.
+pub(crate) fn run(
+    inputs: &Core,
+    b: &BalanceInputs,
+    phases: &[PhaseResults],
+) -> Result<(BalanceResults, Vec<Warning>)> {
+    let _span = tracing::info_span!("balance").entered();
+    let setting = Setting {
+        lever: inputs.lever,
+        lever_ratio: inputs.lever_ratio,
+        k1_rad_s_g: inputs.k1_rad_s_g,
+        radius_m: inputs.radius_m,
+        g_m_s2: inputs.g_m_s2,
     };
-    let context = CalibrationContext {
-        k1_rad_s_g,
-        radius_m,
-        g_m_s2,
-        top_rate_rad_s: to_rate_rad_s,
-        rotor_mass_kg: None,
-    };
-    let a = balance::radius_change_advice(
-        c.change_um,
-        c.from_rate_deg_s.to_radians(),
-        to_rate_rad_s,
-        c.radial_stiffness_n_m,
-        &plane,
-        &context,
-    )?;
-    let determined = vec![
-        format!(
-            "C_r = Δr/(ω₂² − ω₁²) = {:.4e} m·s², the O2X2 component of the dynamic phasor D at the PIGA plane, hence |D| ≥ |C_r| (equal if the imbalance lies on the arm's line)",
-            a.c_r_m_s2
-        ),
-        format!(
-            "Δk2 = k1·C_r·g/R² = {:.4e} rad/(s·g²) (eq. 19)",
-            a.delta_k2_rad_s_g2
-        ),
-        format!(
-            "with k_r = {:e} N/m (eq. 1): {:.4e} g·mm of unbalance per µm of radius change, so m·R_cm ≥ k_r·|C_r| = {:.4e} g·mm; on the arm's line that is {:.4} kg at {} m, at {}°",
-            c.radial_stiffness_n_m,
-            a.unbalance_per_um_g_mm,
-            a.unbalance_x_g_mm.abs(),
-            a.correction_mass_kg,
-            c.correction_radius_m,
-            a.correction_azimuth_deg
-        ),
-    ];
-    let not_determined = vec![
-        "the azimuth of the imbalance: one number along O2X2 says nothing of the O2Y2 component, so the counterweight's azimuth (and its mass, beyond the lower bound) needs a phase of first harmonics (d_c1, d_s1) at several rates".to_owned(),
-        "the split between static and dynamic parts: a difference of two rates cancels the static part and cannot test that the change is ∝ ω² (three rates or more give S + D·ω² and its lack of fit)".to_owned(),
-        "the plane: one probe cannot separate translation from tilt (static from couple unbalance), so neither the height at which the counterweight goes nor a two-plane correction follows (two probe planes do)".to_owned(),
-        "the stiffness itself: k_r is a study input, not a measurement; the mass scales with it".to_owned(),
-    ];
-    Ok(CounterweightResults {
-        phase: phase.to_owned(),
-        change_um: c.change_um,
-        from_rate_deg_s: c.from_rate_deg_s,
-        to_rate_deg_s: c.to_rate_deg_s,
-        radial_stiffness_n_m: c.radial_stiffness_n_m,
-        stiffness_source: c.stiffness_source.clone(),
-        c_r_m_s2: a.c_r_m_s2,
-        delta_k2_rad_s_g2: a.delta_k2_rad_s_g2,
-        unbalance_per_um_g_mm: a.unbalance_per_um_g_mm,
-        unbalance_x_g_mm: a.unbalance_x_g_mm,
-        correction_mass_kg: a.correction_mass_kg,
-        correction_radius_m: c.correction_radius_m,
-        correction_azimuth_deg: a.correction_azimuth_deg,
-        determined,
-        not_determined,
-    })
+    let results =
+        advise(b, phases, &setting).map_err(|(field, source)| PipelineError::Balance {
+            path: inputs.source.clone(),
+            field,
+            source: Box::new(source),
+        })?;
+    let mut warnings = Vec::new();
+    // A correction known to no better than its own size (a near-singular influence
+    // coefficient, trial runs that barely moved the spindle) is not a correction to mount.
+    let mut corrections: Vec<(String, &CorrectionResult)> =
+        vec![("balance.correction".to_owned(), &results.correction)];
+    if let Some(t) = &results.two_plane {
+        for (c, correction) in t.corrections.iter().enumerate() {
+            for (k, plane) in correction.planes.iter().enumerate() {
+                corrections.push((
+                    format!("balance.two_plane.corrections[{c}].planes[{k}]"),
+                    &plane.correction,
+                ));
+            }
+        }
+    }
+    for (location, c) in corrections {
+        if c.mass_u_kg >= c.mass_kg {
+            warnings.push(Warning::correction_uncertain(
+                c.mass_kg,
+                c.mass_u_kg,
+                location,
+            ));
+        }
+    }
+    // With two probes, the initial phase's C_r through the cone of eq. 22 beside the one
+    // both probes give at the PIGA plane: the phase's number is the one a calibration or a
+    // mechanism section would use.
+    if let Some(t) = results.two_plane.as_ref()
+        && let Some(phase) = phases.iter().find(|p| p.name == results.initial)
+    {
+        let cone = phase.fit.c_r_m_s2;
+        if (cone - t.c_r_m_s2).abs() > 3.0 * t.c_r_u_m_s2 {
+            warnings.push(Warning::cone_c_r(
+                &results.initial,
+                cone,
+                t.c_r_m_s2,
+                t.c_r_u_m_s2,
+            ));
+        }
+    }
+    Ok((results, warnings))
 }

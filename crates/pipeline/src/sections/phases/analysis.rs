@@ -10,8 +10,8 @@ use rayon::prelude::*;
 use recording::{AngleSourceKind, Recording, analyze_recording};
 use units::deg_s_to_rad_s;
 
+use super::validate::RecordingPhase;
 use crate::error::{PipelineError, Result};
-use crate::inputs::RecordingPhase;
 use crate::results::{ProbeTrace, Warning};
 
 /// What a study reports of progress, for a command line to show.
@@ -102,11 +102,7 @@ pub(crate) fn analyze(
                 warnings: result
                     .diagnostics
                     .iter()
-                    .map(|d| Warning {
-                        code: d.code().into(),
-                        message: d.to_string(),
-                        location: location.clone(),
-                    })
+                    .map(|d| Warning::recording(d, location.clone()))
                     .collect(),
                 trace: trace(
                     recording,

@@ -1,4 +1,4 @@
-//! The study's mechanism section: a PIGA calibration simulated through the exact kinematic
+//! The mechanism section's run: a PIGA calibration simulated through the exact kinematic
 //! chain with the C_r a phase measured, identified with and without compensation.
 //!
 //! The spindle is given the phase's static offset and dynamic coefficient
@@ -13,12 +13,14 @@ use kinematics::{Centrifuge, ErrorMotion, Site};
 use simulate::{OutputNoise, piga_table};
 use units::{deg_s_to_rad_s, um_to_m};
 
-use crate::inputs::Mechanism;
-use crate::results::MechanismPhase;
+use super::validate::Mechanism;
+use crate::error::{PipelineError, Result};
+use crate::inputs::Core;
+use crate::results::{MechanismPhase, MechanismResults, PhaseResults, PigaResult};
 
 /// What the mechanism needs of a phase's radius-error fit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct MeasuredDrift {
+struct MeasuredDrift {
     /// `C_r`, m·s².
     pub(crate) c_r_m_s2: f64,
     /// σ(C_r), m·s², when the fit has one.
@@ -29,18 +31,18 @@ pub(crate) struct MeasuredDrift {
 
 /// A failure inside one phase, located by the caller.
 #[derive(Debug)]
-pub(crate) enum PhaseFailure {
+enum PhaseFailure {
     Model(accel_model::AccelModelError),
     Identify(identify::IdentifyError),
 }
 
 /// Simulates and identifies one phase's calibration; `seed` draws the output noise.
-pub(crate) fn run_phase(
+fn run_phase(
     geometry: Geometry,
     mechanism: &Mechanism,
     drift: MeasuredDrift,
     seed: u64,
-) -> Result<MechanismPhase, PhaseFailure> {
+) -> std::result::Result<MechanismPhase, PhaseFailure> {
     let piga = &mechanism.piga;
     let centrifuge = Centrifuge {
         radius_m: geometry.radius_m,
@@ -90,4 +92,62 @@ pub(crate) fn run_phase(
         k2_error_compensated: cal.k2_rad_s_g2 - k2_true,
         condition_number: cal.uncompensated.fit.condition_number,
     })
+}
+
+/// Runs the mechanism section with the phases' radius-error fits `phases`.
+pub(crate) fn run(
+    inputs: &Core,
+    m: &Mechanism,
+    phases: &[PhaseResults],
+) -> Result<MechanismResults> {
+    let _span = tracing::info_span!("mechanism").entered();
+    let geometry = inputs.geometry();
+    let phase = |(n, &p): (usize, &usize)| {
+        let results: &PhaseResults = &phases[p];
+        let drift = MeasuredDrift {
+            c_r_m_s2: results.fit.c_r_m_s2,
+            c_r_sigma_m_s2: results.fit.c_r_sigma_m_s2,
+            offset_um: results.fit.offset_um,
+        };
+        // One noise stream per simulated phase: the seed, then seed + 1, ...
+        run_phase(geometry, m, drift, m.seed.wrapping_add(n as u64))
+            .map(|phase| MechanismPhase {
+                phase: results.name.clone(),
+                ..phase
+            })
+            .map_err(|e| locate(e, &inputs.source, &format!("mechanism.phases[{n}]")))
+    };
+    Ok(MechanismResults {
+        rates_deg_s: m.rates_deg_s.clone(),
+        piga: PigaResult {
+            k0_rad_s: m.piga.k0_rad_s,
+            k1_rad_s_g: m.piga.k1_rad_s_g,
+            k2_rad_s_g2: m.piga.k2_rad_s_g2,
+            k3_rad_s_g3: m.piga.k3_rad_s_g3,
+        },
+        latitude_deg: m.latitude_deg,
+        output_noise_rad_s: m.output_noise_rad_s,
+        phases: m
+            .phases
+            .iter()
+            .enumerate()
+            .map(phase)
+            .collect::<Result<Vec<_>>>()?,
+    })
+}
+
+/// A mechanism failure as a study error naming the configuration and the section.
+fn locate(failure: PhaseFailure, path: &std::path::Path, field: &str) -> PipelineError {
+    match failure {
+        PhaseFailure::Model(source) => PipelineError::AccelModel {
+            path: path.to_owned(),
+            field: field.to_owned(),
+            source,
+        },
+        PhaseFailure::Identify(source) => PipelineError::Identify {
+            path: path.to_owned(),
+            field: field.to_owned(),
+            source,
+        },
+    }
 }

@@ -1,0 +1,32 @@
+//! Types several sections' results share: an estimate with its uncertainty and degrees of
+//! freedom.
+
+use serde::{Deserialize, Serialize};
+
+/// Degrees of freedom of an uncertainty: a number, or `"infinite"` (Type B, or a combination
+/// dominated by Type B contributions) — never a JSON `null` standing for infinity.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum DegreesOfFreedom {
+    /// A finite number of degrees of freedom.
+    Finite(f64),
+    /// Infinitely many, written as the string `"infinite"`.
+    Infinite(InfiniteDof),
+}
+
+/// The marker `"infinite"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InfiniteDof {
+    /// Infinitely many degrees of freedom.
+    Infinite,
+}
+
+/// An estimate and its standard uncertainty.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    /// The value.
+    pub value: f64,
+    /// Its standard uncertainty.
+    pub u: f64,
+}

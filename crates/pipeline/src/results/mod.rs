@@ -1,0 +1,65 @@
+//! What a study produces; serialised as `results.json` (schema in `docs/RESULTS.md`).
+//!
+//! The output format, one file per section: it imports nothing of the configuration's format
+//! (`config`) nor of the sections that fill it, so the two formats can change apart.
+
+use serde::{Deserialize, Serialize};
+
+mod balance;
+mod calibration;
+mod common;
+mod mechanism;
+mod phases;
+mod warning;
+
+pub use balance::*;
+pub use calibration::*;
+pub use common::{DegreesOfFreedom, Estimate, InfiniteDof};
+pub use mechanism::*;
+pub use phases::*;
+pub use warning::{Warning, WarningCode};
+
+/// All results of a study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StudyResults {
+    /// Name of the study (from the configuration).
+    pub study: String,
+    /// The scalar inputs the results depend on, echoed for traceability.
+    pub inputs: StudyInputs,
+    /// Results of each phase, in the study's order.
+    pub phases: Vec<PhaseResults>,
+    /// The simulated calibration with and without compensation (when configured).
+    pub mechanism: Option<MechanismResults>,
+    /// The PIGA's calibration on measured data (when configured).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub calibration: Option<CalibrationResults>,
+    /// What may make a number wrong, in plain words, in the configuration's order.
+    #[serde(default)]
+    pub warnings: Vec<Warning>,
+    /// The balance advisor (when configured).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub balance: Option<BalanceResults>,
+    /// The counterweight a published change of radius error stands for (when configured).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub counterweight: Option<CounterweightResults>,
+}
+
+/// Scalar inputs of the study.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StudyInputs {
+    /// Working radius `R`, m.
+    pub radius_m: f64,
+    /// Gravity, m/s².
+    pub g_m_s2: f64,
+    /// PIGA scale factor, rad/(s·g).
+    pub k1_rad_s_g: f64,
+    /// Lever ratio from the probe plane to the PIGA plane.
+    pub lever_ratio: f64,
+}
+
+impl StudyResults {
+    /// The results of the phase of this name.
+    pub fn phase(&self, name: &str) -> Option<&PhaseResults> {
+        self.phases.iter().find(|p| p.name == name)
+    }
+}

@@ -1,0 +1,307 @@
+//! A diagnostic of results.json: the numbers were computed, but something may make them
+//! wrong. Every code is a [`WarningCode`] and every warning is built by one constructor per
+//! code, which holds its words.
+
+use serde::{Deserialize, Serialize};
+
+/// What a warning is about: a short stable code, `snake_case` in results.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum WarningCode {
+    /// A recording without an encoder or index pulse: its angle comes from the declared rate.
+    AngleFromRate,
+    /// A recording's measured mean rate differs from the declared one.
+    RateDiffers,
+    /// A recording's first harmonic varies from revolution to revolution beyond white noise.
+    RevolutionSpread,
+    /// A recording's mean gap drifts and the fit has no drift term.
+    DriftNotFitted,
+    /// Revolutions of a recording were dropped for gaps or non-finite samples.
+    DroppedRevolutions,
+    /// A raw PIGA recording's per-revolution outputs scatter beyond white noise.
+    OutputSpread,
+    /// Another diagnostic of a recording (one this version does not name).
+    Recording,
+    /// The radius-error residuals exceed their white-noise σ.
+    LackOfFit,
+    /// A phase holds the second probe's data, read through the first probe's lever.
+    SecondProbePhase,
+    /// The calibration's raw recordings have no scatter: the eq. 18 fit is unweighted.
+    CalibrationUnweighted,
+    /// The eq. 18 residuals exceed the points' standard uncertainties.
+    CalibrationLackOfFit,
+    /// The rows of one label sit apart from the fit.
+    LabelOffset,
+    /// Calibration rates lie outside the rates at which the compensating phase measured C_r.
+    RateOutsidePhase,
+    /// A balance correction's mass is known no better than its own size.
+    CorrectionUncertain,
+    /// One probe's C_r through the cone of eq. 22 differs from the two probes' at the PIGA
+    /// plane.
+    #[serde(rename = "cone_c_r")]
+    ConeCr,
+}
+
+impl WarningCode {
+    /// The code as results.json writes it (`lack_of_fit`): stable, for scripts and the report.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::AngleFromRate => "angle_from_rate",
+            Self::RateDiffers => "rate_differs",
+            Self::RevolutionSpread => "revolution_spread",
+            Self::DriftNotFitted => "drift_not_fitted",
+            Self::DroppedRevolutions => "dropped_revolutions",
+            Self::OutputSpread => "output_spread",
+            Self::Recording => "recording",
+            Self::LackOfFit => "lack_of_fit",
+            Self::SecondProbePhase => "second_probe_phase",
+            Self::CalibrationUnweighted => "calibration_unweighted",
+            Self::CalibrationLackOfFit => "calibration_lack_of_fit",
+            Self::LabelOffset => "label_offset",
+            Self::RateOutsidePhase => "rate_outside_phase",
+            Self::CorrectionUncertain => "correction_uncertain",
+            Self::ConeCr => "cone_c_r",
+        }
+    }
+
+    /// What the code means, in a few words.
+    #[must_use]
+    pub fn title(self) -> &'static str {
+        match self {
+            Self::AngleFromRate => "angle taken from the declared rate",
+            Self::RateDiffers => "measured rate differs from the declared one",
+            Self::RevolutionSpread => "first harmonic varies between revolutions",
+            Self::DriftNotFitted => "gap drifts, drift not fitted",
+            Self::DroppedRevolutions => "revolutions dropped",
+            Self::OutputSpread => "PIGA output varies between revolutions",
+            Self::Recording => "recording diagnostic",
+            Self::LackOfFit => "radius-error fit worse than the noise",
+            Self::SecondProbePhase => "phase read with the first probe's lever",
+            Self::CalibrationUnweighted => "calibration fit unweighted",
+            Self::CalibrationLackOfFit => "calibration fit worse than the points' σ",
+            Self::LabelOffset => "a label's rows sit apart",
+            Self::RateOutsidePhase => "calibration rate outside the compensating phase's rates",
+            Self::CorrectionUncertain => "correction mass uncertain",
+            Self::ConeCr => "cone C_r differs from the two-probe C_r",
+        }
+    }
+}
+
+/// The code as results.json writes it ([`WarningCode::as_str`]).
+impl std::fmt::Display for WarningCode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A code equals the text results.json holds for it (`code == "lack_of_fit"`).
+impl PartialEq<&str> for WarningCode {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
+/// A diagnostic: the numbers were computed, but something may make them wrong.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Warning {
+    /// What it is about.
+    pub code: WarningCode,
+    /// What was seen and what to do, in plain words.
+    pub message: String,
+    /// The configuration field, and the file when it concerns a recording.
+    #[serde(rename = "where")]
+    pub location: String,
+}
+
+impl std::fmt::Display for Warning {
+    /// `where: message`, as a person reads it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.location, self.message)
+    }
+}
+
+impl Warning {
+    /// A recording's diagnostic, at `location` (the field and the file).
+    #[must_use]
+    pub fn recording(d: &recording::Diagnostic, location: String) -> Self {
+        use recording::Diagnostic as D;
+        let code = match d {
+            D::AngleFromRate { .. } => WarningCode::AngleFromRate,
+            D::RateDiffers { .. } => WarningCode::RateDiffers,
+            D::RevolutionSpread { .. } => WarningCode::RevolutionSpread,
+            D::DriftNotFitted { .. } => WarningCode::DriftNotFitted,
+            D::DroppedRevolutions { .. } => WarningCode::DroppedRevolutions,
+            D::OutputSpread { .. } => WarningCode::OutputSpread,
+            _ => WarningCode::Recording,
+        };
+        Self {
+            code,
+            message: d.to_string(),
+            location,
+        }
+    }
+
+    /// `lack_of_fit`: the radius-error residuals are `ratio` × their white-noise σ
+    /// (`√(χ²/dof)`), in the phase `section`.
+    #[must_use]
+    pub fn lack_of_fit(ratio: f64, dof: usize, section: &str) -> Self {
+        Self {
+            code: WarningCode::LackOfFit,
+            message: format!(
+                "the radius-error residuals are {ratio:.1}× their white-noise σ (√(χ²/dof), {dof} \
+                 degrees of freedom): a + C_r·ω² does not describe the points within their \
+                 noise; look for drift (`drift: true`), a rate error or a pickup not synchronous \
+                 with the spindle (see the other warnings), or another `radius_model`. σ(C_r) \
+                 comes from the residuals and includes the scatter, not a bias"
+            ),
+            location: format!("{section}.points"),
+        }
+    }
+
+    /// `second_probe_phase`: phase `name` (at `key`) holds the second probe's data.
+    #[must_use]
+    pub fn second_probe_phase(name: &str, key: &str) -> Self {
+        Self {
+            code: WarningCode::SecondProbePhase,
+            message: format!(
+                "phase `{name}` holds the second probe's data: its radius-error fit here reads \
+                 it with the first probe's lever and direction, so its C_r and Δk2 are not \
+                 the PIGA plane's; `balance.two_plane` gives C_r at the PIGA plane from both \
+                 probes"
+            ),
+            location: key.to_owned(),
+        }
+    }
+
+    /// `calibration_unweighted`: a raw recording's mean output has no scatter.
+    #[must_use]
+    pub fn calibration_unweighted() -> Self {
+        Self {
+            code: WarningCode::CalibrationUnweighted,
+            message: "a recording's mean output has no scatter across revolutions \
+                      (noise-free data?): the eq. 18 fit is unweighted"
+                .into(),
+            location: "calibration.recordings".into(),
+        }
+    }
+
+    /// `calibration_lack_of_fit`: the eq. 18 residuals are `birge` × the points' σ.
+    #[must_use]
+    pub fn calibration_lack_of_fit(birge: f64, dof: usize) -> Self {
+        Self {
+            code: WarningCode::CalibrationLackOfFit,
+            message: format!(
+                "the eq. 18 residuals are {birge:.1}× the points' standard uncertainties \
+                 (√(χ²/ν), {dof} degrees of freedom): the points scatter more than their σ say — \
+                 run-to-run variation the within-run σ do not hold, an unmodelled term, or a \
+                 rate error. The coefficients' σ are enlarged by this ratio"
+            ),
+            location: "calibration".into(),
+        }
+    }
+
+    /// `label_offset`: the `rows` rows labelled `label` sit `z` standard uncertainties from
+    /// the fit on average (mean residual `mean_residual_rad_s`).
+    #[must_use]
+    pub fn label_offset(rows: usize, label: &str, z: f64, mean_residual_rad_s: f64) -> Self {
+        Self {
+            code: WarningCode::LabelOffset,
+            message: format!(
+                "the {rows} rows labelled `{label}` sit {z:+.1} standard uncertainties from the fit \
+                 on average (mean residual {mean_residual_rad_s:+.3e} rad/s, against the scatter \
+                 within the label): that repeat or orientation differs from the others (a bias, a \
+                 set-up change) and one eq. 18 model does not describe them all"
+            ),
+            location: "calibration.table".into(),
+        }
+    }
+
+    /// `rate_outside_phase`: calibration rates `outside` lie outside `low`–`high` deg/s, the
+    /// rates at which `phase` measured C_r.
+    #[must_use]
+    pub fn rate_outside_phase(outside: &[f64], low: f64, high: f64, phase: &str) -> Self {
+        Self {
+            code: WarningCode::RateOutsidePhase,
+            message: format!(
+                "{} calibration rate(s) ({}) lie outside {low}–{high} deg/s, the rates at which \
+                 phase `{phase}` measured C_r: there the compensation extrapolates C_r·ω², which \
+                 no probe measurement checks",
+                outside.len(),
+                outside
+                    .iter()
+                    .map(|r| format!("{r}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ),
+            location: "calibration".into(),
+        }
+    }
+
+    /// `correction_uncertain`: a correction of `mass_kg` with a standard uncertainty
+    /// `mass_u_kg` as large as itself, at `location`.
+    #[must_use]
+    pub fn correction_uncertain(mass_kg: f64, mass_u_kg: f64, location: String) -> Self {
+        Self {
+            code: WarningCode::CorrectionUncertain,
+            message: format!(
+                "the correction's mass {mass_kg:.4} kg has a standard uncertainty of \
+                 {mass_u_kg:.4} kg, as large as itself: the trial run(s) did not move the spindle \
+                 clearly enough (near-parallel or small responses) — use a larger trial mass, or \
+                 another trial azimuth or plane"
+            ),
+            location,
+        }
+    }
+
+    /// `cone_c_r`: phase `phase`'s C_r through the cone (`cone`) against both probes'
+    /// (`two_plane ± u`) at the PIGA plane.
+    #[must_use]
+    pub fn cone_c_r(phase: &str, cone: f64, two_plane: f64, u: f64) -> Self {
+        Self {
+            code: WarningCode::ConeCr,
+            message: format!(
+                "phase `{phase}`'s C_r read by one probe through the cone of eq. 22 is {cone:.4e} \
+                 m·s²; both probes give {two_plane:.4e} ± {u:.1e} m·s² at the PIGA plane: the \
+                 spindle does not move as a cone about the assumed pivot, and a calibration or \
+                 mechanism section that uses the phase's C_r is off by the difference"
+            ),
+            location: "balance.two_plane".into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_are_snake_case_in_json() {
+        let code = |c: WarningCode| serde_json::to_string(&c).unwrap();
+        assert_eq!(code(WarningCode::LackOfFit), "\"lack_of_fit\"");
+        assert_eq!(code(WarningCode::ConeCr), "\"cone_c_r\"");
+        assert_eq!(
+            code(WarningCode::CalibrationLackOfFit),
+            "\"calibration_lack_of_fit\""
+        );
+        let back: WarningCode = serde_json::from_str("\"rate_outside_phase\"").unwrap();
+        assert_eq!(back, WarningCode::RateOutsidePhase);
+    }
+
+    #[test]
+    fn display_has_no_rust_names() {
+        let w = Warning::second_probe_phase("after_b", "phases[2]");
+        let text = w.to_string();
+        assert!(text.starts_with("phases[2]: phase `after_b`"), "{text}");
+        // The code as a person sees it is the one results.json holds, never the Rust name.
+        for c in [
+            WarningCode::ConeCr,
+            WarningCode::LackOfFit,
+            WarningCode::AngleFromRate,
+        ] {
+            assert_eq!(format!("\"{c}\""), serde_json::to_string(&c).unwrap());
+            assert!(!c.title().is_empty());
+        }
+    }
+}

@@ -1,0 +1,292 @@
+//! The calibration's data: a PIGA table read as it is, or raw PIGA output recordings each
+//! reduced to its mean output over whole spindle revolutions; both become points.
+
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use recording::{TableColumn, TableFormat};
+
+use crate::config::{PigaRecordingSet, PigaTableConfig};
+use crate::error::{InvalidReason, PipelineError, Result};
+use crate::inputs::{Check, DataSource};
+use crate::results::{PigaRecordingResult, Warning};
+
+/// The PIGA's data: a table, or raw output recordings to reduce.
+#[derive(Debug, Clone)]
+pub(crate) enum PigaData {
+    Table(PigaTableRows),
+    Recordings {
+        /// Harmonics of the spindle angle removed per revolution.
+        order: usize,
+        files: Vec<LoadedPigaRecording>,
+    },
+}
+
+/// A PIGA table's rows, checked (rates > 0, σ > 0).
+#[derive(Debug, Clone)]
+pub(crate) struct PigaTableRows {
+    pub(crate) file: PathBuf,
+    pub(crate) rates_deg_s: Vec<f64>,
+    pub(crate) outputs_rad_s: Vec<f64>,
+    pub(crate) sigma_rad_s: Option<Vec<f64>>,
+    pub(crate) labels: Option<Vec<String>>,
+    /// The line of each row in the table file.
+    pub(crate) lines: Vec<usize>,
+}
+
+/// A raw PIGA output recording and the rate the study declares for it.
+#[derive(Debug, Clone)]
+pub(crate) struct LoadedPigaRecording {
+    pub(crate) rate_deg_s: f64,
+    pub(crate) file: PathBuf,
+    pub(crate) recording: recording::PigaRecording,
+}
+
+/// The calibration's points, whatever they came from: one per table row or recording.
+#[derive(Debug, Clone)]
+pub(crate) struct PigaPoints {
+    /// The rate of each point, deg/s (a recording's measured rate when it has an encoder).
+    pub(crate) rates_deg_s: Vec<f64>,
+    pub(crate) outputs_rad_s: Vec<f64>,
+    /// Each output's standard uncertainty, rad/s (a table's σ column, or a recording's
+    /// standard error across revolutions); `None`: unweighted.
+    pub(crate) sigma_rad_s: Option<Vec<f64>>,
+    pub(crate) labels: Option<Vec<String>>,
+    /// Where each point comes from.
+    pub(crate) origins: Vec<Origin>,
+    /// The table file, or `None` for recordings.
+    pub(crate) table: Option<PathBuf>,
+    /// Each recording's reduction (empty for a table).
+    pub(crate) recordings: Vec<PigaRecordingResult>,
+}
+
+/// Where a calibration point comes from.
+#[derive(Debug, Clone)]
+pub(crate) enum Origin {
+    /// A table row's line.
+    Line(usize),
+    /// A recording file.
+    File(PathBuf),
+}
+
+/// The calibration's points: a table's rows as they are, or each raw recording reduced
+/// to its mean output over whole spindle revolutions (in parallel), with the
+/// recordings' diagnostics as warnings naming the field and the file.
+pub(crate) fn points(
+    data: &PigaData,
+    source: &Path,
+) -> std::result::Result<(PigaPoints, Vec<Warning>), PipelineError> {
+    let (order, files) = match data {
+        PigaData::Table(t) => {
+            return Ok((
+                PigaPoints {
+                    rates_deg_s: t.rates_deg_s.clone(),
+                    outputs_rad_s: t.outputs_rad_s.clone(),
+                    sigma_rad_s: t.sigma_rad_s.clone(),
+                    labels: t.labels.clone(),
+                    origins: t.lines.iter().map(|&l| Origin::Line(l)).collect(),
+                    table: Some(t.file.clone()),
+                    recordings: Vec::new(),
+                },
+                Vec::new(),
+            ));
+        }
+        PigaData::Recordings { order, files } => (*order, files),
+    };
+    let reduced: Vec<_> = files
+        .par_iter()
+        .map(|f| {
+            let _span = tracing::info_span!("reduce", file = %f.file.display()).entered();
+            recording::reduce_piga_recording(
+                &f.recording,
+                units::deg_s_to_rad_s(f.rate_deg_s),
+                order,
+            )
+        })
+        .collect();
+    let mut errors = Vec::new();
+    let mut warnings = Vec::new();
+    let mut points = PigaPoints {
+        rates_deg_s: Vec::with_capacity(files.len()),
+        outputs_rad_s: Vec::with_capacity(files.len()),
+        sigma_rad_s: Some(Vec::with_capacity(files.len())),
+        labels: None,
+        origins: Vec::with_capacity(files.len()),
+        table: None,
+        recordings: Vec::with_capacity(files.len()),
+    };
+    for (i, (f, result)) in files.iter().zip(reduced).enumerate() {
+        let field = format!("calibration.recordings.files[{i}]");
+        let r = match result {
+            Ok(r) => r,
+            Err(e) => {
+                errors.push(PipelineError::Recording {
+                    path: source.to_owned(),
+                    field,
+                    source: Box::new(e),
+                });
+                continue;
+            }
+        };
+        let location = format!("{field} ({})", f.file.display());
+        warnings.extend(
+            r.diagnostics
+                .iter()
+                .map(|d| Warning::recording(d, location.clone())),
+        );
+        let rate_deg_s = r.rate_rad_s().to_degrees();
+        points.rates_deg_s.push(rate_deg_s);
+        points.outputs_rad_s.push(r.output_rad_s);
+        if let Some(s) = points.sigma_rad_s.as_mut() {
+            s.push(r.output_u_rad_s);
+        }
+        points.origins.push(Origin::File(f.file.clone()));
+        points.recordings.push(PigaRecordingResult {
+            file: f.file.display().to_string(),
+            declared_rate_deg_s: f.rate_deg_s,
+            rate_deg_s,
+            angle_source: r.angle_source.name().to_owned(),
+            output_rad_s: r.output_rad_s,
+            u_rad_s: r.output_u_rad_s,
+            across_revolutions_u_rad_s: r.across_revolutions_u_rad_s,
+            white_noise_u_rad_s: r.white_noise_u_rad_s,
+            revolution_sd_rad_s: r.revolution_sd_rad_s,
+            revolutions: r.revolutions,
+            dropped_revolutions: r.dropped_revolutions,
+        });
+    }
+    PipelineError::from_list(errors)?;
+    // A recording whose output has no scatter (noise-free data) cannot be weighted:
+    // the fit is then unweighted.
+    if points
+        .sigma_rad_s
+        .as_ref()
+        .is_some_and(|s| s.iter().any(|v| !v.is_finite() || *v <= 0.0))
+    {
+        points.sigma_rad_s = None;
+        warnings.push(Warning::calibration_unweighted());
+    }
+    Ok((points, warnings))
+}
+
+/// Reads a PIGA table: rate and output columns, the σ and label columns when named.
+pub(super) fn load_piga_table(
+    config: &PigaTableConfig,
+    base: &Path,
+    source: &Path,
+    load: &dyn DataSource,
+) -> Result<PigaTableRows> {
+    let file = base.join(&config.file);
+    let mut columns = vec![
+        TableColumn::required(config.rate_column.clone()),
+        TableColumn::required(config.output_column.clone()),
+    ];
+    if let Some(sigma) = &config.sigma_column {
+        columns.push(TableColumn::required(sigma.clone()));
+    }
+    let format = TableFormat {
+        delimiter: config.delimiter,
+        // A blank delimiter keeps its meaning here: runs of blanks separate fields.
+        whitespace: matches!(config.delimiter, ' ' | '\t'),
+        label: config.label_column.clone(),
+        ..TableFormat::new(columns, true)
+    };
+    let table = load
+        .table(&file, &format)
+        .map_err(|e| PipelineError::Recording {
+            path: source.to_owned(),
+            field: "calibration.table".to_owned(),
+            source: Box::new(e),
+        })?;
+    let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
+    let rates = column(&config.rate_column);
+    let outputs = column(&config.output_column);
+    let sigma = config.sigma_column.as_deref().map(column);
+    let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
+    let bad =
+        |i: usize, column: &str, value: f64, reason: InvalidReason| PipelineError::TableValue {
+            path: source.to_owned(),
+            field: "calibration.table".to_owned(),
+            file: file.clone(),
+            line: lines[i],
+            column: column.to_owned(),
+            value,
+            reason,
+        };
+    if let Some(i) = rates.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
+        return Err(bad(
+            i,
+            &config.rate_column,
+            rates[i],
+            InvalidReason::RateNotPositive,
+        ));
+    }
+    if let (Some(name), Some(sigma)) = (&config.sigma_column, &sigma)
+        && let Some(i) = sigma.iter().position(|s| !(s.is_finite() && *s > 0.0))
+    {
+        return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
+    }
+    Ok(PigaTableRows {
+        file: file.clone(),
+        rates_deg_s: rates,
+        outputs_rad_s: outputs,
+        sigma_rad_s: sigma,
+        labels: table.labels().map(<[String]>::to_vec),
+        lines,
+    })
+}
+
+/// Reads raw PIGA output recordings in parallel, after checking their rates and the
+/// harmonic order.
+pub(super) fn load_piga_recordings(
+    set: &PigaRecordingSet,
+    base: &Path,
+    source: &Path,
+    load: &dyn DataSource,
+) -> Result<Vec<LoadedPigaRecording>> {
+    let check = Check { path: source };
+    if !(1..=harmonics::MAX_ORDER).contains(&set.order) {
+        return Err(check.invalid(
+            "calibration.recordings.order".to_owned(),
+            set.order as f64,
+            InvalidReason::HarmonicOrder,
+        ));
+    }
+    for (i, point) in set.files.iter().enumerate() {
+        if !(point.rate_deg_s.is_finite() && point.rate_deg_s > 0.0) {
+            return Err(check.invalid(
+                format!("calibration.recordings.files[{i}].rate_deg_s"),
+                point.rate_deg_s,
+                InvalidReason::RateNotPositive,
+            ));
+        }
+    }
+    let loaded: Vec<_> = set
+        .files
+        .par_iter()
+        .map(|point| {
+            let file = base.join(&point.file);
+            let _span = tracing::info_span!("load", file = %file.display()).entered();
+            let result = load.piga_recording(&file, &set.format);
+            (point.rate_deg_s, file, result)
+        })
+        .collect();
+    let mut errors = Vec::new();
+    let mut files = Vec::with_capacity(loaded.len());
+    for (i, (rate_deg_s, file, result)) in loaded.into_iter().enumerate() {
+        match result {
+            Ok(recording) => files.push(LoadedPigaRecording {
+                rate_deg_s,
+                file,
+                recording,
+            }),
+            Err(error) => errors.push(PipelineError::Recording {
+                path: source.to_owned(),
+                field: format!("calibration.recordings.files[{i}]"),
+                source: Box::new(error),
+            }),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    Ok(files)
+}

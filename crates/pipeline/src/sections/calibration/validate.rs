@@ -1,0 +1,183 @@
+//! The calibration section's validation: the compensating phase, k1, the Monte Carlo
+//! trials, the `uncertainty` section's Type B inputs, and the reading of its data.
+
+use std::path::{Path, PathBuf};
+
+use super::data::{self, PigaData};
+use crate::config::{CalibrationConfig, K1Config, TrialsConfig, UncertaintyConfig};
+use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
+use crate::inputs::{Check, DataSource, MIN_CALIBRATION_RATES, PhaseNames};
+
+/// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2: 100/(1 − p)).
+const MIN_TRIALS: u64 = 2000;
+
+/// The validated calibration section.
+#[derive(Debug, Clone)]
+pub(crate) struct CalibrationInputs {
+    pub(crate) data: PigaData,
+    /// Index of the phase whose C_r compensates.
+    pub(crate) phase: usize,
+    pub(crate) k1: K1Choice,
+    pub(crate) seed: u64,
+    /// `None`: adaptive; `Some(n)`: exactly n trials.
+    pub(crate) trials: Option<u64>,
+    /// Type B uncertainties (all zero when the study has no `uncertainty` section).
+    pub(crate) type_b: TypeB,
+    /// Whether the study has an `uncertainty` section.
+    pub(crate) type_b_given: bool,
+}
+
+/// Where k1 comes from, validated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum K1Choice {
+    Fitted,
+    Given { k1_rad_s_g: f64, u_rad_s_g: f64 },
+}
+
+/// Type B standard uncertainties, validated (all finite and ≥ 0), and where g comes from.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct TypeB {
+    pub(crate) values: ::calibration::TypeB,
+    pub(crate) g_source: String,
+}
+
+impl CalibrationInputs {
+    /// Every data file the section read: the PIGA table, or each raw recording.
+    pub(crate) fn files(&self) -> Vec<&Path> {
+        match &self.data {
+            PigaData::Table(t) => vec![t.file.as_path()],
+            PigaData::Recordings { files, .. } => files.iter().map(|f| f.file.as_path()).collect(),
+        }
+    }
+}
+
+/// The calibration's references and numbers: the phase it compensates with, and k1.
+pub(crate) fn validate(
+    check: &Check<'_>,
+    c: &CalibrationConfig,
+    names: &PhaseNames<'_>,
+) -> Result<(usize, K1Choice)> {
+    let phase = names.index(check, "calibration.compensate_with", &c.compensate_with)?;
+    if names.second_probe.contains(&phase) {
+        return Err(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "calibration.compensate_with".to_owned(),
+            reason: UnsupportedReason::SecondProbeData,
+        });
+    }
+    if let TrialsConfig::Fixed(n) = c.trials
+        && n < MIN_TRIALS
+    {
+        return Err(check.invalid(
+            "calibration.trials".to_owned(),
+            n as f64,
+            InvalidReason::TooFewTrials,
+        ));
+    }
+    let k1 = match c.k1 {
+        K1Config::Fitted => K1Choice::Fitted,
+        K1Config::Given {
+            k1_rad_s_g,
+            u_rad_s_g,
+        } => {
+            check.positive("calibration.k1.k1_rad_s_g", k1_rad_s_g)?;
+            check.non_negative("calibration.k1.u_rad_s_g", u_rad_s_g)?;
+            K1Choice::Given {
+                k1_rad_s_g,
+                u_rad_s_g,
+            }
+        }
+    };
+    Ok((phase, k1))
+}
+
+/// The Type B uncertainties: each finite and ≥ 0.
+pub(crate) fn type_b(check: &Check<'_>, u: &UncertaintyConfig) -> Result<TypeB> {
+    for (field, value) in [
+        ("uncertainty.radius_u_m", u.radius_u_m),
+        ("uncertainty.g_u_m_s2", u.g_u_m_s2),
+        ("uncertainty.rate_u_relative", u.rate_u_relative),
+        ("uncertainty.pivot_to_probe_u_mm", u.pivot_to_probe_u_mm),
+        ("uncertainty.probe_to_piga_u_mm", u.probe_to_piga_u_mm),
+        ("uncertainty.probe_gain_u_relative", u.probe_gain_u_relative),
+    ] {
+        check.non_negative(field, value)?;
+    }
+    Ok(TypeB {
+        values: ::calibration::TypeB {
+            radius_u_m: u.radius_u_m,
+            g_u_m_s2: u.g_u_m_s2,
+            rate_u_relative: u.rate_u_relative,
+            pivot_to_probe_u_mm: u.pivot_to_probe_u_mm,
+            probe_to_piga_u_mm: u.probe_to_piga_u_mm,
+            probe_gain_u_relative: u.probe_gain_u_relative,
+        },
+        g_source: u.g_source.clone(),
+    })
+}
+
+/// Reads the calibration's data — a PIGA table (rates > 0, σ > 0 when given) or raw output
+/// recordings (read in parallel) — and checks that it has at least [`MIN_CALIBRATION_RATES`]
+/// distinct rates (six unknowns and a residual degree of freedom). `type_b`: the validated
+/// `uncertainty` section, if any.
+pub(crate) fn load(
+    config: &CalibrationConfig,
+    (phase, k1): (usize, K1Choice),
+    type_b: Option<TypeB>,
+    base: &Path,
+    source: &Path,
+    load: &dyn DataSource,
+) -> Result<CalibrationInputs> {
+    let (data, rates, field, file) = match (&config.table, &config.recordings) {
+        (Some(table), None) => {
+            let rows = data::load_piga_table(table, base, source, load)?;
+            let rates = rows.rates_deg_s.clone();
+            let file = rows.file.clone();
+            (PigaData::Table(rows), rates, "calibration.table", file)
+        }
+        (None, Some(set)) => {
+            let files = data::load_piga_recordings(set, base, source, load)?;
+            let rates = files.iter().map(|f| f.rate_deg_s).collect();
+            (
+                PigaData::Recordings {
+                    order: set.order,
+                    files,
+                },
+                rates,
+                "calibration.recordings.files",
+                PathBuf::from("the recordings"),
+            )
+        }
+        _ => {
+            return Err(PipelineError::Unsupported {
+                path: source.to_owned(),
+                field: "calibration".to_owned(),
+                reason: UnsupportedReason::CalibrationNeedsOneSource,
+            });
+        }
+    };
+    let mut distinct: Vec<u64> = rates.iter().map(|r: &f64| r.to_bits()).collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    if distinct.len() < MIN_CALIBRATION_RATES {
+        return Err(PipelineError::TooFewRates {
+            path: source.to_owned(),
+            field: field.to_owned(),
+            file,
+            distinct: distinct.len(),
+            need: MIN_CALIBRATION_RATES,
+        });
+    }
+    Ok(CalibrationInputs {
+        data,
+        phase,
+        k1,
+        seed: config.seed,
+        trials: match config.trials {
+            TrialsConfig::Adaptive => None,
+            TrialsConfig::Fixed(n) => Some(n),
+        },
+        type_b_given: type_b.is_some(),
+        type_b: type_b.unwrap_or_default(),
+    })
+}

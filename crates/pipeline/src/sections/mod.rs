@@ -1,0 +1,14 @@
+//! The sections of a study. Each owns its part of the configuration's validation (the file's
+//! data-transfer types → a validated type), its run on values and its mapping to results;
+//! they share only the core (`crate::inputs`) and the output format (`crate::results`), and
+//! none imports another. The study (`study.rs`) orders them.
+//!
+//! - [`phases`]: the probe phases (eq. 16, 19–22);
+//! - [`mechanism`]: a calibration simulated with each phase's C_r (eq. 17–19);
+//! - [`calibration`]: the PIGA's calibration on measured data and its uncertainty;
+//! - [`balance`]: the balance advisor and the counterweight.
+
+pub(crate) mod balance;
+pub(crate) mod calibration;
+pub(crate) mod mechanism;
+pub(crate) mod phases;
