@@ -53,6 +53,7 @@ mod lstsq;
 mod radius;
 #[cfg(feature = "strd")]
 pub mod strd;
+mod words;
 
 pub use calibration::{
     CALIBRATION_TERMS, Calibration, CompensatedCalibration, Compensation, K1Source,

@@ -214,6 +214,16 @@ pub enum Criterion {
     D,
 }
 
+impl std::fmt::Display for Criterion {
+    /// The criterion in words: `c-optimal for k2` or `D-optimal for all six coefficients`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::K2 => "c-optimal for k2",
+            Self::D => "D-optimal for all six coefficients",
+        })
+    }
+}
+
 /// The exchange algorithm's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
