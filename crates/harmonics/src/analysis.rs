@@ -366,6 +366,30 @@ fn non_finite_result(
     }
 }
 
+/// Mean, sample standard deviation and standard error of the mean of the revolutions'
+/// coefficients (no spread with fewer than two revolutions). At least one revolution.
+pub(crate) fn statistics(
+    fits: &[RevolutionFit],
+) -> (Coefficients, Option<Coefficients>, Option<Coefficients>) {
+    let k = fits.len() as f64;
+    let first = &fits[0].coefficients;
+    let sum = fits[1..].iter().fold(first.clone(), |acc, f| {
+        acc.zip(&f.coefficients, |a, b| a + b)
+    });
+    let mean = sum.map(|v| v / k);
+    if fits.len() < 2 {
+        return (mean, None, None);
+    }
+    let zero = mean.map(|_| 0.0);
+    let ss = fits.iter().fold(zero, |acc, f| {
+        let d = f.coefficients.zip(&mean, |a, m| a - m);
+        acc.zip(&d, |a, d| a + d * d)
+    });
+    let std = ss.map(|v| (v / (k - 1.0)).sqrt());
+    let se = std.map(|v| v / k.sqrt());
+    (mean, Some(std), Some(se))
+}
+
 /// [`analyze`] on a recording already cut by [`segment`] (with the same signal).
 pub(crate) fn analyze_segmented(
     signal: &ProbeSignal<'_>,
@@ -460,24 +484,7 @@ pub(crate) fn analyze_segmented(
             .collect::<Result<_>>()?
     };
 
-    let k = fits.len() as f64;
-    let first = &fits[0].coefficients;
-    let sum = fits[1..].iter().fold(first.clone(), |acc, f| {
-        acc.zip(&f.coefficients, |a, b| a + b)
-    });
-    let mean = sum.map(|v| v / k);
-    let (std, std_error) = if fits.len() > 1 {
-        let zero = mean.map(|_| 0.0);
-        let ss = fits.iter().fold(zero, |acc, f| {
-            let d = f.coefficients.zip(&mean, |a, m| a - m);
-            acc.zip(&d, |a, d| a + d * d)
-        });
-        let std = ss.map(|v| (v / (k - 1.0)).sqrt());
-        let se = std.map(|v| v / k.sqrt());
-        (Some(std), Some(se))
-    } else {
-        (None, None)
-    };
+    let (mean, std, std_error) = statistics(&fits);
     let span = revolutions.first().map_or(0, |r| r.start)..revolutions.last().map_or(0, |r| r.end);
     for (quantity, statistic) in [
         ("mean", Some(&mean)),

@@ -254,3 +254,23 @@ impl core::fmt::Display for Requirement {
 
 /// Result alias of this crate.
 pub type Result<T> = std::result::Result<T, HarmonicsError>;
+
+impl HarmonicsError {
+    /// The error with each sample index it names moved by `offset` (for a piece of a
+    /// recording analysed apart, so that the index is the whole recording's).
+    #[must_use]
+    pub(crate) fn with_sample_offset(mut self, offset: usize) -> Self {
+        match &mut self {
+            Self::NonFinite { index, .. }
+            | Self::NonFiniteInterval { index, .. }
+            | Self::TimeNotIncreasing { index, .. }
+            | Self::SampleGap { index, .. }
+            | Self::AngleNotIncreasing { index, .. } => *index += offset,
+            Self::TooFewSamples { first_sample, .. } => *first_sample += offset,
+            Self::Aliasing { after_sample, .. } => *after_sample += offset,
+            Self::NonFiniteResult { at_sample, .. } => *at_sample += offset,
+            _ => {}
+        }
+        self
+    }
+}

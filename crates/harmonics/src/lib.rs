@@ -70,6 +70,9 @@ mod analysis;
 mod error;
 mod geometry;
 mod kernel;
+mod noise;
+mod pieces;
+mod rate;
 mod signal;
 mod sincos;
 mod solve;
@@ -82,10 +85,14 @@ pub use analysis::{
 pub use error::{HarmonicsError, Requirement, Result};
 pub use geometry::{FirstHarmonic, LeverGeometry, PigaPlaneDrift, ProbeDirection};
 pub use kernel::MAX_ORDER;
-pub use signal::{
-    DeclaredRate, ENCODER_RATE_TOLERANCE, IncompleteRevolution, ProbeSignal, SpindleAngle,
-    TimeAxis, check_encoder_rate, check_time_axis,
+pub use noise::{
+    DriftAcrossRevolutions, FirstHarmonicNoise, SPREAD_WARNING_RATIO, chi_square_ratio_99,
+    drift_across_revolutions, drift_inflation, first_harmonic_noise, pooled_residual_rms,
+    pooled_residual_variance, revolution_spread, slope_variance_factor,
 };
+pub use pieces::{DropBadSamples, PooledAnalysis, analyze_around_bad_samples};
+pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate};
+pub use signal::{IncompleteRevolution, ProbeSignal, SpindleAngle, TimeAxis, check_time_axis};
 pub use solve::CONDITION_LIMIT;
 #[cfg(feature = "synthetic")]
 pub use synth::{SyntheticRecording, SyntheticSamples};

@@ -57,6 +57,20 @@
 //! # Ok::<(), recording::RecordingError>(())
 //! ```
 //!
+//! # Layout (a reading order that goes one way)
+//!
+//! - `error`: [`RecordingError`] and [`Hint`], with the binary files' error details
+//!   ([`BinaryFormat`], [`BinaryPart`], [`BinaryDefect`], [`Unsupported`]).
+//! - `text`: the delimited-text table parser ([`TableFormat`], [`Table`]): lines, numbers,
+//!   rows, the row → line table, the streaming of a file. Knows no lab format.
+//! - `lab`: the lab formats on top of it: the probe recording's layout
+//!   ([`RecordingFormat`]) and samples ([`Recording`]), the PIGA table, the raw PIGA
+//!   recording, the probe-recording writer.
+//! - `binary`: the TDMS and MAT readers, which build the same [`Recording`].
+//! - `analysis`: the harmonic analysis of a loaded recording and the raw PIGA reduction,
+//!   with the diagnostics; the statistics themselves (pooling around bad samples, white
+//!   noise, drift and spread tests, the slope variance) are `harmonics`'.
+//!
 //! # Features
 //!
 //! - `synthetic`: `SyntheticSpec`, synthetic recordings with known
@@ -69,54 +83,45 @@
 //! depend on `plotters`, `rand`, `ron`, `faer`, `nalgebra`, `kinematics` or `identify`
 //! (`ron` only as a dev-dependency); `.ci/layering` checks this.
 
-mod analyze;
+mod analysis;
 mod binary;
 mod error;
-mod format;
-mod line_table;
-mod lines;
-mod mat;
-mod number;
-mod piga;
-mod piga_recording;
-mod probe;
-mod rows;
-mod stream;
+mod lab;
 #[cfg(feature = "synthetic")]
 mod synth;
-mod table;
-mod tdms;
-mod write;
+mod text;
 
-pub use analyze::{
-    Diagnostic, RATE_WARNING_TOLERANCE, RecordingAnalysis, SPREAD_WARNING_RATIO, SpreadCause,
-    analyze_recording,
+pub use analysis::diagnostic::{Diagnostic, RATE_WARNING_TOLERANCE, SpreadCause};
+pub use analysis::piga::{PigaOutputRate, reduce_piga_recording};
+pub use analysis::probe::{RecordingAnalysis, analyze_recording};
+pub use binary::mat::{load_mat, parse_mat};
+pub use binary::tdms::{load_tdms, parse_tdms};
+pub use binary::{BinaryChannels, MatVariables};
+pub use error::{
+    BinaryDefect, BinaryFormat, BinaryPart, Hint, RecordingError, Result, Unsupported,
 };
-pub use binary::{
-    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, MatVariables, Unsupported,
-};
-pub use error::{Hint, RecordingError, Result};
-pub use format::{
+/// Ratio of the revolution-to-revolution spread of `d_c1`/`d_s1` to its white-noise σ
+/// above which [`Diagnostic::RevolutionSpread`] is raised (`harmonics`' limit).
+pub use harmonics::SPREAD_WARNING_RATIO;
+pub use lab::format::{
     AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples,
     RecordingFormat, TimeUnit,
 };
-pub use mat::{load_mat, parse_mat};
-#[doc(hidden)]
-pub use number::number_paths;
-pub use piga::{
+pub use lab::piga_recording::{
+    PIGA_OUTPUT_ANGLE_COLUMN, PigaRecording, PigaRecordingFormat, load_piga_recording,
+    parse_piga_recording,
+};
+pub use lab::piga_table::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
 };
-pub use piga_recording::{
-    PIGA_OUTPUT_ANGLE_COLUMN, PigaOutputRate, PigaRecording, PigaRecordingFormat,
-    load_piga_recording, parse_piga_recording, reduce_piga_recording,
-};
 #[doc(hidden)]
-pub use probe::parse_recording_reference;
-pub use probe::{AngleSourceKind, Recording, load_recording, parse_recording};
+pub use lab::probe::parse_recording_reference;
+pub use lab::probe::{AngleSourceKind, Recording, load_recording, parse_recording};
+pub use lab::write::{ProbeColumns, WriteOptions, write_probe_csv};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 #[doc(hidden)]
-pub use table::parse_table_reference;
-pub use table::{MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, parse_table};
-pub use tdms::{load_tdms, parse_tdms};
-pub use write::{ProbeColumns, WriteOptions, write_probe_csv};
+pub use text::number::number_paths;
+#[doc(hidden)]
+pub use text::table::parse_table_reference;
+pub use text::table::{MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, parse_table};

@@ -1,7 +1,7 @@
 //! Synthetic recordings with known coefficients (feature `synthetic`).
 
 use crate::error::Result;
-use crate::write::{ProbeColumns, WriteOptions, write_probe_csv};
+use crate::lab::write::{ProbeColumns, WriteOptions, write_probe_csv};
 
 /// A synthetic probe recording with known coefficients, written in the default
 /// [`RecordingFormat`](super::RecordingFormat): for fixtures, benchmarks and demonstrations (see the

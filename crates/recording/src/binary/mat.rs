@@ -17,12 +17,11 @@
 
 use std::path::Path;
 
-use crate::binary::{
-    BinaryChannels, BinaryDefect, BinaryFormat, BinaryPart, Cursor, NumType, Place, Series, Source,
-    Unsupported, assemble, decode, with_source,
-};
-use crate::error::{RecordingError, Result};
-use crate::probe::Recording;
+use super::channels::{BinaryChannels, Cursor, Place, Series, assemble};
+use super::decode::{NumType, decode};
+use super::source::{Source, with_source};
+use crate::error::{BinaryDefect, BinaryFormat, BinaryPart, RecordingError, Result, Unsupported};
+use crate::lab::probe::Recording;
 
 const HEADER: usize = 128;
 const MI_INT8: u32 = 1;

@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 
 use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
 
+use super::format::{ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, RecordingFormat};
 use crate::error::{RecordingError, Result};
-use crate::format::{ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, RecordingFormat};
-use crate::line_table::LineTable;
-use crate::table::{Table, load_table, parse_table};
+use crate::text::line_table::LineTable;
+use crate::text::table::{Table, load_table, parse_table};
 
 /// Where a recording's spindle angle came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -399,7 +399,7 @@ pub fn parse_recording_reference(
     path: &Path,
     format: &RecordingFormat,
 ) -> Result<Recording> {
-    let table = crate::parse_table_reference(text, path, &format.table_format()?)?;
+    let table = crate::text::table::parse_table_reference(text, path, &format.table_format()?)?;
     Recording::from_table(table, format)
 }
 

@@ -7,7 +7,7 @@ use std::fmt;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::error::RecordingError;
-use crate::table::{TableColumn, TableFormat};
+use crate::text::table::{TableColumn, TableFormat, delimiter_byte};
 
 /// Length unit of the gap column.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -308,23 +308,6 @@ impl Default for RecordingFormat {
             on_non_finite: OnBadSamples::Error,
         }
     }
-}
-
-/// The delimiter as a byte, if it can separate numeric fields: one ASCII character that
-/// cannot occur in a number, a comment or a line end.
-pub(crate) fn delimiter_byte(delimiter: char) -> Result<u8, RecordingError> {
-    let d = delimiter;
-    if !d.is_ascii()
-        || d == '\n'
-        || d == '\r'
-        || d == '#'
-        || d == '"'
-        || d.is_ascii_digit()
-        || "+-.eE".contains(d)
-    {
-        return Err(RecordingError::InvalidDelimiter { delimiter: d });
-    }
-    Ok(d as u8)
 }
 
 /// Index of the angle column in [`RecordingFormat::table_format`]'s columns, when read.

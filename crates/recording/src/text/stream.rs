@@ -3,9 +3,8 @@
 use std::io::Read as _;
 use std::path::Path;
 
+use super::lines::{BOM, lone_cr_line_ends};
 use crate::error::{RecordingError, Result};
-use crate::lines::{BOM, lone_cr_line_ends};
-use crate::table::TableParser;
 
 /// Bytes read from a file at a time.
 pub(crate) const CHUNK_BYTES: usize = 1 << 20;
@@ -14,11 +13,19 @@ pub(crate) const CHUNK_BYTES: usize = 1 << 20;
 /// rather than read whole.
 pub(crate) const MAX_LINE_BYTES: usize = 16 << 20;
 
+/// A parser fed with whole lines (the table parser).
+pub(crate) trait LineSink {
+    /// Parses whole lines (the text ends at a line end, or is the file's last piece).
+    fn feed(&mut self, text: &[u8]) -> Result<()>;
+    /// Lines fed so far.
+    fn lines_fed(&self) -> usize;
+}
+
 /// Feeds the file's whole lines to `parser`, a chunk of about a megabyte at a time (a
 /// partial last line waits for the next read). The buffer grows beyond a chunk only while
 /// one line is longer than that, and never beyond [`MAX_LINE_BYTES`] + 1 bytes: a longer
 /// line is [`RecordingError::LineTooLong`].
-pub(crate) fn stream_file(path: &Path, parser: &mut TableParser<'_>) -> Result<()> {
+pub(crate) fn stream_file(path: &Path, parser: &mut impl LineSink) -> Result<()> {
     let io = |source| RecordingError::Io {
         path: path.to_owned(),
         source,
@@ -73,7 +80,7 @@ pub(crate) fn stream_file(path: &Path, parser: &mut TableParser<'_>) -> Result<(
         if last_end.is_none() && buf.len() > MAX_LINE_BYTES {
             return Err(RecordingError::LineTooLong {
                 path: path.to_owned(),
-                line: parser.line + 1,
+                line: parser.lines_fed() + 1,
                 max_bytes: MAX_LINE_BYTES,
             });
         }

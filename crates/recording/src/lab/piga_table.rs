@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
-use crate::line_table::LineTable;
-use crate::table::{Table, TableColumn, TableFormat, load_table, parse_table};
+use crate::text::line_table::LineTable;
+use crate::text::table::{Table, TableColumn, TableFormat, load_table, parse_table};
 
 /// Header name of a PIGA table's rate column, deg/s.
 pub const PIGA_RATE_COLUMN: &str = "rate_deg_s";

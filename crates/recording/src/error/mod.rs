@@ -4,7 +4,9 @@ use std::path::PathBuf;
 
 use harmonics::HarmonicsError;
 
-use crate::binary::{BinaryDefect, BinaryFormat, BinaryPart, Unsupported};
+mod binary;
+
+pub use binary::{BinaryDefect, BinaryFormat, BinaryPart, Unsupported};
 
 /// What a lab engineer probably has to change when a recording is refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]

@@ -2,8 +2,8 @@
 
 use std::io::Write;
 
+use super::format::{ANGLE_COLUMN, GAP_COLUMN, TIME_COLUMN};
 use crate::error::{RecordingError, Result};
-use crate::format::{ANGLE_COLUMN, GAP_COLUMN, TIME_COLUMN};
 
 /// The columns of a probe recording to write: time (s), gap (µm) and, optionally, the
 /// encoder angle (deg), all of one length and every value finite, so that
@@ -118,7 +118,8 @@ pub fn write_probe_csv<W: Write>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{RecordingFormat, parse_recording};
+    use crate::lab::format::RecordingFormat;
+    use crate::lab::probe::parse_recording;
 
     #[test]
     fn refuses_what_the_reader_would_refuse() {

@@ -3,12 +3,11 @@
 
 use std::path::{Path, PathBuf};
 
+use super::line_table::LineTable;
+use super::lines::{Lines, normalized, split_fields, trim_quotes};
+use super::rows::{SKIP, Syntax, fast_row, parse_row_slowly};
+use super::stream::{CHUNK_BYTES, LineSink, stream_file};
 use crate::error::{Hint, RecordingError, Result};
-use crate::format::delimiter_byte;
-use crate::line_table::LineTable;
-use crate::lines::{Lines, normalized, split_fields, trim_quotes};
-use crate::rows::{SKIP, Syntax, fast_row, parse_row_slowly};
-use crate::stream::{CHUNK_BYTES, stream_file};
 
 /// Most columns a [`TableFormat`] may name.
 pub const MAX_COLUMNS: usize = 8;
@@ -250,6 +249,23 @@ pub fn parse_table_reference(text: &[u8], path: &Path, format: &TableFormat) -> 
     parser.fast = false;
     parser.feed(&text)?;
     parser.finish()
+}
+
+/// The delimiter as a byte, if it can separate numeric fields: one ASCII character that
+/// cannot occur in a number, a comment or a line end.
+pub(crate) fn delimiter_byte(delimiter: char) -> Result<u8, RecordingError> {
+    let d = delimiter;
+    if !d.is_ascii()
+        || d == '\n'
+        || d == '\r'
+        || d == '#'
+        || d == '"'
+        || d.is_ascii_digit()
+        || "+-.eE".contains(d)
+    {
+        return Err(RecordingError::InvalidDelimiter { delimiter: d });
+    }
+    Ok(d as u8)
 }
 
 /// Where the format's columns are in the header.
@@ -568,6 +584,16 @@ impl<'a> TableParser<'a> {
             lines: self.lines,
             labels: layout.label_field.map(|_| self.labels),
         })
+    }
+}
+
+impl LineSink for TableParser<'_> {
+    fn feed(&mut self, text: &[u8]) -> Result<()> {
+        TableParser::feed(self, text)
+    }
+
+    fn lines_fed(&self) -> usize {
+        self.line
     }
 }
 

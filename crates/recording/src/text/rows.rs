@@ -2,9 +2,9 @@
 
 use std::path::Path;
 
+use super::lines::{split_fields, trim_quotes};
+use super::number::{fast_prefix, parse_f64};
 use crate::error::{Hint, RecordingError};
-use crate::lines::{split_fields, trim_quotes};
-use crate::number::{fast_prefix, parse_f64};
 
 /// Sentinel of [`fast_row`]'s field map: a field that is not stored.
 pub(crate) const SKIP: u8 = u8::MAX;

@@ -1,0 +1,173 @@
+//! What may make a recording's numbers wrong, in plain words: the diagnostics of the
+//! analysis of a probe or raw PIGA recording.
+
+use std::fmt;
+
+/// Relative difference between declared and measured rate above which
+/// [`Diagnostic::RateDiffers`] is raised (0.1 %).
+pub const RATE_WARNING_TOLERANCE: f64 = 1e-3;
+
+/// The likely cause of a revolution-to-revolution spread.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpreadCause {
+    /// The angle comes from the declared rate, and a real rate that differs makes the
+    /// first harmonic turn from revolution to revolution.
+    RateError,
+    /// The mean gap moves from revolution to revolution and no drift term is fitted.
+    Drift,
+    /// Neither: a pickup or vibration that is not synchronous with the spindle, or speed
+    /// variation within revolutions.
+    NonSynchronous,
+}
+
+impl fmt::Display for SpreadCause {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::RateError => {
+                "a real rate that differs from the declared one (the angle is built from the \
+                 declared rate): give an encoder or index-pulse column"
+            }
+            Self::Drift => "drift of the gap: set `drift: true`",
+            Self::NonSynchronous => {
+                "a pickup or vibration not synchronous with the spindle, or speed variation \
+                 within revolutions"
+            }
+        })
+    }
+}
+
+/// Something that may make a recording's numbers wrong.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Diagnostic {
+    /// No angle was measured: the angle is `ω·(t − t₀) + θ₀` from the declared rate.
+    AngleFromRate {
+        /// Header columns not read (one may be an encoder or index pulse).
+        unread_columns: Vec<String>,
+    },
+    /// The measured mean rate differs from the declared one by more than
+    /// [`RATE_WARNING_TOLERANCE`]; the measured one is used.
+    RateDiffers {
+        /// Declared, rad/s.
+        declared_rad_s: f64,
+        /// Measured, rad/s.
+        measured_rad_s: f64,
+    },
+    /// The first harmonic varies from revolution to revolution well beyond white noise.
+    RevolutionSpread {
+        /// Spread of `d_c1` over its white-noise σ.
+        ratio_c1: f64,
+        /// Spread of `d_s1` over its white-noise σ.
+        ratio_s1: f64,
+        /// Likely cause.
+        cause: SpreadCause,
+    },
+    /// The mean gap drifts and `drift: false`: a drift within revolutions biases the first
+    /// harmonic by about `2b/ω`.
+    DriftNotFitted {
+        /// The drift, gap unit per second.
+        drift_per_s: f64,
+        /// The bias it implies in the first harmonic, in standard errors of the mean.
+        bias_sigmas: f64,
+    },
+    /// Revolutions were dropped for gaps or non-finite samples.
+    DroppedRevolutions {
+        /// How many.
+        count: usize,
+        /// How many were used.
+        used: usize,
+    },
+    /// A raw PIGA output recording's per-revolution output rates scatter beyond what the
+    /// white noise of the output angle explains.
+    OutputSpread {
+        /// Their standard deviation over the white-noise one.
+        ratio: f64,
+        /// Revolutions.
+        revolutions: usize,
+    },
+}
+
+impl Diagnostic {
+    /// A short stable code (`angle_from_rate`, `rate_differs`, `revolution_spread`,
+    /// `drift_not_fitted`, `dropped_revolutions`, `output_spread`).
+    pub const fn code(&self) -> &'static str {
+        match self {
+            Self::AngleFromRate { .. } => "angle_from_rate",
+            Self::RateDiffers { .. } => "rate_differs",
+            Self::RevolutionSpread { .. } => "revolution_spread",
+            Self::DriftNotFitted { .. } => "drift_not_fitted",
+            Self::DroppedRevolutions { .. } => "dropped_revolutions",
+            Self::OutputSpread { .. } => "output_spread",
+        }
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::AngleFromRate { unread_columns } => {
+                write!(
+                    f,
+                    "no angle was measured: the angle is built from the declared rate with \
+                     the format's start angle, so a real rate that differs, or a wrong start \
+                     angle, shifts β and C_r without any other sign"
+                )?;
+                if !unread_columns.is_empty() {
+                    write!(
+                        f,
+                        "; the file also has column(s) {} — if one is an encoder or an index \
+                         pulse, name it in `angle`",
+                        unread_columns
+                            .iter()
+                            .map(|c| format!("`{c}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )?;
+                }
+                Ok(())
+            }
+            Self::RateDiffers {
+                declared_rad_s,
+                measured_rad_s,
+            } => write!(
+                f,
+                "the measured rate {:.6} deg/s differs from the declared {:.6} deg/s by \
+                 {:+.3} %; the measured rate is used in the radius-error fit",
+                measured_rad_s.to_degrees(),
+                declared_rad_s.to_degrees(),
+                100.0 * (measured_rad_s / declared_rad_s - 1.0)
+            ),
+            Self::RevolutionSpread {
+                ratio_c1,
+                ratio_s1,
+                cause,
+            } => write!(
+                f,
+                "the first harmonic varies from revolution to revolution {:.1}× (d_c1) and \
+                 {:.1}× (d_s1) more than white noise explains; likely cause: {cause}",
+                ratio_c1, ratio_s1
+            ),
+            Self::DriftNotFitted {
+                drift_per_s,
+                bias_sigmas,
+            } => write!(
+                f,
+                "the gap drifts by {drift_per_s:.3e} per second and `drift: false`: the \
+                 first harmonic may be biased by about {bias_sigmas:.1} standard errors; set \
+                 `drift: true`"
+            ),
+            Self::DroppedRevolutions { count, used } => write!(
+                f,
+                "{count} revolution(s) dropped for gaps or non-finite samples; {used} used"
+            ),
+            Self::OutputSpread { ratio, revolutions } => write!(
+                f,
+                "the output rate varies from revolution to revolution {ratio:.1}× more than \
+                 the white noise of the output angle explains ({revolutions} revolutions): a \
+                 random walk of the output or a disturbance not synchronous with the spindle; \
+                 the point's u is the standard error across revolutions"
+            ),
+        }
+    }
+}

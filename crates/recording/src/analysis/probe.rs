@@ -1,0 +1,264 @@
+//! The harmonic analysis of a loaded probe recording (eq. 20–21): the file's choices for
+//! bad samples, the measured rate, the errors located on the file's lines and the
+//! diagnostics in plain words. The numbers (the fit, the pooling around bad samples, the
+//! noise levels, the drift and spread tests) are `harmonics`'.
+
+use harmonics::{DropBadSamples, FitConfig, HarmonicAnalysis, HarmonicsError, PooledAnalysis};
+
+use super::diagnostic::{Diagnostic, RATE_WARNING_TOLERANCE, SpreadCause};
+use crate::error::{Hint, RecordingError, Result};
+use crate::lab::format::OnBadSamples;
+use crate::lab::probe::{AngleSourceKind, Recording, sample_index};
+
+/// A recording's harmonic analysis with what it rests on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordingAnalysis {
+    /// The per-revolution fits and their statistics (gap unit of the recording).
+    pub analysis: HarmonicAnalysis,
+    /// Where the angle came from.
+    pub angle_source: AngleSourceKind,
+    /// The declared rate, rad/s.
+    pub declared_rate_rad_s: f64,
+    /// The measured angle's mean rate, rad/s (`None` with the angle from the declared
+    /// rate).
+    pub measured_rate_rad_s: Option<f64>,
+    /// Revolutions dropped because gaps or non-finite samples touch them.
+    pub dropped_revolutions: usize,
+    /// White-noise standard error of one revolution's `(d_c1, d_s1)`, gap unit, averaged
+    /// over the revolutions: `√(2s²/n)`, times the drift term's variance inflation in its
+    /// direction (and, with index pulses, their timing jitter).
+    pub revolution_noise_sigma: [f64; 2],
+    /// White-noise standard error of the mean `(d_c1, d_s1)`, gap unit: `√(Σᵣ 2s²fᵣ/nᵣ)/K`
+    /// with `fᵣ` the drift term's variance inflation.
+    pub mean_noise_sigma: [f64; 2],
+    /// Pooled residual RMS of the per-revolution fits, gap unit.
+    pub residual_rms: f64,
+    /// What may make the numbers wrong, in plain words.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl RecordingAnalysis {
+    /// The rate the radius-error fit uses: the measured one when the angle is measured,
+    /// else the declared one.
+    pub fn rate_rad_s(&self) -> f64 {
+        self.measured_rate_rad_s.unwrap_or(self.declared_rate_rad_s)
+    }
+}
+
+/// Fits eq. 20 per revolution to a loaded recording ([`harmonics::analyze`]) against the
+/// measured angle when there is one, else the declared rate; an error naming a sample is
+/// given the sample's line in the file ([`Recording::line_of_sample`]). The format's
+/// `max_gap_intervals` replaces the one in `config`.
+///
+/// With a measured angle, its mean rate must be within
+/// [`harmonics::ENCODER_RATE_TOLERANCE`] (2 %) of the declared one, else
+/// [`HarmonicsError::RateMismatch`] (a file attached to the wrong rate point); within it,
+/// the measured rate is the one to use ([`RecordingAnalysis::rate_rad_s`]).
+///
+/// With `on_gap` or `on_non_finite` set to `drop_revolution`, the recording is cut at
+/// each gap and around each non-finite sample, the pieces are fitted apart, and the
+/// revolutions they hold are pooled; the others are counted as dropped.
+pub fn analyze_recording(
+    recording: &Recording,
+    declared_rate_rad_s: f64,
+    config: &FitConfig,
+) -> Result<RecordingAnalysis> {
+    let config = FitConfig {
+        max_gap_intervals: recording.max_gap_intervals,
+        ..config.clone()
+    };
+    let located = |source: HarmonicsError| {
+        let hint = hint_of(recording, &source);
+        RecordingError::Samples {
+            path: recording.path.clone(),
+            line: sample_index(&source).map(|row| recording.line_of_sample(row)),
+            hint,
+            source,
+        }
+    };
+    let signal = recording.signal(declared_rate_rad_s);
+    // With every sample finite, harmonics checks the rate itself (one vectorised pass);
+    // with non-finite ones kept, the rate is measured around them.
+    let measured_rate_rad_s = match recording.on_non_finite {
+        OnBadSamples::Error => None,
+        OnBadSamples::DropRevolution => recording.measured_rate_rad_s(),
+    };
+    if recording.angle_rad.is_some() {
+        let angle_ok = measured_rate_rad_s.is_some_and(f64::is_finite);
+        // A recording whose samples are all good is checked by harmonics itself.
+        if angle_ok || recording.on_non_finite == OnBadSamples::Error {
+            let check = match measured_rate_rad_s {
+                Some(m) if angle_ok && recording.on_non_finite != OnBadSamples::Error => {
+                    check_rate(m, declared_rate_rad_s)
+                }
+                _ => harmonics::check_encoder_rate(
+                    &signal,
+                    harmonics::DeclaredRate::new(declared_rate_rad_s),
+                ),
+            };
+            check.map_err(located)?;
+        }
+    }
+    let drop = DropBadSamples {
+        gaps: recording.on_gap == OnBadSamples::DropRevolution,
+        non_finite: recording.on_non_finite == OnBadSamples::DropRevolution,
+    };
+    // Dropped revolutions are counted from the recording's turns at its measured rate.
+    let turns_rate_rad_s = match drop.gaps || drop.non_finite {
+        true => recording
+            .measured_rate_rad_s()
+            .unwrap_or(declared_rate_rad_s),
+        false => declared_rate_rad_s,
+    };
+    let PooledAnalysis {
+        analysis,
+        dropped_revolutions: dropped,
+    } = harmonics::analyze_around_bad_samples(&signal, &config, drop, turns_rate_rad_s)
+        .map_err(located)?;
+    // The rate over the whole revolutions fitted: from the first one's first sample to the
+    // sample that begins the revolution after the last one.
+    let measured_rate_rad_s = match (analysis.revolutions.first(), analysis.revolutions.last()) {
+        (Some(first), Some(last)) => recording
+            .measured_rate_between(first.first_sample, last.first_sample + last.samples)
+            .or(measured_rate_rad_s),
+        _ => measured_rate_rad_s.or_else(|| recording.measured_rate_rad_s()),
+    };
+    Ok(finish(
+        recording,
+        analysis,
+        declared_rate_rad_s,
+        measured_rate_rad_s,
+        dropped,
+        &config,
+    ))
+}
+
+/// The mean rate within 2 % of the declared one.
+fn check_rate(measured: f64, declared: f64) -> harmonics::Result<()> {
+    let tolerance = harmonics::ENCODER_RATE_TOLERANCE;
+    if (measured - declared).abs() <= tolerance * declared {
+        Ok(())
+    } else {
+        Err(HarmonicsError::RateMismatch {
+            declared_rad_s: declared,
+            encoder_rad_s: measured,
+            tolerance,
+        })
+    }
+}
+
+/// What a failed analysis probably means for the format.
+fn hint_of(recording: &Recording, error: &HarmonicsError) -> Option<Hint> {
+    match error {
+        HarmonicsError::AngleNotIncreasing { .. } => Some(Hint::EncoderCounts),
+        HarmonicsError::RateMismatch {
+            declared_rad_s,
+            encoder_rad_s,
+            ..
+        } => {
+            let ratio = encoder_rad_s / declared_rad_s;
+            if [1e3, 1e-3, 1e6, 1e-6, 1e9, 1e-9]
+                .iter()
+                .any(|r| (ratio / r - 1.0).abs() < 0.05)
+            {
+                Some(Hint::TimeUnit)
+            } else if recording.angle_source == AngleSourceKind::Encoder
+                && !(0.0..=100.0).contains(&ratio)
+            {
+                Some(Hint::EncoderCounts)
+            } else {
+                None
+            }
+        }
+        HarmonicsError::SampleGap { .. } => Some(Hint::OnGap),
+        HarmonicsError::NonFinite { .. } => Some(Hint::OnNonFinite),
+        _ => None,
+    }
+}
+
+/// The analysis with its noise levels and diagnostics.
+fn finish(
+    recording: &Recording,
+    analysis: HarmonicAnalysis,
+    declared_rate_rad_s: f64,
+    measured_rate_rad_s: Option<f64>,
+    dropped_revolutions: usize,
+    config: &FitConfig,
+) -> RecordingAnalysis {
+    let signal = recording.signal(declared_rate_rad_s);
+    let noise = harmonics::first_harmonic_noise(&analysis, &signal, config);
+    let mean_noise_sigma = noise.mean_sigma;
+    let mut revolution_noise_sigma = noise.revolution_sigma;
+    if recording.angle_source == AngleSourceKind::IndexPulse {
+        // Each revolution's zero is known to a sample interval: its angle jitters by
+        // ω·Δt/√12, which turns the first harmonic by as much from revolution to
+        // revolution (and averages out over them).
+        let rate = measured_rate_rad_s.unwrap_or(declared_rate_rad_s);
+        let jitter_rad = rate * analysis.nominal_interval_s / 12f64.sqrt();
+        let amplitude = analysis.mean.c[0].hypot(analysis.mean.s[0]);
+        revolution_noise_sigma = revolution_noise_sigma.map(|s| s.hypot(amplitude * jitter_rad));
+    }
+    let mut diagnostics = Vec::new();
+    if recording.angle_source == AngleSourceKind::DeclaredRate {
+        diagnostics.push(Diagnostic::AngleFromRate {
+            unread_columns: recording.unread_columns.clone(),
+        });
+    }
+    if let Some(m) = measured_rate_rad_s
+        && (m / declared_rate_rad_s - 1.0).abs() > RATE_WARNING_TOLERANCE
+    {
+        diagnostics.push(Diagnostic::RateDiffers {
+            declared_rad_s: declared_rate_rad_s,
+            measured_rad_s: m,
+        });
+    }
+    let drift = (!config.drift)
+        .then(|| {
+            harmonics::drift_across_revolutions(
+                &recording.time_s,
+                &analysis.revolutions,
+                mean_noise_sigma[0].min(mean_noise_sigma[1]),
+                measured_rate_rad_s.unwrap_or(declared_rate_rad_s),
+            )
+        })
+        .flatten();
+    if let Some(d) = drift {
+        diagnostics.push(Diagnostic::DriftNotFitted {
+            drift_per_s: d.drift_per_s,
+            bias_sigmas: d.bias_sigmas,
+        });
+    }
+    if let Some((ratio_c1, ratio_s1)) =
+        harmonics::revolution_spread(&analysis, revolution_noise_sigma)
+    {
+        let cause = if recording.angle_source == AngleSourceKind::DeclaredRate {
+            SpreadCause::RateError
+        } else if drift.is_some() {
+            SpreadCause::Drift
+        } else {
+            SpreadCause::NonSynchronous
+        };
+        diagnostics.push(Diagnostic::RevolutionSpread {
+            ratio_c1,
+            ratio_s1,
+            cause,
+        });
+    }
+    if dropped_revolutions > 0 {
+        diagnostics.push(Diagnostic::DroppedRevolutions {
+            count: dropped_revolutions,
+            used: analysis.revolutions.len(),
+        });
+    }
+    RecordingAnalysis {
+        residual_rms: harmonics::pooled_residual_rms(&analysis.revolutions),
+        analysis,
+        angle_source: recording.angle_source,
+        declared_rate_rad_s,
+        measured_rate_rad_s,
+        dropped_revolutions,
+        revolution_noise_sigma,
+        mean_noise_sigma,
+        diagnostics,
+    }
+}
