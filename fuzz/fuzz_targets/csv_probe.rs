@@ -6,7 +6,7 @@ use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
 use recording::{
-    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, RecordingFormat,
+    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, GapUnit, RecordingFormat,
     parse_recording, parse_recording_reference,
 };
 
@@ -32,7 +32,7 @@ fuzz_target!(|data: &[u8]| {
         delimiter,
         decimal,
         gap: Column {
-            unit: [LengthUnit::Um, LengthUnit::Mm, LengthUnit::M][usize::from(choice >> 2) % 3],
+            unit: [GapUnit::Um, GapUnit::Mm, GapUnit::M][usize::from(choice >> 2) % 3],
             ..defaults.gap.clone()
         },
         angle: AngleSource::Encoder {

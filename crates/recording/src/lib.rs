@@ -91,7 +91,9 @@ mod lab;
 mod synth;
 mod text;
 
-pub use analysis::diagnostic::{Diagnostic, RATE_WARNING_TOLERANCE, SpreadCause};
+pub use analysis::diagnostic::{
+    Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
+};
 pub use analysis::piga::{PigaOutputRate, reduce_piga_recording};
 pub use analysis::probe::{RecordingAnalysis, analyze_recording};
 pub use binary::mat::{load_mat, parse_mat};
@@ -112,11 +114,13 @@ pub use lab::piga_recording::{
     parse_piga_recording,
 };
 pub use lab::piga_table::{
-    PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, load_piga_table, parse_piga_table,
+    PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, PigaTableFormat, RateUnit, load_piga_table,
+    load_piga_table_with, parse_piga_table, parse_piga_table_with,
 };
 #[doc(hidden)]
 pub use lab::probe::parse_recording_reference;
 pub use lab::probe::{AngleSourceKind, Recording, load_recording, parse_recording};
+pub use lab::volts::{GapUnit, ProbeSensitivity, SensitivityUnit};
 pub use lab::write::{ProbeColumns, WriteOptions, write_probe_csv};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;

@@ -3,9 +3,19 @@
 
 use std::fmt;
 
+use crate::lab::format::LengthUnit;
+
 /// Relative difference between declared and measured rate above which
 /// [`Diagnostic::RateDiffers`] is raised (0.1 %).
 pub const RATE_WARNING_TOLERANCE: f64 = 1e-3;
+
+/// The smallest mean gap a probe recording may plausibly have, µm:
+/// [`Diagnostic::ImplausibleGap`] below it.
+pub const MIN_PLAUSIBLE_GAP_UM: f64 = 1.0;
+
+/// The finest resolution of a displacement probe, µm (1 nm): a first harmonic below it
+/// is below any probe's own noise.
+pub const PROBE_RESOLUTION_UM: f64 = 1e-3;
 
 /// The likely cause of a revolution-to-revolution spread.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -78,6 +88,21 @@ pub enum Diagnostic {
         /// How many were used.
         used: usize,
     },
+    /// The probe signal is implausible for the gap column's declared unit: a mean gap
+    /// below [`MIN_PLAUSIBLE_GAP_UM`] (a probe stands off further; a column in mm declared
+    /// `um` reads 1000 times too small), or a first harmonic below a probe's own noise
+    /// ([`PROBE_RESOLUTION_UM`], 1 nm, finer than any displacement probe resolves). C_r
+    /// scales with the unit: a wrong unit gives a wrong C_r with nothing else to show it.
+    ImplausibleGap {
+        /// The declared unit of the gap column (µm for a column in volts, converted).
+        unit: LengthUnit,
+        /// The mean gap, µm.
+        mean_gap_um: f64,
+        /// The mean first harmonic's amplitude, µm.
+        first_harmonic_um: f64,
+        /// The finest first harmonic a probe resolves, µm ([`PROBE_RESOLUTION_UM`]).
+        noise_um: f64,
+    },
     /// A raw PIGA output recording's per-revolution output rates scatter beyond what the
     /// white noise of the output angle explains.
     OutputSpread {
@@ -90,7 +115,7 @@ pub enum Diagnostic {
 
 impl Diagnostic {
     /// A short stable code (`angle_from_rate`, `rate_differs`, `revolution_spread`,
-    /// `drift_not_fitted`, `dropped_revolutions`, `output_spread`).
+    /// `drift_not_fitted`, `dropped_revolutions`, `output_spread`, `implausible_gap_unit`).
     pub const fn code(&self) -> &'static str {
         match self {
             Self::AngleFromRate { .. } => "angle_from_rate",
@@ -99,6 +124,7 @@ impl Diagnostic {
             Self::DriftNotFitted { .. } => "drift_not_fitted",
             Self::DroppedRevolutions { .. } => "dropped_revolutions",
             Self::OutputSpread { .. } => "output_spread",
+            Self::ImplausibleGap { .. } => "implausible_gap_unit",
         }
     }
 }
@@ -161,6 +187,44 @@ impl fmt::Display for Diagnostic {
                 f,
                 "{count} revolution(s) dropped for gaps or non-finite samples; {used} used"
             ),
+            Self::ImplausibleGap {
+                unit,
+                mean_gap_um,
+                first_harmonic_um,
+                noise_um,
+            } => {
+                let symbol = unit.symbol();
+                write!(
+                    f,
+                    "the probe signal is implausible for the gap column's declared unit \
+                     `{symbol}`: "
+                )?;
+                let low_gap = mean_gap_um.abs() < MIN_PLAUSIBLE_GAP_UM;
+                if low_gap {
+                    write!(
+                        f,
+                        "a mean gap of {:.3e} µm, below {MIN_PLAUSIBLE_GAP_UM} µm (a probe \
+                         stands off further)",
+                        mean_gap_um
+                    )?;
+                }
+                if first_harmonic_um < noise_um {
+                    if low_gap {
+                        f.write_str(", and ")?;
+                    }
+                    write!(
+                        f,
+                        "a first harmonic of {first_harmonic_um:.3e} µm, below a probe's own \
+                         noise ({noise_um} µm, finer than any displacement probe resolves)"
+                    )?;
+                }
+                write!(
+                    f,
+                    "; if the column is in another unit (mm, or volts), C_r is wrong by that \
+                     factor: check `gap: (column: ..., unit: {symbol})` (a conditioner whose \
+                     output is centred on zero also has a mean gap near 0)"
+                )
+            }
             Self::OutputSpread { ratio, revolutions } => write!(
                 f,
                 "the output rate varies from revolution to revolution {ratio:.1}× more than \

@@ -145,7 +145,9 @@ pub fn reduce_piga_recording(
         .filter(|d| {
             !matches!(
                 d,
-                Diagnostic::DriftNotFitted { .. } | Diagnostic::RevolutionSpread { .. }
+                Diagnostic::DriftNotFitted { .. }
+                    | Diagnostic::RevolutionSpread { .. }
+                    | Diagnostic::ImplausibleGap { .. }
             )
         })
         .collect();

@@ -5,7 +5,9 @@
 
 use harmonics::{DropBadSamples, FitConfig, HarmonicAnalysis, HarmonicsError, PooledAnalysis};
 
-use super::diagnostic::{Diagnostic, RATE_WARNING_TOLERANCE, SpreadCause};
+use super::diagnostic::{
+    Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
+};
 use crate::error::{Hint, RecordingError, Result};
 use crate::lab::format::OnBadSamples;
 use crate::lab::probe::{AngleSourceKind, Recording, sample_index};
@@ -244,6 +246,9 @@ fn finish(
             cause,
         });
     }
+    if let Some(d) = implausible_gap(recording, &analysis) {
+        diagnostics.push(d);
+    }
     if dropped_revolutions > 0 {
         diagnostics.push(Diagnostic::DroppedRevolutions {
             count: dropped_revolutions,
@@ -261,4 +266,24 @@ fn finish(
         mean_noise_sigma,
         diagnostics,
     }
+}
+
+/// [`Diagnostic::ImplausibleGap`] when the mean gap is below a micrometre or the first
+/// harmonic below a probe's own noise (1 nm).
+fn implausible_gap(recording: &Recording, analysis: &HarmonicAnalysis) -> Option<Diagnostic> {
+    let um = recording.gap_unit.um_per_unit();
+    let mean_gap_um = analysis.mean.l0 * um;
+    let first_harmonic_um = analysis.mean.c[0].hypot(analysis.mean.s[0]) * um;
+    let noise_um = PROBE_RESOLUTION_UM;
+    let plausible = mean_gap_um.abs() >= MIN_PLAUSIBLE_GAP_UM && first_harmonic_um >= noise_um;
+    (!plausible
+        && [mean_gap_um, first_harmonic_um, noise_um]
+            .iter()
+            .all(|v| v.is_finite()))
+    .then_some(Diagnostic::ImplausibleGap {
+        unit: recording.gap_unit,
+        mean_gap_um,
+        first_harmonic_um,
+        noise_um,
+    })
 }

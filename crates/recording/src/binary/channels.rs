@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 
 use super::decode::{BLOCK, first_non_finite};
 use crate::error::{BinaryDefect, BinaryFormat, BinaryPart, RecordingError, Result, Unsupported};
-use crate::lab::format::{ANGLE_COLUMN, AngleUnit, GAP_COLUMN, LengthUnit, TIME_COLUMN};
+use crate::lab::format::{ANGLE_COLUMN, AngleUnit, GAP_COLUMN, TIME_COLUMN};
 use crate::lab::probe::Recording;
+use crate::lab::volts::{GapUnit, volts_to_um};
 
 /// The channels (TDMS) or variables (MAT) of a probe recording in a binary file, and their
 /// units; [`load_tdms`](crate::load_tdms), [`load_mat`](crate::load_mat).
@@ -25,7 +26,7 @@ pub struct BinaryChannels {
     /// The probe-gap channel, in [`BinaryChannels::gap_unit`].
     pub gap: String,
     /// Unit of the gap channel.
-    pub gap_unit: LengthUnit,
+    pub gap_unit: GapUnit,
     /// The encoder-angle channel, in [`BinaryChannels::angle_unit`], used when the file has
     /// it (as the CSV reader's angle column); zero at the O1X1 reference, may wrap.
     pub angle: Option<String>,
@@ -42,7 +43,7 @@ impl Default for BinaryChannels {
             group: None,
             time: Some(TIME_COLUMN.into()),
             gap: GAP_COLUMN.into(),
-            gap_unit: LengthUnit::Um,
+            gap_unit: GapUnit::Um,
             angle: Some(ANGLE_COLUMN.into()),
             angle_unit: AngleUnit::Deg,
             max_gap_intervals: 3.0,
@@ -132,11 +133,17 @@ pub(crate) fn assemble(
         }
         v
     });
+    let sensitivity = channels.gap_unit.sensitivity()?;
+    let mut gap_values = gap.values;
+    if let Some(s) = &sensitivity {
+        volts_to_um(&mut gap_values, s);
+    }
     Ok(Recording::from_samples(
         path.to_path_buf(),
         time.values,
-        gap.values,
-        channels.gap_unit,
+        gap_values,
+        channels.gap_unit.length_unit(),
+        sensitivity,
         angle_rad,
     ))
 }

@@ -50,6 +50,30 @@ pub enum Hint {
     TimeUnit,
 }
 
+impl Hint {
+    /// The key of the configuration's `format` block the hint asks to set (`decimal`,
+    /// `delimiter`, `skip_lines`, `on_non_finite`, `on_gap`, `angle`, `time`): a reader
+    /// gives the hint only when its format has that key ([`TableFormat::hint_keys`]).
+    ///
+    /// [`TableFormat::hint_keys`]: crate::TableFormat::hint_keys
+    pub const fn key(self) -> &'static str {
+        match self {
+            Self::DecimalComma | Self::DecimalPoint => "decimal",
+            Self::Delimiter | Self::HeaderDelimiter { .. } => "delimiter",
+            Self::SkipLines => "skip_lines",
+            Self::OnNonFinite => "on_non_finite",
+            Self::OnGap => "on_gap",
+            Self::EncoderCounts => "angle",
+            Self::TimeUnit => "time",
+        }
+    }
+
+    /// Whether the hint names one of `keys`.
+    pub fn is_for(self, keys: &[&str]) -> bool {
+        keys.contains(&self.key())
+    }
+}
+
 /// Errors of reading a table or probe recording, and of the probe-recording writer's
 /// input. A reading error names the file and, where it applies, the 1-based line; an error
 /// with an underlying cause returns it from [`source`](std::error::Error::source) rather
@@ -95,6 +119,18 @@ pub enum RecordingError {
         required: usize,
         /// Most columns a format may name.
         max: usize,
+    },
+    /// A probe sensitivity, or its uncertainty, that is not finite and positive.
+    #[error(
+        "format: `volts({field}: {value_c})` must be finite and > 0 (the probe's sensitivity \
+         and its standard uncertainty, from its calibration certificate)",
+        value_c = units::Compact(*value)
+    )]
+    InvalidSensitivity {
+        /// `sensitivity` or `u_sensitivity`.
+        field: &'static str,
+        /// The value given.
+        value: f64,
     },
     /// An encoder in counts with 0 counts per revolution.
     #[error("format: `counts(per_rev: 0)`: an encoder has at least 1 count per revolution")]
@@ -159,6 +195,27 @@ pub enum RecordingError {
         header: Vec<String>,
         /// What to change, when known.
         hint: Option<Hint>,
+    },
+    /// A column's header states another unit than the format declares for it.
+    #[error(
+        "{}:{line}: column `{column}` states its unit as {stated:?} in the header, but the \
+         format declares `unit: {declared}` (hint: set `unit: {suggested}`, or name the \
+         column whose unit is {declared})",
+        path.display()
+    )]
+    ColumnUnit {
+        /// The file.
+        path: PathBuf,
+        /// Line of the header.
+        line: usize,
+        /// The column.
+        column: String,
+        /// The unit as the header writes it.
+        stated: String,
+        /// The unit the format declares (its configuration name).
+        declared: &'static str,
+        /// The configuration name of the unit the header states.
+        suggested: &'static str,
     },
     /// A row ends before a column that is read.
     #[error("{}:{line}: row has no field for column `{column}`", path.display())]
@@ -446,6 +503,7 @@ impl RecordingError {
             | Self::OutputStep { line, .. }
             | Self::NoRows { line, .. }
             | Self::MissingColumn { line, .. }
+            | Self::ColumnUnit { line, .. }
             | Self::LineTooLong { line, .. } => *line += offset,
             Self::Samples { line, .. } => {
                 if let Some(l) = line {
@@ -458,6 +516,7 @@ impl RecordingError {
             | Self::InvalidColumns { .. }
             | Self::InvalidGapLimit { .. }
             | Self::InvalidCountsPerRev
+            | Self::InvalidSensitivity { .. }
             | Self::InvalidStartAngle { .. }
             | Self::TooFewIndexPulses { .. }
             | Self::Empty { .. }

@@ -6,6 +6,7 @@ use std::fmt;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+use super::volts::GapUnit;
 use crate::error::RecordingError;
 use crate::text::table::{TableColumn, TableFormat, delimiter_byte};
 
@@ -274,7 +275,7 @@ pub struct RecordingFormat {
     /// The time column (default `time_s`, seconds).
     pub time: Column<TimeUnit>,
     /// The gap column (default `gap_um`, µm).
-    pub gap: Column<LengthUnit>,
+    pub gap: Column<GapUnit>,
     /// Where the spindle angle comes from (default: the encoder column `angle_deg` in
     /// degrees when the header has it, else the declared rate).
     pub angle: AngleSource,
@@ -300,7 +301,7 @@ impl Default for RecordingFormat {
             },
             gap: Column {
                 column: GAP_COLUMN.into(),
-                unit: LengthUnit::Um,
+                unit: GapUnit::Um,
             },
             angle: AngleSource::default(),
             max_gap_intervals: 3.0,
@@ -310,6 +311,47 @@ impl Default for RecordingFormat {
     }
 }
 
+/// The table parser's delimiter and whether runs of blanks separate fields, after checking
+/// that the delimiter can separate numbers written with the decimal mark.
+pub(crate) fn text_syntax(
+    delimiter: Delimiter,
+    decimal: DecimalMark,
+) -> Result<(char, bool), RecordingError> {
+    let (delimiter, whitespace) = match delimiter {
+        Delimiter::Char(c) => (c, false),
+        Delimiter::Whitespace => (' ', true),
+    };
+    delimiter_byte(delimiter)?;
+    if decimal == DecimalMark::Comma && delimiter == ',' {
+        return Err(RecordingError::InvalidDelimiter { delimiter });
+    }
+    Ok((delimiter, whitespace))
+}
+
+/// The text in the last `[…]` or `(…)` at the end of a header name, trimmed.
+pub(crate) fn header_unit(header: &str) -> Option<&str> {
+    let h = header.trim();
+    let (open, close) = match h.chars().last()? {
+        ']' => ('[', ']'),
+        ')' => ('(', ')'),
+        _ => return None,
+    };
+    let start = h.rfind(open)?;
+    let inner = &h[start + open.len_utf8()..h.len() - close.len_utf8()];
+    Some(inner.trim())
+}
+
+/// The keys of a recording's `format` block that a hint may name.
+const RECORDING_KEYS: &[&str] = &[
+    "delimiter",
+    "decimal",
+    "skip_lines",
+    "on_non_finite",
+    "on_gap",
+    "angle",
+    "time",
+];
+
 /// Index of the angle column in [`RecordingFormat::table_format`]'s columns, when read.
 pub(crate) const ANGLE_SLOT: usize = 2;
 
@@ -318,14 +360,8 @@ impl RecordingFormat {
     /// index pulse) when there is one, rows may have more fields than those read. Checks the
     /// format.
     pub(crate) fn table_format(&self) -> Result<TableFormat, RecordingError> {
-        let (delimiter, whitespace) = match self.delimiter {
-            Delimiter::Char(c) => (c, false),
-            Delimiter::Whitespace => (' ', true),
-        };
-        delimiter_byte(delimiter)?;
-        if self.decimal == DecimalMark::Comma && delimiter == ',' {
-            return Err(RecordingError::InvalidDelimiter { delimiter });
-        }
+        let (delimiter, whitespace) = text_syntax(self.delimiter, self.decimal)?;
+        self.gap.unit.sensitivity()?;
         let mut columns = vec![
             TableColumn::required(self.time.column.trim()),
             TableColumn::required(self.gap.column.trim()),
@@ -379,6 +415,7 @@ impl RecordingFormat {
             skip_lines: self.skip_lines,
             allow_non_finite: self.on_non_finite == OnBadSamples::DropRevolution,
             label: None,
+            hint_keys: RECORDING_KEYS,
         })
     }
 }

@@ -8,4 +8,5 @@ pub(crate) mod format;
 pub(crate) mod piga_recording;
 pub(crate) mod piga_table;
 pub(crate) mod probe;
+pub(crate) mod volts;
 pub(crate) mod write;

@@ -10,10 +10,10 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::format::{
-    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples,
-    RecordingFormat, TimeUnit,
+    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, OnBadSamples, RecordingFormat, TimeUnit,
 };
 use super::probe::{AngleSourceKind, Recording, load_recording, parse_recording};
+use super::volts::GapUnit;
 use crate::error::{RecordingError, Result};
 
 /// Default name of the output-angle column.
@@ -98,7 +98,7 @@ impl PigaRecordingFormat {
             gap: Column {
                 column: self.output.column.clone(),
                 // Unused: the values are converted with the output's angle unit.
-                unit: LengthUnit::Um,
+                unit: GapUnit::Um,
             },
             angle: self.angle.clone(),
             max_gap_intervals: self.max_gap_intervals,

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
 
 use super::format::{ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, RecordingFormat};
+use super::volts::{GapUnit, ProbeSensitivity, volts_to_um};
 use crate::error::{RecordingError, Result};
 use crate::text::line_table::LineTable;
 use crate::text::table::{Table, load_table, parse_table};
@@ -46,8 +47,11 @@ pub struct Recording {
     /// Probe gap of each sample, in [`Recording::gap_unit`] (NaN or infinite only with
     /// `on_non_finite: drop_revolution`).
     pub gap: Vec<f64>,
-    /// Unit of [`Recording::gap`].
+    /// Unit of [`Recording::gap`] (µm for a gap recorded in volts, converted).
     pub gap_unit: LengthUnit,
+    /// The probe sensitivity the gap was converted from volts with, when it was recorded
+    /// in volts: its relative standard uncertainty is the probe-gain Type B input.
+    pub sensitivity: Option<ProbeSensitivity>,
     /// The measured angle of each sample, rad (encoder, or interpolated index pulses).
     pub angle_rad: Option<Vec<f64>>,
     /// Where the angle comes from.
@@ -93,6 +97,7 @@ impl Recording {
         time_s: Vec<f64>,
         gap: Vec<f64>,
         gap_unit: LengthUnit,
+        sensitivity: Option<ProbeSensitivity>,
         angle_rad: Option<Vec<f64>>,
     ) -> Self {
         Self {
@@ -100,6 +105,7 @@ impl Recording {
             time_s,
             gap,
             gap_unit,
+            sensitivity,
             angle_source: if angle_rad.is_some() {
                 AngleSourceKind::Encoder
             } else {
@@ -208,6 +214,7 @@ impl Recording {
             mut columns,
             names,
             header,
+            header_line,
             lines,
             ..
         } = table;
@@ -219,7 +226,12 @@ impl Recording {
         let mut take = |k: usize| columns.get_mut(k).and_then(Option::take);
         // Time and gap are required columns: the table has them.
         let mut time_s = take(0).unwrap_or_default();
-        let gap = take(1).unwrap_or_default();
+        let mut gap = take(1).unwrap_or_default();
+        check_gap_header_unit(&header, &path, format, header_line)?;
+        let sensitivity = format.gap.unit.sensitivity()?;
+        if let Some(s) = &sensitivity {
+            volts_to_um(&mut gap, s);
+        }
         let raw_angle = take(ANGLE_SLOT);
         let time_scale = format.time.unit.s_per_unit();
         if time_scale != 1.0 {
@@ -275,7 +287,8 @@ impl Recording {
             path,
             time_s,
             gap,
-            gap_unit: format.gap.unit,
+            gap_unit: format.gap.unit.length_unit(),
+            sensitivity,
             angle_rad,
             angle_source,
             start_angle_rad,
@@ -286,6 +299,71 @@ impl Recording {
             lines,
         })
     }
+}
+
+/// Refuses a gap column whose header states another unit than the format declares
+/// (`Spalt [mm]` declared `um` would make C_r 1000 times too small).
+fn check_gap_header_unit(
+    header: &[String],
+    path: &Path,
+    format: &RecordingFormat,
+    header_line: usize,
+) -> Result<()> {
+    let name = format.gap.column.trim();
+    let Some(stated) = header
+        .iter()
+        .find(|h| *h == name)
+        .and_then(|h| gap_unit_in_header(h))
+    else {
+        return Ok(());
+    };
+    let declared = format.gap.unit;
+    let same = match (stated, declared) {
+        (None, GapUnit::Volts { .. }) => true,
+        (Some(a), b) => GapUnit::from(a) == b,
+        _ => false,
+    };
+    if same {
+        return Ok(());
+    }
+    Err(RecordingError::ColumnUnit {
+        path: path.to_owned(),
+        line: header_line,
+        column: name.to_owned(),
+        stated: super::format::header_unit(name)
+            .unwrap_or_default()
+            .to_owned(),
+        declared: gap_unit_key(declared),
+        suggested: match stated {
+            Some(unit) => gap_unit_key(unit.into()),
+            None => "volts(sensitivity: ..., sensitivity_unit: ..., u_sensitivity: ...)",
+        },
+    })
+}
+
+/// The configuration name of a gap unit.
+fn gap_unit_key(unit: GapUnit) -> &'static str {
+    match unit {
+        GapUnit::Nm => "nm",
+        GapUnit::Um => "um",
+        GapUnit::Mm => "mm",
+        GapUnit::M => "m",
+        GapUnit::Volts { .. } => "volts(...)",
+    }
+}
+
+/// The unit a gap column's header states at its end (`Spalt [mm]`, `gap (µm)`): a length
+/// unit, or `None` inside for volts; `None` when the header states none it knows.
+pub(crate) fn gap_unit_in_header(header: &str) -> Option<Option<LengthUnit>> {
+    let unit = super::format::header_unit(header)?;
+    Some(match unit {
+        "nm" => Some(LengthUnit::Nm),
+        "um" | "µm" | "μm" | "micron" => Some(LengthUnit::Um),
+        "mm" => Some(LengthUnit::Mm),
+        "m" => Some(LengthUnit::M),
+        "V" | "v" => None,
+        _ => return None,
+    })
 }
 
 /// The reader's error for a time axis that [`harmonics::check_time_axis`] refused.

@@ -105,3 +105,13 @@ pub(crate) fn trim_quotes(field: &[u8]) -> &[u8] {
         _ => f,
     }
 }
+
+/// A field's text: UTF-8 when it is valid UTF-8, else read as Latin-1 (ISO 8859-1), as a
+/// Windows export in code page 1252 writes `°`, `µ` and umlauts in headers, so that a
+/// header such as `Drehrate [°/s]` matches its name in the configuration either way.
+pub(crate) fn field_text(field: &[u8]) -> String {
+    match std::str::from_utf8(field) {
+        Ok(s) => s.to_owned(),
+        Err(_) => field.iter().map(|&b| char::from(b)).collect(),
+    }
+}

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use super::lines::{split_fields, trim_quotes};
+use super::lines::{field_text, split_fields, trim_quotes};
 use super::number::{fast_prefix, parse_f64};
 use crate::error::{Hint, RecordingError};
 
@@ -49,6 +49,7 @@ impl RowError {
         path: &Path,
         line: usize,
         column_name: &dyn Fn(usize) -> String,
+        hint_keys: &[&str],
     ) -> RecordingError {
         let path = path.to_owned();
         match self {
@@ -68,14 +69,14 @@ impl RowError {
                 line,
                 column: column_name(slot),
                 text,
-                hint,
+                hint: hint.filter(|h| h.is_for(hint_keys)),
             },
             Self::NonFinite { slot, value } => RecordingError::NonFinite {
                 path,
                 line,
                 column: column_name(slot),
                 value,
-                hint: Some(Hint::OnNonFinite),
+                hint: Some(Hint::OnNonFinite).filter(|h| h.is_for(hint_keys)),
             },
         }
     }
@@ -108,7 +109,7 @@ pub(crate) fn parse_row_slowly(
         let field = trim_quotes(field);
         let value = parse_f64(field, syntax.comma).ok_or_else(|| RowError::Parse {
             slot,
-            text: String::from_utf8_lossy(field).into_owned(),
+            text: field_text(field),
             hint: number_hint(field, syntax),
         })?;
         if !value.is_finite() && !syntax.allow_non_finite {

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::line_table::LineTable;
-use super::lines::{Lines, normalized, split_fields, trim_quotes};
+use super::lines::{Lines, field_text, normalized, split_fields, trim_quotes};
 use super::rows::{SKIP, Syntax, fast_row, parse_row_slowly};
 use super::stream::{CHUNK_BYTES, LineSink, stream_file};
 use crate::error::{Hint, RecordingError, Result};
@@ -73,6 +73,11 @@ pub struct TableFormat {
     /// field is an empty label. With a label, rows are parsed field by field (tables with
     /// labels are small).
     pub label: Option<String>,
+    /// The keys of the configuration's `format` block behind this table (`delimiter`,
+    /// `decimal`, `skip_lines`, `on_non_finite`, …): an error's [`Hint`] is given only when
+    /// it names one of them ([`Hint::key`]), so that a hint never suggests a key the
+    /// user's format does not accept. [`TableFormat::new`] gives none.
+    pub hint_keys: &'static [&'static str],
 }
 
 impl TableFormat {
@@ -88,7 +93,13 @@ impl TableFormat {
             skip_lines: 0,
             allow_non_finite: false,
             label: None,
+            hint_keys: &[],
         }
+    }
+
+    /// The hint, if the format has the key it names.
+    pub(crate) fn accepted(&self, hint: Option<Hint>) -> Option<Hint> {
+        hint.filter(|h| h.is_for(self.hint_keys))
     }
 }
 
@@ -329,7 +340,7 @@ impl<'a> TableParser<'a> {
 
     fn header(&mut self, line: usize, header: &[u8]) -> Result<Layout> {
         let names: Vec<String> = split_fields(header, self.syntax.delimiter, self.syntax.blank)
-            .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
+            .map(|f| field_text(trim_quotes(f)))
             .collect();
         let mut present = Vec::new();
         let mut wanted = Vec::new();
@@ -340,7 +351,9 @@ impl<'a> TableParser<'a> {
                     present.push(k);
                 }
                 None if column.required => {
-                    let hint = header_hint(&names, &column.name, line, self.format);
+                    let hint =
+                        self.format
+                            .accepted(header_hint(&names, &column.name, line, self.format));
                     return Err(RecordingError::MissingColumn {
                         path: self.path.to_owned(),
                         line,
@@ -357,7 +370,9 @@ impl<'a> TableParser<'a> {
             Some(label) => match names.iter().position(|n| n == label) {
                 Some(field) => Some(field),
                 None => {
-                    let hint = header_hint(&names, label, line, self.format);
+                    let hint = self
+                        .format
+                        .accepted(header_hint(&names, label, line, self.format));
                     return Err(RecordingError::MissingColumn {
                         path: self.path.to_owned(),
                         line,
@@ -533,12 +548,12 @@ impl<'a> TableParser<'a> {
                             .map(|&k| self.format.columns[k].name.clone())
                             .unwrap_or_default()
                     };
-                    break Err(e.located(self.path, line, &name));
+                    break Err(e.located(self.path, line, &name, self.format.hint_keys));
                 }
                 if let Some(field) = layout.label_field {
                     let label = split_fields(fields, self.syntax.delimiter, self.syntax.blank)
                         .nth(field)
-                        .map(|f| String::from_utf8_lossy(trim_quotes(f)).into_owned())
+                        .map(|f| field_text(trim_quotes(f)))
                         .unwrap_or_default();
                     self.labels.push(label);
                 }
@@ -629,5 +644,8 @@ fn header_hint(names: &[String], column: &str, line: usize, format: &TableFormat
     }
     let numeric = names.iter().all(|n| n.trim().parse::<f64>().is_ok());
     let _ = line;
-    (names.len() <= 1 && !numeric).then_some(Hint::SkipLines)
+    // A metadata line has one field, or one and empty ones (an export padding every line
+    // with delimiters: `Prüfling: PIGA 16;;;`).
+    let filled = names.iter().filter(|n| !n.trim().is_empty()).count();
+    (filled <= 1 && !numeric).then_some(Hint::SkipLines)
 }

@@ -2,5 +2,7 @@
 
 mod binary;
 mod piga_recording;
+mod piga_table;
 mod probe;
 mod table;
+mod volts;

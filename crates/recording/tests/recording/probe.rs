@@ -5,7 +5,7 @@ use std::path::Path;
 
 use harmonics::{HarmonicsError, SpindleAngle};
 use recording::{
-    AngleSource, AngleUnit, Column, Delimiter, LengthUnit, Recording, RecordingError,
+    AngleSource, AngleUnit, Column, Delimiter, GapUnit, LengthUnit, Recording, RecordingError,
     RecordingFormat, SyntheticSpec, TimeUnit, analyze_recording, load_recording, parse_recording,
 };
 
@@ -64,7 +64,7 @@ fn configured_names_units_delimiter_and_column_order() {
         },
         gap: Column {
             column: "d".into(),
-            unit: LengthUnit::Mm,
+            unit: GapUnit::Mm,
         },
         angle: AngleSource::Encoder {
             column: "phi".into(),
@@ -95,7 +95,7 @@ fn configured_names_units_delimiter_and_column_order() {
 fn ron_format_with_defaults() {
     let f: RecordingFormat =
         ron::from_str("(gap: (column: \"gap_um\", unit: mm), delimiter: ';')").unwrap();
-    assert_eq!(f.gap.unit, LengthUnit::Mm);
+    assert_eq!(f.gap.unit, GapUnit::Mm);
     assert_eq!(f.delimiter, Delimiter::Char(';'));
     assert_eq!(f.time.column, "time_s");
     assert!(ron::from_str::<RecordingFormat>("(gap_unit: mm)").is_err());
@@ -697,7 +697,7 @@ fn overlapping_column_names_are_refused() {
             },
             gap: Column {
                 column: gap.into(),
-                unit: LengthUnit::Um,
+                unit: GapUnit::Um,
             },
             angle: AngleSource::Encoder {
                 column: angle.into(),
