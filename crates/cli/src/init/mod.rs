@@ -207,6 +207,7 @@ fn read_column(bytes: &[u8], path: &Path, layout: &Layout, name: &str) -> Result
         skip_lines: layout.skip_lines,
         allow_non_finite: true,
         label: None,
+        hint_keys: &[],
     };
     let table = recording::parse_table(bytes, path, &format).map_err(|e| e.to_string())?;
     Ok(table.column(name).map(<[f64]>::to_vec).unwrap_or_default())
