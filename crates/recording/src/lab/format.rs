@@ -7,45 +7,9 @@ use std::fmt;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::volts::GapUnit;
+pub use super::volts::LengthUnit;
 use crate::error::RecordingError;
 use crate::text::table::{TableColumn, TableFormat, delimiter_byte};
-
-/// Length unit of the gap column.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum LengthUnit {
-    /// Nanometres.
-    Nm,
-    /// Micrometres (the paper's unit).
-    #[default]
-    Um,
-    /// Millimetres.
-    Mm,
-    /// Metres.
-    M,
-}
-
-impl LengthUnit {
-    /// Micrometres per unit.
-    pub const fn um_per_unit(self) -> f64 {
-        match self {
-            Self::Nm => 1e-3,
-            Self::Um => 1.0,
-            Self::Mm => 1e3,
-            Self::M => 1e6,
-        }
-    }
-
-    /// The unit's symbol (`nm`, `um`, `mm`, `m`).
-    pub const fn symbol(self) -> &'static str {
-        match self {
-            Self::Nm => "nm",
-            Self::Um => "um",
-            Self::Mm => "mm",
-            Self::M => "m",
-        }
-    }
-}
 
 /// Time unit of the time column.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]

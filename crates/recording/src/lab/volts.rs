@@ -1,4 +1,5 @@
-//! A probe gap recorded in volts: the unit of a gap column or channel, and the probe's
+//! The units of a probe's gap: lengths, or volts recorded from the probe's conditioner. The
+//! unit of a gap column or channel, and the probe's
 //! sensitivity from its own calibration certificate with its standard uncertainty (the
 //! study's probe-gain Type B input, stated once, here).
 
@@ -6,8 +7,44 @@ use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
-use super::format::LengthUnit;
 use crate::error::RecordingError;
+
+/// Length unit of the gap column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LengthUnit {
+    /// Nanometres.
+    Nm,
+    /// Micrometres (the paper's unit).
+    #[default]
+    Um,
+    /// Millimetres.
+    Mm,
+    /// Metres.
+    M,
+}
+
+impl LengthUnit {
+    /// Micrometres per unit.
+    pub const fn um_per_unit(self) -> f64 {
+        match self {
+            Self::Nm => 1e-3,
+            Self::Um => 1.0,
+            Self::Mm => 1e3,
+            Self::M => 1e6,
+        }
+    }
+
+    /// The unit's symbol (`nm`, `um`, `mm`, `m`).
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Nm => "nm",
+            Self::Um => "um",
+            Self::Mm => "mm",
+            Self::M => "m",
+        }
+    }
+}
 
 /// The unit in which a probe sensitivity is stated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
