@@ -79,8 +79,12 @@ impl Study {
         .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
         let mut console = Console::stdout();
         print_summary(&mut console, &results)?;
-        // The certificate's summary (issue 19) goes here, after the tables and before the
-        // regression line and the list of files written.
+        // The calibration's summary (issue 19): after the tables, before the regression line
+        // and the list of files written.
+        if let Some(summary) = report::summary_text(&results) {
+            writeln!(console)?;
+            write!(console, "{summary}")?;
+        }
         if let Some(outcomes) = &outcomes {
             let failed = outcomes.iter().filter(|o| !o.passed).count();
             writeln!(

@@ -21,6 +21,7 @@ mod output;
 mod plot;
 mod provenance;
 mod summary;
+mod svgplot;
 
 pub use balance::balance_polar_svg;
 pub use certificate::{

@@ -1,7 +1,8 @@
 //! A study killed or failing while it writes leaves the previous outputs byte for byte; the
 //! next good run replaces them with exactly its own. A file-size limit (`ulimit -f`) makes the
-//! write fail at `radius_error.svg`, the last and largest file, for root too: with SIGXFSZ at
-//! its default the process is killed there; with SIGXFSZ ignored the write fails (EFBIG).
+//! write of the recordings study fail at `probe_signals_pre_balance.svg`, its largest file,
+//! written after results.json and report.md, for root too: with SIGXFSZ at its default the
+//! process is killed there; with SIGXFSZ ignored the write fails (EFBIG).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -18,18 +19,22 @@ fn xtask(args: &[&str]) -> Output {
         .expect("runs")
 }
 
-/// The study, run by bash with a 16 KiB file-size limit: results.json and report.md (about
-/// 8 KiB each) fit, radius_error.svg (about 25 KiB) does not. `trap` decides what SIGXFSZ
-/// does: `""` ignores it, `"-"` keeps the default (terminate).
+/// The recordings study, run by bash with a 16 KiB file-size limit: results.json (about
+/// 12 KiB) and report.md (about 4 KiB) fit, probe_signals_pre_balance.svg (about 35 KiB) does
+/// not. `trap` decides what SIGXFSZ does: `""` ignores it, `"-"` keeps the default
+/// (terminate).
 fn study_limited(out: &Path, trap: &str) -> Output {
-    let script =
-        format!("trap '{trap}' XFSZ; ulimit -f 16; exec \"$0\" study --out \"$1\" --no-compare");
+    let script = format!(
+        "trap '{trap}' XFSZ; ulimit -f 16; exec \"$0\" study --config \"$2\" --out \"$1\" --no-compare"
+    );
+    let recordings = root().join("fixtures/studies/recordings-small.ron");
     Command::new("bash")
         .args([
             "-c",
             &script,
             env!("CARGO_BIN_EXE_centrifuge-cal"),
             out.to_str().unwrap(),
+            recordings.to_str().unwrap(),
         ])
         .output()
         .expect("bash runs")
@@ -100,7 +105,7 @@ fn a_study_killed_or_failing_midway_leaves_the_previous_outputs() {
     assert!(
         stderr.contains(&format!(
             "cannot write {}",
-            out.join("radius_error.svg").display()
+            out.join("probe_signals_pre_balance.svg").display()
         )),
         "{stderr}"
     );

@@ -92,8 +92,8 @@ fn outputs_are_written_and_json_has_the_documented_keys() {
     assert!(json["phases"][0]["delta_k2_rad_s_g2"].is_number());
     let svg = std::fs::read_to_string(&files.radius_error_svg).unwrap();
     assert!(
-        svg.starts_with("<svg") && svg.contains("<circle"),
-        "not an SVG with points"
+        svg.starts_with("<svg") && svg.contains("radius error from the probe"),
+        "not an SVG with the measured points"
     );
     let report = std::fs::read_to_string(&files.report_md).unwrap();
     assert!(report.contains("stated uncertainty of C_r"));

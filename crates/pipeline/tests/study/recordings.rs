@@ -41,7 +41,7 @@ fn recordings_recover_the_simulated_truth() {
         "only the pre-balance phase has recordings"
     );
     let svg = std::fs::read_to_string(&files.probe_signals_svg[0]).unwrap();
-    assert!(svg.contains("200.1234 deg/s") && svg.contains("<circle"));
+    assert!(svg.contains("200.1234 deg/s") && svg.contains("fit (eq. 20)"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
