@@ -1083,4 +1083,49 @@ mod tests {
         assert!(inline.contains("viewBox=\"0 0 800 480\""), "{inline}");
         assert!(!inline.contains("width=\"800\""));
     }
+
+    fn gum() -> Coefficient {
+        Coefficient {
+            value: 1.0,
+            u: 0.1,
+            u95: 0.196,
+            k: 1.96,
+            dof: pipeline::DegreesOfFreedom::Finite(50.0),
+        }
+    }
+
+    fn mc(gum_agrees: bool, d: f64, tolerance: f64) -> MonteCarloOutput {
+        MonteCarloOutput {
+            mean: 1.0,
+            u: 0.1,
+            low95: 0.79,
+            high95: 1.22,
+            gum_agrees,
+            tolerance,
+            d_low: d,
+            d_high: 0.5 * d,
+            heavy_tailed: false,
+        }
+    }
+
+    #[test]
+    fn the_headline_follows_jcgm_101_section_8() {
+        // validated clearly: the GUM interval
+        let h = Headline::of(&gum(), &mc(true, 1e-4, 1e-3));
+        assert_eq!(h.method, HeadlineMethod::Gum);
+        assert!((h.low - 0.804).abs() < 1e-12 && (h.high - 1.196).abs() < 1e-12);
+        // not validated: the Monte Carlo interval, and the words say so
+        let h = Headline::of(&gum(), &mc(false, 5e-3, 1e-3));
+        assert_eq!(h.method, HeadlineMethod::MonteCarlo { borderline: false });
+        assert_eq!((h.low, h.high), (0.79, 1.22));
+        assert!(h.method_words().contains("not validated"));
+        // within δ/2 of the threshold, on either side: borderline, the Monte Carlo interval
+        // stated whichever verdict this run gave
+        for (agrees, d) in [(true, 0.9e-3), (false, 1.1e-3)] {
+            let h = Headline::of(&gum(), &mc(agrees, d, 1e-3));
+            assert_eq!(h.method, HeadlineMethod::MonteCarlo { borderline: true });
+            assert_eq!((h.low, h.high), (0.79, 1.22));
+            assert!(h.method_words().contains("borderline"));
+        }
+    }
 }

