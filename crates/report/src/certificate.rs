@@ -15,6 +15,7 @@ use serde::Deserialize;
 
 use crate::error::{ReportError, Result};
 use crate::format;
+use crate::format::esc;
 use crate::provenance::{FileRecord, Provenance};
 
 /// A party named on a certificate: the laboratory or the customer.
@@ -367,22 +368,6 @@ pub(crate) fn verdict(
     upper
         .map_or(Verdict::Pass, upper_verdict)
         .max(lower.map_or(Verdict::Pass, lower_verdict))
-}
-
-/// Escapes text for HTML.
-pub(crate) fn esc(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
-        }
-    }
-    out
 }
 
 /// A CSS string literal holding `text`.

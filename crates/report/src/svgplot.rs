@@ -6,8 +6,7 @@
 
 use std::fmt::Write as _;
 
-use crate::certificate::esc;
-use crate::format::{nice_step, tick};
+use crate::format::{esc, nice_step, tick};
 
 /// Something drawn in a panel, in data coordinates.
 #[derive(Debug, Clone)]
