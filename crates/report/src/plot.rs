@@ -105,7 +105,7 @@ const MAX_SAMPLES_DRAWN: usize = 240;
 
 /// Each recording's probe signal over one revolution with its fitted eq. 20 curve, one panel
 /// per rate: the paper's Fig. 4. The samples are drawn as light dots (at most
-/// [`MAX_SAMPLES_DRAWN`] per panel, evenly chosen), the fit over them as a dark curve, with a
+/// `MAX_SAMPLES_DRAWN` (240) per panel, evenly chosen), the fit over them as a dark curve, with a
 /// legend. `None` when the phase has no recordings.
 pub fn probe_signals_svg(phase: &PhaseResults, title: &str) -> Result<Option<String>> {
     let traces: Vec<_> = phase
