@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 use crate::errors::{self, Kind, Located};
 use crate::files::{json_error, unknown_field, value};
@@ -214,14 +214,21 @@ pub(crate) fn fit_radius_error<'py>(
     d.set_item("dof", fit.fit.dof)?;
     d.set_item("residual_sd", fit.fit.residual_sd)?;
     d.set_item("condition_number", fit.fit.condition_number)?;
-    d.set_item(
-        "warnings",
-        fit.fit
-            .warnings
-            .iter()
-            .map(|w| format!("{w:?}"))
-            .collect::<Vec<_>>(),
-    )?;
+    // `{code, message}` as the other warnings, the message in the command line's words
+    let warnings = PyList::empty(py);
+    for w in &fit.fit.warnings {
+        let item = PyDict::new(py);
+        item.set_item(
+            "code",
+            match w {
+                identify::FitWarning::RefinementNotConverged { .. } => "refinement_not_converged",
+                _ => "fit_warning",
+            },
+        )?;
+        item.set_item("message", w.to_string())?;
+        warnings.append(item)?;
+    }
+    d.set_item("warnings", warnings)?;
     Ok(d)
 }
 

@@ -26,6 +26,7 @@ def test_radius_fit_recovers_c_r() -> None:
     assert fit.offset_m == pytest.approx(1.5e-6, rel=1e-9)
     assert fit.dof == 4
     assert fit.linear_m_s is None
+    assert fit.warnings == ()
     three = cc.fit_radius_error(rates, err_um, model="three_term")
     assert three.linear_m_s == pytest.approx(0.0, abs=1e-12)
     weighted = cc.fit_radius_error(rates, err_um, sigma_um=np.full(6, 0.01))
@@ -195,7 +196,13 @@ def test_advise_balance_equals_the_balance_study() -> None:
         pivot_to_probe_mm=700.0, probe_to_piga_mm=510.0,
     )
     expected = cc.run_study(ROOT / "fixtures" / "studies" / "balance-simulated.ron").balance
-    assert advice == expected
+    assert isinstance(advice, cc.BalanceAdvice)
+    assert advice.to_dict() == expected
+    assert advice.correction_mass_kg == expected["correction"]["mass_kg"]
+    assert advice.correction_azimuth_u_deg == expected["correction"]["azimuth_u_deg"]
+    assert advice.predicted_delta_k2_u_rad_s_g2 == expected["predicted"]["delta_k2_u_rad_s_g2"]
+    assert advice.correction_method == "influence_coefficient"
+    assert "probe plane" in advice.assumption
 
 
 def test_advise_balance_names_an_unknown_phase() -> None:

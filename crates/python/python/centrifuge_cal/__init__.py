@@ -38,6 +38,7 @@ from .errors import (
     RecordingError,
 )
 from .results import (
+    BalanceAdvice,
     Coefficients,
     DeltaK2,
     FirstHarmonic,
@@ -215,6 +216,7 @@ def fit_radius_error(
         dof=d["dof"],
         residual_sd=d["residual_sd"],
         condition_number=d["condition_number"],
+        warnings=tuple(Warning(**x) for x in d["warnings"]),
         rate_deg_s=w.copy(),
         radius_error_um=r.copy(),
         sigma_um=None if s is None else s.copy(),
@@ -401,14 +403,15 @@ def advise_balance(
     probe_to_piga_mm: float,
     probe_along: bool = False,
     base_dir: PathLike | None = None,
-) -> dict[str, Any]:
+) -> BalanceAdvice:
     """The balance advisor (``docs/BALANCING.md``): the static/dynamic phasors of each
     phase, the correction mass and azimuth, the residual C_r and Δk2 it leaves.
 
     ``phases`` maps a phase's name to its points as in a study (e.g. ``{"before":
     {"first_harmonic": [{"rate_deg_s": 10.0, "dc1_um": -3.29, "ds1_um": -1.19}, ...]}}``);
     ``balance`` is a study's ``balance`` section naming them (``initial``, ``trial``,
-    ``trial_mass``, ``correction_radius_m``, …). Returns results.json's ``balance`` object.
+    ``trial_mass``, ``correction_radius_m``, …). Returns a :class:`BalanceAdvice`, whose
+    ``to_dict()`` is results.json's ``balance`` object.
     """
     config = {
         "name": "balance",
@@ -426,7 +429,7 @@ def advise_balance(
     study = _study_dict(config, base_dir, {})
     if study.balance is None:
         raise ComputationError("the study gave no balance advice")
-    return study.balance
+    return BalanceAdvice._of(study.balance)
 
 
 @dataclass(frozen=True)
@@ -463,6 +466,7 @@ def plan(config: PathLike | dict[str, Any]) -> Plan:
 
 __all__ = [
     "DEFAULT_ORDER",
+    "BalanceAdvice",
     "Calibration",
     "CentrifugeCalError",
     "Coefficients",

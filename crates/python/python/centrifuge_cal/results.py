@@ -185,6 +185,7 @@ class RadiusFit(_Result):
     dof: int
     residual_sd: float
     condition_number: float
+    warnings: tuple[Warning, ...]
     rate_deg_s: FloatArray
     radius_error_um: FloatArray
     sigma_um: FloatArray | None
@@ -199,6 +200,50 @@ class RadiusFit(_Result):
             c_r_sigma_m_s2=self.c_r_sigma_m_s2,
             radius_m=radius_m,
             g_m_s2=g_m_s2,
+        )
+
+
+@dataclass(frozen=True)
+class BalanceAdvice(_Result):
+    """The balance advisor's answer (``docs/BALANCING.md``): the correction mass, its radius
+    and azimuth with their standard uncertainties, and the C_r and Δk2 it is predicted to
+    leave. ``assumption`` says in words what the advice rests on (one probe plane or two);
+    ``data`` is results.json's ``balance`` object, phasors of each phase included
+    (``to_dict()`` returns it)."""
+
+    correction_method: str
+    correction_mass_kg: float
+    correction_mass_u_kg: float
+    correction_radius_m: float
+    correction_azimuth_deg: float
+    correction_azimuth_u_deg: float
+    predicted_c_r_m_s2: float
+    predicted_c_r_u_m_s2: float
+    predicted_delta_k2_rad_s_g2: float
+    predicted_delta_k2_u_rad_s_g2: float
+    assumption: str
+    data: dict[str, Any]
+
+    def to_dict(self) -> dict[str, Any]:
+        """results.json's ``balance`` object."""
+        return self.data
+
+    @staticmethod
+    def _of(d: dict[str, Any]) -> BalanceAdvice:
+        c, p = d["correction"], d["predicted"]
+        return BalanceAdvice(
+            correction_method=c["method"],
+            correction_mass_kg=c["mass_kg"],
+            correction_mass_u_kg=c["mass_u_kg"],
+            correction_radius_m=c["radius_m"],
+            correction_azimuth_deg=c["azimuth_deg"],
+            correction_azimuth_u_deg=c["azimuth_u_deg"],
+            predicted_c_r_m_s2=p["c_r_m_s2"],
+            predicted_c_r_u_m_s2=p["c_r_u_m_s2"],
+            predicted_delta_k2_rad_s_g2=p["delta_k2_rad_s_g2"],
+            predicted_delta_k2_u_rad_s_g2=p["delta_k2_u_rad_s_g2"],
+            assumption=d["assumption"],
+            data=d,
         )
 
 
