@@ -48,8 +48,12 @@ for f in fixtures/campaign/piga_100.0000deg_s.csv fixtures/campaign/piga_200.000
   { printf '\200'; head -n 300 "$f"; } > "$c/piga_recording/fixture-$n"
 done
 # binary: the first byte picks the reader (bit 0: MAT), the group (bit 1: top level) and
-# the time channel (bit 2: none); then the fixtures written by npTDMS and scipy.
-for f in fixtures/recordings/binary/*.tdms; do
+# the time channel (bit 2: none), the DAQmx fixtures' channel names (bit 3); then the
+# fixtures written by npTDMS, scipy and make_daqmx.py.
+for f in fixtures/recordings/binary/daqmx_*.tdms; do
+  { printf '\010'; cat "$f"; } > "$c/binary/$(basename "$f")"
+done
+for f in fixtures/recordings/binary/probe_*.tdms; do
   { printf '\000'; cat "$f"; } > "$c/binary/$(basename "$f")"
   { printf '\004'; cat "$f"; } > "$c/binary/no-time-$(basename "$f")"
 done

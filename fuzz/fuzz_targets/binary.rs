@@ -10,18 +10,29 @@ use recording::{BinaryChannels, parse_mat, parse_tdms};
 
 fuzz_target!(|data: &[u8]| {
     // The first byte picks the reader and the channels: TDMS or MAT, in group `probe` or
-    // at the top level, with or without a time channel.
+    // at the top level, with or without a time channel; bit 3 the channel names of the
+    // DAQmx fixtures (group `Probe`, `gap` and `angle`, time from wf_increment).
     let Some((&choice, bytes)) = data.split_first() else {
         return;
     };
-    let channels = BinaryChannels {
-        group: (choice & 2 == 0).then(|| "probe".to_owned()),
-        time: if choice & 4 == 0 {
-            BinaryChannels::default().time
-        } else {
-            None
-        },
-        ..BinaryChannels::default()
+    let channels = if choice & 8 != 0 {
+        BinaryChannels {
+            group: (choice & 2 == 0).then(|| "Probe".to_owned()),
+            time: None,
+            gap: "gap".to_owned(),
+            angle: Some("angle".to_owned()),
+            ..BinaryChannels::default()
+        }
+    } else {
+        BinaryChannels {
+            group: (choice & 2 == 0).then(|| "probe".to_owned()),
+            time: if choice & 4 == 0 {
+                BinaryChannels::default().time
+            } else {
+                None
+            },
+            ..BinaryChannels::default()
+        }
     };
     let path = Path::new("fuzz.bin");
     let result = if choice & 1 == 0 {

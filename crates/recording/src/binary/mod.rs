@@ -18,8 +18,10 @@
 //! (DEFLATE's largest ratio).
 
 mod channels;
+mod daqmx;
 mod decode;
 pub(crate) mod mat;
+mod scaling;
 mod source;
 pub(crate) mod tdms;
 

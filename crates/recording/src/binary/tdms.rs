@@ -10,14 +10,20 @@
 //!
 //! Read: little-endian segments, channels of 8- to 64-bit integers and single or double
 //! floats (with or without unit), contiguous or interleaved, any number of segments, and the
-//! `wf_start_offset`/`wf_increment` waveform properties for the time. Not read: big-endian
-//! segments, DAQmx raw data, `NI_Scaling` (the stored values are returned), and a partial
-//! chunk at the end of a segment whose writer stopped (next-segment offset all ones).
+//! `wf_start_offset`/`wf_increment` waveform properties for the time; DAQmx raw data (NI's
+//! DAQmx logging: format-changing scalers of any DAQmx integer or float type in interleaved
+//! raw buffers, `daqmx`); `NI_Scaling` properties of the channel, its group or the file
+//! (linear and polynomial scales, chained from the raw values or a DAQmx scaler, `scaling`),
+//! applied as npTDMS applies them. Not read: big-endian segments, digital-line scalers,
+//! other scale types (RTD, strain, table, …: a typed error), and a partial chunk at the end
+//! of a segment whose writer stopped (next-segment offset all ones).
 
 use std::collections::HashMap;
 use std::path::Path;
 
 use super::channels::{BinaryChannels, Cursor, Place, Series, assemble};
+use super::daqmx::{self, DaqmxIndex};
+use super::scaling::{Leaf, Prop, Scaling};
 use super::decode::{NumType, decode};
 use super::source::{Source, with_source};
 use crate::error::{BinaryDefect, BinaryFormat, BinaryPart, RecordingError, Result, Unsupported};
@@ -29,12 +35,9 @@ const TOC_NEW_OBJ_LIST: u32 = 1 << 2;
 const TOC_RAW_DATA: u32 = 1 << 3;
 const TOC_INTERLEAVED: u32 = 1 << 5;
 const TOC_BIG_ENDIAN: u32 = 1 << 6;
-const TOC_DAQMX: u32 = 1 << 7;
 const TYPE_STRING: u32 = 0x20;
 const NO_RAW_DATA: u32 = 0xFFFF_FFFF;
 const SAME_RAW_INDEX: u32 = 0;
-const DAQMX_FORMAT_CHANGING: u32 = 0x6912_0000;
-const DAQMX_DIGITAL_LINE: u32 = 0x6913_0000;
 
 /// Reads the channels of a probe recording from a TDMS file (see [`parse_tdms`]): the
 /// lead-ins and metadata, then only the samples of the channels asked for, through a
@@ -67,6 +70,7 @@ fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<R
         group: channels.group.as_deref(),
         roles: &roles,
         objects: Vec::new(),
+        daqmx: Vec::new(),
         by_path: HashMap::new(),
         list: Vec::new(),
         claimed: [None; 3],
@@ -81,18 +85,62 @@ fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<R
         if let Some(code) = obj.bad_type {
             return Err(place.unsupported(roles[role], Unsupported::TdmsType(code)));
         }
-        let total: usize = obj.spans.iter().map(|s| s.count).sum();
+        if let Some(what) = &obj.unsupported {
+            return Err(place.unsupported(roles[role], what.clone()));
+        }
+        let unsupported = |what| place.unsupported(roles[role], what);
+        let scaling = Scaling::from_properties(&file.property_levels(k)).map_err(unsupported)?;
+        let daqmx = obj.daqmx_type.is_some();
+        let raw_leaf = match (daqmx, obj.scalers.as_slice()) {
+            (false, _) => Leaf::Raw,
+            // A DAQmx channel of a plain type: its one scaler's values are its raw values.
+            (true, [(id, _)]) if obj.daqmx_type != Some(daqmx::RAW_DATA_TYPE) => Leaf::Scaler(*id),
+            _ => Leaf::Raw,
+        };
+        let scaling = match scaling {
+            Some(s) => s,
+            // Unscaled DAQmx raw data: the values of its one scaler.
+            None => Scaling::none(match (daqmx, obj.scalers.as_slice()) {
+                (true, [(id, _)]) => Leaf::Scaler(*id),
+                _ => raw_leaf,
+            }),
+        };
+        let leaf = match scaling.leaf {
+            Leaf::Raw => raw_leaf,
+            scaler => scaler,
+        };
+        let spans: &[Span] = match leaf {
+            Leaf::Raw if daqmx => {
+                return Err(unsupported(Unsupported::TdmsScaling(
+                    "raw input for DAQmx raw data (a scale must read a scaler)".into(),
+                )));
+            }
+            Leaf::Raw => &obj.spans,
+            Leaf::Scaler(id) => match obj.scalers.iter().find(|(s, _)| *s == id) {
+                Some((_, spans)) => spans,
+                None if obj.scalers.is_empty() && !daqmx => &obj.spans,
+                None => {
+                    return Err(unsupported(Unsupported::TdmsScaling(format!(
+                        "no DAQmx scaler of scale id {id}"
+                    ))));
+                }
+            },
+        };
+        let total: usize = spans.iter().map(|s| s.count).sum();
         // Every span's bytes lie in the file: `total` is bounded by its size.
         let mut values = vec![0.0; total];
         let mut at = 0;
         let mut finite = true;
-        for s in &obj.spans {
+        for s in spans {
             let out = &mut values[at..at + s.count];
             let (n, f) = source.decode_at(s.offset, out, s.ty, s.stride, &mut buf)?;
             at += n;
             finite &= f;
         }
         values.truncate(at);
+        // Scaled values are scanned again: a scale may overflow.
+        scaling.apply(&mut values);
+        let finite = finite && scaling.is_identity();
         Ok(Some(Series {
             finite,
             ..series(roles[role], values)
@@ -159,6 +207,8 @@ struct Index {
     /// Bytes per chunk (for strings, from the index; else count × size), `None` when the
     /// type's size is unknown.
     bytes: Option<u64>,
+    /// The DAQmx part of the index, by its place in [`Walk::daqmx`].
+    daqmx: Option<usize>,
 }
 
 #[derive(Debug)]
@@ -175,6 +225,14 @@ struct Object {
     wf_start: Option<f64>,
     /// The channel's values, for channels to read.
     spans: Vec<Span>,
+    /// A DAQmx channel's values, by scaler: `(scale id, spans)`.
+    scalers: Vec<(u32, Vec<Span>)>,
+    /// A DAQmx channel's TDMS data type.
+    daqmx_type: Option<u32>,
+    /// What a DAQmx channel to read has that is not converted.
+    unsupported: Option<Unsupported>,
+    /// Its `NI_` properties (scaling).
+    props: Vec<(String, Prop)>,
     wanted: bool,
 }
 
@@ -184,6 +242,8 @@ struct Walk<'a> {
     /// Names of time, gap and angle ("" for none).
     roles: &'a [&'a str],
     objects: Vec<Object>,
+    /// The DAQmx raw-data indexes read.
+    daqmx: Vec<DaqmxIndex>,
     by_path: HashMap<String, usize>,
     /// The current segment's object list.
     list: Vec<usize>,
@@ -228,9 +288,6 @@ impl Walk<'_> {
         }
         if toc & TOC_BIG_ENDIAN != 0 {
             return Err(place.malformed(pos, BinaryDefect::BigEndian));
-        }
-        if toc & TOC_DAQMX != 0 {
-            return Err(place.malformed(pos, BinaryDefect::DaqmxRaw));
         }
         let start = pos + LEAD_IN;
         let end = if next == u64::MAX {
@@ -290,8 +347,16 @@ impl Walk<'_> {
                         .last
                         .ok_or_else(|| place.malformed(at, BinaryDefect::NoPreviousIndex))?,
                 ),
-                DAQMX_FORMAT_CHANGING | DAQMX_DIGITAL_LINE => {
-                    return Err(place.malformed(at, BinaryDefect::DaqmxRaw));
+                daqmx::FORMAT_CHANGING | daqmx::DIGITAL_LINE => {
+                    let d = daqmx::read_index(&mut c, index_len, at, place)?;
+                    let index = Index {
+                        code: d.data_type,
+                        count: d.count,
+                        bytes: None,
+                        daqmx: Some(self.daqmx.len()),
+                    };
+                    self.daqmx.push(d);
+                    Some(index)
                 }
                 20 | 28 => {
                     let code = c.u32()?;
@@ -315,7 +380,12 @@ impl Walk<'_> {
                         }
                         value_size(code).and_then(|s| count.checked_mul(s))
                     };
-                    Some(Index { code, count, bytes })
+                    Some(Index {
+                        code,
+                        count,
+                        bytes,
+                        daqmx: None,
+                    })
                 }
                 found => return Err(place.malformed(at, BinaryDefect::IndexLength { found })),
             };
@@ -324,8 +394,13 @@ impl Walk<'_> {
             if index.is_some() {
                 obj.last = index;
             }
-            if let Some(i) = index.filter(|i| obj.wanted && num_type(i.code).is_none()) {
-                obj.bad_type.get_or_insert(i.code);
+            if let Some(i) = index.filter(|i| obj.wanted && i.daqmx.is_none()) {
+                if num_type(i.code).is_none() {
+                    obj.bad_type.get_or_insert(i.code);
+                }
+            }
+            if let Some(d) = index.and_then(|i| i.daqmx) {
+                obj.daqmx_type = Some(self.daqmx[d].data_type);
             }
             if !self.list.contains(&k) {
                 self.list.push(k);
@@ -339,9 +414,18 @@ impl Walk<'_> {
                     .transpose()
                     .ok_or_else(|| place.malformed(at, BinaryDefect::PropertyType { code }))??;
                 let obj = &mut self.objects[k];
+                let number = match &value {
+                    Some(Prop::Num(x)) => Some(*x),
+                    _ => None,
+                };
                 match name.as_str() {
-                    "wf_increment" => obj.wf_increment = value,
-                    "wf_start_offset" => obj.wf_start = value,
+                    "wf_increment" => obj.wf_increment = number,
+                    "wf_start_offset" => obj.wf_start = number,
+                    n if n.starts_with("NI_") => {
+                        if let Some(v) = value {
+                            obj.props.push((name.clone(), v));
+                        }
+                    }
                     _ => {}
                 }
             }
@@ -376,6 +460,10 @@ impl Walk<'_> {
             wf_increment: None,
             wf_start: None,
             spans: Vec::new(),
+            scalers: Vec::new(),
+            daqmx_type: None,
+            unsupported: None,
+            props: Vec::new(),
             wanted,
         });
         self.by_path.insert(path.to_string(), k);
@@ -390,6 +478,13 @@ impl Walk<'_> {
         pos: usize,
     ) -> Result<()> {
         let place = self.place;
+        let daqmx = self
+            .list
+            .iter()
+            .any(|&k| self.objects[k].index.is_some_and(|i| i.daqmx.is_some()));
+        if daqmx {
+            return self.daqmx_raw_data(raw_start, end, pos);
+        }
         // Bytes per chunk, and per row when interleaved.
         let mut chunk: u64 = 0;
         let mut row: u64 = 0;
@@ -457,6 +552,98 @@ impl Walk<'_> {
             };
         }
         Ok(())
+    }
+
+    /// The raw data of a DAQmx segment: per chunk, each raw buffer's interleaved rows; each
+    /// scaler of a channel to read is a column of its buffer's rows.
+    fn daqmx_raw_data(&mut self, raw_start: usize, end: usize, pos: usize) -> Result<()> {
+        let place = self.place;
+        let mut channels = Vec::new();
+        for &k in &self.list {
+            let Some(i) = self.objects[k].index else {
+                continue;
+            };
+            // DAQmx raw data and plain data cannot share a segment.
+            let d = i
+                .daqmx
+                .ok_or_else(|| place.malformed(pos, BinaryDefect::DaqmxRaw))?;
+            channels.push((k, i.count, d));
+        }
+        let layout = daqmx::buffers(
+            channels.iter().map(|&(_, count, d)| (count, &self.daqmx[d])),
+            pos,
+            place,
+        )?;
+        let len = (end - raw_start) as u64;
+        if layout.chunk == 0 || len < layout.chunk {
+            return Ok(());
+        }
+        let chunks = len / layout.chunk;
+        let as_usize = |x: u64| usize::try_from(x).unwrap_or(usize::MAX);
+        for &(k, _, d) in &channels {
+            let obj = &mut self.objects[k];
+            let index = &self.daqmx[d];
+            if !obj.wanted {
+                continue;
+            }
+            if index.digital {
+                obj.unsupported.get_or_insert(Unsupported::DigitalLine);
+                continue;
+            }
+            for s in &index.scalers {
+                let Some(ty) = daqmx::num_type(s.ty) else {
+                    obj.unsupported.get_or_insert(Unsupported::DaqmxType(s.ty));
+                    continue;
+                };
+                // `buffers` checked that the buffer exists.
+                let (rows, width, start) = layout.buffers[s.buffer as usize];
+                if u64::from(s.offset) + ty.size() as u64 > width {
+                    return Err(place.malformed(
+                        pos,
+                        BinaryDefect::DaqmxScaler {
+                            buffer: s.buffer,
+                            offset: s.offset,
+                            width: width as u32,
+                        },
+                    ));
+                }
+                let at = match obj.scalers.iter().position(|(id, _)| *id == s.scale_id) {
+                    Some(at) => at,
+                    None => {
+                        obj.scalers.push((s.scale_id, Vec::new()));
+                        obj.scalers.len() - 1
+                    }
+                };
+                for j in 0..chunks {
+                    let span = Span {
+                        ty,
+                        // Within the segment: chunks · chunk ≤ len.
+                        offset: raw_start
+                            + as_usize(j * layout.chunk + start + u64::from(s.offset)),
+                        count: as_usize(rows),
+                        stride: as_usize(width),
+                    };
+                    push_span(&mut obj.scalers[at].1, span);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The `NI_` properties of a channel, its group and the file, in that order.
+    fn property_levels(&self, k: usize) -> [&[(String, Prop)]; 3] {
+        let obj = &self.objects[k];
+        let group = obj.name.as_ref().and_then(|(g, _)| {
+            self.by_path
+                .get(&format!("/'{}'", g.replace('\'', "''")))
+                .map(|&i| self.objects[i].props.as_slice())
+        });
+        let root = self.by_path.get("/").map(|&i| self.objects[i].props.as_slice());
+        [
+            obj.props.as_slice(),
+            group.unwrap_or_default(),
+            root.unwrap_or_default(),
+        ]
     }
 
     /// `group/channel` as the file would name the channel asked for.
@@ -556,12 +743,11 @@ fn num_type(code: u32) -> Option<NumType> {
     })
 }
 
-/// A property's value: `Some(Some(x))` numeric, `Some(None)` another known type (skipped),
-/// `None` an unknown type.
-fn property(c: &mut Cursor<'_>, code: u32) -> Result<Option<Option<f64>>> {
+/// A property's value: `Some(Some(value))` a number or a string, `Some(None)` another known
+/// type (skipped), `None` an unknown type.
+fn property(c: &mut Cursor<'_>, code: u32) -> Result<Option<Option<Prop>>> {
     if code == TYPE_STRING {
-        string(c)?;
-        return Ok(Some(None));
+        return Ok(Some(Some(Prop::Text(string(c)?))));
     }
     let Some(size) = value_size(code) else {
         return Ok(None);
@@ -570,7 +756,7 @@ fn property(c: &mut Cursor<'_>, code: u32) -> Result<Option<Option<f64>>> {
     Ok(Some(num_type(code).map(|ty| {
         let mut v = [f64::NAN];
         decode(&mut v, bytes, ty, ty.size());
-        v[0]
+        Prop::Num(v[0])
     })))
 }
 

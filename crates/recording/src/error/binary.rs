@@ -75,8 +75,19 @@ pub enum BinaryDefect {
     },
     /// A big-endian TDMS segment (not read).
     BigEndian,
-    /// DAQmx raw data (not read: save the channels as plain TDMS).
+    /// DAQmx raw data and plain raw data in one segment.
     DaqmxRaw,
+    /// DAQmx channels of one segment with different raw-buffer widths.
+    DaqmxWidths,
+    /// A DAQmx scaler outside its raw buffer's rows.
+    DaqmxScaler {
+        /// Its raw buffer.
+        buffer: u32,
+        /// Its byte offset in the buffer's row.
+        offset: u32,
+        /// The row's width, bytes (0: no such buffer).
+        width: u32,
+    },
     /// A TDMS raw-data offset beyond its segment.
     RawDataOffset {
         /// The offset, from the end of the lead-in.
@@ -162,7 +173,19 @@ impl fmt::Display for BinaryDefect {
         match self {
             Self::TdmsVersion { found } => write!(f, "TDMS version {found}, expected 4712 or 4713"),
             Self::BigEndian => f.write_str("big-endian segment (not read)"),
-            Self::DaqmxRaw => f.write_str("DAQmx raw data (not read; save as plain TDMS)"),
+            Self::DaqmxRaw => f.write_str("DAQmx raw data mixed with plain raw data in a segment"),
+            Self::DaqmxWidths => {
+                f.write_str("DAQmx channels of a segment with different raw-buffer widths")
+            }
+            Self::DaqmxScaler {
+                buffer,
+                offset,
+                width,
+            } => write!(
+                f,
+                "DAQmx scaler at byte {offset} of raw buffer {buffer}, whose rows are {width} \
+                 bytes wide"
+            ),
             Self::RawDataOffset { offset, segment } => write!(
                 f,
                 "raw-data offset {offset} beyond the segment's {segment} bytes"
@@ -222,6 +245,13 @@ pub enum Unsupported {
     },
     /// A channel with no samples.
     NoSamples,
+    /// A DAQmx scaler data type (code) that is not numeric.
+    DaqmxType(u32),
+    /// DAQmx digital-line (bit) data.
+    DigitalLine,
+    /// A TDMS channel scaling (`NI_Scaling` properties) that is not read: a scale type other
+    /// than linear, polynomial or a DAQmx scaler, or an incomplete or looping chain.
+    TdmsScaling(String),
 }
 
 impl fmt::Display for Unsupported {
@@ -236,6 +266,13 @@ impl fmt::Display for Unsupported {
                 write!(f, "array of size {} (a vector is read)", dims.join("x"))
             }
             Self::NoSamples => f.write_str("channel with no samples"),
+            Self::DaqmxType(code) => write!(f, "DAQmx data type {code}"),
+            Self::DigitalLine => f.write_str("DAQmx digital-line data (a probe gap is analog)"),
+            Self::TdmsScaling(what) => write!(
+                f,
+                "NI_Scaling: {what} (linear and polynomial scales are read; export the channel \
+                 scaled, or as plain TDMS or CSV in the gap's unit)"
+            ),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! Behaviour of the readers through the public API.
 
 mod binary;
+mod daqmx;
 mod piga_recording;
 mod piga_table;
 mod probe;
