@@ -70,7 +70,10 @@ impl Scaling {
     pub(super) fn from_properties(
         levels: &[&[(String, Prop)]],
     ) -> Result<Option<Self>, Unsupported> {
-        let Some(props) = levels.iter().find(|p| scale_count(p).is_some_and(|n| n > 0)) else {
+        let Some(props) = levels
+            .iter()
+            .find(|p| scale_count(p).is_some_and(|n| n > 0))
+        else {
             return Ok(None);
         };
         if text(props, "NI_Scaling_Status") == Some("scaled") {
@@ -90,7 +93,8 @@ impl Scaling {
             let i = index;
             let key = |field: &str| format!("NI_Scale[{i}]_{field}");
             let source = |kind: &str| {
-                number(props, &key(&format!("{kind}_Input_Source"))).map_or(RAW_SOURCE, |v| v as u32)
+                number(props, &key(&format!("{kind}_Input_Source")))
+                    .map_or(RAW_SOURCE, |v| v as u32)
             };
             let missing = |field: String| Unsupported::TdmsScaling(format!("no {field}"));
             match text(props, &key("Scale_Type")) {
@@ -102,8 +106,8 @@ impl Scaling {
                     }));
                 }
                 Some("Linear") => {
-                    let slope =
-                        number(props, &key("Linear_Slope")).ok_or_else(|| missing(key("Linear_Slope")))?;
+                    let slope = number(props, &key("Linear_Slope"))
+                        .ok_or_else(|| missing(key("Linear_Slope")))?;
                     let intercept = number(props, &key("Linear_Y_Intercept"))
                         .ok_or_else(|| missing(key("Linear_Y_Intercept")))?;
                     steps.push(Step::Linear { slope, intercept });
@@ -128,7 +132,9 @@ impl Scaling {
                 }
             }
         }
-        Err(Unsupported::TdmsScaling("a chain of scales that loops".into()))
+        Err(Unsupported::TdmsScaling(
+            "a chain of scales that loops".into(),
+        ))
     }
 
     /// Whether the scaling leaves the values as they are.
@@ -197,7 +203,9 @@ mod tests {
     use super::*;
 
     fn props(list: &[(&str, Prop)]) -> Vec<(String, Prop)> {
-        list.iter().map(|(n, v)| ((*n).to_string(), v.clone())).collect()
+        list.iter()
+            .map(|(n, v)| ((*n).to_string(), v.clone()))
+            .collect()
     }
 
     #[test]

@@ -23,8 +23,8 @@ use std::path::Path;
 
 use super::channels::{BinaryChannels, Cursor, Place, Series, assemble};
 use super::daqmx::{self, DaqmxIndex};
-use super::scaling::{Leaf, Prop, Scaling};
 use super::decode::{NumType, decode};
+use super::scaling::{Leaf, Prop, Scaling};
 use super::source::{Source, with_source};
 use crate::error::{BinaryDefect, BinaryFormat, BinaryPart, RecordingError, Result, Unsupported};
 use crate::lab::probe::Recording;
@@ -570,7 +570,9 @@ impl Walk<'_> {
             channels.push((k, i.count, d));
         }
         let layout = daqmx::buffers(
-            channels.iter().map(|&(_, count, d)| (count, &self.daqmx[d])),
+            channels
+                .iter()
+                .map(|&(_, count, d)| (count, &self.daqmx[d])),
             pos,
             place,
         )?;
@@ -638,7 +640,10 @@ impl Walk<'_> {
                 .get(&format!("/'{}'", g.replace('\'', "''")))
                 .map(|&i| self.objects[i].props.as_slice())
         });
-        let root = self.by_path.get("/").map(|&i| self.objects[i].props.as_slice());
+        let root = self
+            .by_path
+            .get("/")
+            .map(|&i| self.objects[i].props.as_slice());
         [
             obj.props.as_slice(),
             group.unwrap_or_default(),

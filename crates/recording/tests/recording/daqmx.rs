@@ -61,10 +61,20 @@ const F32: f64 = 2.0 * f32::EPSILON as f64;
 #[test]
 fn daqmx_i16_scaler_polynomial_then_linear_reads_as_nptdms() {
     let want = expected("daqmx_i16_poly_linear");
-    let rec = load_tdms(&binary("daqmx_i16_poly_linear.tdms"), &channels(Some("angle"))).unwrap();
+    let rec = load_tdms(
+        &binary("daqmx_i16_poly_linear.tdms"),
+        &channels(Some("angle")),
+    )
+    .unwrap();
     assert_same(&rec.gap, &want[0], F64, "gap (µm)");
     // The angle channel in degrees (linear scale of uint16 counts), converted to radians.
-    let angle_deg: Vec<f64> = rec.angle_rad.as_ref().unwrap().iter().map(|a| a.to_degrees()).collect();
+    let angle_deg: Vec<f64> = rec
+        .angle_rad
+        .as_ref()
+        .unwrap()
+        .iter()
+        .map(|a| a.to_degrees())
+        .collect();
     assert_same(&angle_deg, &want[1], F64, "angle (deg)");
     // Two segments of 600 samples, the time from wf_increment.
     assert_eq!(rec.len(), 1200);
@@ -127,7 +137,10 @@ fn an_unread_scale_type_and_a_mangled_scaler_are_typed_errors() {
     );
     // The message names the file and the channel.
     let text = err.to_string();
-    assert!(text.starts_with("bad.tdms: ") && text.contains("`gap`"), "{text}");
+    assert!(
+        text.starts_with("bad.tdms: ") && text.contains("`gap`"),
+        "{text}"
+    );
     // Any byte changed: an error or a recording, never a panic.
     let original = std::fs::read(binary("daqmx_i16_poly_linear.tdms")).unwrap();
     for i in (0..original.len().min(2000)).step_by(7) {
