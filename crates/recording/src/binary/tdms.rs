@@ -394,10 +394,10 @@ impl Walk<'_> {
             if index.is_some() {
                 obj.last = index;
             }
-            if let Some(i) = index.filter(|i| obj.wanted && i.daqmx.is_none()) {
-                if num_type(i.code).is_none() {
-                    obj.bad_type.get_or_insert(i.code);
-                }
+            if let Some(i) = index.filter(|i| obj.wanted && i.daqmx.is_none())
+                && num_type(i.code).is_none()
+            {
+                obj.bad_type.get_or_insert(i.code);
             }
             if let Some(d) = index.and_then(|i| i.daqmx) {
                 obj.daqmx_type = Some(self.daqmx[d].data_type);
