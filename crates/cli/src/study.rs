@@ -111,6 +111,9 @@ impl Study {
         if let Some(svg) = &files.balance_polar_svg {
             writeln!(console, "wrote {}", svg.display())?;
         }
+        if let Some(html) = &files.certificate_html {
+            writeln!(console, "wrote {}", html.display())?;
+        }
         Ok(())
     }
 }

@@ -12,6 +12,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
 
+mod certificate;
+pub use certificate::*;
+
 /// A whole study: one centrifuge, one PIGA, and any number of named probe phases (before
 /// balancing, with a trial weight, after balancing, ...).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -51,6 +54,10 @@ pub struct StudyConfig {
     /// a `radius_change` phase and a stated radial stiffness; absent: not run).
     #[serde(default)]
     pub counterweight: Option<CounterweightConfig>,
+    /// The calibration certificate's statements (absent: no `certificate.html`; needs a
+    /// calibration section; `docs/CERTIFICATE.md`).
+    #[serde(default)]
+    pub certificate: Option<CertificateConfig>,
 }
 
 /// The counterweight section (`counterweight: (...)`): what a `radius_change` phase, one
@@ -561,6 +568,20 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "TwoPlaneConfig" => "balance.two_plane",
         "CounterweightConfig" => "counterweight",
         "RecordingFormat" | "PigaRecordingFormat" => "format",
+        "CertificateConfig" => "certificate",
+        "LaboratoryConfig" => "certificate.laboratory",
+        "PartyConfig" => "certificate.customer",
+        "ItemConfig" => "certificate.item",
+        "EquipmentConfig" => "certificate.equipment[…]",
+        "DatesConfig" => "certificate.dates",
+        "ConditionConfig" => "certificate.conditions[…]",
+        "TraceabilityConfig" => "certificate.traceability[…]",
+        "TypeBInputName" => "certificate.traceability[…].input",
+        "LimitConfig" => "certificate.limits[…]",
+        "CoefficientName" => "certificate.limits[…].coefficient",
+        "LimitUnitName" => "certificate.limits[…].unit",
+        "DecisionRuleName" => "certificate.decision_rule",
+        "AuthorisationConfig" => "certificate.authorisation",
         _ => "this section",
     })
 }

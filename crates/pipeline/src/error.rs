@@ -226,6 +226,16 @@ pub enum PipelineError {
         /// The phases the study has.
         known: Vec<String>,
     },
+    /// A required field is missing or blank.
+    #[error("{}: field `{field}` is required: {hint}", path.display())]
+    MissingField {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the field.
+        field: String,
+        /// What it is for, or how to fill it in.
+        hint: String,
+    },
     /// A study file could not be read: missing, too large, or not UTF-8 text.
     #[error(transparent)]
     File(#[from] edge_io::EdgeIoError),
@@ -342,6 +352,9 @@ pub enum UnsupportedReason {
     /// Correction planes A and B at one height.
     #[error("the two correction planes must be at different heights")]
     PlanesAtOneHeight,
+    /// A certificate states a calibration's results.
+    #[error("a certificate needs a `calibration` section: it states the calibration's results")]
+    CertificateNeedsCalibration,
     /// The counterweight section reads one published change of radius error.
     #[error("the counterweight section needs a phase given as radius_change")]
     CounterweightNeedsRadiusChange,

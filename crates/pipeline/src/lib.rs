@@ -63,6 +63,11 @@ mod study;
 
 pub use ::calibration::CalibrationModel;
 pub use config::{
+    AuthorisationConfig, CertificateConfig, CoefficientName, ConditionConfig, DatesConfig,
+    DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig, LimitUnitName,
+    PartyConfig, TraceabilityConfig, TypeBInputName,
+};
+pub use config::{
     BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
 };
 pub use config::{
@@ -74,6 +79,11 @@ pub use config::{
 pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::DataSource;
 pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
+pub use results::{
+    Authorisation, CertificateResults, Condition, Conformity, ConformityStatement, Dates,
+    DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party, Traceability,
+    Verdict,
+};
 pub use results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,
     DynamicPhasor, Influence, PhasorResult, PlaneCorrection, PredictedResult, SplitMass,

@@ -12,6 +12,7 @@ use crate::results::{StudyInputs, StudyResults, Warning};
 use crate::sections::balance::counterweight::{self, CounterweightInputs};
 use crate::sections::balance::{self, BalanceInputs};
 use crate::sections::calibration::{self, CalibrationInputs, CalibrationMeasurement};
+use crate::sections::certificate::{self, Certificate};
 use crate::sections::mechanism::{self, Mechanism};
 use crate::sections::phases::{self, Phases, Progress};
 
@@ -24,6 +25,7 @@ pub struct Inputs {
     calibration: Option<CalibrationInputs>,
     balance: Option<BalanceInputs>,
     counterweight: Option<CounterweightInputs>,
+    certificate: Option<Certificate>,
 }
 
 impl Inputs {
@@ -74,6 +76,11 @@ impl Inputs {
             .as_ref()
             .map(|c| counterweight::validate(&check, c, &config.phases, &names.names))
             .transpose()?;
+        let certificate = config
+            .certificate
+            .as_ref()
+            .map(|c| certificate::validate(&check, c, &config))
+            .transpose()?;
         let base = core.base().to_owned();
         let phases = checked.load(&config.phases, &base, source, load)?;
         let calibration = match (config.calibration.as_ref(), calibration_refs) {
@@ -87,6 +94,7 @@ impl Inputs {
             calibration,
             balance,
             counterweight,
+            certificate,
         })
     }
 
@@ -179,6 +187,10 @@ pub fn run_with_progress(
         .as_ref()
         .map(|c| counterweight::run(core, c, &phases[c.phase].name))
         .transpose()?;
+    let certificate = match (inputs.certificate.as_ref(), calibration.as_ref()) {
+        (Some(cert), Some(c)) => Some(certificate::run(cert, c)),
+        _ => None,
+    };
     let results = StudyResults {
         study: core.name.clone(),
         inputs: StudyInputs {
@@ -193,6 +205,7 @@ pub fn run_with_progress(
         warnings,
         balance,
         counterweight,
+        certificate,
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {

@@ -83,9 +83,11 @@ pub enum ReportError {
         /// The backend's message.
         message: String,
     },
-    /// A certificate was asked of results without a calibration section.
-    #[error("a certificate needs a study with a `calibration` section; this study has none")]
-    NoCalibration,
+    /// A certificate was asked of results without a certificate (and calibration) section.
+    #[error(
+        "a certificate needs a study with a `calibration` and a `certificate` section; this study lacks one"
+    )]
+    NoCertificate,
     /// The results have no phase to draw.
     #[error("the results have no phase")]
     NoPhase,

@@ -13,9 +13,12 @@
 mod balance;
 mod calibration;
 mod certificate;
+mod certificate_tables;
 mod error;
 mod expected;
 mod format;
+mod headline;
+mod html;
 mod markdown;
 mod output;
 mod plot;
@@ -24,14 +27,11 @@ mod summary;
 mod svgplot;
 
 pub use balance::balance_polar_svg;
-pub use certificate::{
-    Authorisation, CertificateInfo, CoefficientName, Condition, Dates, DecisionRule, Equipment,
-    Item, Laboratory, Limit, LimitUnit, Party, Software, Traceability, certificate_html,
-};
+pub use certificate::certificate_html;
 pub use error::{ReportError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
 pub use markdown::render;
 pub use output::{WrittenFiles, results_json, results_json_with_provenance, write_outputs};
 pub use plot::{calibration_residuals_svg, probe_signals_svg, radius_error_svg};
-pub use provenance::{FileRecord, Provenance, TOOL};
+pub use provenance::{FileRecord, Provenance, Software, TOOL};
 pub use summary::summary_text;

@@ -9,7 +9,7 @@ use crate::error::{ReportError, Result};
 use crate::expected::{CheckOutcome, Expected};
 use crate::markdown::render;
 use crate::plot::{probe_signals_svg as probe_signals_svg_text, radius_error_svg};
-use crate::provenance::Provenance;
+use crate::provenance::{Provenance, Software};
 use pipeline::StudyResults;
 
 /// The names a study's output directory may hold: what [`write_outputs`] writes.
@@ -39,6 +39,8 @@ pub struct WrittenFiles {
     pub probe_signals_svg: Vec<PathBuf>,
     /// `balance_polar.svg`, when the study has a balance section.
     pub balance_polar_svg: Option<PathBuf>,
+    /// `certificate.html`, when the study has a certificate section.
+    pub certificate_html: Option<PathBuf>,
 }
 
 /// Serialises results as pretty JSON, without provenance.
@@ -73,8 +75,9 @@ pub fn results_json_with_provenance(
     .map_err(|e| ReportError::json("results.json", e))
 }
 
-/// Writes `results.json` (with `provenance` when given), `report.md`, `radius_error.svg` and,
-/// for phases given as recordings, `probe_signals_<phase>.svg` into `dir`, atomically: every
+/// Writes `results.json` (with `provenance` when given), `report.md`, `radius_error.svg`,
+/// for phases given as recordings `probe_signals_<phase>.svg`, and for a study with a
+/// certificate section `certificate.html` (its input files from `provenance`) into `dir`, atomically: every
 /// file is rendered first, then written through an [`OutputSet`], so `dir` ends up holding
 /// exactly these files, or, on any error, what it held before, byte for byte. Files of an
 /// earlier study that this one does not write (a probe figure) are removed.
@@ -124,6 +127,14 @@ pub fn write_outputs(
         })
         .transpose()?;
 
+    // The certificate lists the input files with their digests: without a provenance
+    // record, the files' table says so.
+    let certificate = results
+        .certificate
+        .as_ref()
+        .map(|_| crate::certificate::certificate_html(results, provenance, &Software::this_build()))
+        .transpose()?;
+
     let mut set = OutputSet::create(dir, STUDY_FILES)?;
     let results_json = set.write("results.json", json.as_bytes())?;
     let report_md = set.write("report.md", report.as_bytes())?;
@@ -143,6 +154,9 @@ pub fn write_outputs(
     let balance_polar_svg = balance_figure
         .map(|svg| set.write("balance_polar.svg", svg.as_bytes()))
         .transpose()?;
+    let certificate_html = certificate
+        .map(|html| set.write("certificate.html", html.as_bytes()))
+        .transpose()?;
     set.commit()?;
     Ok(WrittenFiles {
         results_json,
@@ -151,5 +165,6 @@ pub fn write_outputs(
         probe_signals_svg,
         calibration_residuals_svg,
         balance_polar_svg,
+        certificate_html,
     })
 }

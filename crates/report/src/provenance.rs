@@ -93,6 +93,28 @@ impl Provenance {
     }
 }
 
+/// The software that produced a certificate.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Software {
+    /// Name and version (`centrifuge-cal 0.1.0`).
+    pub version: String,
+    /// The source's commit, or `unknown`.
+    pub commit: String,
+}
+
+impl Software {
+    /// This build: the workspace version and the commit it was built from (the build
+    /// environment's `CENTRIFUGE_CAL_COMMIT`, else `unknown`).
+    pub fn this_build() -> Self {
+        Self {
+            version: format!("{} {}", crate::TOOL, env!("CARGO_PKG_VERSION")),
+            commit: option_env!("CENTRIFUGE_CAL_COMMIT")
+                .unwrap_or("unknown")
+                .to_owned(),
+        }
+    }
+}
+
 /// Lowercase hexadecimal digits of `bytes`.
 fn hex(bytes: &[u8]) -> String {
     use std::fmt::Write as _;

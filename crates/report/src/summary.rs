@@ -6,12 +6,8 @@ use std::fmt::Write as _;
 
 use pipeline::{CalibrationResults, StudyResults};
 
-use crate::certificate::{Headline, HeadlineMethod, headlines};
 use crate::format;
-
-const NAMES: [&str; 4] = ["k0", "k1", "k2", "k3"];
-const UNITS: [&str; 4] = ["rad/s", "rad/(s·g)", "rad/(s·g²)", "rad/(s·g³)"];
-const MICRO_UNITS: [&str; 4] = ["µg", "", "µg/g²", "µg/g³"];
+use crate::headline::{Headline, MICRO_UNITS, NAMES, UNITS, headlines};
 
 /// One coefficient's line of the summary.
 struct Line {
@@ -26,7 +22,7 @@ struct Line {
 /// `value ± U` or `value +a/-b` (an asymmetric Monte Carlo interval) with the unit.
 fn interval(h: &Headline, scale: f64, unit: &str) -> String {
     let (below, above) = h.widths(scale);
-    let text = format::interval(h.value * scale, below, above).joined();
+    let text = format::interval(h.value() * scale, below, above).joined();
     if unit.is_empty() {
         text
     } else {
@@ -41,9 +37,10 @@ fn lines(c: &CalibrationResults) -> Vec<Line> {
         .iter()
         .enumerate()
         .map(|(n, h)| {
-            let (k, dof) = match h.method {
-                HeadlineMethod::Gum => (format::coverage_factor(h.gum.k), format::dof(h.gum.dof)),
-                HeadlineMethod::MonteCarlo { .. } => ("—".to_owned(), "—".to_owned()),
+            let (k, dof) = if h.is_gum() {
+                (format::coverage_factor(h.gum.k), format::dof(h.gum.dof))
+            } else {
+                ("—".to_owned(), "—".to_owned())
             };
             Line {
                 name: NAMES[n],
@@ -51,15 +48,7 @@ fn lines(c: &CalibrationResults) -> Vec<Line> {
                 micro: (n != 1).then(|| interval(h, micro, MICRO_UNITS[n])),
                 k,
                 dof,
-                method: match h.method {
-                    HeadlineMethod::Gum => "GUM",
-                    HeadlineMethod::MonteCarlo { borderline: false } => {
-                        "Monte Carlo (GUM not validated)"
-                    }
-                    HeadlineMethod::MonteCarlo { borderline: true } => {
-                        "Monte Carlo (GUM validation borderline)"
-                    }
-                },
+                method: h.method_short(),
             }
         })
         .collect()

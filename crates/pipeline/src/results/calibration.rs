@@ -246,8 +246,73 @@ pub struct CalibrationResults {
     pub budget: PigaCoefficients<Vec<BudgetLine>>,
     /// The same model by Monte Carlo (JCGM 101).
     pub monte_carlo: MonteCarlo,
+    /// The 95 % interval each coefficient is stated with (JCGM 101 §8): the GUM's when the
+    /// Monte Carlo validates it clearly, else the Monte Carlo's.
+    pub headline: PigaCoefficients<Headline>,
     /// Warnings in plain words (terms hard to separate, a budget without Type B inputs...).
     pub warnings: Vec<String>,
+}
+
+/// Which method a coefficient's stated 95 % interval comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HeadlineMethod {
+    /// JCGM 100 (GUM), validated by the Monte Carlo method (JCGM 101 §8).
+    Gum,
+    /// JCGM 101 (Monte Carlo): the GUM interval is not validated, or its validation is
+    /// borderline.
+    MonteCarlo,
+}
+
+/// A coefficient's stated value and 95 % coverage interval (JCGM 101 §8).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Headline {
+    /// The estimate (the GUM's: the model at the inputs' values).
+    pub value: f64,
+    /// Lower end of the 95 % coverage interval.
+    pub low95: f64,
+    /// Upper end.
+    pub high95: f64,
+    /// The method the interval comes from.
+    pub method: HeadlineMethod,
+    /// The §8 comparison lies within half the Monte Carlo's numerical tolerance δ of its
+    /// threshold (`|max(d_low, d_high) − δ| ≤ δ/2`): another run could give either verdict,
+    /// so the Monte Carlo interval, valid either way, is stated.
+    pub borderline: bool,
+}
+
+impl Headline {
+    /// The headline of a coefficient from its GUM result and its Monte Carlo one: the GUM
+    /// interval when validated clearly, else the Monte Carlo one.
+    pub fn of(gum: &Coefficient, mc: &MonteCarloOutput) -> Self {
+        let d = mc.d_low.max(mc.d_high);
+        let borderline = (d - mc.tolerance).abs() <= 0.5 * mc.tolerance;
+        if mc.gum_agrees && !borderline {
+            Self {
+                value: gum.value,
+                low95: gum.value - gum.u95,
+                high95: gum.value + gum.u95,
+                method: HeadlineMethod::Gum,
+                borderline,
+            }
+        } else {
+            Self {
+                value: gum.value,
+                low95: mc.low95,
+                high95: mc.high95,
+                method: HeadlineMethod::MonteCarlo,
+                borderline,
+            }
+        }
+    }
+
+    /// The interval's half-widths below and above the value, scaled by `scale`.
+    pub fn widths(&self, scale: f64) -> (f64, f64) {
+        (
+            (self.value - self.low95) * scale.abs(),
+            (self.high95 - self.value) * scale.abs(),
+        )
+    }
 }
 
 /// The nuisance coefficients of the eq. 18 design.

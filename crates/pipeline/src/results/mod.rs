@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 mod balance;
 mod calibration;
+mod certificate;
 mod common;
 mod mechanism;
 mod phases;
@@ -14,6 +15,7 @@ mod warning;
 
 pub use balance::*;
 pub use calibration::*;
+pub use certificate::*;
 pub use common::{DegreesOfFreedom, Estimate, InfiniteDof};
 pub use mechanism::*;
 pub use phases::*;
@@ -42,6 +44,9 @@ pub struct StudyResults {
     /// The counterweight a published change of radius error stands for (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub counterweight: Option<CounterweightResults>,
+    /// The calibration certificate's statements (when configured; `certificate.html`).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub certificate: Option<CertificateResults>,
 }
 
 /// Scalar inputs of the study.

@@ -6,9 +6,11 @@
 //! - [`phases`]: the probe phases (eq. 16, 19–22);
 //! - [`mechanism`]: a calibration simulated with each phase's C_r (eq. 17–19);
 //! - [`calibration`]: the PIGA's calibration on measured data and its uncertainty;
-//! - [`balance`]: the balance advisor and the counterweight.
+//! - [`balance`]: the balance advisor and the counterweight;
+//! - [`certificate`]: the calibration certificate's statements and conformity.
 
 pub(crate) mod balance;
 pub(crate) mod calibration;
+pub(crate) mod certificate;
 pub(crate) mod mechanism;
 pub(crate) mod phases;

@@ -6,6 +6,7 @@ mod bad_config;
 mod balancing;
 mod baseline;
 mod calibration;
+mod certificate;
 mod in_memory;
 mod lab_variants;
 mod mechanism;

@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use report::{CertificateInfo, Provenance, Software};
+use pipeline::CertificateResults;
+use report::{Provenance, Software};
 
 /// The campaign study, its results and provenance, read through paths relative to this
 /// crate (the test's working directory) so that the snapshot holds no absolute path.
@@ -15,9 +16,9 @@ fn campaign() -> (pipeline::StudyResults, Provenance) {
     (results, provenance)
 }
 
-fn info() -> CertificateInfo {
-    let text = std::fs::read_to_string("../../fixtures/certificates/campaign.ron").unwrap();
-    ron::from_str(&text).unwrap()
+/// The certificate section's statements, as the study validated them.
+fn info(results: &pipeline::StudyResults) -> CertificateResults {
+    results.certificate.clone().expect("a certificate section")
 }
 
 fn software() -> Software {
@@ -37,15 +38,15 @@ fn without_svg(html: &str) -> String {
 #[test]
 fn the_campaign_certificate_is_unchanged() {
     let (results, provenance) = campaign();
-    let html = report::certificate_html(&results, &info(), &provenance, &software()).unwrap();
+    let html = report::certificate_html(&results, Some(&provenance), &software()).unwrap();
     insta::assert_snapshot!("campaign_certificate_html", without_svg(&html));
 }
 
 #[test]
 fn the_certificate_holds_what_iso_17025_asks_and_fetches_nothing() {
     let (results, provenance) = campaign();
-    let info = info();
-    let html = report::certificate_html(&results, &info, &provenance, &software()).unwrap();
+    let info = info(&results);
+    let html = report::certificate_html(&results, Some(&provenance), &software()).unwrap();
     // self-contained: no external resource of any kind
     // (`url(#…)` is a reference inside the document: a figure's clip path)
     for external in [
@@ -113,12 +114,12 @@ fn report_escaped(text: &str) -> String {
 }
 
 #[test]
-fn a_study_without_calibration_has_no_certificate() {
+fn a_study_without_certificate_section_has_no_certificate() {
     let study = pipeline::load_study(Path::new("../../fixtures/studies/paper-2025.ron")).unwrap();
     let results = pipeline::run(&study).unwrap();
     let provenance = Provenance::of_study(&study, None).unwrap();
-    let err = report::certificate_html(&results, &info(), &provenance, &software()).unwrap_err();
-    assert!(matches!(err, report::ReportError::NoCalibration), "{err}");
+    let err = report::certificate_html(&results, Some(&provenance), &software()).unwrap_err();
+    assert!(matches!(err, report::ReportError::NoCertificate), "{err}");
 }
 
 #[test]
@@ -133,4 +134,38 @@ fn the_terminal_summary_gives_k2_with_its_u95_in_both_units() {
     assert!(k2.contains("rad/(s·g²)") && k2.contains("µg/g²"), "{k2}");
     assert!(k2.contains('±'), "{k2}");
     assert!(text.contains("C_r = ") && text.contains("Δk2 = "));
+}
+
+#[test]
+fn results_json_holds_the_stated_intervals_and_the_certificate() {
+    let (results, provenance) = campaign();
+    let json: serde_json::Value =
+        serde_json::from_str(&report::results_json_with_provenance(&results, &provenance).unwrap())
+            .unwrap();
+    // the §8 headline of each coefficient, with its method and borderline flag
+    let k2 = &json["calibration"]["headline"]["k2"];
+    let c = results.calibration.as_ref().unwrap();
+    assert_eq!(k2["method"], "monte_carlo", "{k2}");
+    assert_eq!(k2["borderline"], true, "{k2}");
+    assert_eq!(k2["low95"].as_f64(), Some(c.monte_carlo.k2.low95));
+    assert_eq!(json["calibration"]["headline"]["k0"]["method"], "gum");
+    // the certificate's statements and its conformity verdict
+    assert_eq!(json["certificate"]["id"], "CC-2026-0042");
+    assert_eq!(
+        json["certificate"]["conformity"]["statements"][0]["verdict"],
+        "pass"
+    );
+    assert_eq!(json["certificate"]["conformity"]["rule"], "guard_band");
+}
+
+#[test]
+fn study_writes_the_certificate_beside_results_json() {
+    let (results, provenance) = campaign();
+    let dir = std::env::temp_dir().join(format!("report-certificate-{}", std::process::id()));
+    let files = report::write_outputs(&dir, &results, None, None, Some(&provenance)).unwrap();
+    let html = files.certificate_html.expect("certificate.html written");
+    assert_eq!(html, dir.join("certificate.html"));
+    let text = std::fs::read_to_string(&html).unwrap();
+    assert!(text.contains("CC-2026-0042"));
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -8,8 +8,8 @@ use super::evaluate::{Evaluated, Setting};
 use super::validate::{CalibrationInputs, K1Choice};
 use crate::results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
-    Estimate, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance, PigaCoefficients,
-    Warning,
+    Estimate, Headline, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance,
+    PigaCoefficients, Warning,
 };
 
 /// The results of an evaluated calibration.
@@ -209,6 +209,12 @@ pub(crate) fn results(
                 .to_owned(),
         );
     }
+    let headline = PigaCoefficients {
+        k0: Headline::of(&coefficients.k0, &monte_carlo.k0),
+        k1: Headline::of(&coefficients.k1, &monte_carlo.k1),
+        k2: Headline::of(&coefficients.k2, &monte_carlo.k2),
+        k3: Headline::of(&coefficients.k3, &monte_carlo.k3),
+    };
     CalibrationResults {
         table: points.table.as_ref().map(|t| t.display().to_string()),
         recordings: points.recordings.clone(),
@@ -256,6 +262,7 @@ pub(crate) fn results(
         condition_number: fit.condition_number,
         budget,
         monte_carlo,
+        headline,
         warnings,
     }
 }

@@ -1,0 +1,339 @@
+//! The certificate section's validation: every required field, all missing ones at once.
+
+use crate::config::{
+    CertificateConfig, DecisionRuleName, K1Config, LimitUnitName, StudyConfig, TypeBInputName,
+};
+use crate::error::{PipelineError, Result, UnsupportedReason};
+use crate::inputs::Check;
+use crate::results::{
+    Authorisation, Condition, Dates, DecisionRule, Equipment, Item, Laboratory, Party,
+};
+
+/// A specification limit, validated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Limit {
+    /// 0 for k0 … 3 for k3.
+    pub(crate) index: usize,
+    /// Relative to k1 (µg, µg/g², µg/g³).
+    pub(crate) relative: bool,
+    pub(crate) lower: Option<f64>,
+    pub(crate) upper: Option<f64>,
+}
+
+/// The validated certificate section.
+#[derive(Debug, Clone)]
+pub(crate) struct Certificate {
+    pub(crate) id: String,
+    pub(crate) laboratory: Laboratory,
+    pub(crate) location: String,
+    pub(crate) customer: Party,
+    pub(crate) item: Item,
+    pub(crate) equipment: Vec<Equipment>,
+    pub(crate) dates: Dates,
+    pub(crate) operator: String,
+    pub(crate) conditions: Vec<Condition>,
+    pub(crate) procedure: String,
+    pub(crate) deviations: Option<String>,
+    /// Each input's index in `calibration::input::NAMES` and its statement.
+    pub(crate) traceability: Vec<(usize, String)>,
+    pub(crate) limits: Vec<Limit>,
+    pub(crate) rule: Option<DecisionRule>,
+    pub(crate) authorisation: Authorisation,
+}
+
+/// The input of the calibration model a traceability statement is about.
+pub(crate) const fn input_index(name: TypeBInputName) -> usize {
+    use ::calibration::input;
+    match name {
+        TypeBInputName::Radius => input::RADIUS,
+        TypeBInputName::G => input::G,
+        TypeBInputName::RateScale => input::RATE_SCALE,
+        TypeBInputName::PivotToProbe => input::PIVOT_TO_PROBE,
+        TypeBInputName::ProbeToPiga => input::PROBE_TO_PIGA,
+        TypeBInputName::ProbeGain => input::PROBE_GAIN,
+        TypeBInputName::K1 => input::K1_GIVEN,
+    }
+}
+
+/// The Type B inputs of a study with a non-zero standard uncertainty, each with the field
+/// that gives it.
+fn uncertain_inputs(config: &StudyConfig) -> Vec<(TypeBInputName, &'static str)> {
+    let mut list = Vec::new();
+    if let Some(u) = &config.uncertainty {
+        for (name, field, value) in [
+            (
+                TypeBInputName::Radius,
+                "uncertainty.radius_u_m",
+                u.radius_u_m,
+            ),
+            (TypeBInputName::G, "uncertainty.g_u_m_s2", u.g_u_m_s2),
+            (
+                TypeBInputName::RateScale,
+                "uncertainty.rate_u_relative",
+                u.rate_u_relative,
+            ),
+            (
+                TypeBInputName::PivotToProbe,
+                "uncertainty.pivot_to_probe_u_mm",
+                u.pivot_to_probe_u_mm,
+            ),
+            (
+                TypeBInputName::ProbeToPiga,
+                "uncertainty.probe_to_piga_u_mm",
+                u.probe_to_piga_u_mm,
+            ),
+            (
+                TypeBInputName::ProbeGain,
+                "uncertainty.probe_gain_u_relative",
+                u.probe_gain_u_relative,
+            ),
+        ] {
+            if value > 0.0 {
+                list.push((name, field));
+            }
+        }
+    }
+    if let Some(c) = &config.calibration
+        && let K1Config::Given { u_rad_s_g, .. } = c.k1
+        && u_rad_s_g > 0.0
+    {
+        list.push((TypeBInputName::K1, "calibration.k1.u_rad_s_g"));
+    }
+    list
+}
+
+/// Validates the certificate section of `config`: it needs a calibration section; every
+/// required text present and not blank, at least one instrument and one condition, a
+/// traceability statement for each Type B input with a non-zero uncertainty, a decision
+/// rule with limits and at least one end per limit. Every problem at once.
+pub(crate) fn validate(
+    check: &Check<'_>,
+    c: &CertificateConfig,
+    config: &StudyConfig,
+) -> Result<Certificate> {
+    if config.calibration.is_none() {
+        return Err(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "certificate".to_owned(),
+            reason: UnsupportedReason::CertificateNeedsCalibration,
+        });
+    }
+    let mut errors = Vec::new();
+    let mut need = |field: &str, value: &str, hint: &str| {
+        if value.trim().is_empty() {
+            errors.push(PipelineError::MissingField {
+                path: check.path.to_owned(),
+                field: format!("certificate.{field}"),
+                hint: hint.to_owned(),
+            });
+        }
+        value.to_owned()
+    };
+    let id = need("id", &c.id, "the certificate's unique identification");
+    let laboratory = Laboratory {
+        name: need(
+            "laboratory.name",
+            &c.laboratory.name,
+            "the issuing laboratory",
+        ),
+        address: need(
+            "laboratory.address",
+            &c.laboratory.address,
+            "the laboratory's address",
+        ),
+        accreditation: c.laboratory.accreditation.clone(),
+    };
+    let location = need(
+        "location",
+        &c.location,
+        "where the calibration was performed",
+    );
+    let customer = Party {
+        name: need("customer.name", &c.customer.name, "the customer"),
+        address: need(
+            "customer.address",
+            &c.customer.address,
+            "the customer's address",
+        ),
+    };
+    let item = Item {
+        description: need("item.description", &c.item.description, "what the item is"),
+        manufacturer: need(
+            "item.manufacturer",
+            &c.item.manufacturer,
+            "the item's manufacturer",
+        ),
+        model: need("item.model", &c.item.model, "the item's model"),
+        serial: need("item.serial", &c.item.serial, "the item's serial number"),
+        condition: need(
+            "item.condition",
+            &c.item.condition,
+            "the item's condition on receipt",
+        ),
+    };
+    let equipment: Vec<Equipment> = c
+        .equipment
+        .iter()
+        .enumerate()
+        .map(|(i, e)| Equipment {
+            role: need(
+                &format!("equipment[{i}].role"),
+                &e.role,
+                "the instrument's role",
+            ),
+            description: need(
+                &format!("equipment[{i}].description"),
+                &e.description,
+                "make and model",
+            ),
+            identity: need(
+                &format!("equipment[{i}].identity"),
+                &e.identity,
+                "serial or asset number",
+            ),
+            calibration_due: need(
+                &format!("equipment[{i}].calibration_due"),
+                &e.calibration_due,
+                "when its calibration falls due",
+            ),
+        })
+        .collect();
+    if equipment.is_empty() {
+        need(
+            "equipment",
+            "",
+            "the centrifuge, the probe and the data acquisition, each with its identity and calibration due date",
+        );
+    }
+    let dates = Dates {
+        received: need("dates.received", &c.dates.received, "receipt of the item"),
+        measured: need("dates.measured", &c.dates.measured, "the measurement"),
+        issued: need("dates.issued", &c.dates.issued, "issue of the certificate"),
+    };
+    let operator = need("operator", &c.operator, "who performed the calibration");
+    let conditions: Vec<Condition> = c
+        .conditions
+        .iter()
+        .enumerate()
+        .map(|(i, cnd)| Condition {
+            quantity: need(
+                &format!("conditions[{i}].quantity"),
+                &cnd.quantity,
+                "the quantity",
+            ),
+            value: need(
+                &format!("conditions[{i}].value"),
+                &cnd.value,
+                "its value with unit and range",
+            ),
+        })
+        .collect();
+    if conditions.is_empty() {
+        need(
+            "conditions",
+            "",
+            "the environmental conditions during the measurement (temperature, humidity)",
+        );
+    }
+    let procedure = need(
+        "procedure",
+        &c.procedure,
+        "the procedure's reference and title",
+    );
+    let mut traceability = Vec::new();
+    for (i, t) in c.traceability.iter().enumerate() {
+        need(
+            &format!("traceability[{i}].statement"),
+            &t.statement,
+            "where the input's value and uncertainty come from",
+        );
+        traceability.push((input_index(t.input), t.statement.clone()));
+    }
+    for (name, field) in uncertain_inputs(config) {
+        if !c.traceability.iter().any(|t| t.input == name) {
+            let key = serde_name(name);
+            need(
+                &format!("traceability (input: {key})"),
+                "",
+                &format!("`{field}` is not zero: state where that uncertainty comes from"),
+            );
+        }
+    }
+    let mut limits = Vec::new();
+    for (i, l) in c.limits.iter().enumerate() {
+        if l.lower.is_none() && l.upper.is_none() {
+            need(
+                &format!("limits[{i}].lower (or upper)"),
+                "",
+                "a limit needs at least one end",
+            );
+        }
+        limits.push(Limit {
+            index: l.coefficient as usize,
+            relative: matches!(l.unit, LimitUnitName::Micro),
+            lower: l.lower,
+            upper: l.upper,
+        });
+    }
+    let rule = c.decision_rule.map(|r| match r {
+        DecisionRuleName::SimpleAcceptance => DecisionRule::SimpleAcceptance,
+        DecisionRuleName::GuardBand => DecisionRule::GuardBand,
+    });
+    if !limits.is_empty() && rule.is_none() {
+        need(
+            "decision_rule",
+            "",
+            "limits need a decision rule: `simple_acceptance` or `guard_band` (ILAC-G8:09/2019)",
+        );
+    }
+    let authorisation = Authorisation {
+        name: need(
+            "authorisation.name",
+            &c.authorisation.name,
+            "who authorises the certificate",
+        ),
+        role: need(
+            "authorisation.role",
+            &c.authorisation.role,
+            "the role of who authorises it",
+        ),
+    };
+    PipelineError::from_list(errors)?;
+    for (i, l) in limits.iter().enumerate() {
+        for (end, v) in [("lower", l.lower), ("upper", l.upper)] {
+            if let Some(v) = v {
+                check.finite(format!("certificate.limits[{i}].{end}"), v)?;
+            }
+        }
+    }
+    Ok(Certificate {
+        id,
+        laboratory,
+        location,
+        customer,
+        item,
+        equipment,
+        dates,
+        operator,
+        conditions,
+        procedure,
+        deviations: c.deviations.clone(),
+        traceability,
+        limits,
+        rule,
+        authorisation,
+    })
+}
+
+/// The name a traceability entry gives an input in the study file.
+const fn serde_name(name: TypeBInputName) -> &'static str {
+    match name {
+        TypeBInputName::Radius => "radius",
+        TypeBInputName::G => "g",
+        TypeBInputName::RateScale => "rate_scale",
+        TypeBInputName::PivotToProbe => "pivot_to_probe",
+        TypeBInputName::ProbeToPiga => "probe_to_piga",
+        TypeBInputName::ProbeGain => "probe_gain",
+        TypeBInputName::K1 => "k1",
+    }
+}

@@ -1,0 +1,357 @@
+//! The certificate's tables: the results with their stated intervals, C_r and Δk2, the
+//! statements of conformity, the k2 budget, GUM against Monte Carlo, the data used and the
+//! input files with their digests.
+
+use std::fmt::Write as _;
+
+use pipeline::{CalibrationResults, CertificateResults, DecisionRule, StudyResults, Verdict};
+
+use crate::format;
+use crate::format::esc;
+use crate::headline::{Headline, MICRO_UNITS, NAMES, UNITS, headlines, micro_scale};
+use crate::provenance::{FileRecord, Provenance, Software};
+
+/// The headline interval of a coefficient in a unit: `value`, `U` (symmetric) or `+a / -b`.
+pub(crate) fn interval_cells(h: &Headline, scale: f64) -> (String, String) {
+    let (below, above) = h.widths(scale);
+    cells(h.value() * scale, below, above)
+}
+
+/// A value with interval half-widths `below` and `above`: `value`, `U` (symmetric) or
+/// `+a / -b`.
+fn cells(value: f64, below: f64, above: f64) -> (String, String) {
+    let a = format::interval(value, below, above);
+    let suffix = if a.scale.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", a.scale)
+    };
+    let u = if a.minus.is_empty() {
+        format!("{}{suffix}", a.plus)
+    } else {
+        format!("+{}{suffix} / -{}{suffix}", a.plus, a.minus)
+    };
+    (format!("{}{suffix}", a.value), u)
+}
+
+/// k and ν_eff of a GUM interval; a dash for a Monte Carlo one.
+fn k_and_dof(h: &Headline) -> (String, String) {
+    if h.is_gum() {
+        (format::coverage_factor(h.gum.k), format::dof(h.gum.dof))
+    } else {
+        ("—".to_owned(), "—".to_owned())
+    }
+}
+
+pub(crate) fn results_table(out: &mut String, c: &CalibrationResults, heads: &[Headline; 4]) {
+    let _ = writeln!(
+        out,
+        "<table class=\"results\"><thead><tr><th>coefficient</th><th class=\"num\">value</th>\
+         <th class=\"num\">expanded uncertainty U</th><th class=\"num\">k</th><th class=\"num\">ν<sub>eff</sub></th>\
+         <th>unit</th><th>coverage interval from</th></tr></thead><tbody>"
+    );
+    for (n, h) in heads.iter().enumerate() {
+        let (value, u) = interval_cells(h, 1.0);
+        let (k, nu) = k_and_dof(h);
+        let _ = writeln!(
+            out,
+            "<tr><td>{}</td><td class=\"num\">{value}</td><td class=\"num\">{u}</td><td class=\"num\">{k}</td>\
+             <td class=\"num\">{nu}</td><td>{}</td><td>{}</td></tr>",
+            NAMES[n],
+            UNITS[n],
+            esc(h.method_words())
+        );
+    }
+    let k1 = c.coefficients.k1.value;
+    for n in [0, 2, 3] {
+        let h = &heads[n];
+        let (value, u) = interval_cells(h, micro_scale(k1));
+        let (k, nu) = k_and_dof(h);
+        let _ = writeln!(
+            out,
+            "<tr><td>{}/k1</td><td class=\"num\">{value}</td><td class=\"num\">{u}</td><td class=\"num\">{k}</td>\
+             <td class=\"num\">{nu}</td><td>{}</td><td>{}</td></tr>",
+            NAMES[n],
+            MICRO_UNITS[n],
+            esc(h.method_words())
+        );
+    }
+    let _ = writeln!(out, "</tbody></table>");
+    let _ = writeln!(
+        out,
+        "<p class=\"note\">The expanded uncertainty U is the standard uncertainty multiplied by \
+         the coverage factor k, for a coverage probability of approximately 95 %; k is Student's \
+         t at the effective degrees of freedom ν<sub>eff</sub> (Welch–Satterthwaite). Where the \
+         Monte Carlo method of JCGM 101 does not validate the GUM interval (§8), the probabilistically \
+         symmetric 95 % interval of the Monte Carlo method is stated instead, as +/− widths about \
+         the estimate. The values relative to k1 use k1 = {} rad/(s·g) and g = {} m/s² (1 g).</p>",
+        format::significant(k1, 7),
+        format::significant(c.g_m_s2, 6),
+    );
+}
+
+pub(crate) fn compensation_block(out: &mut String, c: &CalibrationResults, k2: &Headline) {
+    let k = k2.gum.k;
+    let cr = format::pair(c.c_r_m_s2.value, k * c.c_r_m_s2.u);
+    let dk2 = format::pair(c.delta_k2.value, k * c.delta_k2.u);
+    let micro = micro_scale(c.coefficients.k1.value);
+    let dk2_micro = format::pair(c.delta_k2.value * micro, k * c.delta_k2.u * micro.abs());
+    let _ = writeln!(
+        out,
+        "<table class=\"ident\"><tbody>\
+         <tr><th>C<sub>r</sub> of the spindle</th><td class=\"num\">{} m·s²</td><td>phase “{}”, U = k·u with k = {}</td></tr>\
+         <tr><th>Δk2 = k1·C<sub>r</sub>·g/R²</th><td class=\"num\">{} rad/(s·g²) = {} µg/g²</td>\
+         <td>removed from the fitted a² coefficient (eq. 19); U from the same inputs as k2 (C<sub>r</sub>, probe gain, lever, rate scale, R, g, k1), k = {}</td></tr>\
+         </tbody></table>",
+        cr.joined(),
+        esc(&c.compensate_with),
+        format::coverage_factor(k),
+        dk2.joined(),
+        dk2_micro.joined(),
+        format::coverage_factor(k),
+    );
+}
+
+pub(crate) fn conformity(out: &mut String, info: &CertificateResults) {
+    let Some(conformity) = &info.conformity else {
+        return;
+    };
+    let _ = writeln!(out, "<h3>Statements of conformity</h3>");
+    let _ = writeln!(
+        out,
+        "<p>Decision rule (ILAC-G8:09/2019 §4.2): {}</p>",
+        match conformity.rule {
+            DecisionRule::SimpleAcceptance =>
+                "binary statement with simple acceptance (guard band w = 0): pass when the \
+                 measured value lies within the tolerance limits, fail otherwise. The risk of a \
+                 false acceptance reaches 50 % for a value on a limit.",
+            DecisionRule::GuardBand =>
+                "non-binary statement with a guard band w = U: pass when the whole 95 % interval \
+                 lies within the tolerance limits; conditional pass when the value lies within \
+                 them but the interval does not; conditional fail when the value lies outside \
+                 but the interval reaches within; fail when the whole interval lies outside.",
+        }
+    );
+    let _ = writeln!(
+        out,
+        "<table><thead><tr><th>coefficient</th><th class=\"num\">value</th><th class=\"num\">U</th>\
+         <th class=\"num\">lower limit</th><th class=\"num\">upper limit</th><th>unit</th><th>statement</th></tr></thead><tbody>"
+    );
+    for st in &conformity.statements {
+        let (value, u) = cells(st.value, st.value - st.low95, st.high95 - st.value);
+        let class = match st.verdict {
+            Verdict::Pass => "verdict-pass",
+            Verdict::ConditionalPass | Verdict::ConditionalFail => "verdict-conditional",
+            Verdict::Fail => "verdict-fail",
+        };
+        let limit = |x: Option<f64>| x.map_or_else(|| "—".to_owned(), format::plain);
+        let _ = writeln!(
+            out,
+            "<tr><td>{}</td><td class=\"num\">{value}</td><td class=\"num\">{u}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{}</td><td>{}</td><td class=\"{class}\">{}</td></tr>",
+            esc(&st.coefficient),
+            limit(st.lower),
+            limit(st.upper),
+            esc(&st.unit),
+            st.verdict.words(),
+        );
+    }
+    let _ = writeln!(out, "</tbody></table>");
+}
+
+pub(crate) fn budget(out: &mut String, c: &CalibrationResults) {
+    let _ = writeln!(out, "<h3>Uncertainty budget of k2 (JCGM 100)</h3>");
+    let _ = writeln!(
+        out,
+        "<table><thead><tr><th>input quantity</th><th>type</th><th class=\"num\">value</th>\
+         <th class=\"num\">standard uncertainty</th><th class=\"num\">sensitivity</th>\
+         <th class=\"num\">contribution (rad/(s·g²))</th><th class=\"num\">share of u²</th><th class=\"num\">ν</th></tr></thead><tbody>"
+    );
+    for l in &c.budget.k2 {
+        let _ = writeln!(
+            out,
+            "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{}</td><td class=\"num\">{} %</td><td class=\"num\">{}</td></tr>",
+            esc(&l.quantity),
+            esc(&l.evaluation),
+            l.value
+                .map_or_else(|| "—".to_owned(), |v| format::significant(v, 6)),
+            format::significant(l.u, 2),
+            format::significant(l.sensitivity, 3),
+            format::significant(l.contribution, 2),
+            format::percent(l.percent),
+            format::dof(l.dof),
+        );
+    }
+    let k2 = &c.coefficients.k2;
+    let _ = writeln!(
+        out,
+        "<tr><th colspan=\"5\">combined standard uncertainty u(k2), effective degrees of freedom</th>\
+         <td class=\"num\">{}</td><td class=\"num\">100 %</td><td class=\"num\">{}</td></tr></tbody></table>",
+        format::significant(k2.u, 2),
+        format::dof(k2.dof)
+    );
+}
+
+pub(crate) fn gum_against_mc(out: &mut String, c: &CalibrationResults) {
+    let mc = &c.monte_carlo;
+    let _ = writeln!(out, "<h3>GUM against Monte Carlo (JCGM 101 §8)</h3>");
+    let _ = writeln!(
+        out,
+        "<p>{} trials (adaptive, JCGM 101 §7.9), seed {}. The GUM interval is validated when both \
+         its ends lie within the numerical tolerance δ of the Monte Carlo interval's.</p>",
+        mc.trials, mc.seed
+    );
+    let _ = writeln!(
+        out,
+        "<table><thead><tr><th>coefficient</th><th class=\"num\">GUM 95 % interval</th>\
+         <th class=\"num\">Monte Carlo 95 % interval</th><th class=\"num\">largest end difference</th>\
+         <th class=\"num\">δ</th><th>verdict</th><th>unit</th></tr></thead><tbody>"
+    );
+    let heads = headlines(c);
+    for (n, (g, m)) in [
+        (&c.coefficients.k0, &mc.k0),
+        (&c.coefficients.k1, &mc.k1),
+        (&c.coefficients.k2, &mc.k2),
+        (&c.coefficients.k3, &mc.k3),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let digits = 7;
+        let verdict = heads[n].verdict_words();
+        let _ = writeln!(
+            out,
+            "<tr><td>{}</td><td class=\"num\">[{}, {}]</td><td class=\"num\">[{}, {}]</td>\
+             <td class=\"num\">{}</td><td class=\"num\">{}</td><td>{verdict}</td><td>{}</td></tr>",
+            NAMES[n],
+            format::significant(g.value - g.u95, digits),
+            format::significant(g.value + g.u95, digits),
+            format::significant(m.low95, digits),
+            format::significant(m.high95, digits),
+            format::significant(m.d_low.max(m.d_high), 2),
+            format::significant(m.tolerance, 2),
+            UNITS[n],
+        );
+    }
+    let _ = writeln!(out, "</tbody></table>");
+}
+
+pub(crate) fn data_used(out: &mut String, results: &StudyResults, c: &CalibrationResults) {
+    let _ = writeln!(out, "<h3>Data used</h3>");
+    let phase = results.phase(&c.compensate_with);
+    if let Some(p) = phase {
+        let revolutions: usize = p.points.iter().filter_map(|q| q.revolutions).sum();
+        let rates: Vec<String> = p
+            .points
+            .iter()
+            .map(|q| format::rate(q.rate_deg_s))
+            .collect();
+        let _ = writeln!(
+            out,
+            "<p>Spindle (phase “{}”): {} rates, {} deg/s{}; C<sub>r</sub> from the fit {} with {} degrees of freedom.</p>",
+            esc(&p.name),
+            p.points.len(),
+            rates.join(", "),
+            if revolutions > 0 {
+                format!("; {revolutions} whole revolutions of probe recording")
+            } else {
+                String::new()
+            },
+            esc(pipeline::model_name(p.fit.model)),
+            p.fit.dof,
+        );
+    }
+    let _ = writeln!(
+        out,
+        "<p>PIGA: {} points at {} distinct rates, {} residual degrees of freedom; residual \
+         standard deviation {} rad/s; {}.</p>",
+        c.points,
+        c.distinct_rates,
+        c.dof,
+        format::significant(c.residual_sd_rad_s, 2),
+        if c.weighted {
+            "weighted by each point's standard uncertainty"
+        } else {
+            "unweighted"
+        }
+    );
+    if !c.recordings.is_empty() {
+        let _ = writeln!(
+            out,
+            "<table><thead><tr><th class=\"num\">rate (deg/s)</th><th>spindle angle from</th>\
+             <th class=\"num\">revolutions</th><th class=\"num\">dropped</th><th class=\"num\">mean output (rad/s)</th>\
+             <th class=\"num\">u (rad/s)</th></tr></thead><tbody>"
+        );
+        for r in &c.recordings {
+            let _ = writeln!(
+                out,
+                "<tr><td class=\"num\">{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
+                 <td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
+                format::rate(r.rate_deg_s),
+                esc(&r.angle_source.replace('_', " ")),
+                r.revolutions,
+                r.dropped_revolutions,
+                format::significant(r.output_rad_s, 9),
+                format::significant(r.u_rad_s, 2),
+            );
+        }
+        let _ = writeln!(out, "</tbody></table>");
+    }
+    let warnings: Vec<String> = results
+        .warnings
+        .iter()
+        .map(|w| format!("{} ({})", w.message, w.location))
+        .chain(c.warnings.iter().cloned())
+        .collect();
+    if warnings.is_empty() {
+        let _ = writeln!(out, "<p>No warnings were raised.</p>");
+    } else {
+        let _ = writeln!(out, "<p>Warnings raised by the evaluation:</p>");
+        for w in warnings {
+            let _ = writeln!(out, "<p class=\"warning\">{}</p>", esc(&w));
+        }
+    }
+}
+
+pub(crate) fn files(out: &mut String, provenance: Option<&Provenance>, software: &Software) {
+    let _ = writeln!(out, "<h3>Input files and software</h3>");
+    let Some(provenance) = provenance else {
+        let _ = writeln!(
+            out,
+            "<p class=\"warning\">The input files and their SHA-256 digests were not recorded \
+             with these results.</p>\n<p>Software: {}, commit <span class=\"hash\">{}</span>.</p>",
+            esc(&software.version),
+            esc(&software.commit)
+        );
+        return;
+    };
+    let _ = writeln!(
+        out,
+        "<table><thead><tr><th>file</th><th class=\"num\">bytes</th><th>SHA-256</th></tr></thead><tbody>"
+    );
+    let record = |out: &mut String, what: &str, f: &FileRecord| {
+        let _ = writeln!(
+            out,
+            "<tr><td class=\"path\">{}{}</td><td class=\"num\">{}</td><td class=\"hash\">{}</td></tr>",
+            esc(what),
+            esc(&f.path),
+            f.bytes,
+            esc(&f.sha256)
+        );
+    };
+    record(out, "study: ", &provenance.config);
+    for f in &provenance.inputs {
+        record(out, "", f);
+    }
+    if let Some(e) = &provenance.expected {
+        record(out, "expected values: ", e);
+    }
+    let _ = writeln!(out, "</tbody></table>");
+    let _ = writeln!(
+        out,
+        "<p>Software: {}, commit <span class=\"hash\">{}</span>.</p>",
+        esc(&software.version),
+        esc(&software.commit)
+    );
+}
