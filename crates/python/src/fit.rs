@@ -12,7 +12,7 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use recording::Diagnostic;
+use recording::{AngleSourceKind, Diagnostic};
 
 use crate::errors::{self, Kind};
 
@@ -276,6 +276,19 @@ pub(crate) fn fit_harmonics<'py>(
                 measured_rad_s: m,
             });
         }
+        // drift not fitted, spread beyond white noise: as for a recording read from a file
+        let statistics = recording::revolution_statistics(
+            &signal,
+            &analysis,
+            &config,
+            if a.is_some() {
+                AngleSourceKind::Encoder
+            } else {
+                AngleSourceKind::DeclaredRate
+            },
+            measured_rate_rad_s.unwrap_or(rate_rad_s),
+        );
+        diagnostics.extend(statistics.diagnostics);
         Ok(ArrayFit {
             analysis,
             measured_rate_rad_s,

@@ -167,3 +167,34 @@ def test_two_threads_fit_at_once_as_one_does_alone() -> None:
         for r in results[i]:
             assert r.mean == alone[i].mean
             np.testing.assert_array_equal(r.per_revolution.c, alone[i].per_revolution.c)
+
+
+def test_a_drifting_gap_fitted_without_drift_is_warned_about() -> None:
+    d = synthetic(noise=0.01, seed=3)
+    drifting = d.gap + 0.5 * d.time_s  # 0.5 µm/s: a probe warming up
+    fit = cc.fit_harmonics(d.time_s, drifting, rate_deg_s=d.rate_deg_s, angle_rad=d.angle_rad)
+    codes = [w.code for w in fit.warnings]
+    assert "drift_not_fitted" in codes, codes
+    message = fit.warnings[codes.index("drift_not_fitted")].message
+    assert "drift: true" in message and "per second" in message
+    # fitted with the drift term, the same samples give no such warning
+    with_drift = cc.fit_harmonics(
+        d.time_s, drifting, rate_deg_s=d.rate_deg_s, angle_rad=d.angle_rad, drift=True
+    )
+    assert "drift_not_fitted" not in [w.code for w in with_drift.warnings]
+
+
+def test_a_first_harmonic_that_changes_between_revolutions_is_warned_about() -> None:
+    d = synthetic(noise=0.01, seed=4)
+    w = np.radians(d.rate_deg_s)
+    theta = w * d.time_s
+    revolution = np.floor(theta / (2 * np.pi))
+    # the first harmonic's amplitude steps by 2 % from one revolution to the next
+    wobbling = d.gap + 0.02 * (revolution % 2) * (d.c[0] * np.cos(theta) + d.s[0] * np.sin(theta))
+    fit = cc.fit_harmonics(d.time_s, wobbling, rate_deg_s=d.rate_deg_s, angle_rad=d.angle_rad)
+    codes = [w.code for w in fit.warnings]
+    assert "revolution_spread" in codes, codes
+    assert "more than white noise explains" in fit.warnings[codes.index("revolution_spread")].message
+    # the same recording without the step: no warning
+    steady = cc.fit_harmonics(d.time_s, d.gap, rate_deg_s=d.rate_deg_s, angle_rad=d.angle_rad)
+    assert steady.warnings == ()

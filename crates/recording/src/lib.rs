@@ -95,7 +95,9 @@ pub use analysis::diagnostic::{
     Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
 };
 pub use analysis::piga::{PigaOutputRate, reduce_piga_recording};
-pub use analysis::probe::{RecordingAnalysis, analyze_recording};
+pub use analysis::probe::{
+    RecordingAnalysis, RevolutionStatistics, analyze_recording, revolution_statistics,
+};
 pub use binary::mat::{load_mat, parse_mat};
 pub use binary::tdms::{load_tdms, parse_tdms};
 pub use binary::{BinaryChannels, MatVariables};

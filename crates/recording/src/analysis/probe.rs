@@ -3,7 +3,9 @@
 //! diagnostics in plain words. The numbers (the fit, the pooling around bad samples, the
 //! noise levels, the drift and spread tests) are `harmonics`'.
 
-use harmonics::{DropBadSamples, FitConfig, HarmonicAnalysis, HarmonicsError, PooledAnalysis};
+use harmonics::{
+    DropBadSamples, FitConfig, HarmonicAnalysis, HarmonicsError, PooledAnalysis, ProbeSignal,
+};
 
 use super::diagnostic::{
     Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
@@ -178,6 +180,82 @@ fn hint_of(recording: &Recording, error: &HarmonicsError) -> Option<Hint> {
     }
 }
 
+/// The noise of a fit's first harmonic, and what the statistics of its revolutions say
+/// about it, from the samples alone (recordings read from files and arrays alike).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RevolutionStatistics {
+    /// White-noise σ of one revolution's `d_c1`, `d_s1` (with an index pulse, its angle
+    /// jitter added).
+    pub revolution_noise_sigma: [f64; 2],
+    /// White-noise σ of the mean `d_c1`, `d_s1` over the revolutions.
+    pub mean_noise_sigma: [f64; 2],
+    /// [`Diagnostic::DriftNotFitted`] and [`Diagnostic::RevolutionSpread`], when they apply,
+    /// in that order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// The noise levels of `analysis` and its drift and spread diagnostics: the gap drifting
+/// across revolutions while `drift` is off, and the first harmonic varying from revolution
+/// to revolution beyond its white noise (with its likely cause from the angle source).
+/// `rate_rad_s` is the rate the revolutions turn at (measured, else declared).
+pub fn revolution_statistics(
+    signal: &ProbeSignal<'_>,
+    analysis: &HarmonicAnalysis,
+    config: &FitConfig,
+    angle_source: AngleSourceKind,
+    rate_rad_s: f64,
+) -> RevolutionStatistics {
+    let noise = harmonics::first_harmonic_noise(analysis, signal, config);
+    let mean_noise_sigma = noise.mean_sigma;
+    let mut revolution_noise_sigma = noise.revolution_sigma;
+    if angle_source == AngleSourceKind::IndexPulse {
+        // Each revolution's zero is known to a sample interval: its angle jitters by
+        // ω·Δt/√12, which turns the first harmonic by as much from revolution to
+        // revolution (and averages out over them).
+        let jitter_rad = rate_rad_s * analysis.nominal_interval_s / 12f64.sqrt();
+        let amplitude = analysis.mean.c[0].hypot(analysis.mean.s[0]);
+        revolution_noise_sigma = revolution_noise_sigma.map(|s| s.hypot(amplitude * jitter_rad));
+    }
+    let mut diagnostics = Vec::new();
+    let drift = (!config.drift)
+        .then(|| {
+            harmonics::drift_across_revolutions(
+                signal.time_s,
+                &analysis.revolutions,
+                mean_noise_sigma[0].min(mean_noise_sigma[1]),
+                rate_rad_s,
+            )
+        })
+        .flatten();
+    if let Some(d) = drift {
+        diagnostics.push(Diagnostic::DriftNotFitted {
+            drift_per_s: d.drift_per_s,
+            bias_sigmas: d.bias_sigmas,
+        });
+    }
+    if let Some((ratio_c1, ratio_s1)) =
+        harmonics::revolution_spread(analysis, revolution_noise_sigma)
+    {
+        let cause = if angle_source == AngleSourceKind::DeclaredRate {
+            SpreadCause::RateError
+        } else if drift.is_some() {
+            SpreadCause::Drift
+        } else {
+            SpreadCause::NonSynchronous
+        };
+        diagnostics.push(Diagnostic::RevolutionSpread {
+            ratio_c1,
+            ratio_s1,
+            cause,
+        });
+    }
+    RevolutionStatistics {
+        revolution_noise_sigma,
+        mean_noise_sigma,
+        diagnostics,
+    }
+}
+
 /// The analysis with its noise levels and diagnostics.
 fn finish(
     recording: &Recording,
@@ -188,18 +266,13 @@ fn finish(
     config: &FitConfig,
 ) -> RecordingAnalysis {
     let signal = recording.signal(declared_rate_rad_s);
-    let noise = harmonics::first_harmonic_noise(&analysis, &signal, config);
-    let mean_noise_sigma = noise.mean_sigma;
-    let mut revolution_noise_sigma = noise.revolution_sigma;
-    if recording.angle_source == AngleSourceKind::IndexPulse {
-        // Each revolution's zero is known to a sample interval: its angle jitters by
-        // ω·Δt/√12, which turns the first harmonic by as much from revolution to
-        // revolution (and averages out over them).
-        let rate = measured_rate_rad_s.unwrap_or(declared_rate_rad_s);
-        let jitter_rad = rate * analysis.nominal_interval_s / 12f64.sqrt();
-        let amplitude = analysis.mean.c[0].hypot(analysis.mean.s[0]);
-        revolution_noise_sigma = revolution_noise_sigma.map(|s| s.hypot(amplitude * jitter_rad));
-    }
+    let statistics = revolution_statistics(
+        &signal,
+        &analysis,
+        config,
+        recording.angle_source,
+        measured_rate_rad_s.unwrap_or(declared_rate_rad_s),
+    );
     let mut diagnostics = Vec::new();
     if recording.angle_source == AngleSourceKind::DeclaredRate {
         diagnostics.push(Diagnostic::AngleFromRate {
@@ -214,38 +287,7 @@ fn finish(
             measured_rad_s: m,
         });
     }
-    let drift = (!config.drift)
-        .then(|| {
-            harmonics::drift_across_revolutions(
-                &recording.time_s,
-                &analysis.revolutions,
-                mean_noise_sigma[0].min(mean_noise_sigma[1]),
-                measured_rate_rad_s.unwrap_or(declared_rate_rad_s),
-            )
-        })
-        .flatten();
-    if let Some(d) = drift {
-        diagnostics.push(Diagnostic::DriftNotFitted {
-            drift_per_s: d.drift_per_s,
-            bias_sigmas: d.bias_sigmas,
-        });
-    }
-    if let Some((ratio_c1, ratio_s1)) =
-        harmonics::revolution_spread(&analysis, revolution_noise_sigma)
-    {
-        let cause = if recording.angle_source == AngleSourceKind::DeclaredRate {
-            SpreadCause::RateError
-        } else if drift.is_some() {
-            SpreadCause::Drift
-        } else {
-            SpreadCause::NonSynchronous
-        };
-        diagnostics.push(Diagnostic::RevolutionSpread {
-            ratio_c1,
-            ratio_s1,
-            cause,
-        });
-    }
+    diagnostics.extend(statistics.diagnostics);
     if let Some(d) = implausible_gap(recording, &analysis) {
         diagnostics.push(d);
     }
@@ -262,8 +304,8 @@ fn finish(
         declared_rate_rad_s,
         measured_rate_rad_s,
         dropped_revolutions,
-        revolution_noise_sigma,
-        mean_noise_sigma,
+        revolution_noise_sigma: statistics.revolution_noise_sigma,
+        mean_noise_sigma: statistics.mean_noise_sigma,
         diagnostics,
     }
 }
