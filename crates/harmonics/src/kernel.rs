@@ -496,6 +496,26 @@ mod tests {
         s
     }
 
+    /// `n` samples of an irregular angle source, a gap and a time, with a map and centring.
+    fn samples(n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>, AngleMap, Centring) {
+        let x = (0..n)
+            .map(|i| 0.3 + 0.0071 * i as f64 + 1e-3 * (i as f64).sin())
+            .collect();
+        let y = (0..n).map(|i| 5.0 + (0.37 * i as f64).cos()).collect();
+        let t = (0..n).map(|i| 0.001 * i as f64).collect();
+        let map = AngleMap {
+            shift: 0.1,
+            scale: 1.3,
+            offset: -0.2,
+        };
+        let centre = Centring {
+            y_ref: 5.0,
+            t_mid: 0.5,
+            t_inv_half: 2.0,
+        };
+        (x, y, t, map, centre)
+    }
+
     /// The pass as it was before blocking: `LANES` samples at a time through [`Acc::add`].
     fn by_lanes<const N: usize, const DRIFT: bool>(
         x: &[f64],
@@ -528,21 +548,7 @@ mod tests {
     #[test]
     fn blocked_pass_equals_lane_by_lane_bit_for_bit() {
         for n in [7, 64, 200, 4099] {
-            let x: Vec<f64> = (0..n)
-                .map(|i| 0.3 + 0.0071 * i as f64 + 1e-3 * (i as f64).sin())
-                .collect();
-            let y: Vec<f64> = (0..n).map(|i| 5.0 + (0.37 * i as f64).cos()).collect();
-            let t: Vec<f64> = (0..n).map(|i| 0.001 * i as f64).collect();
-            let map = AngleMap {
-                shift: 0.1,
-                scale: 1.3,
-                offset: -0.2,
-            };
-            let centre = Centring {
-                y_ref: 5.0,
-                t_mid: 0.5,
-                t_inv_half: 2.0,
-            };
+            let (x, y, t, map, centre) = samples(n);
             assert_eq!(
                 pass::<4, false>(&x, &y, &t, map, centre),
                 by_lanes::<4, false>(&x, &y, &t, map, centre),
@@ -564,21 +570,7 @@ mod tests {
     #[test]
     fn recurrence_matches_direct_sums_for_every_order() {
         let n = 1003; // not a multiple of the lane width
-        let x: Vec<f64> = (0..n)
-            .map(|i| 0.3 + 0.0071 * i as f64 + 1e-3 * (i as f64).sin())
-            .collect();
-        let y: Vec<f64> = (0..n).map(|i| 5.0 + (0.37 * i as f64).cos()).collect();
-        let t: Vec<f64> = (0..n).map(|i| 0.001 * i as f64).collect();
-        let map = AngleMap {
-            shift: 0.1,
-            scale: 1.3,
-            offset: -0.2,
-        };
-        let centre = Centring {
-            y_ref: 5.0,
-            t_mid: 0.5,
-            t_inv_half: 2.0,
-        };
+        let (x, y, t, map, centre) = samples(n);
         for order in 1..=MAX_ORDER {
             let got = accumulate(order, true, &x, &y, &t, map, centre);
             let want = direct(order, &x, &y, &t, map, centre);
