@@ -66,9 +66,13 @@ impl Study {
                 .clone()
                 .or_else(|| places.expected_for(&config))
         };
-        let expected = expected_path.as_deref().map(Expected::load).transpose()?;
+        let (expected, expected_record) = expected_path
+            .as_deref()
+            .map(Expected::load_recorded)
+            .transpose()?
+            .unzip();
         let outcomes = expected.as_ref().map(|e| e.compare(&results)).transpose()?;
-        let provenance = report::Provenance::of_study(&study, expected_path.as_deref())?;
+        let provenance = report::Provenance::of_study(&study, expected_record.as_ref())?;
         let files = report::write_outputs(
             &out,
             &results,
@@ -121,7 +125,10 @@ impl Study {
 /// The study of a configuration, refused while it holds a placeholder of `init`; every
 /// configuration problem at once, grouped (the same fault in several files is one entry).
 pub(crate) fn load(config: &Path) -> anyhow::Result<pipeline::Inputs> {
-    let text = edge_io::read_text_capped(config, pipeline::MAX_STUDY_BYTES)?;
+    // Read once: the digest of these bytes is the configuration's provenance.
+    let bytes = edge_io::read_bytes_capped(config, pipeline::MAX_STUDY_BYTES)?;
+    let digest = pipeline::FileDigest::of(&bytes);
+    let text = edge_io::text_from_bytes(config, bytes)?;
     let left = crate::init::config::placeholders(&text);
     if !left.is_empty() {
         let lines: Vec<String> = left
@@ -138,7 +145,7 @@ pub(crate) fn load(config: &Path) -> anyhow::Result<pipeline::Inputs> {
             lines.join(", ")
         );
     }
-    pipeline::parse_study(&text, config).map_err(|e| match &e {
+    let study = pipeline::parse_study(&text, config).map_err(|e| match &e {
         pipeline::PipelineError::Several { errors } => anyhow::anyhow!(
             "{}: {} problems ({} distinct):\n{}",
             config.display(),
@@ -147,7 +154,8 @@ pub(crate) fn load(config: &Path) -> anyhow::Result<pipeline::Inputs> {
             crate::problems::render(&crate::problems::each(&e)).trim_end()
         ),
         _ => anyhow::Error::new(e),
-    })
+    })?;
+    Ok(study.with_config_digest(digest))
 }
 
 /// Prints the summary table.

@@ -27,7 +27,7 @@ mod text;
 pub use error::{EdgeIoError, Result};
 pub use json::{JsonError, NonFiniteValue, check_finite, to_json_pretty};
 pub use output::OutputSet;
-pub use text::{CONFIG_MAX_BYTES, read_text_capped};
+pub use text::{CONFIG_MAX_BYTES, read_bytes_capped, read_text_capped, text_from_bytes};
 
 /// The RON dialect of every configuration file in the workspace: RON with implicit `Some`
 /// (an optional section is written as its value, not `Some(value)`).

@@ -40,6 +40,16 @@ const BOM: &[u8] = b"\xEF\xBB\xBF";
 /// # std::fs::remove_dir_all(&dir).unwrap();
 /// ```
 pub fn read_text_capped(path: &Path, max_bytes: u64) -> Result<String> {
+    text_from_bytes(path, read_bytes_capped(path, max_bytes)?)
+}
+
+/// Reads a file of at most `max_bytes` bytes as [`read_text_capped`] does, without decoding
+/// it: for a caller that also keeps the digest of what it read (the provenance of a study's
+/// configuration), then decodes with [`text_from_bytes`].
+///
+/// # Errors
+/// [`EdgeIoError::Read`] and [`EdgeIoError::TooLarge`] as [`read_text_capped`].
+pub fn read_bytes_capped(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     let read_error = |source| EdgeIoError::Read {
         path: path.to_owned(),
         source,
@@ -64,6 +74,16 @@ pub fn read_text_capped(path: &Path, max_bytes: u64) -> Result<String> {
         // A regular file that grew past the cap since its metadata was read, or a stream.
         return Err(too_large(None));
     }
+    Ok(bytes)
+}
+
+/// The UTF-8 text of a file's `bytes` (read from `path`, named in errors), a leading
+/// byte-order mark dropped, as [`read_text_capped`] decodes it.
+///
+/// # Errors
+/// [`EdgeIoError::InvalidUtf8`] naming the line, column and byte offset of the first byte that
+/// is not UTF-8.
+pub fn text_from_bytes(path: &Path, mut bytes: Vec<u8>) -> Result<String> {
     let skipped = if bytes.starts_with(BOM) {
         bytes.drain(..BOM.len());
         BOM.len()

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 
 use harmonics::{LeverGeometry, ProbeDirection};
 use recording::{
-    PigaRecording, PigaRecordingFormat, Recording, RecordingError, RecordingFormat, Table,
-    TableFormat,
+    FileDigest, PigaRecording, PigaRecordingFormat, Recording, RecordingError, RecordingFormat,
+    Table, TableFormat,
 };
 
 use crate::config::{ProbeDirectionName, StudyConfig};
@@ -43,6 +43,106 @@ pub trait DataSource: Sync {
         let samples = self.recording(path, &format.probe_format()?)?;
         PigaRecording::from_recording(samples, format.output.unit)
     }
+
+    /// [`DataSource::recording`], with the size and SHA-256 of the bytes read when this
+    /// source keeps them (provenance). By default without a digest; [`crate::Files`] hashes
+    /// each file as it reads it. The study reads every data file through these `read_`
+    /// methods, once.
+    fn read_recording(
+        &self,
+        path: &Path,
+        format: &RecordingFormat,
+    ) -> std::result::Result<Loaded<Recording>, RecordingError> {
+        self.recording(path, format).map(Loaded::undigested)
+    }
+
+    /// [`DataSource::table`], with the digest of the bytes read when this source keeps one.
+    fn read_table(
+        &self,
+        path: &Path,
+        format: &TableFormat,
+    ) -> std::result::Result<Loaded<Table>, RecordingError> {
+        self.table(path, format).map(Loaded::undigested)
+    }
+
+    /// [`DataSource::piga_recording`], with the digest of the bytes read when this source
+    /// keeps one.
+    fn read_piga_recording(
+        &self,
+        path: &Path,
+        format: &PigaRecordingFormat,
+    ) -> std::result::Result<Loaded<PigaRecording>, RecordingError> {
+        self.piga_recording(path, format).map(Loaded::undigested)
+    }
+}
+
+/// Data a [`DataSource`] read, with the size and SHA-256 of the bytes it read when it keeps
+/// them.
+#[derive(Debug, Clone)]
+pub struct Loaded<T> {
+    /// The data.
+    pub value: T,
+    /// The file's size and SHA-256 as read (`None`: the source keeps none, e.g. data held in
+    /// memory).
+    pub digest: Option<FileDigest>,
+}
+
+impl<T> Loaded<T> {
+    /// Data without a digest.
+    pub const fn undigested(value: T) -> Self {
+        Self {
+            value,
+            digest: None,
+        }
+    }
+}
+
+/// What an input file is to a study.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum InputRole {
+    /// A displacement-probe recording of a phase.
+    ProbeRecording,
+    /// The calibration's PIGA table.
+    PigaTable,
+    /// A raw PIGA output recording of the calibration.
+    PigaRecording,
+}
+
+impl InputRole {
+    /// The role as results.json writes it (`probe_recording`, `piga_table`,
+    /// `piga_recording`).
+    #[must_use]
+    pub const fn code(self) -> &'static str {
+        match self {
+            Self::ProbeRecording => "probe_recording",
+            Self::PigaTable => "piga_table",
+            Self::PigaRecording => "piga_recording",
+        }
+    }
+}
+
+impl std::fmt::Display for InputRole {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::ProbeRecording => "probe recording",
+            Self::PigaTable => "PIGA table",
+            Self::PigaRecording => "raw PIGA output recording",
+        })
+    }
+}
+
+/// One data file a study read: where, what for, and its size and SHA-256 as read.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InputFile<'a> {
+    /// The path as the study read it (the configuration's folder joined with its path).
+    pub path: &'a Path,
+    /// What it is.
+    pub role: InputRole,
+    /// The configuration field that names it (`phases[0].points.files[2]`).
+    pub field: String,
+    /// Its size and SHA-256 as read (`None` when the data source keeps no digest).
+    pub digest: Option<&'a FileDigest>,
 }
 
 /// Least number of distinct rates of an eq. 18 calibration (mechanism or measured): six

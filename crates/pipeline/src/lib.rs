@@ -77,8 +77,10 @@ pub use config::{
     Weighting,
 };
 pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
-pub use inputs::DataSource;
+pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
+/// The size and SHA-256 of a file as a study read it (provenance).
+pub use recording::FileDigest;
 pub use results::{
     Authorisation, CertificateResults, Condition, Conformity, ConformityStatement, Dates,
     DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party, Traceability,

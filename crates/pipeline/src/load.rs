@@ -5,7 +5,7 @@ use std::path::Path;
 
 use crate::config::StudyConfig;
 use crate::error::Result;
-use crate::inputs::DataSource;
+use crate::inputs::{DataSource, Loaded};
 use crate::study::Inputs;
 
 /// The data files of a study, read from disk.
@@ -28,19 +28,62 @@ impl DataSource for Files {
     ) -> std::result::Result<recording::Table, recording::RecordingError> {
         recording::load_table(path, format)
     }
+
+    /// Reads the file once, hashing its bytes as they are read.
+    fn read_recording(
+        &self,
+        path: &Path,
+        format: &recording::RecordingFormat,
+    ) -> std::result::Result<Loaded<recording::Recording>, recording::RecordingError> {
+        let (value, digest) = recording::load_recording_digested(path, format)?;
+        Ok(Loaded {
+            value,
+            digest: Some(digest),
+        })
+    }
+
+    /// Reads the file once, hashing its bytes as they are read.
+    fn read_table(
+        &self,
+        path: &Path,
+        format: &recording::TableFormat,
+    ) -> std::result::Result<Loaded<recording::Table>, recording::RecordingError> {
+        let (value, digest) = recording::load_table_digested(path, format)?;
+        Ok(Loaded {
+            value,
+            digest: Some(digest),
+        })
+    }
+
+    /// Reads the file once, hashing its bytes as they are read.
+    fn read_piga_recording(
+        &self,
+        path: &Path,
+        format: &recording::PigaRecordingFormat,
+    ) -> std::result::Result<Loaded<recording::PigaRecording>, recording::RecordingError> {
+        let (value, digest) = recording::load_piga_recording_digested(path, format)?;
+        Ok(Loaded {
+            value,
+            digest: Some(digest),
+        })
+    }
 }
 
 /// Largest study file read, bytes (16 MiB): a larger file is refused before it is read.
 pub const MAX_STUDY_BYTES: u64 = edge_io::CONFIG_MAX_BYTES;
 
-/// Reads a study file, validates it and loads the recordings it names from disk.
+/// Reads a study file, validates it and loads the data files it names from disk, keeping
+/// the size and SHA-256 of every file as it was read (the configuration's too:
+/// [`Inputs::config_digest`], [`Inputs::input_files`]).
 ///
 /// # Errors
 /// [`PipelineError::File`](crate::PipelineError::File) if the file cannot be read, is above [`MAX_STUDY_BYTES`] or is not
 /// UTF-8, and the errors of [`parse_study`].
 pub fn load_study(path: &Path) -> Result<Inputs> {
-    let text = edge_io::read_text_capped(path, MAX_STUDY_BYTES)?;
-    parse_study(&text, path)
+    let bytes = edge_io::read_bytes_capped(path, MAX_STUDY_BYTES)?;
+    let digest = recording::FileDigest::of(&bytes);
+    let text = edge_io::text_from_bytes(path, bytes)?;
+    Ok(parse_study(&text, path)?.with_config_digest(digest))
 }
 
 /// Parses and validates study text, loading the recordings it names from disk (relative to

@@ -7,7 +7,9 @@ use std::path::Path;
 
 use crate::config::StudyConfig;
 use crate::error::{PipelineError, Result};
-use crate::inputs::{Core, DataSource};
+use recording::FileDigest;
+
+use crate::inputs::{Core, DataSource, InputFile};
 use crate::results::{StudyInputs, StudyResults, Warning};
 use crate::sections::balance::counterweight::{self, CounterweightInputs};
 use crate::sections::balance::{self, BalanceInputs};
@@ -26,6 +28,8 @@ pub struct Inputs {
     balance: Option<BalanceInputs>,
     counterweight: Option<CounterweightInputs>,
     certificate: Option<Certificate>,
+    /// The configuration file's size and SHA-256 as the edge read it.
+    config_digest: Option<FileDigest>,
 }
 
 impl Inputs {
@@ -95,7 +99,34 @@ impl Inputs {
             balance,
             counterweight,
             certificate,
+            config_digest: None,
         })
+    }
+
+    /// The inputs, with the size and SHA-256 of the configuration's bytes as the edge read
+    /// them ([`crate::load_study`] records them; a caller that reads the file itself passes
+    /// [`FileDigest::of`] its bytes).
+    #[must_use]
+    pub fn with_config_digest(mut self, digest: FileDigest) -> Self {
+        self.config_digest = Some(digest);
+        self
+    }
+
+    /// The configuration file's size and SHA-256 as read (`None` for inputs built from text
+    /// or values).
+    pub const fn config_digest(&self) -> Option<&FileDigest> {
+        self.config_digest.as_ref()
+    }
+
+    /// Every data file the study read, in the configuration's order: the phases' probe
+    /// recordings, then the calibration's PIGA table or raw PIGA output recordings; each with
+    /// its role, the field naming it and its size and SHA-256 as read.
+    pub fn input_files(&self) -> Vec<InputFile<'_>> {
+        let mut files: Vec<InputFile<'_>> = self.phases.input_files().collect();
+        if let Some(c) = &self.calibration {
+            files.extend(c.input_files());
+        }
+        files
     }
 
     /// The study's name.

@@ -85,6 +85,7 @@
 
 mod analysis;
 mod binary;
+mod digest;
 mod error;
 mod lab;
 #[cfg(feature = "synthetic")]
@@ -101,6 +102,7 @@ pub use analysis::probe::{
 pub use binary::mat::{load_mat, parse_mat};
 pub use binary::tdms::{load_tdms, parse_tdms};
 pub use binary::{BinaryChannels, MatVariables};
+pub use digest::{FileDigest, Hasher};
 pub use error::{
     BinaryDefect, BinaryFormat, BinaryPart, Hint, RecordingError, Result, Unsupported,
 };
@@ -113,7 +115,7 @@ pub use lab::format::{
 };
 pub use lab::piga_recording::{
     PIGA_OUTPUT_ANGLE_COLUMN, PigaRecording, PigaRecordingFormat, load_piga_recording,
-    parse_piga_recording,
+    load_piga_recording_digested, parse_piga_recording,
 };
 pub use lab::piga_table::{
     PIGA_OUTPUT_COLUMN, PIGA_RATE_COLUMN, PigaTable, PigaTableFormat, RateUnit, load_piga_table,
@@ -121,7 +123,9 @@ pub use lab::piga_table::{
 };
 #[doc(hidden)]
 pub use lab::probe::parse_recording_reference;
-pub use lab::probe::{AngleSourceKind, Recording, load_recording, parse_recording};
+pub use lab::probe::{
+    AngleSourceKind, Recording, load_recording, load_recording_digested, parse_recording,
+};
 pub use lab::volts::{GapUnit, ProbeSensitivity, SensitivityUnit};
 pub use lab::write::{ProbeColumns, WriteOptions, write_probe_csv};
 #[cfg(feature = "synthetic")]
@@ -130,4 +134,6 @@ pub use synth::SyntheticSpec;
 pub use text::number::number_paths;
 #[doc(hidden)]
 pub use text::table::parse_table_reference;
-pub use text::table::{MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, parse_table};
+pub use text::table::{
+    MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, load_table_digested, parse_table,
+};

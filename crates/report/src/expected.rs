@@ -6,6 +6,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{ReportError, Result};
+use crate::provenance::FileRecord;
 use pipeline::StudyResults;
 
 /// A file of expected values (`fixtures/expected/*.ron`).
@@ -64,6 +65,19 @@ impl Expected {
     pub fn load(path: &Path) -> Result<Self> {
         let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES)?;
         Self::parse(&text, path)
+    }
+
+    /// [`Expected::load`], with the record of the file (size and SHA-256 of the bytes read)
+    /// for the provenance of `results.json` ([`crate::Provenance::of_study`]); the file is
+    /// read once.
+    ///
+    /// # Errors
+    /// As [`Expected::load`].
+    pub fn load_recorded(path: &Path) -> Result<(Self, FileRecord)> {
+        let bytes = edge_io::read_bytes_capped(path, edge_io::CONFIG_MAX_BYTES)?;
+        let record = FileRecord::read(path, &pipeline::FileDigest::of(&bytes));
+        let text = edge_io::text_from_bytes(path, bytes)?;
+        Ok((Self::parse(&text, path)?, record))
     }
 
     /// Parses and validates RON text; `path` only names the source in errors.

@@ -1,5 +1,8 @@
-//! What produced a `results.json`: the tool, its version, and the configuration and input
-//! files with their sizes and SHA-256 digests.
+//! What produced a `results.json`: the tool, its version, and the configuration, every data
+//! file and the expected values, each with its size and SHA-256 as it was read — the study's
+//! data source hashes each file as it reads it (`pipeline::Files`), `pipeline::load_study`
+//! the configuration and [`Expected::load_recorded`](crate::Expected::load_recorded) the
+//! expected values, so the record is of the bytes the numbers came from, read once.
 
 use std::io::Read as _;
 use std::path::Path;
@@ -8,7 +11,7 @@ use serde::Serialize;
 use sha2::{Digest as _, Sha256};
 
 use crate::error::Result;
-use pipeline::Inputs;
+use pipeline::{FileDigest, Inputs};
 
 /// The tool named in every provenance record.
 pub const TOOL: &str = "centrifuge-cal";
@@ -24,9 +27,10 @@ pub struct Provenance {
     pub config: FileRecord,
     /// The expected-values file whose published values the report shows, if any.
     pub expected: Option<FileRecord>,
-    /// The input files the study read (probe recordings), in the configuration's order
-    /// (pre-balance, then post-balance), each with its path as the study read it: the
-    /// configuration's folder joined with the path the configuration gives.
+    /// Every data file the study read, in the configuration's order: the phases' probe
+    /// recordings, then the calibration's PIGA table or raw PIGA output recordings; each with
+    /// its path as the study read it (the configuration's folder joined with the path the
+    /// configuration gives), its role and the configuration field naming it.
     pub inputs: Vec<FileRecord>,
 }
 
@@ -39,6 +43,14 @@ pub struct FileRecord {
     pub bytes: u64,
     /// SHA-256 of its contents, 64 lowercase hexadecimal digits.
     pub sha256: String,
+    /// What the file is to the study (`probe_recording`, `piga_table`, `piga_recording`;
+    /// data files only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub role: Option<String>,
+    /// The configuration field naming it (`calibration.recordings.files[3]`; data files
+    /// only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub field: Option<String>,
 }
 
 impl FileRecord {
@@ -69,25 +81,60 @@ impl FileRecord {
             path: path.display().to_string(),
             bytes,
             sha256: hex(&hasher.finalize()),
+            role: None,
+            field: None,
         })
+    }
+
+    /// The record of the file at `path` from the size and SHA-256 taken as it was read.
+    #[must_use]
+    pub fn read(path: &Path, digest: &FileDigest) -> Self {
+        Self {
+            path: path.display().to_string(),
+            bytes: digest.bytes,
+            sha256: digest.sha256.clone(),
+            role: None,
+            field: None,
+        }
+    }
+
+    /// [`FileRecord::read`] when the digest was kept as the file was read; otherwise (a
+    /// study whose data source keeps no digest, such as data held in memory) the file at
+    /// `path` is read here.
+    fn kept_or_read(path: &Path, digest: Option<&FileDigest>) -> Result<Self> {
+        digest.map_or_else(|| Self::of(path), |d| Ok(Self::read(path, d)))
     }
 }
 
 impl Provenance {
-    /// The provenance of a study run from `study` (its configuration file and the recordings
-    /// it read), with the expected-values file at `expected` if the report shows one.
+    /// The provenance of a study run from `study`: its configuration file and every data
+    /// file it read ([`Inputs::input_files`]), with the sizes and digests taken as they were
+    /// read, and the record of the expected-values file if the report shows one
+    /// ([`Expected::load_recorded`](crate::Expected::load_recorded)).
+    ///
+    /// Nothing is read again when the study was loaded from files
+    /// ([`pipeline::load_study`]); only a file whose digest the study's data source did not
+    /// keep (data held in memory) is read here.
     ///
     /// # Errors
-    /// [`ReportError::File`](crate::ReportError::File) naming a file that cannot be read.
-    pub fn of_study(study: &Inputs, expected: Option<&Path>) -> Result<Self> {
+    /// [`ReportError::File`](crate::ReportError::File) naming a file that must be read here
+    /// and cannot be.
+    pub fn of_study(study: &Inputs, expected: Option<&FileRecord>) -> Result<Self> {
         Ok(Self {
             tool: TOOL.to_owned(),
             version: env!("CARGO_PKG_VERSION").to_owned(),
-            config: FileRecord::of(study.source())?,
-            expected: expected.map(FileRecord::of).transpose()?,
+            config: FileRecord::kept_or_read(study.source(), study.config_digest())?,
+            expected: expected.cloned(),
             inputs: study
-                .recording_files()
-                .map(FileRecord::of)
+                .input_files()
+                .into_iter()
+                .map(|f| {
+                    Ok(FileRecord {
+                        role: Some(f.role.code().to_owned()),
+                        field: Some(f.field),
+                        ..FileRecord::kept_or_read(f.path, f.digest)?
+                    })
+                })
                 .collect::<Result<_>>()?,
         })
     }

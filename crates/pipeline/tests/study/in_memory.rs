@@ -62,6 +62,11 @@ fn a_study_runs_on_recordings_in_memory() {
     };
     let inputs = Inputs::new(config, source, &source_data).unwrap();
     assert_eq!(source_data.reads.into_inner(), 6);
+    // A source that keeps no digest: the study says so (`None`) rather than inventing one.
+    assert!(inputs.config_digest().is_none());
+    let files = inputs.input_files();
+    assert_eq!(files.len(), 6);
+    assert!(files.iter().all(|f| f.digest.is_none()));
     let in_memory = pipeline::run(&inputs).unwrap();
 
     // The same study from the committed files, which the simulator wrote from the same

@@ -11,6 +11,7 @@ mod in_memory;
 mod lab_variants;
 mod mechanism;
 mod paper;
+mod provenance;
 mod recordings;
 mod scenarios;
 mod symmetric;

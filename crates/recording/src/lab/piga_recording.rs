@@ -14,6 +14,7 @@ use super::format::{
 };
 use super::probe::{AngleSourceKind, Recording, load_recording, parse_recording};
 use super::volts::GapUnit;
+use crate::digest::FileDigest;
 use crate::error::{RecordingError, Result};
 
 /// Default name of the output-angle column.
@@ -204,6 +205,23 @@ impl PigaRecording {
 pub fn load_piga_recording(path: &Path, format: &PigaRecordingFormat) -> Result<PigaRecording> {
     let samples = load_recording(path, &format.probe_format()?)?;
     PigaRecording::from_recording(samples, format.output.unit)
+}
+
+/// [`load_piga_recording`], with the size and SHA-256 of the bytes it read, taken as it read
+/// them (the file is read once).
+///
+/// # Errors
+/// Those of [`load_piga_recording`].
+pub fn load_piga_recording_digested(
+    path: &Path,
+    format: &PigaRecordingFormat,
+) -> Result<(PigaRecording, FileDigest)> {
+    let (samples, digest) =
+        crate::lab::probe::load_recording_digested(path, &format.probe_format()?)?;
+    Ok((
+        PigaRecording::from_recording(samples, format.output.unit)?,
+        digest,
+    ))
 }
 
 /// Parses a raw PIGA output recording held in memory; `path` names it in errors.

@@ -9,6 +9,7 @@ use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
 
 use super::format::{ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, RecordingFormat};
 use super::volts::{GapUnit, ProbeSensitivity, volts_to_um};
+use crate::digest::FileDigest;
 use crate::error::{RecordingError, Result};
 use crate::text::line_table::LineTable;
 use crate::text::table::{Table, load_table, parse_table};
@@ -460,6 +461,16 @@ fn index_pulse_angle(time_s: &[f64], pulse: &[f64]) -> std::result::Result<Vec<f
 pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording> {
     let table = load_table(path, &format.table_format()?)?;
     Recording::from_table(table, format)
+}
+
+/// [`load_recording`], with the size and SHA-256 of the bytes it read, taken as it read them
+/// (the file is read once).
+pub fn load_recording_digested(
+    path: &Path,
+    format: &RecordingFormat,
+) -> Result<(Recording, FileDigest)> {
+    let (table, digest) = crate::text::table::load_table_digested(path, &format.table_format()?)?;
+    Ok((Recording::from_table(table, format)?, digest))
 }
 
 /// Parses a probe recording held in memory; `path` names it in errors.

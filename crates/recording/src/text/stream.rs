@@ -4,6 +4,7 @@ use std::io::Read as _;
 use std::path::Path;
 
 use super::lines::{BOM, lone_cr_line_ends};
+use crate::digest::Hasher;
 use crate::error::{RecordingError, Result};
 
 /// Bytes read from a file at a time.
@@ -24,8 +25,13 @@ pub(crate) trait LineSink {
 /// Feeds the file's whole lines to `parser`, a chunk of about a megabyte at a time (a
 /// partial last line waits for the next read). The buffer grows beyond a chunk only while
 /// one line is longer than that, and never beyond [`MAX_LINE_BYTES`] + 1 bytes: a longer
-/// line is [`RecordingError::LineTooLong`].
-pub(crate) fn stream_file(path: &Path, parser: &mut impl LineSink) -> Result<()> {
+/// line is [`RecordingError::LineTooLong`]. Every byte read, as read (a byte-order mark and
+/// line ends included), goes to `hasher` when one is given.
+pub(crate) fn stream_file(
+    path: &Path,
+    parser: &mut impl LineSink,
+    mut hasher: Option<&mut Hasher>,
+) -> Result<()> {
     let io = |source| RecordingError::Io {
         path: path.to_owned(),
         source,
@@ -50,6 +56,9 @@ pub(crate) fn stream_file(path: &Path, parser: &mut impl LineSink) -> Result<()>
             buf.resize(target, 0);
             let got = file.read(&mut buf[old..]).map_err(io)?;
             buf.truncate(old + got);
+            if let Some(h) = hasher.as_deref_mut() {
+                h.update(&buf[old..]);
+            }
             if got == 0 {
                 eof = true;
                 break;

@@ -7,6 +7,7 @@ use super::line_table::LineTable;
 use super::lines::{Lines, field_text, normalized, split_fields, trim_quotes};
 use super::rows::{SKIP, Syntax, fast_row, parse_row_slowly};
 use super::stream::{CHUNK_BYTES, LineSink, stream_file};
+use crate::digest::{FileDigest, Hasher};
 use crate::error::{Hint, RecordingError, Result};
 
 /// Most columns a [`TableFormat`] may name.
@@ -220,8 +221,17 @@ impl Table {
 /// around them. Errors name the file and the 1-based line.
 pub fn load_table(path: &Path, format: &TableFormat) -> Result<Table> {
     let mut parser = TableParser::new(path, format, CHUNK_BYTES)?;
-    stream_file(path, &mut parser)?;
+    stream_file(path, &mut parser, None)?;
     parser.finish()
+}
+
+/// [`load_table`], with the size and SHA-256 of the bytes it read, taken as it read them
+/// (the file is read once).
+pub fn load_table_digested(path: &Path, format: &TableFormat) -> Result<(Table, FileDigest)> {
+    let mut parser = TableParser::new(path, format, CHUNK_BYTES)?;
+    let mut hasher = Hasher::default();
+    stream_file(path, &mut parser, Some(&mut hasher))?;
+    Ok((parser.finish()?, hasher.finish()))
 }
 
 /// Parses a table held in memory (as [`load_table`] reads a file); `path` names it in

@@ -93,7 +93,8 @@ fn a_failed_run_leaves_the_previous_outputs_and_a_good_one_replaces_them() {
 fn results_json_records_what_produced_it() {
     let (recordings, results) = study("recordings-small.ron");
     let expected = root().join("fixtures/expected/recordings-small.ron");
-    let provenance = Provenance::of_study(&recordings, Some(&expected)).unwrap();
+    let (_, record) = report::Expected::load_recorded(&expected).unwrap();
+    let provenance = Provenance::of_study(&recordings, Some(&record)).unwrap();
     let with: Value =
         serde_json::from_str(&report::results_json_with_provenance(&results, &provenance).unwrap())
             .unwrap();

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
-use recording::{TableColumn, TableFormat};
+use recording::{FileDigest, TableColumn, TableFormat};
 
 use crate::config::{PigaRecordingSet, PigaTableConfig};
 use crate::error::{InvalidReason, PipelineError, Result};
@@ -32,6 +32,8 @@ pub(crate) struct PigaTableRows {
     pub(crate) labels: Option<Vec<String>>,
     /// The line of each row in the table file.
     pub(crate) lines: Vec<usize>,
+    /// The file's size and SHA-256 as read, when the data source keeps them.
+    pub(crate) digest: Option<FileDigest>,
 }
 
 /// A raw PIGA output recording and the rate the study declares for it.
@@ -40,6 +42,8 @@ pub(crate) struct LoadedPigaRecording {
     pub(crate) rate_deg_s: f64,
     pub(crate) file: PathBuf,
     pub(crate) recording: recording::PigaRecording,
+    /// The file's size and SHA-256 as read, when the data source keeps them.
+    pub(crate) digest: Option<FileDigest>,
 }
 
 /// The calibration's points, whatever they came from: one per table row or recording.
@@ -191,13 +195,14 @@ pub(super) fn load_piga_table(
         label: config.label_column.clone(),
         ..TableFormat::new(columns, true)
     };
-    let table = load
-        .table(&file, &format)
+    let read = load
+        .read_table(&file, &format)
         .map_err(|e| PipelineError::Recording {
             path: source.to_owned(),
             field: "calibration.table".to_owned(),
             source: Box::new(e),
         })?;
+    let table = read.value;
     let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
     let rates = column(&config.rate_column);
     let outputs = column(&config.output_column);
@@ -233,6 +238,7 @@ pub(super) fn load_piga_table(
         sigma_rad_s: sigma,
         labels: table.labels().map(<[String]>::to_vec),
         lines,
+        digest: read.digest,
     })
 }
 
@@ -267,7 +273,7 @@ pub(super) fn load_piga_recordings(
         .map(|point| {
             let file = base.join(&point.file);
             let _span = tracing::info_span!("load", file = %file.display()).entered();
-            let result = load.piga_recording(&file, &set.format);
+            let result = load.read_piga_recording(&file, &set.format);
             (point.rate_deg_s, file, result)
         })
         .collect();
@@ -275,10 +281,11 @@ pub(super) fn load_piga_recordings(
     let mut files = Vec::with_capacity(loaded.len());
     for (i, (rate_deg_s, file, result)) in loaded.into_iter().enumerate() {
         match result {
-            Ok(recording) => files.push(LoadedPigaRecording {
+            Ok(read) => files.push(LoadedPigaRecording {
                 rate_deg_s,
                 file,
-                recording,
+                recording: read.value,
+                digest: read.digest,
             }),
             Err(error) => errors.push(PipelineError::Recording {
                 path: source.to_owned(),

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use super::data::{self, PigaData};
 use crate::config::{CalibrationConfig, K1Config, TrialsConfig, UncertaintyConfig};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
-use crate::inputs::{Check, DataSource, MIN_CALIBRATION_RATES, PhaseNames};
+use crate::inputs::{Check, DataSource, InputFile, InputRole, MIN_CALIBRATION_RATES, PhaseNames};
 
 /// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2: 100/(1 − p)).
 const MIN_TRIALS: u64 = 2000;
@@ -47,6 +47,29 @@ impl CalibrationInputs {
         match &self.data {
             PigaData::Table(t) => vec![t.file.as_path()],
             PigaData::Recordings { files, .. } => files.iter().map(|f| f.file.as_path()).collect(),
+        }
+    }
+
+    /// Every data file the section read, with its digest: the PIGA table, or each raw
+    /// recording, in the configuration's order.
+    pub(crate) fn input_files(&self) -> Vec<InputFile<'_>> {
+        match &self.data {
+            PigaData::Table(t) => vec![InputFile {
+                path: &t.file,
+                role: InputRole::PigaTable,
+                field: "calibration.table".to_owned(),
+                digest: t.digest.as_ref(),
+            }],
+            PigaData::Recordings { files, .. } => files
+                .iter()
+                .enumerate()
+                .map(|(i, f)| InputFile {
+                    path: &f.file,
+                    role: InputRole::PigaRecording,
+                    field: format!("calibration.recordings.files[{i}]"),
+                    digest: f.digest.as_ref(),
+                })
+                .collect(),
         }
     }
 }

@@ -7,14 +7,14 @@ use std::path::{Path, PathBuf};
 use harmonics::FitConfig;
 use identify::RadiusModel;
 use rayon::prelude::*;
-use recording::Recording;
+use recording::{FileDigest, Recording};
 
 use crate::config::{
     FitSettings, HarmonicPoint, PhaseConfig, Points, RadiusModelName, RadiusPoint, StudyConfig,
     Weighting,
 };
 use crate::error::{PipelineError, Result, UnsupportedReason};
-use crate::inputs::{Check, DataSource, PhaseNames, rates_of};
+use crate::inputs::{Check, DataSource, InputFile, InputRole, PhaseNames, rates_of};
 use crate::results::FitWeighting;
 
 /// The validated phases and the radius-error model they are fitted by.
@@ -63,6 +63,8 @@ pub(crate) struct LoadedRecording {
     /// Where it came from, as resolved against the configuration's folder.
     pub(crate) file: PathBuf,
     pub(crate) recording: Recording,
+    /// The file's size and SHA-256 as read, when the data source keeps them.
+    pub(crate) digest: Option<FileDigest>,
 }
 
 /// The phases of a study checked, before their recordings are loaded: the names other
@@ -141,6 +143,22 @@ impl Phases {
             .map(|f| f.file.as_path())
     }
 
+    /// Every recording the phases read, with its digest, in the configuration's order.
+    pub(crate) fn input_files(&self) -> impl Iterator<Item = InputFile<'_>> {
+        self.list.iter().enumerate().flat_map(|(p, phase)| {
+            let files = match &phase.data {
+                PhaseData::Recordings(set) => set.files.as_slice(),
+                _ => &[],
+            };
+            files.iter().enumerate().map(move |(i, f)| InputFile {
+                path: &f.file,
+                role: InputRole::ProbeRecording,
+                field: format!("phases[{p}].points.files[{i}]"),
+                digest: f.digest.as_ref(),
+            })
+        })
+    }
+
     /// Number of recordings to analyse.
     pub(crate) fn recordings(&self) -> usize {
         self.list
@@ -199,17 +217,18 @@ fn load_phases(
         .par_iter()
         .map(|(_, _, _, file, format)| {
             let _span = tracing::info_span!("load", file = %file.display()).entered();
-            load.recording(file, format)
+            load.read_recording(file, format)
         })
         .collect();
     let mut errors = Vec::new();
     let mut files: Vec<Vec<LoadedRecording>> = vec![Vec::new(); configs.len()];
     for ((p, i, rate_deg_s, file, _), result) in jobs.iter().zip(loaded) {
         match result {
-            Ok(recording) => files[*p].push(LoadedRecording {
+            Ok(read) => files[*p].push(LoadedRecording {
                 rate_deg_s: *rate_deg_s,
                 file: file.clone(),
-                recording,
+                recording: read.value,
+                digest: read.digest,
             }),
             Err(error) => errors.push(PipelineError::Recording {
                 path: source.to_owned(),
