@@ -224,6 +224,7 @@ mod tests {
             outputs_rad_s,
             sigma_rad_s: None,
             labels: None,
+            digest: None,
         };
         let inputs = CalibrationInputs {
             data: PigaData::Table(rows),
