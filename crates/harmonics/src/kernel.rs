@@ -9,16 +9,16 @@
 //! `cos kθ = 2 cos θ·cos (k−1)θ − cos (k−2)θ` (likewise for `sin kθ`). No design matrix is
 //! formed.
 //!
-//! Samples are processed in blocks of `BLOCK`: first the basis `cos kθ, sin kθ` of every
-//! sample of the block, then each sum over the block, four sums per loop so that the adds
-//! of independent sums overlap. Every sum keeps `LANES` independent lanes (lane `l` takes
-//! the samples `i ≡ l mod LANES`, in order), which the compiler turns into SIMD, and the
-//! result is bit for bit that of adding `LANES` samples at a time (a unit test checks it).
-//! Blocking took the 2.88 M-sample fit from 28–31 ms to 23–24 ms on an AVX2 machine: the
-//! per-sample update of every sum kept some 50 accumulators in flight, more than the CPU's
-//! registers, and stalled on the stores (docs/PERFORMANCE.md). `pulp` dispatches at run time
-//! to the widest instruction set the CPU has (the workspace forbids `unsafe`, so no
-//! intrinsics here).
+//! Samples are processed in blocks of `BLOCK`: first `cos θ, sin θ` of every sample of the
+//! block, then each order `k = 2…2N` in one loop that forms `cos kθ, sin kθ` by the
+//! recurrence and adds them to their sums while they are still in registers. Every sum keeps
+//! `LANES` independent lanes (lane `l` takes the samples `i ≡ l mod LANES`, in order), which
+//! the compiler turns into SIMD, and the result is bit for bit that of adding `LANES` samples
+//! at a time (a unit test checks it). On an AVX2 machine this took the 2.88 M-sample fit from
+//! 28–31 ms to 19 ms: adding every sample to every sum at once kept some 50 accumulators in
+//! flight, more than the CPU's 16 vector registers, and stalled on the stores
+//! (docs/PERFORMANCE.md). `pulp` dispatches at run time to the widest instruction set the CPU
+//! has (the workspace forbids `unsafe`, so no intrinsics here).
 
 // Lane loops index several arrays at once; that is what vectorises.
 #![allow(clippy::needless_range_loop)]
@@ -228,78 +228,63 @@ impl<const W: usize> Acc<W> {
                 tau[j] = (t[j] - centre.t_mid) * centre.t_inv_half;
             }
         }
-        for k in 2..=2 * N {
-            for j in 0..len {
-                let two_c1 = cos[1][j] + cos[1][j];
-                cos[k][j] = two_c1.mul_add(cos[k - 1][j], -cos[k - 2][j]);
-                sin[k][j] = two_c1.mul_add(sin[k - 1][j], -sin[k - 2][j]);
-            }
-        }
-        // The sums, several per loop: each lane of each sum is a chain of dependent adds,
-        // so a loop over one sum waits on the adder's latency; four at once keep it busy.
+        // Order 1 and the data's own sums, several per loop: each lane of each sum is a
+        // chain of dependent adds, so a loop over one sum waits on the adder's latency.
         let (yv, tau) = (&yv[..len], &tau[..len]);
-        for k in (1..=2 * N).step_by(2) {
-            let mut a = [self.cos[k], self.sin[k], self.cos[k + 1], self.sin[k + 1]];
-            lane_sums(
-                &mut a,
-                [
-                    &cos[k][..len],
-                    &sin[k][..len],
-                    &cos[k + 1][..len],
-                    &sin[k + 1][..len],
-                ],
-            );
-            [self.cos[k], self.sin[k], self.cos[k + 1], self.sin[k + 1]] = a;
-        }
-        let mut a = [self.y_cos[0]];
-        lane_sums(&mut a, [yv]);
-        [self.y_cos[0]] = a;
-        let mut k = 1;
-        while k < N {
-            let mut a = [
-                self.y_cos[k],
-                self.y_sin[k],
-                self.y_cos[k + 1],
-                self.y_sin[k + 1],
-            ];
-            lane_dots(
-                &mut a,
-                yv,
-                [
-                    &cos[k][..len],
-                    &sin[k][..len],
-                    &cos[k + 1][..len],
-                    &sin[k + 1][..len],
-                ],
-            );
-            [
-                self.y_cos[k],
-                self.y_sin[k],
-                self.y_cos[k + 1],
-                self.y_sin[k + 1],
-            ] = a;
-            k += 2;
-        }
-        if k == N {
-            let mut a = [self.y_cos[k], self.y_sin[k], self.yy];
-            lane_dots(&mut a, yv, [&cos[k][..len], &sin[k][..len], yv]);
-            [self.y_cos[k], self.y_sin[k], self.yy] = a;
-        } else {
-            let mut a = [self.yy];
-            lane_dots(&mut a, yv, [yv]);
-            [self.yy] = a;
-        }
+        let mut a = [self.cos[1], self.sin[1], self.y_cos[0]];
+        lane_sums(&mut a, [&cos[1][..len], &sin[1][..len], yv]);
+        [self.cos[1], self.sin[1], self.y_cos[0]] = a;
+        let mut a = [self.y_cos[1], self.y_sin[1], self.yy];
+        lane_dots(&mut a, yv, [&cos[1][..len], &sin[1][..len], yv]);
+        [self.y_cos[1], self.y_sin[1], self.yy] = a;
         if DRIFT {
             let mut a = [self.tau_cos[0]];
             lane_sums(&mut a, [tau]);
             [self.tau_cos[0]] = a;
-            let mut a = [self.tau_tau, self.tau_y];
-            lane_dots(&mut a, tau, [tau, yv]);
-            [self.tau_tau, self.tau_y] = a;
-            for k in 1..=N {
-                let mut a = [self.tau_cos[k], self.tau_sin[k]];
-                lane_dots(&mut a, tau, [&cos[k][..len], &sin[k][..len]]);
-                [self.tau_cos[k], self.tau_sin[k]] = a;
+            let mut a = [self.tau_tau, self.tau_y, self.tau_cos[1], self.tau_sin[1]];
+            lane_dots(&mut a, tau, [tau, yv, &cos[1][..len], &sin[1][..len]]);
+            [self.tau_tau, self.tau_y, self.tau_cos[1], self.tau_sin[1]] = a;
+        }
+        // Orders 2…2N: each formed by the recurrence and summed in the same loop, while it
+        // is still in a register.
+        for k in 2..=2 * N {
+            let (c_lo, c_hi) = cos.split_at_mut(k);
+            let (s_lo, s_hi) = sin.split_at_mut(k);
+            let previous = Previous {
+                c1: &c_lo[1][..len],
+                c: [&c_lo[k - 1][..len], &c_lo[k - 2][..len]],
+                s: [&s_lo[k - 1][..len], &s_lo[k - 2][..len]],
+            };
+            let (ck, sk) = (&mut c_hi[0][..len], &mut s_hi[0][..len]);
+            if k <= N {
+                let mut a = [
+                    self.cos[k],
+                    self.sin[k],
+                    self.y_cos[k],
+                    self.y_sin[k],
+                    self.tau_cos[k],
+                    self.tau_sin[k],
+                ];
+                next_order::<W, true, DRIFT>(&previous, ck, sk, yv, tau, &mut a);
+                [
+                    self.cos[k],
+                    self.sin[k],
+                    self.y_cos[k],
+                    self.y_sin[k],
+                    self.tau_cos[k],
+                    self.tau_sin[k],
+                ] = a;
+            } else {
+                let mut a = [
+                    self.cos[k],
+                    self.sin[k],
+                    [0.0; W],
+                    [0.0; W],
+                    [0.0; W],
+                    [0.0; W],
+                ];
+                next_order::<W, false, false>(&previous, ck, sk, yv, tau, &mut a);
+                [self.cos[k], self.sin[k]] = [a[0], a[1]];
             }
         }
     }
@@ -376,6 +361,58 @@ fn lane_dots<const W: usize, const G: usize>(acc: &mut [[f64; W]; G], u: &[f64],
             let cv = &v[g][j..j + W];
             for l in 0..W {
                 a[g][l] = cu[l].mul_add(cv[l], a[g][l]);
+            }
+        }
+        j += W;
+    }
+    *acc = a;
+}
+
+/// The two orders below the one to form, and `cos θ`, over a block.
+struct Previous<'a> {
+    c1: &'a [f64],
+    /// `cos (k−1)θ`, `cos (k−2)θ`.
+    c: [&'a [f64]; 2],
+    /// `sin (k−1)θ`, `sin (k−2)θ`.
+    s: [&'a [f64]; 2],
+}
+
+/// Forms `cos kθ`, `sin kθ` of a block into `ck`, `sk` by the Chebyshev recurrence and adds
+/// them, lane by lane in sample order, to `acc` = `[Σ cos, Σ sin, Σ y cos, Σ y sin, Σ τ cos,
+/// Σ τ sin]` (the data products with `DATA`, the drift products with `DRIFT` as well).
+#[inline(always)]
+fn next_order<const W: usize, const DATA: bool, const DRIFT: bool>(
+    previous: &Previous<'_>,
+    ck: &mut [f64],
+    sk: &mut [f64],
+    y: &[f64],
+    tau: &[f64],
+    acc: &mut [[f64; W]; 6],
+) {
+    let len = ck.len();
+    let (c1, [c1_prev, c2_prev], [s1_prev, s2_prev]) = (previous.c1, previous.c, previous.s);
+    let (c1, c1_prev, c2_prev) = (&c1[..len], &c1_prev[..len], &c2_prev[..len]);
+    let (s1_prev, s2_prev, sk, y) = (&s1_prev[..len], &s2_prev[..len], &mut sk[..len], &y[..len]);
+    let tau = if DRIFT { &tau[..len] } else { y };
+    let mut a = *acc;
+    let mut j = 0;
+    while j + W <= len {
+        for l in 0..W {
+            let i = j + l;
+            let two_c1 = c1[i] + c1[i];
+            let c = two_c1.mul_add(c1_prev[i], -c2_prev[i]);
+            let s = two_c1.mul_add(s1_prev[i], -s2_prev[i]);
+            ck[i] = c;
+            sk[i] = s;
+            a[0][l] += c;
+            a[1][l] += s;
+            if DATA {
+                a[2][l] = y[i].mul_add(c, a[2][l]);
+                a[3][l] = y[i].mul_add(s, a[3][l]);
+                if DRIFT {
+                    a[4][l] = tau[i].mul_add(c, a[4][l]);
+                    a[5][l] = tau[i].mul_add(s, a[5][l]);
+                }
             }
         }
         j += W;
