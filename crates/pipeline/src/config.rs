@@ -290,31 +290,63 @@ pub enum K1Config {
 }
 
 /// Type B standard uncertainties of the calibration's inputs (JCGM 100 §4.3). Each is a
-/// standard uncertainty (one standard deviation), not a tolerance or a bound.
+/// standard uncertainty (one standard deviation), not a tolerance or a bound. Every input is
+/// stated: a field left out is an error naming it, and a zero needs its reason in
+/// `zero_reasons` (nothing is assumed exact without a word). The probe gain is stated once:
+/// here, or by the compensating phase's recordings in volts with their sensitivity's
+/// uncertainty (then it must not be given here).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct UncertaintyConfig {
     /// u(R), m.
     #[serde(default)]
-    pub radius_u_m: f64,
+    pub radius_u_m: Option<f64>,
     /// u(g), m/s².
     #[serde(default)]
-    pub g_u_m_s2: f64,
+    pub g_u_m_s2: Option<f64>,
     /// Where the study's value of g comes from (shown beside it in the report).
     #[serde(default)]
     pub g_source: String,
     /// Relative standard uncertainty of the rate (a scale error common to every rate).
     #[serde(default)]
-    pub rate_u_relative: f64,
+    pub rate_u_relative: Option<f64>,
     /// u of the height from the tilt pivot to the probe plane, mm.
     #[serde(default)]
-    pub pivot_to_probe_u_mm: f64,
+    pub pivot_to_probe_u_mm: Option<f64>,
     /// u of the height from the probe plane to the PIGA plane, mm.
     #[serde(default)]
-    pub probe_to_piga_u_mm: f64,
-    /// Relative standard uncertainty of the probe's gain (sensitivity).
+    pub probe_to_piga_u_mm: Option<f64>,
+    /// Relative standard uncertainty of the probe's gain (sensitivity); left out when the
+    /// compensating phase's recordings are in volts with a stated sensitivity.
     #[serde(default)]
-    pub probe_gain_u_relative: f64,
+    pub probe_gain_u_relative: Option<f64>,
+    /// Why an input given as 0 is negligible, by its field's name
+    /// (`{"rate_u_relative": "encoder against the frequency standard, 1e-9"}`).
+    #[serde(default)]
+    pub zero_reasons: std::collections::BTreeMap<String, String>,
+}
+
+impl StudyConfig {
+    /// The probe gain's relative standard uncertainty stated by the compensating phase's
+    /// recordings (a gap in volts with its sensitivity's uncertainty), with the field that
+    /// states it; `None` when the calibration's phase is not recorded in volts (or its
+    /// sensitivity is invalid: the reader refuses it).
+    pub(crate) fn stated_probe_gain(&self) -> Option<(f64, String)> {
+        let name = &self.calibration.as_ref()?.compensate_with;
+        let (i, phase) = self
+            .phases
+            .iter()
+            .enumerate()
+            .find(|(_, p)| &p.name == name)?;
+        let Points::Recordings(set) = &phase.points else {
+            return None;
+        };
+        let s = set.format.gap.unit.sensitivity().ok()??;
+        Some((
+            s.relative_u(),
+            format!("phases[{i}].points.format.gap.unit (u_sensitivity)"),
+        ))
+    }
 }
 
 /// The probe's lever geometry (eq. 22): heights in mm and the measuring direction.

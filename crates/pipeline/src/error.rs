@@ -236,6 +236,30 @@ pub enum PipelineError {
         /// What it is for, or how to fill it in.
         hint: String,
     },
+    /// One quantity stated in two places.
+    #[error("{}: field `{field}` states {what}, and so does `{other}`: state it once", path.display())]
+    StatedTwice {
+        /// The file concerned.
+        path: PathBuf,
+        /// The one field.
+        field: String,
+        /// The other.
+        other: String,
+        /// The quantity, in words.
+        what: &'static str,
+    },
+    /// A key of a map that names nothing the map can be about.
+    #[error("{}: field `{field}`: `{key}` is not one of {}", path.display(), known.join(", "))]
+    UnknownKey {
+        /// The file concerned.
+        path: PathBuf,
+        /// The map.
+        field: String,
+        /// The key given.
+        key: String,
+        /// The keys it may have.
+        known: Vec<String>,
+    },
     /// A study file could not be read: missing, too large, or not UTF-8 text.
     #[error(transparent)]
     File(#[from] edge_io::EdgeIoError),

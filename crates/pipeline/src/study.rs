@@ -52,11 +52,14 @@ impl Inputs {
             .as_ref()
             .map(|m| mechanism::validate(&check, m, config.k1_rad_s_g, &names))
             .transpose()?;
-        let type_b = config
-            .uncertainty
-            .as_ref()
-            .map(|u| calibration::type_b(&check, u))
-            .transpose()?;
+        let type_b = match config.calibration {
+            Some(_) => calibration::type_b(
+                &check,
+                config.uncertainty.as_ref(),
+                config.stated_probe_gain(),
+            )?,
+            None => None,
+        };
         let calibration_refs = config
             .calibration
             .as_ref()

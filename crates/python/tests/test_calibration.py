@@ -94,7 +94,17 @@ def test_calibrate_recovers_k2_with_its_budget() -> None:
         k1_rad_s_g=K1,
         pivot_to_probe_mm=700.0,
         probe_to_piga_mm=510.0,
-        uncertainty={"radius_u_m": 5e-5, "g_u_m_s2": 1e-5, "g_source": "gravimeter"},
+        uncertainty={
+            "radius_u_m": 5e-5,
+            "g_u_m_s2": 1e-5,
+            "g_source": "gravimeter",
+            "rate_u_relative": 0.0,
+            "pivot_to_probe_u_mm": 0.5,
+            "probe_to_piga_u_mm": 0.5,
+            "probe_gain_u_relative": 2e-3,
+            # every Type B input is stated; a zero with its reason
+            "zero_reasons": {"rate_u_relative": "encoder against the frequency standard"},
+        },
         trials=20000,
     )
     d = cal.to_dict()

@@ -41,8 +41,11 @@ fn budget_table(out: &mut String, lines: &[BudgetLine]) {
     for l in lines {
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.2} | {} |",
+            "| {}{} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.2} | {} |",
             l.quantity,
+            l.note
+                .as_ref()
+                .map_or_else(String::new, |n| format!(" ({n})")),
             l.evaluation,
             l.value
                 .map_or_else(|| "—".to_owned(), |v| format!("{v:.6e}")),

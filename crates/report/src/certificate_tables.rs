@@ -92,14 +92,14 @@ pub(crate) fn results_table(out: &mut String, c: &CalibrationResults, heads: &[H
 
 pub(crate) fn compensation_block(out: &mut String, c: &CalibrationResults, k2: &Headline) {
     let k = k2.gum.k;
-    let cr = format::pair(c.c_r_m_s2.value, k * c.c_r_m_s2.u);
+    let cr = format::pair(c.c_r_combined_m_s2.value, k * c.c_r_combined_m_s2.u);
     let dk2 = format::pair(c.delta_k2.value, k * c.delta_k2.u);
     let micro = micro_scale(c.coefficients.k1.value);
     let dk2_micro = format::pair(c.delta_k2.value * micro, k * c.delta_k2.u * micro.abs());
     let _ = writeln!(
         out,
         "<table class=\"ident\"><tbody>\
-         <tr><th>C<sub>r</sub> of the spindle</th><td class=\"num\">{} m·s²</td><td>phase “{}”, U = k·u with k = {}</td></tr>\
+         <tr><th>C<sub>r</sub> of the spindle</th><td class=\"num\">{} m·s²</td><td>phase “{}”; U = k·u with k = {}, u from the fit, the probe gain, the lever heights and the rate scale (the inputs that carry C<sub>r</sub> into Δk2)</td></tr>\
          <tr><th>Δk2 = k1·C<sub>r</sub>·g/R²</th><td class=\"num\">{} rad/(s·g²) = {} µg/g²</td>\
          <td>removed from the fitted a² coefficient (eq. 19); U from the same inputs as k2 (C<sub>r</sub>, probe gain, lever, rate scale, R, g, k1), k = {}</td></tr>\
          </tbody></table>",
@@ -170,9 +170,13 @@ pub(crate) fn budget(out: &mut String, c: &CalibrationResults) {
     for l in &c.budget.k2 {
         let _ = writeln!(
             out,
-            "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
+            "<tr><td>{}{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
              <td class=\"num\">{}</td><td class=\"num\">{} %</td><td class=\"num\">{}</td></tr>",
             esc(&l.quantity),
+            l.note.as_ref().map_or_else(String::new, |n| format!(
+                "<br><span class=\"note\">{}</span>",
+                esc(n)
+            )),
             esc(&l.evaluation),
             l.value
                 .map_or_else(|| "—".to_owned(), |v| format::significant(v, 6)),

@@ -61,7 +61,7 @@ fn compensation(c: &CalibrationResults) -> (String, String) {
     (
         format!(
             "C_r = {} m·s² (U, k = {}; phase `{}`)",
-            format::pair(c.c_r_m_s2.value, k * c.c_r_m_s2.u).joined(),
+            format::pair(c.c_r_combined_m_s2.value, k * c.c_r_combined_m_s2.u).joined(),
             format::coverage_factor(k),
             c.compensate_with
         ),

@@ -67,6 +67,10 @@ pub struct BudgetLine {
     pub percent: f64,
     /// Degrees of freedom.
     pub dof: DegreesOfFreedom,
+    /// What the study says of the input: the reason for a zero, or where its uncertainty
+    /// comes from (the probe gain from the recordings' stated sensitivity).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// One row of the calibration table with its fitted value.
@@ -221,8 +225,12 @@ pub struct CalibrationResults {
     pub uncompensated: PigaCoefficients<Estimate>,
     /// Δk2 = k1·C_r·g/R² removed (eq. 19), with its standard uncertainty.
     pub delta_k2: Estimate,
-    /// The C_r used, m·s², and its standard uncertainty.
+    /// The C_r used, m·s², and its standard uncertainty from the phase's fit (Type A).
     pub c_r_m_s2: Estimate,
+    /// The same C_r with its combined standard uncertainty through the inputs that carry it
+    /// into Δk2 (the fit's Type A, the probe gain, the lever heights and the rate scale), so
+    /// that C_r and Δk2 are stated with one consistent uncertainty.
+    pub c_r_combined_m_s2: Estimate,
     /// k0, k2, k3 relative to k1 in µg, µg/g², µg/g³.
     pub conventional: Conventional,
     /// The nuisance coefficients of ω (1) and ω³ (s²).

@@ -15,6 +15,7 @@ mod provenance;
 mod recordings;
 mod scenarios;
 mod symmetric;
+mod type_b;
 
 use std::path::{Path, PathBuf};
 

@@ -303,7 +303,8 @@ def calibrate(
     ``k1``: ``"fitted"`` or ``(k1_rad_s_g, u_rad_s_g)`` given; ``uncertainty``: the Type B
     inputs as a study's ``uncertainty`` section (``radius_u_m``, ``g_u_m_s2``, ``g_source``,
     ``rate_u_relative``, ``pivot_to_probe_u_mm``, ``probe_to_piga_u_mm``,
-    ``probe_gain_u_relative``). ``radius_m``, ``g_m_s2`` and ``k1_rad_s_g`` are the
+    ``probe_gain_u_relative``, each required, and ``zero_reasons`` with the reason for each
+    zero: nothing is taken as exact without a word). ``radius_m``, ``g_m_s2`` and ``k1_rad_s_g`` are the
     centrifuge's radius, local gravity and the PIGA's nominal scale factor.
     """
     w = samples("rate_deg_s", rate_deg_s)

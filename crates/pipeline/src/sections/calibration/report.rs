@@ -122,8 +122,15 @@ pub(crate) fn results(
         fit.residual_sd
     };
     let labels = label_summaries(points, &unc.residuals_rad_s, residual_sd_rad_s);
-    let budget_of =
-        |name: &str| budget(&out(name), &e.quantities, e.weighting.group_dof, inputs.k1);
+    let budget_of = |name: &str| {
+        budget(
+            &out(name),
+            &e.quantities,
+            e.weighting.group_dof,
+            inputs.k1,
+            &inputs.type_b.notes,
+        )
+    };
     let budget = PigaCoefficients {
         k0: budget_of("k0"),
         k1: budget_of("k1"),
@@ -241,6 +248,7 @@ pub(crate) fn results(
             value: setting.nominal.c_r_m_s2,
             u: setting.c_r_sigma.map_or(0.0, |(s, _)| s),
         },
+        c_r_combined_m_s2: c_r_combined(setting),
         conventional,
         nuisance: Nuisance {
             omega: Estimate {
@@ -267,6 +275,28 @@ pub(crate) fn results(
     }
 }
 
+/// C_r with its combined standard uncertainty through the inputs of the measurement model
+/// that scale it (`C_r·gain·(lever/lever₀)/s²`): the fit's Type A u, the probe gain, the two
+/// lever heights and the rate scale, to first order (JCGM 100 eq. 10 on relative terms).
+fn c_r_combined(setting: &Setting<'_>) -> Estimate {
+    let n = &setting.nominal;
+    let tb = &setting.type_b.values;
+    let c_r = n.c_r_m_s2;
+    let type_a = setting.c_r_sigma.map_or(0.0, |(s, _)| s);
+    let (h_p, h_a) = (n.pivot_to_probe_mm, n.probe_to_piga_mm);
+    // ln(lever) = ln(h_p + h_a) − ln(h_p)
+    let d_lever_d_hp = 1.0 / (h_p + h_a) - 1.0 / h_p;
+    let d_lever_d_ha = 1.0 / (h_p + h_a);
+    let relative2 = tb.probe_gain_u_relative.powi(2)
+        + (2.0 * tb.rate_u_relative).powi(2)
+        + (d_lever_d_hp * tb.pivot_to_probe_u_mm).powi(2)
+        + (d_lever_d_ha * tb.probe_to_piga_u_mm).powi(2);
+    Estimate {
+        value: c_r,
+        u: (type_a.powi(2) + c_r.powi(2) * relative2).sqrt(),
+    }
+}
+
 fn dof_value(dof: uncertainty::Dof) -> DegreesOfFreedom {
     match dof {
         uncertainty::Dof::Finite(nu) => DegreesOfFreedom::Finite(nu),
@@ -280,6 +310,7 @@ fn budget(
     quantities: &[uncertainty::InputQuantity],
     group_dof: uncertainty::Dof,
     k1: K1Choice,
+    notes: &[(usize, String)],
 ) -> Vec<BudgetLine> {
     let mut lines = Vec::new();
     for (i, (c, q)) in output
@@ -304,6 +335,10 @@ fn budget(
             contribution: c.uncertainty,
             percent: c.variance_percent,
             dof: dof_value(q.dof),
+            note: notes
+                .iter()
+                .find(|(index, _)| *index == i)
+                .map(|(_, note)| note.clone()),
         });
     }
     // The fit's coefficients as one line: their correlated contribution (the shares of the
@@ -320,6 +355,7 @@ fn budget(
         contribution,
         percent: share,
         dof: dof_value(group_dof),
+        note: None,
     });
     lines
 }

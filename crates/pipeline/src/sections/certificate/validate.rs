@@ -57,7 +57,7 @@ pub(crate) const fn input_index(name: TypeBInputName) -> usize {
 
 /// The Type B inputs of a study with a non-zero standard uncertainty, each with the field
 /// that gives it.
-fn uncertain_inputs(config: &StudyConfig) -> Vec<(TypeBInputName, &'static str)> {
+fn uncertain_inputs(config: &StudyConfig) -> Vec<(TypeBInputName, String)> {
     let mut list = Vec::new();
     if let Some(u) = &config.uncertainty {
         for (name, field, value) in [
@@ -88,16 +88,25 @@ fn uncertain_inputs(config: &StudyConfig) -> Vec<(TypeBInputName, &'static str)>
                 u.probe_gain_u_relative,
             ),
         ] {
-            if value > 0.0 {
-                list.push((name, field));
+            if value.is_some_and(|v| v > 0.0) {
+                list.push((name, format!("`{field}`")));
             }
         }
+    }
+    if let Some((gain, _)) = config.stated_probe_gain()
+        && gain > 0.0
+        && !list.iter().any(|(n, _)| *n == TypeBInputName::ProbeGain)
+    {
+        list.push((
+            TypeBInputName::ProbeGain,
+            "the recordings' stated probe sensitivity".to_owned(),
+        ));
     }
     if let Some(c) = &config.calibration
         && let K1Config::Given { u_rad_s_g, .. } = c.k1
         && u_rad_s_g > 0.0
     {
-        list.push((TypeBInputName::K1, "calibration.k1.u_rad_s_g"));
+        list.push((TypeBInputName::K1, "`calibration.k1.u_rad_s_g`".to_owned()));
     }
     list
 }
@@ -119,6 +128,15 @@ pub(crate) fn validate(
         });
     }
     let mut errors = Vec::new();
+    if config.uncertainty.is_none() {
+        errors.push(PipelineError::MissingField {
+            path: check.path.to_owned(),
+            field: "uncertainty".to_owned(),
+            hint: "a certificate states every Type B input of the budget: give the \
+                   `uncertainty` section"
+                .to_owned(),
+        });
+    }
     let mut need = |field: &str, value: &str, hint: &str| {
         if value.trim().is_empty() {
             errors.push(PipelineError::MissingField {
@@ -255,7 +273,7 @@ pub(crate) fn validate(
             need(
                 &format!("traceability (input: {key})"),
                 "",
-                &format!("`{field}` is not zero: state where that uncertainty comes from"),
+                &format!("{field} is not zero: state where that uncertainty comes from"),
             );
         }
     }
