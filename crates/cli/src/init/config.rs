@@ -112,8 +112,8 @@ pub(crate) fn render(plan: &Plan<'_>, relative: &RelativePath<'_>) -> String {
     let _ = writeln!(
         s,
         "    // Type B standard uncertainties (one standard deviation each, not a tolerance) of\n\
-         \x20   // the inputs, from their own calibration certificates; write 0 for one that is\n\
-         \x20   // negligible (the report then shows it as 0).\n\
+         \x20   // the inputs, from their own calibration certificates; for one that is negligible\n\
+         \x20   // write 0 and say why: `zero_reasons: {{\"rate_u_relative\": \"…\"}},`.\n\
          \x20   uncertainty: (\n\
          \x20       radius_u_m: {p},            // u(R), m\n\
          \x20       g_u_m_s2: {p},              // u(g), m/s²\n\

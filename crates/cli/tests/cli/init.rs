@@ -169,6 +169,12 @@ pub(crate) fn fill_in(text: &str) -> String {
                 "probe_to_piga_mm" => "510.0",
                 "probe_direction" => "against_o1_x1",
                 "g_source" => "\"the simulation's 9.8 m/s²\"",
+                // every Type B input is stated (a zero would need its reason)
+                "radius_u_m" => "5.0e-6",
+                "g_u_m_s2" => "1.0e-5",
+                "rate_u_relative" => "1.0e-6",
+                "pivot_to_probe_u_mm" | "probe_to_piga_u_mm" => "0.5",
+                "probe_gain_u_relative" => "2.0e-3",
                 _ => "0.0",
             };
             let filled = if key == "g_source" {
