@@ -69,10 +69,12 @@
 
 mod closed_form;
 mod error;
+mod orientation;
 mod piga;
 
 pub use closed_form::{Eq17Terms, eq17};
 pub use error::{AccelModelError, Result};
+pub use orientation::Orientation;
 pub use piga::{
     AxisInputs, OUTPUT_HIGHEST_HARMONIC, PigaCoefficients, RatePoint, mean_output_rad_s,
     rate_point, rate_points,

@@ -23,47 +23,9 @@ use kinematics::{
     Axis, Centrifuge, Chain, Ground, Homogeneous, Jet, Piga, PigaInputs, RevolutionQuadrature,
     Scalar, Sleeve, Spindle, Transform, spindle_transform,
 };
-use serde::{Deserialize, Serialize};
 
-/// Which way the PIGA's input axis points on the arm.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Orientation {
-    /// IA towards the spindle axis (the paper's mounting, eq. 10), s = +1.
-    IaIn,
-    /// IA away from the spindle axis (the PIGA turned 180° about an axis parallel to the
-    /// spindle), s = −1.
-    IaOut,
-}
-
-impl Orientation {
-    /// `s`: +1 for IA in, −1 for IA out.
-    #[must_use]
-    pub const fn sign(self) -> f64 {
-        match self {
-            Self::IaIn => 1.0,
-            Self::IaOut => -1.0,
-        }
-    }
-
-    /// Words for a reader: `IA in` / `IA out`.
-    #[must_use]
-    pub const fn label(self) -> &'static str {
-        match self {
-            Self::IaIn => "IA in",
-            Self::IaOut => "IA out",
-        }
-    }
-
-    /// The tag used in file names: `ia_in` / `ia_out`.
-    #[must_use]
-    pub const fn tag(self) -> &'static str {
-        match self {
-            Self::IaIn => "ia_in",
-            Self::IaOut => "ia_out",
-        }
-    }
-}
+/// Which way the PIGA's input axis points on the arm (one home: `accel_model`).
+pub use accel_model::Orientation;
 
 /// One mounting of the PIGA on the arm, as the exact chain needs it.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -29,13 +29,6 @@ fn rates_deg_s() -> Vec<f64> {
     (0..12).map(|i| 35.0 + 15.0 * f64::from(i)).collect()
 }
 
-fn cal(o: Orientation) -> calibration::Orientation {
-    match o {
-        Orientation::IaIn => calibration::Orientation::IaIn,
-        Orientation::IaOut => calibration::Orientation::IaOut,
-    }
-}
-
 /// The campaign scenario with both mountings (R_out = R_in + 40 mm, a bias shift of
 /// 4e-6 rad/s), an arm stretch `c_a`, table noise 1e-7 rad/s and 12 rates.
 fn scenario(seed: u64, c_a: f64) -> simulate::LoadedScenario {
@@ -69,7 +62,7 @@ fn fit_tables(sim: &Simulation) -> SymmetricFit {
         .iter()
         .map(|m| {
             (
-                cal(m.orientation),
+                m.orientation,
                 m.radius_m,
                 m.piga.iter().map(|r| r.rate_deg_s.to_radians()).collect(),
                 m.piga.iter().map(|r| r.output_rad_s).collect(),
@@ -352,7 +345,7 @@ fn the_symmetric_k2_interval_covers_the_truth() {
                     )
                     .unwrap();
                     (
-                        cal(m.orientation),
+                        m.orientation,
                         m.radius_m,
                         rows.iter().map(|r| r.rate_deg_s.to_radians()).collect(),
                         rows.iter().map(|r| r.output_rad_s).collect(),

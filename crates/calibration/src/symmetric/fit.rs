@@ -1,0 +1,330 @@
+//! The joint least-squares fit of eq. 23 to the two data sets: the checks of the data, the
+//! fit, and the coefficients and C it gives.
+
+use identify::{Fit, LstsqOptions, lstsq_with};
+
+use super::error::SymmetricError;
+use super::terms::{
+    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION, Orientation, OrientationData,
+    SYMMETRIC_TERMS, distinct, index, symmetric_row,
+};
+
+/// One mounting's own coefficients.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MountingFit {
+    /// IA in or out.
+    pub orientation: Orientation,
+    /// Its static radius, m.
+    pub radius_m: f64,
+    /// Distinct rates in its data set.
+    pub distinct_rates: usize,
+    /// `k0,s` (bias with the gravity seen through the tilt), rad/s, and its standard error.
+    pub k0_rad_s: (f64, f64),
+    /// `b1,s` (the ω nuisance term: tilt, Coriolis, alignment), and its standard error.
+    pub b1: (f64, f64),
+    /// `k1,s`, rad/(s·g), and its standard error.
+    pub k1_rad_s_g: (f64, f64),
+}
+
+/// The joint fit of eq. 23.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SymmetricFit {
+    /// IA in, then IA out.
+    pub mountings: [MountingFit; 2],
+    /// `k2` from the PIGA alone, rad/(s·g²), and its standard error.
+    pub k2_rad_s_g2: (f64, f64),
+    /// `k3`, rad/(s·g³), and its standard error.
+    pub k3_rad_s_g3: (f64, f64),
+    /// `b3` (ω³ nuisance term), and its standard error.
+    pub b3: (f64, f64),
+    /// `γ = k1·C/g` (coefficient of `s·ω⁴`), rad·s³, and its standard error.
+    pub gamma: (f64, f64),
+    /// `C = γ·g/k̄1`, m·s², with `k̄1` the mean of the two `k1,s`, and its standard error
+    /// (first order, from the fit's covariance).
+    pub c_m_s2: (f64, f64),
+    /// `Δk2,total = k̄1·C·g/R_in²` at the IA-in radius, rad/(s·g²), and its standard error.
+    pub delta_k2_total_rad_s_g2: (f64, f64),
+    /// Variance inflation factor of the `s·ω⁴` column.
+    pub gamma_vif: f64,
+    /// Gravity used to form `a_s`, m/s².
+    pub g_m_s2: f64,
+    /// Residuals `output − fitted`, rad/s, IA in's points then IA out's, each in its data
+    /// set's order.
+    pub residuals_rad_s: [Vec<f64>; 2],
+    /// Birge ratio `√(χ²/ν)` of a weighted fit (`None` unweighted).
+    pub birge_ratio: Option<f64>,
+    /// The least-squares fit (coefficients in [`SYMMETRIC_TERM_NAMES`]' order; for a weighted
+    /// fit the covariance is `(XᵀWX)⁻¹` times the squared Birge ratio when above 1).
+    pub fit: Fit,
+}
+
+impl SymmetricFit {
+    /// Whether the `s·ω⁴` term can be told apart from the others (VIF ≤ 1e4).
+    #[must_use]
+    pub fn separable(&self) -> bool {
+        self.gamma_vif <= GAMMA_VIF_LIMIT
+    }
+
+    /// The mounting of an orientation.
+    #[must_use]
+    pub const fn mounting(&self, o: Orientation) -> &MountingFit {
+        &self.mountings[index(o)]
+    }
+}
+
+/// Checks the data sets and returns them as (IA in, IA out) with their radii.
+fn check<'a>(
+    data: &[OrientationData<'a>],
+    list_field: &str,
+) -> Result<[(OrientationData<'a>, f64); 2], SymmetricError> {
+    let describe = |d: &[OrientationData<'_>]| {
+        let words: Vec<&str> = d
+            .iter()
+            .map(|x| x.orientation.map_or("undeclared", Orientation::label))
+            .collect();
+        if words.is_empty() {
+            "no data set".to_owned()
+        } else {
+            format!("{} data set(s): {}", d.len(), words.join(", "))
+        }
+    };
+    for d in data {
+        if d.orientation.is_none() {
+            return Err(SymmetricError::MissingOrientation {
+                field: d.field.to_owned(),
+            });
+        }
+    }
+    if data.len() == 2 && data[0].orientation == data[1].orientation {
+        let o = data[0].orientation.unwrap_or(Orientation::IaIn);
+        return Err(SymmetricError::SameOrientation {
+            field: data[1].field.to_owned(),
+            first: data[0].field.to_owned(),
+            orientation: o.label(),
+        });
+    }
+    if data.len() != 2 {
+        return Err(SymmetricError::OneOrientationOnly {
+            field: list_field.to_owned(),
+            got: describe(data),
+        });
+    }
+    let mut out: [Option<(OrientationData<'a>, f64)>; 2] = [None, None];
+    for d in data {
+        let Some(o) = d.orientation else { continue };
+        let Some(r) = d.radius_m else {
+            return Err(SymmetricError::MissingRadius {
+                field: d.field.to_owned(),
+            });
+        };
+        if !(r.is_finite() && r > 0.0) {
+            return Err(SymmetricError::Invalid {
+                field: format!("{}.radius_m", d.field),
+                value: r,
+                reason: "must be finite and > 0",
+            });
+        }
+        if d.rates_rad_s.len() != d.output_rad_s.len() {
+            return Err(SymmetricError::Invalid {
+                field: format!("{}.output_rad_s", d.field),
+                value: d.output_rad_s.len() as f64,
+                reason: "must have one output per rate",
+            });
+        }
+        for (i, (&w, &y)) in d.rates_rad_s.iter().zip(d.output_rad_s).enumerate() {
+            if !w.is_finite() {
+                return Err(SymmetricError::Invalid {
+                    field: format!("{}.rates[{i}]", d.field),
+                    value: w,
+                    reason: "a rate must be finite",
+                });
+            }
+            if !y.is_finite() {
+                return Err(SymmetricError::Invalid {
+                    field: format!("{}.outputs[{i}]", d.field),
+                    value: y,
+                    reason: "an output must be finite",
+                });
+            }
+        }
+        if let Some(sig) = d.sigma_rad_s {
+            if sig.len() != d.rates_rad_s.len() {
+                return Err(SymmetricError::Invalid {
+                    field: format!("{}.sigma_rad_s", d.field),
+                    value: sig.len() as f64,
+                    reason: "must have one σ per rate",
+                });
+            }
+            if let Some((i, &s)) = sig
+                .iter()
+                .enumerate()
+                .find(|(_, s)| !(s.is_finite() && **s > 0.0))
+            {
+                return Err(SymmetricError::Invalid {
+                    field: format!("{}.sigma_rad_s[{i}]", d.field),
+                    value: s,
+                    reason: "a σ must be finite and > 0",
+                });
+            }
+        }
+        let n = distinct(d.rates_rad_s);
+        if n < MIN_RATES_PER_ORIENTATION {
+            return Err(SymmetricError::TooFewRates {
+                field: d.field.to_owned(),
+                orientation: o.label(),
+                distinct: n,
+                need: MIN_RATES_PER_ORIENTATION,
+            });
+        }
+        out[index(o)] = Some((*d, r));
+    }
+    match out {
+        [Some(a), Some(b)] => Ok([a, b]),
+        _ => Err(SymmetricError::OneOrientationOnly {
+            field: list_field.to_owned(),
+            got: describe(data),
+        }),
+    }
+}
+
+/// Fits eq. 23 to two data sets, one per orientation, by `identify`'s QR with column scaling
+/// (covariance from the residuals; weighted by `1/σᵢ` when both sets give σ, with the
+/// Birge-ratio policy of `identify::identify_calibration_weighted`).
+///
+/// `list_field` names the list of data sets in errors (`symmetric.orientations`).
+///
+/// # Errors
+/// [`SymmetricError::OneOrientationOnly`] unless there are exactly two sets, one per
+/// orientation; [`SymmetricError::SameOrientation`]; [`SymmetricError::MissingOrientation`];
+/// [`SymmetricError::MissingRadius`]; [`SymmetricError::TooFewRates`] for fewer than
+/// [`MIN_RATES_PER_ORIENTATION`] distinct rates in a set; [`SymmetricError::Invalid`] for a
+/// non-finite number, mismatched lengths or a non-positive g or σ;
+/// [`SymmetricError::Fit`] from the solver (e.g. a rank-deficient design).
+pub fn fit_symmetric(
+    data: &[OrientationData<'_>],
+    g_m_s2: f64,
+    list_field: &str,
+) -> Result<SymmetricFit, SymmetricError> {
+    if !(g_m_s2.is_finite() && g_m_s2 > 0.0) {
+        return Err(SymmetricError::Invalid {
+            field: "g_m_s2".to_owned(),
+            value: g_m_s2,
+            reason: "must be finite and > 0",
+        });
+    }
+    let sets = check(data, list_field)?;
+    let weighted = sets.iter().all(|(d, _)| d.sigma_rad_s.is_some());
+    let rows: usize = sets.iter().map(|(d, _)| d.rates_rad_s.len()).sum();
+    let mut x = nalgebra::DMatrix::zeros(rows, SYMMETRIC_TERMS);
+    let mut y = Vec::with_capacity(rows);
+    let mut weights = Vec::with_capacity(rows);
+    let mut r = 0;
+    for (d, radius) in &sets {
+        let o = d.orientation.unwrap_or(Orientation::IaIn);
+        for (i, (&w, &out)) in d.rates_rad_s.iter().zip(d.output_rad_s).enumerate() {
+            let row = symmetric_row(o, *radius, g_m_s2, w);
+            let wt = if weighted {
+                d.sigma_rad_s.map_or(1.0, |s| 1.0 / s[i])
+            } else {
+                1.0
+            };
+            for (j, v) in row.iter().enumerate() {
+                x[(r, j)] = v * wt;
+            }
+            y.push(out * wt);
+            weights.push(wt);
+            r += 1;
+        }
+    }
+    let mut fit = lstsq_with(&x, &y, &LstsqOptions::default()).map_err(SymmetricError::Fit)?;
+    let birge_ratio = weighted.then(|| {
+        let chi2: f64 = fit.residuals.iter().map(|e| e * e).sum();
+        (chi2 / fit.dof.max(1) as f64).sqrt()
+    });
+    if let Some(b) = birge_ratio {
+        // the σᵢ taken as known: (XᵀWX)⁻¹, enlarged by the Birge ratio when above 1
+        let scale = b.max(1.0).powi(2);
+        fit.covariance = &fit.unscaled_covariance * scale;
+        fit.std_errors = (0..SYMMETRIC_TERMS)
+            .map(|j| fit.covariance[(j, j)].sqrt())
+            .collect();
+    }
+    let residuals_all: Vec<f64> = fit
+        .residuals
+        .iter()
+        .zip(&weights)
+        .map(|(e, w)| e / w)
+        .collect();
+    let n_in = sets[0].0.rates_rad_s.len();
+    let residuals_rad_s = [
+        residuals_all[..n_in].to_vec(),
+        residuals_all[n_in..].to_vec(),
+    ];
+
+    let c = &fit.coefficients;
+    let se = &fit.std_errors;
+    let cov = &fit.covariance;
+    let pair = |j: usize| (c[j], se[j]);
+    let mountings = [0, 1].map(|k| {
+        let (d, radius) = &sets[k];
+        MountingFit {
+            orientation: if k == 0 {
+                Orientation::IaIn
+            } else {
+                Orientation::IaOut
+            },
+            radius_m: *radius,
+            distinct_rates: distinct(d.rates_rad_s),
+            k0_rad_s: pair(3 * k),
+            b1: pair(3 * k + 1),
+            k1_rad_s_g: pair(3 * k + 2),
+        }
+    });
+    // C = γ·g/k̄1, k̄1 = (k1,+ + k1,−)/2: first-order standard error through the gradient
+    let k1_mean = 0.5 * (c[2] + c[5]);
+    let gamma = c[GAMMA_TERM];
+    let c_value = gamma * g_m_s2 / k1_mean;
+    let mut grad = [0.0; SYMMETRIC_TERMS];
+    grad[GAMMA_TERM] = g_m_s2 / k1_mean;
+    grad[2] = -0.5 * c_value / k1_mean;
+    grad[5] = -0.5 * c_value / k1_mean;
+    let mut var_c = 0.0;
+    for a in 0..SYMMETRIC_TERMS {
+        for b in 0..SYMMETRIC_TERMS {
+            var_c += grad[a] * cov[(a, b)] * grad[b];
+        }
+    }
+    let r_in = sets[0].1;
+    let dk2_scale = g_m_s2 * g_m_s2 / (r_in * r_in);
+    let gamma_vif = vif(&x, &weights, &fit, GAMMA_TERM);
+    let result = SymmetricFit {
+        mountings,
+        k2_rad_s_g2: pair(K2_TERM),
+        k3_rad_s_g3: pair(8),
+        b3: pair(6),
+        gamma: pair(GAMMA_TERM),
+        c_m_s2: (c_value, var_c.max(0.0).sqrt()),
+        delta_k2_total_rad_s_g2: (gamma * dk2_scale, se[GAMMA_TERM] * dk2_scale),
+        gamma_vif,
+        g_m_s2,
+        residuals_rad_s,
+        birge_ratio,
+        fit,
+    };
+    Ok(result)
+}
+
+/// Variance inflation factor of column `j` (the design rows already weighted): `VIF_j =
+/// [(XᵀWX)⁻¹]_jj · Σᵢ (x_ij − x̄_j)²` about the weighted mean, the form of
+/// `crate::variance_inflation` (valid with intercept columns; eq. 23 has one per
+/// orientation, whose sum is the constant column).
+fn vif(x: &nalgebra::DMatrix<f64>, weights: &[f64], fit: &Fit, j: usize) -> f64 {
+    let w2: Vec<f64> = weights.iter().map(|w| w * w).collect();
+    let total: f64 = w2.iter().sum();
+    let raw = |i: usize| x[(i, j)] / weights[i];
+    let mean = (0..x.nrows()).map(|i| raw(i) * w2[i]).sum::<f64>() / total;
+    let ss: f64 = (0..x.nrows())
+        .map(|i| w2[i] * (raw(i) - mean) * (raw(i) - mean))
+        .sum();
+    fit.unscaled_covariance[(j, j)] * ss
+}

@@ -1,0 +1,30 @@
+//! The two-orientation (IA in / IA out) calibration of issue 20 (`docs/theory.md` section
+//! 11, `docs/SYMMETRIC.md`): one joint least-squares fit of eq. 23,
+//!
+//! ```text
+//! λ̇_s = k0,s + s·(b1,s·ω + k1,s·a_s + b3·ω³ + γ·ω⁴ + k3·a_s³) + k2·a_s² + ε,   a_s = R_s·ω²/g
+//! ```
+//!
+//! with `s = +1` (IA in) or `−1` (IA out), `γ = k1·C/g`, and `C = C_r + C_a` the total dynamic
+//! radius growth at the PIGA. It measures k2 and C from the PIGA's own output, with no probe;
+//! with a probe's `C_r` as well, `C − C_r` is the growth the probe does not see (arm stretch)
+//! — or a wrong probe declaration.
+//!
+//! Read in this order: `terms` (the orientations, the coefficients, one design row), `error`,
+//! `fit` (the joint fit), `evaluate` (its uncertainty and warnings).
+
+mod error;
+mod evaluate;
+mod fit;
+mod terms;
+
+pub use error::SymmetricError;
+pub use evaluate::{
+    ProbeCr, SYMMETRIC_OUTPUTS, SymmetricEvaluation, SymmetricModel, SymmetricWarning,
+    evaluate_symmetric, symmetric_inputs,
+};
+pub use fit::{MountingFit, SymmetricFit, fit_symmetric};
+pub use terms::{
+    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION, Orientation, OrientationData,
+    SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS, Z_LIMIT, symmetric_row,
+};
