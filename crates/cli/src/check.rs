@@ -35,6 +35,8 @@ fn stand_ins(text: &str) -> String {
                 PLACEHOLDER
             } else if code.contains("probe_direction") {
                 "against_o1_x1"
+            } else if code.contains("sensitivity") {
+                "1.0"
             } else if code.contains("time:") {
                 "s"
             } else if code.contains("gap:") {

@@ -99,9 +99,9 @@ pub use analysis::piga::{PigaOutputRate, reduce_piga_recording};
 pub use analysis::probe::{
     RecordingAnalysis, RevolutionStatistics, analyze_recording, revolution_statistics,
 };
-pub use binary::mat::{load_mat, parse_mat};
-pub use binary::tdms::{load_tdms, parse_tdms};
-pub use binary::{BinaryChannels, MatVariables};
+pub use binary::mat::{list_mat, load_mat, mat_variable, parse_mat};
+pub use binary::tdms::{list_tdms, load_tdms, parse_tdms, tdms_channel};
+pub use binary::{BinaryChannels, ChannelInfo, MatVariables};
 pub use digest::{FileDigest, Hasher};
 pub use error::{
     BinaryDefect, BinaryFormat, BinaryPart, Hint, RecordingError, Result, Unsupported,

@@ -44,7 +44,7 @@ pub(crate) struct Setting {
 }
 
 impl Setting {
-    fn new(ron: impl Into<String>, evidence: impl Into<String>) -> Self {
+    pub(crate) fn new(ron: impl Into<String>, evidence: impl Into<String>) -> Self {
         Self {
             ron: ron.into(),
             evidence: evidence.into(),
@@ -89,7 +89,7 @@ pub(crate) struct Finding {
 }
 
 impl Finding {
-    fn new(path: &Path) -> Self {
+    pub(crate) fn new(path: &Path) -> Self {
         Self {
             path: path.to_path_buf(),
             kind: None,
@@ -125,15 +125,7 @@ pub(crate) fn understand(path: &Path, bytes: &[u8], read_column: &ColumnReader<'
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     if matches!(extension.as_deref(), Some("tdms" | "mat")) {
-        f.problems.push(format!(
-            "a {} file: the study reads probe recordings as delimited text only; export it \
-             as CSV (`harmonics` reads it as it is)",
-            if extension.as_deref() == Some("tdms") {
-                "NI TDMS"
-            } else {
-                "MATLAB"
-            }
-        ));
+        super::binary::understand(&mut f, bytes, extension.as_deref() == Some("tdms"));
         return f;
     }
     let layout = match sniff(bytes) {
@@ -312,13 +304,27 @@ fn recording(
     layout: &Layout,
     read_column: &ColumnReader<'_>,
 ) {
-    let pick = |role: Role| columns.iter().find(|c| c.role == role);
-    // time
-    let Some(time) = pick(Role::Time) else {
+    let read = |name: &str| read_column(layout, name);
+    let Some(time_s) = time_setting(f, columns, &read) else {
         return;
     };
+    signals(f, kind, columns, &layout.header, &read, time_s.as_deref());
+}
+
+/// One whole column (or channel) by name.
+pub(crate) type Read<'a> = dyn Fn(&str) -> Result<Vec<f64>, String> + 'a;
+
+/// The time column's setting; its values in seconds when its unit is known (`None` when
+/// there is no time column: `Some(None)` when the times cannot be had).
+pub(crate) fn time_setting(
+    f: &mut Finding,
+    columns: &[Column],
+    read: &Read<'_>,
+) -> Option<Option<Vec<f64>>> {
+    let pick = |role: Role| columns.iter().find(|c| c.role == role);
+    let time = pick(Role::Time)?;
     let time_unit = time.unit.as_deref().and_then(time_unit);
-    let time_values = read_column(layout, &time.name);
+    let time_values = read(&time.name);
     let epoch = time_values
         .as_ref()
         .ok()
@@ -366,6 +372,19 @@ fn recording(
         f.problems
             .push(format!("the time column cannot be read: {e}"));
     }
+    Some(time_s)
+}
+
+/// The gap (or output) and angle settings and the rate, given the times in seconds.
+pub(crate) fn signals(
+    f: &mut Finding,
+    kind: Kind,
+    columns: &[Column],
+    header: &[String],
+    read: &Read<'_>,
+    time_s: Option<&[f64]>,
+) {
+    let pick = |role: Role| columns.iter().find(|c| c.role == role);
     // gap or output
     match kind {
         Kind::Probe => {
@@ -381,12 +400,24 @@ fn recording(
                 )),
                 Some(u) if is_voltage(u) => {
                     f.format.push(Setting::new(
-                        format!("gap: (column: {}, unit: {PLACEHOLDER})", quoted(&gap.name)),
                         format!(
-                            "the header's `{}` is in volts: convert with the probe's \
-                             sensitivity from its calibration certificate, or give it \
-                             (see docs/YOUR-DATA.md)",
-                            gap.name
+                            "gap: (column: {}, unit: volts(sensitivity: {PLACEHOLDER}, \
+                             sensitivity_unit: um_per_v, u_sensitivity: {PLACEHOLDER}))",
+                            quoted(&gap.name)
+                        ),
+                        format!(
+                            "the header's `{}` is in volts{}: give the probe's sensitivity and \
+                             its standard uncertainty from the probe's calibration certificate \
+                             (sensitivity_unit um_per_v, mm_per_v or v_per_mm; the uncertainty \
+                             in the same unit is the study's probe-gain input; \
+                             docs/YOUR-DATA.md)",
+                            gap.name,
+                            if u.trim().eq_ignore_ascii_case("mv") {
+                                " (millivolts: the values are read as written, so give the \
+                                 sensitivity per millivolt where per volt is asked)"
+                            } else {
+                                ""
+                            }
                         ),
                     ));
                 }
@@ -405,7 +436,7 @@ fn recording(
         }
         Kind::PigaRecording | Kind::PigaTable => {
             let output = pick(Role::Output).expect("a PIGA recording has an output column");
-            let values = read_column(layout, &output.name).unwrap_or_default();
+            let values = read(&output.name).unwrap_or_default();
             let (unit, evidence) = angle_from(output, &values);
             f.format.push(Setting::new(
                 format!("output: (column: {}, unit: {unit})", quoted(&output.name)),
@@ -424,7 +455,7 @@ fn recording(
     let mut measured: Option<(f64, String)> = None;
     match angle_column {
         Some(c) => {
-            let values = match read_column(layout, &c.name) {
+            let values = match read(&c.name) {
                 Ok(v) => v,
                 Err(e) => {
                     f.problems
@@ -443,7 +474,7 @@ fn recording(
                     ),
                 ));
                 f.angle_words = format!("index pulse `{}`", c.name);
-                if let Some(t) = &time_s
+                if let Some(t) = time_s
                     && let Some((rate, turns)) = pulse_rate_deg_s(t, &values)
                 {
                     measured = Some((
@@ -458,7 +489,7 @@ fn recording(
                     evidence,
                 ));
                 f.angle_words = format!("encoder `{}` in {}", c.name, unit_name(&unit));
-                if let (Some(t), Some((per_unit, turn))) = (&time_s, rad_per_unit(&unit)) {
+                if let (Some(t), Some((per_unit, turn))) = (time_s, rad_per_unit(&unit)) {
                     let rad = unwrap_rad(&values, per_unit, turn);
                     if let Some(rate) = slope_deg_s(t, &rad) {
                         measured = Some((
@@ -478,7 +509,7 @@ fn recording(
                     "no encoder or index-pulse column (columns: {}): the angle is taken \
                      from the declared rate, and the spindle's angle at the first sample \
                      from O1X1 must be given (a wrong one turns β and biases C_r)",
-                    layout.header.join(", ")
+                    header.join(", ")
                 ),
             ));
             f.angle_words = "none: from the declared rate".to_owned();

@@ -5,6 +5,7 @@
 //! file that cannot be understood, or two files at one rate, stop it before anything is
 //! written, each problem named with its file.
 
+mod binary;
 mod columns;
 pub(crate) mod config;
 mod file;

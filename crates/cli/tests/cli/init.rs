@@ -233,8 +233,12 @@ fn init_and_study(dir: &Path) -> (f64, f64, String) {
 
 #[track_caller]
 fn assert_within_3_sigma(what: &str, dir: &Path) -> String {
+    assert_within_3_sigma_of(what, dir, c_r_true())
+}
+
+#[track_caller]
+fn assert_within_3_sigma_of(what: &str, dir: &Path, truth: f64) -> String {
     let (c, s, printed) = init_and_study(dir);
-    let truth = c_r_true();
     assert!(
         (c - truth).abs() < 3.0 * s,
         "{what}: C_r = {c:e} ± {s:e}, truth {truth:e}"
@@ -477,27 +481,116 @@ fn no_overwrite_without_force() {
     );
 }
 
-#[test]
-fn binary_files_are_named_with_what_is_missing() {
-    let tmp = Scratch::new("binary");
-    for f in ["probe_120deg_s.tdms", "probe_120deg_s.mat"] {
-        std::fs::copy(
-            root().join("fixtures/recordings/binary").join(f),
-            tmp.0.join(f),
-        )
-        .unwrap();
+/// The simulated campaign's C_r (fixtures/campaign/truth.json), whose probe recordings
+/// `fixtures/recordings/binary/make_campaign.py` wrote as TDMS (npTDMS) and MAT (scipy).
+fn campaign_c_r() -> f64 {
+    let truth: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root().join("fixtures/campaign/truth.json")).unwrap(),
+    )
+    .unwrap();
+    truth["scenario"]["error_motion"]["Coefficients"]["c_r_m_s2"]
+        .as_f64()
+        .unwrap()
+}
+
+/// The files of `fixtures/recordings/NAME` copied into a scratch folder.
+fn copied(name: &str) -> Scratch {
+    let tmp = Scratch::new(name);
+    for entry in std::fs::read_dir(root().join("fixtures/recordings").join(name)).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, tmp.0.join(path.file_name().unwrap())).unwrap();
     }
+    tmp
+}
+
+#[test]
+fn tdms_from_an_ni_logger() {
+    // Group `Spindle`, channels `Gap` and `Angle` with unit_string properties, no time
+    // channel: the times are the waveform's (wf_increment).
+    let tmp = copied("campaign-tdms");
+    let printed = assert_within_3_sigma_of("TDMS", &tmp.0, campaign_c_r());
+    assert!(printed.contains("encoder `Angle` in degrees"), "{printed}");
+    let config = std::fs::read_to_string(tmp.0.join("study.ron")).unwrap();
+    for want in [
+        "group: \"Spindle\"",
+        "waveform_time: true",
+        "gap: (column: \"Gap\", unit: um)",
+        "the file's unit `um`",
+    ] {
+        assert!(config.contains(want), "{want}:\n{config}");
+    }
+}
+
+#[test]
+fn mat_files_with_units_in_the_variable_names() {
+    // Top-level `time_ms`, `gap_mm`, `angle_rad`.
+    let tmp = copied("campaign-mat");
+    assert_within_3_sigma_of("MAT", &tmp.0, campaign_c_r());
+    let config = std::fs::read_to_string(tmp.0.join("study.ron")).unwrap();
+    for want in [
+        "time: (column: \"time_ms\", unit: ms)",
+        "gap: (column: \"gap_mm\", unit: mm)",
+        "angle: encoder(column: \"angle_rad\", unit: rad)",
+    ] {
+        assert!(config.contains(want), "{want}:\n{config}");
+    }
+}
+
+#[test]
+fn a_probe_in_volts_in_tdms_or_mat_asks_for_its_sensitivity() {
+    let tmp = Scratch::new("volts");
+    for (file, unit) in [
+        ("probe_120deg_s_volts.tdms", "the file's unit `V`"),
+        ("probe_120deg_s_volts.mat", "the unit `V` in its name"),
+    ] {
+        let from = root().join("fixtures/recordings/binary").join(file);
+        let out = tmp.0.join(format!("{file}.ron"));
+        let run = cli(&[
+            "init",
+            from.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let config = std::fs::read_to_string(&out).unwrap();
+        assert!(
+            config.contains("unit: volts(sensitivity: FILL_IN, sensitivity_unit: um_per_v, u_sensitivity: FILL_IN)"),
+            "{config}"
+        );
+        assert!(config.contains(unit), "{config}");
+        assert!(config.contains("probe's sensitivity"), "{config}");
+        // `check` names the line left to fill in.
+        let check = cli(&["check", out.to_str().unwrap()]);
+        assert_eq!(check.status.code(), Some(1));
+        assert!(
+            String::from_utf8_lossy(&check.stdout).contains("sensitivity: FILL_IN"),
+            "{}",
+            String::from_utf8_lossy(&check.stdout)
+        );
+    }
+}
+
+#[test]
+fn an_unreadable_binary_file_is_named_with_what_was_wrong() {
+    let tmp = Scratch::new("binary-bad");
+    std::fs::write(tmp.0.join("probe_120deg_s.tdms"), b"TDSm\x02").unwrap();
+    std::fs::write(tmp.0.join("probe_60deg_s.mat"), b"not a mat file").unwrap();
     let out = cli(&["init", tmp.0.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     let printed = String::from_utf8_lossy(&out.stdout);
     assert!(
-        printed.contains("probe_120deg_s.tdms: a NI TDMS file"),
+        printed.contains("probe_120deg_s.tdms: cannot be read as an NI TDMS file"),
         "{printed}"
     );
     assert!(
-        printed.contains("probe_120deg_s.mat: a MATLAB file"),
+        printed.contains("probe_60deg_s.mat: cannot be read as a MATLAB file"),
         "{printed}"
     );
+    assert!(!tmp.0.join("study.ron").exists());
 }
 
 #[test]

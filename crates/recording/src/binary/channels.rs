@@ -51,6 +51,24 @@ impl Default for BinaryChannels {
     }
 }
 
+/// A channel of a TDMS file or a numeric variable of a MAT-file, as [`list_tdms`](crate::list_tdms)
+/// and [`list_mat`](crate::list_mat) list them.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ChannelInfo {
+    /// TDMS: its group. MAT: the struct variable holding it (`None`: a top-level variable).
+    pub group: Option<String>,
+    /// Its name (what [`BinaryChannels`] names).
+    pub name: String,
+    /// The unit the file states for it (TDMS `unit_string`, else `NI_UnitDescription`; a
+    /// MAT-file states none).
+    pub unit: Option<String>,
+    /// TDMS: it carries waveform timing (`wf_increment`), so its sample times need no time
+    /// channel.
+    pub waveform: bool,
+    /// Its number of values; `None` for a data type or shape the readers do not convert.
+    pub samples: Option<usize>,
+}
+
 /// The MAT reader's name for [`BinaryChannels`]: variables instead of channels, `group` a
 /// struct variable.
 pub type MatVariables = BinaryChannels;

@@ -17,7 +17,7 @@
 
 use std::path::Path;
 
-use super::channels::{BinaryChannels, Cursor, Place, Series, assemble};
+use super::channels::{BinaryChannels, ChannelInfo, Cursor, Place, Series, assemble};
 use super::decode::{NumType, decode};
 use super::source::{Source, with_source};
 use crate::error::{BinaryDefect, BinaryFormat, BinaryPart, RecordingError, Result, Unsupported};
@@ -90,11 +90,44 @@ fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<
         }
         Ok(())
     };
+    elements(source, place, &mut buf, &mut visit)?;
+    let mut series = |role: usize| -> Option<Series> {
+        found[role].take().map(|(values, finite)| Series {
+            name: wanted[role].clone(),
+            values,
+            finite,
+        })
+    };
+    let missing = |name: &str| place.missing(&full(name), available.clone());
+    let (time, gap, angle) = (series(0), series(1), series(2));
+    let gap = gap.ok_or_else(|| missing(&variables.gap))?;
+    let time = match (&variables.time, time) {
+        (_, Some(t)) => t,
+        (Some(name), None) => return Err(missing(name)),
+        (None, None) => {
+            return Err(RecordingError::NoTimeBase {
+                path: place.path(),
+                channel: variables.gap.clone(),
+            });
+        }
+    };
+    let angle = angle.filter(|_| variables.angle.is_some());
+    assemble(path, BinaryFormat::Mat, variables, time, gap, angle)
+}
+
+/// Gives every variable of the file after its header (inflating compressed ones) to
+/// `visit`, with its dotted path.
+fn elements<'a>(
+    source: &Source<'_>,
+    place: Place<'a>,
+    buf: &mut Vec<u8>,
+    visit: &mut dyn FnMut(&str, Item<'_>) -> Result<()>,
+) -> Result<()> {
     let mut pos = HEADER;
     let len = source.len();
     while pos < len {
         let mut tag = Cursor::based(
-            source.read(pos, 8, &mut buf)?,
+            source.read(pos, 8, buf)?,
             pos,
             BinaryPart::ElementTag,
             place,
@@ -118,11 +151,11 @@ fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<
             end.saturating_add((8 - end % 8) % 8).min(len)
         };
         let data = match ty {
-            MI_MATRIX | MI_COMPRESSED => source.read(start, end - start, &mut buf)?,
+            MI_MATRIX | MI_COMPRESSED => source.read(start, end - start, buf)?,
             _ => &[],
         };
         match ty {
-            MI_MATRIX => matrix(data, pos + 8, "", 0, place, &mut visit)?,
+            MI_MATRIX => matrix(data, pos + 8, "", 0, place, visit)?,
             MI_COMPRESSED => {
                 let limit = data
                     .len()
@@ -130,15 +163,12 @@ fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<
                     .saturating_add(64);
                 let inflated = miniz_oxide::inflate::decompress_to_vec_zlib_with_limit(data, limit)
                     .map_err(|_| place.malformed(pos, BinaryDefect::Inflate))?;
-                let inner = Place {
-                    path,
-                    format: BinaryFormat::Mat,
-                };
+                let inner = place;
                 let mut at = 0;
                 while at < inflated.len() {
                     let parsed = element(&inflated, at, inner).and_then(|(ty, data, next)| {
                         if ty == MI_MATRIX {
-                            matrix(data, at + 8, "", 0, inner, &mut visit)?;
+                            matrix(data, at + 8, "", 0, inner, visit)?;
                         }
                         Ok(next)
                     });
@@ -149,28 +179,84 @@ fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<
         }
         pos = next;
     }
-    let mut series = |role: usize| -> Option<Series> {
-        found[role].take().map(|(values, finite)| Series {
-            name: wanted[role].clone(),
-            values,
-            finite,
-        })
+    Ok(())
+}
+
+/// The numeric variables of a MAT-file held in memory (top-level ones and the fields of
+/// 1×1 structs, `group` the struct), with their lengths (`None`: a class or shape the
+/// reader does not convert); for `init`. A MAT-file states no units. `path` names the file
+/// in errors.
+///
+/// # Errors
+/// As [`parse_mat`], for a file whose structure cannot be read.
+pub fn list_mat(bytes: &[u8], path: &Path) -> Result<Vec<ChannelInfo>> {
+    let place = Place {
+        path,
+        format: BinaryFormat::Mat,
     };
-    let missing = |name: &str| place.missing(&full(name), available.clone());
-    let (time, gap, angle) = (series(0), series(1), series(2));
-    let gap = gap.ok_or_else(|| missing(&variables.gap))?;
-    let time = match (&variables.time, time) {
-        (_, Some(t)) => t,
-        (Some(name), None) => return Err(missing(name)),
-        (None, None) => {
-            return Err(RecordingError::NoTimeBase {
-                path: place.path(),
-                channel: variables.gap.clone(),
+    let source = Source::Bytes(bytes);
+    let mut buf = Vec::new();
+    header(source.read(0, 520, &mut buf)?, place)?;
+    let mut found = Vec::new();
+    elements(&source, place, &mut buf, &mut |name, item| {
+        let (group, name) = match name.split_once('.') {
+            Some((g, n)) => (Some(g.to_owned()), n.to_owned()),
+            None => (None, name.to_owned()),
+        };
+        found.push(ChannelInfo {
+            group,
+            name,
+            unit: None,
+            waveform: false,
+            samples: match item {
+                Item::Numeric { count, .. } => Some(count),
+                Item::Unsupported(_) => None,
+            },
+        });
+        Ok(())
+    })?;
+    Ok(found)
+}
+
+/// The values of one numeric variable of a MAT-file held in memory (a field of the struct
+/// `group` when given); for `init`.
+///
+/// # Errors
+/// As [`parse_mat`]; [`RecordingError::MissingChannel`] when the file has no such variable.
+pub fn mat_variable(
+    bytes: &[u8],
+    path: &Path,
+    group: Option<&str>,
+    name: &str,
+) -> Result<Vec<f64>> {
+    let place = Place {
+        path,
+        format: BinaryFormat::Mat,
+    };
+    let source = Source::Bytes(bytes);
+    let mut buf = Vec::new();
+    header(source.read(0, 520, &mut buf)?, place)?;
+    let want = match group {
+        Some(g) => format!("{g}.{name}"),
+        None => name.to_owned(),
+    };
+    let mut found = None;
+    let mut available = Vec::new();
+    elements(&source, place, &mut buf, &mut |n, item| {
+        available.push(n.to_owned());
+        if n == want && found.is_none() {
+            found = Some(match item {
+                Item::Numeric { ty, data, count } => {
+                    let mut v = vec![0.0; count];
+                    decode(&mut v, data, ty, ty.size());
+                    v
+                }
+                Item::Unsupported(what) => return Err(place.unsupported(n, what)),
             });
         }
-    };
-    let angle = angle.filter(|_| variables.angle.is_some());
-    assemble(path, BinaryFormat::Mat, variables, time, gap, angle)
+        Ok(())
+    })?;
+    found.ok_or_else(|| place.missing(&want, available))
 }
 
 /// Checks the 128-byte header: level 5, little-endian; v7.3 (HDF5) refused by name.

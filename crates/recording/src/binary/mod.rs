@@ -25,4 +25,114 @@ mod scaling;
 mod source;
 pub(crate) mod tdms;
 
-pub use channels::{BinaryChannels, MatVariables};
+pub(crate) use source::read_whole;
+
+pub use channels::{BinaryChannels, ChannelInfo, MatVariables};
+
+use std::path::Path;
+
+use crate::error::{BinaryFormat, RecordingError, Result};
+use crate::lab::format::{AngleSource, AngleUnit, RecordingFormat};
+use crate::lab::probe::{AngleSourceKind, Recording, pulse_angle};
+
+/// The binary format a file's extension names (`.tdms`, `.mat`, any case), if any.
+pub(crate) fn format_of(path: &Path) -> Option<BinaryFormat> {
+    let extension = path.extension()?.to_string_lossy().to_ascii_lowercase();
+    match extension.as_str() {
+        "tdms" => Some(BinaryFormat::Tdms),
+        "mat" => Some(BinaryFormat::Mat),
+        _ => None,
+    }
+}
+
+/// A probe recording from a TDMS or MAT file (its `bytes`, or read from `path`) with a
+/// [`RecordingFormat`]'s names and units: the time channel (or the waveform timing), the
+/// gap channel and its unit, the angle from an encoder channel, an index-pulse channel or
+/// the declared rate.
+pub(crate) fn read_with_format(
+    path: &Path,
+    bytes: Option<&[u8]>,
+    kind: BinaryFormat,
+    format: &RecordingFormat,
+) -> Result<Recording> {
+    if format.waveform_time && kind == BinaryFormat::Mat {
+        return Err(RecordingError::SettingNotForFile {
+            path: path.to_path_buf(),
+            setting: "waveform_time",
+            applies_to: "TDMS files",
+        });
+    }
+    format.gap.unit.sensitivity()?;
+    let (angle, angle_unit) = match &format.angle {
+        AngleSource::Encoder { column, unit, .. } => {
+            if let AngleUnit::Counts { per_rev: 0 } = unit {
+                return Err(RecordingError::InvalidCountsPerRev);
+            }
+            (Some(column.trim().to_owned()), *unit)
+        }
+        // The marker's 0/1 values as they are.
+        AngleSource::IndexPulse { column } => (Some(column.trim().to_owned()), AngleUnit::Rad),
+        AngleSource::Rate { start_angle_deg } => {
+            if !start_angle_deg.is_finite() {
+                return Err(RecordingError::InvalidStartAngle {
+                    value: *start_angle_deg,
+                });
+            }
+            (None, AngleUnit::Deg)
+        }
+    };
+    let channels = BinaryChannels {
+        group: format.group.clone(),
+        time: (!format.waveform_time).then(|| format.time.column.trim().to_owned()),
+        gap: format.gap.column.trim().to_owned(),
+        gap_unit: format.gap.unit,
+        angle,
+        angle_unit,
+        max_gap_intervals: format.max_gap_intervals,
+    };
+    let read = |channels: &BinaryChannels| match (kind, bytes) {
+        (BinaryFormat::Tdms, Some(b)) => tdms::parse_tdms(b, path, channels),
+        (BinaryFormat::Tdms, None) => tdms::load_tdms(path, channels),
+        (BinaryFormat::Mat, Some(b)) => mat::parse_mat(b, path, channels),
+        (BinaryFormat::Mat, None) => mat::load_mat(path, channels),
+    };
+    let mut rec = read(&channels)?;
+    // Times in another unit than seconds (a MAT time variable in ms, say).
+    let scale = format.time.unit.s_per_unit();
+    if !format.waveform_time && scale != 1.0 {
+        rec.time_s.iter_mut().for_each(|t| *t *= scale);
+    }
+    match &format.angle {
+        AngleSource::Encoder {
+            column, optional, ..
+        } if rec.angle_rad.is_none() && !optional => {
+            // A required encoder channel the file lacks: the reader's error for a missing
+            // channel, which lists those the file has.
+            let lookup = BinaryChannels {
+                gap: column.trim().to_owned(),
+                angle: None,
+                ..channels.clone()
+            };
+            read(&lookup)?;
+        }
+        AngleSource::IndexPulse { column } => {
+            let pulses = rec.angle_rad.take().unwrap_or_default();
+            if pulses.is_empty() {
+                read(&BinaryChannels {
+                    gap: column.trim().to_owned(),
+                    angle: None,
+                    ..channels.clone()
+                })?;
+            }
+            rec.angle_rad = Some(pulse_angle(path, column, &rec.time_s, &pulses)?);
+            rec.angle_source = AngleSourceKind::IndexPulse;
+        }
+        AngleSource::Rate { start_angle_deg } => {
+            rec.angle_rad = None;
+            rec.angle_source = AngleSourceKind::DeclaredRate;
+            rec.start_angle_rad = start_angle_deg.to_radians();
+        }
+        AngleSource::Encoder { .. } => {}
+    }
+    Ok(rec)
+}

@@ -6,6 +6,15 @@ use std::path::Path;
 use super::decode::{BLOCK, NumType, decode};
 use crate::error::{RecordingError, Result};
 
+/// The whole file at `path` (a binary recording whose digest is taken, then parsed from
+/// memory).
+pub(crate) fn read_whole(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|source| RecordingError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Where a reader reads from: bytes in memory, or a regular file read piece by piece with
 /// positioned reads (only the structures and the samples asked for are read, through a
 /// reused buffer, so no copy of the whole file is made). Every read is within `len`.

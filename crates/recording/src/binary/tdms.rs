@@ -21,7 +21,7 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::channels::{BinaryChannels, Cursor, Place, Series, assemble};
+use super::channels::{BinaryChannels, ChannelInfo, Cursor, Place, Series, assemble};
 use super::daqmx::{self, DaqmxIndex};
 use super::decode::{NumType, decode};
 use super::scaling::{Leaf, Prop, Scaling};
@@ -52,6 +52,100 @@ pub fn parse_tdms(bytes: &[u8], path: &Path, channels: &BinaryChannels) -> Resul
     read(&Source::Bytes(bytes), path, channels)
 }
 
+/// The channels of a TDMS file held in memory, each with its group, the unit it states
+/// (`unit_string`, else `NI_UnitDescription`), whether it has waveform timing
+/// (`wf_increment`) and its number of values (`None`: a data type the reader does not
+/// convert), in the order the file names them; for `init`, which proposes a study
+/// configuration from them. `path` names the file in errors.
+///
+/// # Errors
+/// As [`parse_tdms`], for a file whose structure cannot be read.
+pub fn list_tdms(bytes: &[u8], path: &Path) -> Result<Vec<ChannelInfo>> {
+    let place = Place {
+        path,
+        format: BinaryFormat::Tdms,
+    };
+    let mut file = Walk {
+        place,
+        group: None,
+        roles: &[],
+        objects: Vec::new(),
+        daqmx: Vec::new(),
+        by_path: HashMap::new(),
+        list: Vec::new(),
+        claimed: [None; 3],
+        all: true,
+    };
+    let mut buf = Vec::new();
+    file.walk(&Source::Bytes(bytes), &mut buf)?;
+    Ok(file
+        .objects
+        .iter()
+        .filter_map(|o| {
+            let (group, name) = o.name.clone()?;
+            let text = |key: &str| {
+                o.props.iter().rev().find_map(|(n, v)| match v {
+                    Prop::Text(t) if n == key && !t.trim().is_empty() => Some(t.trim().to_owned()),
+                    _ => None,
+                })
+            };
+            let convertible = o.bad_type.is_none() && o.unsupported.is_none();
+            let samples = if o.scalers.is_empty() {
+                o.spans.iter().map(|s| s.count).sum()
+            } else {
+                o.scalers
+                    .iter()
+                    .map(|(_, spans)| spans.iter().map(|s| s.count).sum::<usize>())
+                    .max()
+                    .unwrap_or(0)
+            };
+            Some(ChannelInfo {
+                group: Some(group),
+                name,
+                unit: text("unit_string").or_else(|| text("NI_UnitDescription")),
+                waveform: o.wf_increment.is_some(),
+                samples: convertible.then_some(samples),
+            })
+        })
+        .collect())
+}
+
+/// The values of one channel of a TDMS file held in memory (in `group`, else the first
+/// group that has it), scaled as [`parse_tdms`] scales them; for `init`.
+///
+/// # Errors
+/// As [`parse_tdms`]; [`RecordingError::MissingChannel`] when the file has no such channel.
+pub fn tdms_channel(
+    bytes: &[u8],
+    path: &Path,
+    group: Option<&str>,
+    name: &str,
+) -> Result<Vec<f64>> {
+    let place = Place {
+        path,
+        format: BinaryFormat::Tdms,
+    };
+    let roles = ["", name, ""];
+    let mut file = Walk {
+        place,
+        group,
+        roles: &roles,
+        objects: Vec::new(),
+        daqmx: Vec::new(),
+        by_path: HashMap::new(),
+        list: Vec::new(),
+        claimed: [None; 3],
+        all: false,
+    };
+    let source = Source::Bytes(bytes);
+    let mut buf = Vec::new();
+    file.walk(&source, &mut buf)?;
+    match file.claimed[1] {
+        Some(k) => Ok(file.values(&source, k, name, &mut buf)?.values),
+        None => Err(place.missing(&file.qualified(name), file.available())),
+    }
+}
+
 fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<Recording> {
     let place = Place {
         path,
@@ -74,77 +168,14 @@ fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<R
         by_path: HashMap::new(),
         list: Vec::new(),
         claimed: [None; 3],
+        all: false,
     };
     let mut buf = Vec::new();
     file.walk(source, &mut buf)?;
     let mut take = |role: usize| -> Result<Option<Series>> {
-        let Some(k) = file.claimed[role] else {
-            return Ok(None);
-        };
-        let obj = &file.objects[k];
-        if let Some(code) = obj.bad_type {
-            return Err(place.unsupported(roles[role], Unsupported::TdmsType(code)));
-        }
-        if let Some(what) = &obj.unsupported {
-            return Err(place.unsupported(roles[role], what.clone()));
-        }
-        let unsupported = |what| place.unsupported(roles[role], what);
-        let scaling = Scaling::from_properties(&file.property_levels(k)).map_err(unsupported)?;
-        let daqmx = obj.daqmx_type.is_some();
-        let raw_leaf = match (daqmx, obj.scalers.as_slice()) {
-            (false, _) => Leaf::Raw,
-            // A DAQmx channel of a plain type: its one scaler's values are its raw values.
-            (true, [(id, _)]) if obj.daqmx_type != Some(daqmx::RAW_DATA_TYPE) => Leaf::Scaler(*id),
-            _ => Leaf::Raw,
-        };
-        let scaling = match scaling {
-            Some(s) => s,
-            // Unscaled DAQmx raw data: the values of its one scaler.
-            None => Scaling::none(match (daqmx, obj.scalers.as_slice()) {
-                (true, [(id, _)]) => Leaf::Scaler(*id),
-                _ => raw_leaf,
-            }),
-        };
-        let leaf = match scaling.leaf {
-            Leaf::Raw => raw_leaf,
-            scaler => scaler,
-        };
-        let spans: &[Span] = match leaf {
-            Leaf::Raw if daqmx => {
-                return Err(unsupported(Unsupported::TdmsScaling(
-                    "raw input for DAQmx raw data (a scale must read a scaler)".into(),
-                )));
-            }
-            Leaf::Raw => &obj.spans,
-            Leaf::Scaler(id) => match obj.scalers.iter().find(|(s, _)| *s == id) {
-                Some((_, spans)) => spans,
-                None if obj.scalers.is_empty() && !daqmx => &obj.spans,
-                None => {
-                    return Err(unsupported(Unsupported::TdmsScaling(format!(
-                        "no DAQmx scaler of scale id {id}"
-                    ))));
-                }
-            },
-        };
-        let total: usize = spans.iter().map(|s| s.count).sum();
-        // Every span's bytes lie in the file: `total` is bounded by its size.
-        let mut values = vec![0.0; total];
-        let mut at = 0;
-        let mut finite = true;
-        for s in spans {
-            let out = &mut values[at..at + s.count];
-            let (n, f) = source.decode_at(s.offset, out, s.ty, s.stride, &mut buf)?;
-            at += n;
-            finite &= f;
-        }
-        values.truncate(at);
-        // Scaled values are scanned again: a scale may overflow.
-        scaling.apply(&mut values);
-        let finite = finite && scaling.is_identity();
-        Ok(Some(Series {
-            finite,
-            ..series(roles[role], values)
-        }))
+        file.claimed[role]
+            .map(|k| file.values(source, k, roles[role], &mut buf))
+            .transpose()
     };
     let gap = take(1)?;
     let time = if channels.time.is_some() {
@@ -231,7 +262,7 @@ struct Object {
     daqmx_type: Option<u32>,
     /// What a DAQmx channel to read has that is not converted.
     unsupported: Option<Unsupported>,
-    /// Its `NI_` properties (scaling).
+    /// Its `NI_` properties (scaling, unit description) and `unit_string`.
     props: Vec<(String, Prop)>,
     wanted: bool,
 }
@@ -249,6 +280,8 @@ struct Walk<'a> {
     list: Vec<usize>,
     /// The object read for each role.
     claimed: [Option<usize>; 3],
+    /// Every channel is read (to list them).
+    all: bool,
 }
 
 impl Walk<'_> {
@@ -421,7 +454,7 @@ impl Walk<'_> {
                 match name.as_str() {
                     "wf_increment" => obj.wf_increment = number,
                     "wf_start_offset" => obj.wf_start = number,
-                    n if n.starts_with("NI_") => {
+                    n if n.starts_with("NI_") || n == "unit_string" => {
                         if let Some(v) = value {
                             obj.props.push((name.clone(), v));
                         }
@@ -441,7 +474,7 @@ impl Walk<'_> {
         }
         let k = self.objects.len();
         let name = channel_name(path);
-        let mut wanted = false;
+        let mut wanted = self.all && name.is_some();
         if let Some((g, ch)) = &name
             && self.group.is_none_or(|want| want == g)
         {
@@ -630,6 +663,81 @@ impl Walk<'_> {
             }
         }
         Ok(())
+    }
+
+    /// The values of object `k` (named `name` in errors), scaled.
+    fn values(
+        &self,
+        source: &Source<'_>,
+        k: usize,
+        name: &str,
+        buf: &mut Vec<u8>,
+    ) -> Result<Series> {
+        let place = self.place;
+        let obj = &self.objects[k];
+        if let Some(code) = obj.bad_type {
+            return Err(place.unsupported(name, Unsupported::TdmsType(code)));
+        }
+        if let Some(what) = &obj.unsupported {
+            return Err(place.unsupported(name, what.clone()));
+        }
+        let unsupported = |what| place.unsupported(name, what);
+        let scaling = Scaling::from_properties(&self.property_levels(k)).map_err(unsupported)?;
+        let daqmx = obj.daqmx_type.is_some();
+        let raw_leaf = match (daqmx, obj.scalers.as_slice()) {
+            (false, _) => Leaf::Raw,
+            // A DAQmx channel of a plain type: its one scaler's values are its raw values.
+            (true, [(id, _)]) if obj.daqmx_type != Some(daqmx::RAW_DATA_TYPE) => Leaf::Scaler(*id),
+            _ => Leaf::Raw,
+        };
+        let scaling = match scaling {
+            Some(s) => s,
+            // Unscaled DAQmx raw data: the values of its one scaler.
+            None => Scaling::none(match (daqmx, obj.scalers.as_slice()) {
+                (true, [(id, _)]) => Leaf::Scaler(*id),
+                _ => raw_leaf,
+            }),
+        };
+        let leaf = match scaling.leaf {
+            Leaf::Raw => raw_leaf,
+            scaler => scaler,
+        };
+        let spans: &[Span] = match leaf {
+            Leaf::Raw if daqmx => {
+                return Err(unsupported(Unsupported::TdmsScaling(
+                    "raw input for DAQmx raw data (a scale must read a scaler)".into(),
+                )));
+            }
+            Leaf::Raw => &obj.spans,
+            Leaf::Scaler(id) => match obj.scalers.iter().find(|(s, _)| *s == id) {
+                Some((_, spans)) => spans,
+                None if obj.scalers.is_empty() && !daqmx => &obj.spans,
+                None => {
+                    return Err(unsupported(Unsupported::TdmsScaling(format!(
+                        "no DAQmx scaler of scale id {id}"
+                    ))));
+                }
+            },
+        };
+        let total: usize = spans.iter().map(|s| s.count).sum();
+        // Every span's bytes lie in the file: `total` is bounded by its size.
+        let mut values = vec![0.0; total];
+        let mut at = 0;
+        let mut finite = true;
+        for s in spans {
+            let out = &mut values[at..at + s.count];
+            let (n, f) = source.decode_at(s.offset, out, s.ty, s.stride, buf)?;
+            at += n;
+            finite &= f;
+        }
+        values.truncate(at);
+        // Scaled values are scanned again: a scale may overflow.
+        scaling.apply(&mut values);
+        let finite = finite && scaling.is_identity();
+        Ok(Series {
+            finite,
+            ..series(name, values)
+        })
     }
 
     /// The `NI_` properties of a channel, its group and the file, in that order.

@@ -423,6 +423,19 @@ pub enum RecordingError {
         /// The gap channel.
         channel: String,
     },
+    /// A recording format's setting that does not apply to the kind of file read.
+    #[error(
+        "{}: the format's `{setting}` applies to {applies_to} only",
+        path.display()
+    )]
+    SettingNotForFile {
+        /// The file.
+        path: PathBuf,
+        /// The setting.
+        setting: &'static str,
+        /// The files it applies to, in words.
+        applies_to: &'static str,
+    },
     /// The time axis of a binary recording fails a check (order, gaps); the source names
     /// the sample index.
     #[error("{}: {format} `{channel}`: bad time axis", path.display())]
@@ -532,6 +545,7 @@ impl RecordingError {
             | Self::ChannelLength { .. }
             | Self::NonFiniteSample { .. }
             | Self::NoTimeBase { .. }
+            | Self::SettingNotForFile { .. }
             | Self::TimeAxis { .. } => {}
         }
         self

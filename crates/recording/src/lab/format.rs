@@ -251,6 +251,19 @@ pub struct RecordingFormat {
     /// A NaN or infinite value: refuse the file (default) or drop the revolutions it
     /// touches.
     pub on_non_finite: OnBadSamples,
+    /// TDMS and MAT files (read by their extension, `.tdms`, `.mat`; the columns above are
+    /// then channels or variables): the TDMS group or MAT struct variable holding them
+    /// (default: the first group that has them; top-level variables).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
+    /// TDMS files: the sample times are the gap channel's waveform timing
+    /// (`wf_start_offset + i·wf_increment`, as NI loggers write them) and `time` is not read.
+    #[serde(skip_serializing_if = "is_false")]
+    pub waveform_time: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 impl Default for RecordingFormat {
@@ -271,6 +284,8 @@ impl Default for RecordingFormat {
             max_gap_intervals: 3.0,
             on_gap: OnBadSamples::Error,
             on_non_finite: OnBadSamples::Error,
+            group: None,
+            waveform_time: false,
         }
     }
 }

@@ -105,6 +105,8 @@ impl PigaRecordingFormat {
             max_gap_intervals: self.max_gap_intervals,
             on_gap: self.on_gap,
             on_non_finite: self.on_non_finite,
+            group: None,
+            waveform_time: false,
         })
     }
 }

@@ -547,3 +547,66 @@ fn file_and_memory_readers_agree() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `load_recording` reads `.tdms` and `.mat` files by their extension with a
+/// [`RecordingFormat`]'s names and units (the study's path), as the binary readers do.
+#[test]
+fn load_recording_reads_binary_files_by_their_extension() {
+    let reference = csv();
+    let tdms_format = RecordingFormat {
+        group: Some("probe".into()),
+        ..RecordingFormat::default()
+    };
+    let rec = load_recording(&binary("probe_120deg_s.tdms"), &tdms_format).unwrap();
+    assert_eq!(rec.gap, reference.gap);
+    assert_eq!(rec.angle_rad, reference.angle_rad);
+    // The waveform timing instead of the time channel.
+    let waveform = RecordingFormat {
+        waveform_time: true,
+        ..tdms_format.clone()
+    };
+    let rec = load_recording(&binary("probe_120deg_s.tdms"), &waveform).unwrap();
+    assert_eq!(rec.gap, reference.gap);
+    assert!((rec.time_s[100] - 0.2).abs() < 1e-12);
+    // A MAT file held in memory, its reader chosen by the name's extension.
+    let bytes = std::fs::read(binary("probe_120deg_s.mat")).unwrap();
+    let rec = recording::parse_recording(&bytes, Path::new("x.mat"), &RecordingFormat::default())
+        .unwrap();
+    assert_eq!(rec.time_s, reference.time_s);
+    let declared = RecordingFormat {
+        angle: recording::AngleSource::Rate {
+            start_angle_deg: 30.0,
+        },
+        ..RecordingFormat::default()
+    };
+    let rec = load_recording(&binary("probe_120deg_s.mat"), &declared).unwrap();
+    assert!(rec.angle_rad.is_none());
+    assert!((rec.start_angle_rad - 30f64.to_radians()).abs() < 1e-15);
+    // A required encoder channel the file lacks: the reader's missing-channel error.
+    let required = RecordingFormat {
+        angle: recording::AngleSource::Encoder {
+            column: "Winkel".into(),
+            unit: recording::AngleUnit::Deg,
+            optional: false,
+        },
+        ..tdms_format.clone()
+    };
+    let err = load_recording(&binary("probe_120deg_s.tdms"), &required).unwrap_err();
+    assert!(
+        matches!(&err, RecordingError::MissingChannel { channel, .. } if channel.contains("Winkel")),
+        "{err:?}"
+    );
+    // Settings of binary files refused for a text file, and `waveform_time` for MAT.
+    let err = load_recording(&fixture("probe_120deg_s.csv"), &tdms_format).unwrap_err();
+    assert!(
+        err.to_string()
+            .ends_with("the format's `group` applies to TDMS and MAT files only"),
+        "{err}"
+    );
+    let err = load_recording(&binary("probe_120deg_s.mat"), &waveform).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("`waveform_time` applies to TDMS files only"),
+        "{err}"
+    );
+}
