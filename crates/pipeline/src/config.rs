@@ -415,6 +415,10 @@ pub enum Weighting {
 /// What a phase provides at its rate points.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "a configuration value, read once; boxing would change every match on it"
+)]
 pub enum Points {
     /// First-harmonic probe coefficients per rate (Table 1 of the paper).
     FirstHarmonic(Vec<HarmonicPoint>),
