@@ -79,7 +79,7 @@ impl Check {
                 let plan = describe(&config, path);
                 console.write_str(&plan)?;
                 let files = count_files(&config);
-                let bar = progress(files);
+                let bar = crate::progress::spinner(format!("reading and checking {files} files"));
                 match pipeline::Inputs::new(config, path, &pipeline::Files) {
                     Ok(_) => {}
                     Err(e) => found.extend(problems::each(&e)),
@@ -110,19 +110,6 @@ impl Check {
             if found.len() == 1 { "" } else { "s" }
         )
     }
-}
-
-/// A spinner on a terminal while the files are read; nothing in a pipe.
-fn progress(files: usize) -> indicatif::ProgressBar {
-    let bar =
-        indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr());
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} reading and checking {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-    );
-    bar.set_message(format!("{files} files"));
-    bar.enable_steady_tick(std::time::Duration::from_millis(120));
-    bar
 }
 
 /// The number of data files a configuration names.

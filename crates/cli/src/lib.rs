@@ -17,6 +17,7 @@ mod init;
 mod paths;
 mod plan;
 mod problems;
+mod progress;
 mod regress;
 mod simulate;
 mod study;

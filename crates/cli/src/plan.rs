@@ -68,7 +68,12 @@ impl PlanCmd {
             }
         }
         let check = match self.simulate {
-            Some(n) => Some(simulate_check(&inputs, &plan, n, self.seed)?),
+            Some(n) => {
+                let spinner = crate::progress::spinner(format!("simulating the plan {n} times"));
+                let check = simulate_check(&inputs, &plan, n, self.seed);
+                spinner.finish_and_clear();
+                Some(check?)
+            }
             None => None,
         };
         let mut value = serde_json::json!({

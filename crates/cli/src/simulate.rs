@@ -28,7 +28,10 @@ impl Simulate {
             .clone()
             .unwrap_or_else(|| places.output("simulate"));
         let scenario = Scenario::load(&self.config)?;
-        let sim = simulate::simulate(&scenario)?;
+        let spinner = crate::progress::spinner(format!("simulating {}", scenario.scenario.name));
+        let sim = simulate::simulate(&scenario);
+        spinner.finish_and_clear();
+        let sim = sim?;
         let files = simulate::write_simulation(&out, &sim)
             .with_context(|| format!("writing the simulation into {}", out.display()))?;
 

@@ -37,17 +37,12 @@ impl Study {
         };
         let out = self.out.clone().unwrap_or_else(|| places.output("study"));
         let study = load(&config)?;
-        let bar = indicatif::ProgressBar::hidden();
+        // A spinner from the start (fits and the Monte Carlo take their time), a bar while
+        // recordings are analysed; nothing when standard error is not a terminal.
+        let bar = crate::progress::spinner("running the study");
         let results = pipeline::run_with_progress(&study, &|event| match event {
             Progress::Recordings { total } => {
-                bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
-                bar.set_length(total as u64);
-                bar.set_style(
-                    indicatif::ProgressStyle::with_template(
-                        "{bar:30} {pos}/{len} recordings analyzed {msg}",
-                    )
-                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-                );
+                crate::progress::to_bar(&bar, total as u64, "recordings analyzed");
             }
             Progress::RecordingDone { path, .. } => {
                 bar.inc(1);
@@ -55,6 +50,12 @@ impl Study {
                     path.file_name()
                         .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
                 );
+                if bar.length().is_some_and(|len| bar.position() >= len) {
+                    crate::progress::to_spinner(
+                        &bar,
+                        "fitting, and the uncertainty (GUM and Monte Carlo)",
+                    );
+                }
             }
             _ => {}
         })?;

@@ -5,6 +5,7 @@ mod human;
 mod init;
 mod outputs;
 mod plan;
+mod progress;
 mod readme_path;
 mod snapshots;
 mod stdout;
