@@ -53,7 +53,7 @@ pub struct SymmetricFit {
     pub residuals_rad_s: [Vec<f64>; 2],
     /// Birge ratio `√(χ²/ν)` of a weighted fit (`None` unweighted).
     pub birge_ratio: Option<f64>,
-    /// The least-squares fit (coefficients in [`SYMMETRIC_TERM_NAMES`]' order; for a weighted
+    /// The least-squares fit (coefficients in [`SYMMETRIC_TERM_NAMES`](crate::SYMMETRIC_TERM_NAMES)' order; for a weighted
     /// fit the covariance is `(XᵀWX)⁻¹` times the squared Birge ratio when above 1).
     pub fit: Fit,
 }
