@@ -237,6 +237,12 @@ pub struct PigaTableConfig {
     /// with its residual; rows with the same label are compared.
     #[serde(default)]
     pub label_column: Option<String>,
+    /// The table as the laboratory exported it (delimiter, decimal comma, lines to skip,
+    /// named columns with their units, σ and label columns), the same `format` block as
+    /// `recording`'s PIGA-table reader takes; with it, the columns are named in it and not
+    /// by the keys above (`docs/CONFIGURATION.md`).
+    #[serde(default)]
+    pub format: Option<recording::PigaTableFormat>,
 }
 
 /// Raw PIGA output recordings, one per rate (`docs/YOUR-DATA.md`).
@@ -260,11 +266,11 @@ const fn default_piga_order() -> usize {
     2
 }
 
-fn default_rate_column() -> String {
+pub(crate) fn default_rate_column() -> String {
     "rate_deg_s".to_owned()
 }
 
-fn default_output_column() -> String {
+pub(crate) fn default_output_column() -> String {
     "output_rad_s".to_owned()
 }
 
@@ -604,6 +610,7 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "TwoPlaneConfig" => "balance.two_plane",
         "CounterweightConfig" => "counterweight",
         "RecordingFormat" | "PigaRecordingFormat" => "format",
+        "PigaTableFormat" => "calibration.table.format",
         "CertificateConfig" => "certificate",
         "LaboratoryConfig" => "certificate.laboratory",
         "PartyConfig" => "certificate.customer",

@@ -376,6 +376,11 @@ pub enum UnsupportedReason {
     /// Correction planes A and B at one height.
     #[error("the two correction planes must be at different heights")]
     PlanesAtOneHeight,
+    /// A PIGA table's columns named both in its `format` block and beside it.
+    #[error(
+        "with a `format` block, name the columns and the delimiter in it (`rate`, `output`, `sigma`, `label`, `delimiter`), not beside it (`rate_column`, `output_column`, `sigma_column`, `label_column`, `delimiter`)"
+    )]
+    TableFormatAndColumns,
     /// A certificate states a calibration's results.
     #[error("a certificate needs a `calibration` section: it states the calibration's results")]
     CertificateNeedsCalibration,

@@ -83,8 +83,8 @@ pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
 pub use recording::FileDigest;
 pub use results::{
     Authorisation, CertificateResults, Condition, Conformity, ConformityStatement, Dates,
-    DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party, Traceability,
-    Verdict,
+    DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party, ProbeSign,
+    Traceability, Verdict,
 };
 pub use results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,

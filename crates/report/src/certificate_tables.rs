@@ -100,12 +100,14 @@ pub(crate) fn compensation_block(out: &mut String, c: &CalibrationResults, k2: &
         out,
         "<table class=\"ident\"><tbody>\
          <tr><th>C<sub>r</sub> of the spindle</th><td class=\"num\">{} m·s²</td><td>phase “{}”; U = k·u with k = {}, u from the fit, the probe gain, the lever heights and the rate scale (the inputs that carry C<sub>r</sub> into Δk2)</td></tr>\
+         <tr><th>Probe sign convention</th><td colspan=\"2\">{}</td></tr>\
          <tr><th>Δk2 = k1·C<sub>r</sub>·g/R²</th><td class=\"num\">{} rad/(s·g²) = {} µg/g²</td>\
          <td>removed from the fitted a² coefficient (eq. 19); U from the same inputs as k2 (C<sub>r</sub>, probe gain, lever, rate scale, R, g, k1), k = {}</td></tr>\
          </tbody></table>",
         cr.joined(),
         esc(&c.compensate_with),
         format::coverage_factor(k),
+        esc(c.probe_direction.words()),
         dk2.joined(),
         dk2_micro.joined(),
         format::coverage_factor(k),

@@ -60,10 +60,11 @@ fn compensation(c: &CalibrationResults) -> (String, String) {
     let micro = 1e6 / c.coefficients.k1.value;
     (
         format!(
-            "C_r = {} m·s² (U, k = {}; phase `{}`)",
+            "C_r = {} m·s² (U, k = {}; phase `{}`); sign convention: {}",
             format::pair(c.c_r_combined_m_s2.value, k * c.c_r_combined_m_s2.u).joined(),
             format::coverage_factor(k),
-            c.compensate_with
+            c.compensate_with,
+            c.probe_direction.words()
         ),
         format!(
             "Δk2 = k1·C_r·g/R² = {} rad/(s·g²) = {} µg/g² (U, k = {}), removed from k2",

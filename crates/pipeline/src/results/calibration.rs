@@ -254,11 +254,42 @@ pub struct CalibrationResults {
     pub budget: PigaCoefficients<Vec<BudgetLine>>,
     /// The same model by Monte Carlo (JCGM 101).
     pub monte_carlo: MonteCarlo,
+    /// The probe's sign convention (which way the gap moves when the spindle moves towards
+    /// the PIGA), echoed beside C_r.
+    pub probe_direction: ProbeSign,
     /// The 95 % interval each coefficient is stated with (JCGM 101 §8): the GUM's when the
     /// Monte Carlo validates it clearly, else the Monte Carlo's.
     pub headline: PigaCoefficients<Headline>,
     /// Warnings in plain words (terms hard to separate, a budget without Type B inputs...).
     pub warnings: Vec<String>,
+}
+
+/// The probe's measuring direction, as the study file names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum ProbeSign {
+    /// Against O1X1 (the paper's set-up): motion of the spindle towards the PIGA closes the gap.
+    #[serde(rename = "against_o1_x1")]
+    AgainstO1X1,
+    /// Along O1X1: motion of the spindle towards the PIGA opens the gap.
+    #[serde(rename = "along_o1_x1")]
+    AlongO1X1,
+}
+
+impl ProbeSign {
+    /// The convention in words: which way the gap moves when the spindle moves towards
+    /// the PIGA.
+    pub const fn words(self) -> &'static str {
+        match self {
+            Self::AgainstO1X1 => {
+                "the probe's gap closes (its reading falls) when the spindle moves towards the PIGA \
+                 (probe measuring against O1X1, the paper's set-up)"
+            }
+            Self::AlongO1X1 => {
+                "the probe's gap opens (its reading rises) when the spindle moves towards the PIGA \
+                 (probe measuring along O1X1)"
+            }
+        }
+    }
 }
 
 /// Which method a coefficient's stated 95 % interval comes from.

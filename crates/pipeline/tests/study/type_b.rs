@@ -193,3 +193,30 @@ fn a_volts_recording_states_the_probe_gain_once() {
     let relative = kv.c_r_combined_m_s2.u / kv.c_r_combined_m_s2.value.abs();
     assert!(relative >= 2e-3, "{relative}");
 }
+
+/// The probe's sign convention is echoed in words with C_r (issue 19 item 6): a study
+/// declared `along_o1_x1` says the gap opens when the spindle moves towards the PIGA, so a
+/// wrong declaration is visible beside the C_r it changed.
+#[test]
+fn the_probe_sign_convention_is_echoed_in_words() {
+    let path = root().join("fixtures/studies/campaign.ron");
+    let against = pipeline::run(&inputs(&campaign_text(), &path).unwrap()).unwrap();
+    let text = campaign_text().replace(
+        "probe_direction: against_o1_x1",
+        "probe_direction: along_o1_x1",
+    );
+    let along = pipeline::run(&inputs(&text, &path).unwrap()).unwrap();
+    let (a, b) = (against.calibration.unwrap(), along.calibration.unwrap());
+    assert!(
+        a.probe_direction.words().contains("gap closes"),
+        "{}",
+        a.probe_direction.words()
+    );
+    assert!(
+        b.probe_direction.words().contains("gap opens"),
+        "{}",
+        b.probe_direction.words()
+    );
+    // the slip changes C_r's sign; the echo is what shows which convention produced it
+    assert!(a.c_r_m_s2.value * b.c_r_m_s2.value < 0.0);
+}

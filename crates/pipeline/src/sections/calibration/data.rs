@@ -6,8 +6,10 @@ use std::path::{Path, PathBuf};
 use rayon::prelude::*;
 use recording::{FileDigest, TableColumn, TableFormat};
 
-use crate::config::{PigaRecordingSet, PigaTableConfig};
-use crate::error::{InvalidReason, PipelineError, Result};
+use crate::config::{
+    PigaRecordingSet, PigaTableConfig, default_output_column, default_rate_column,
+};
+use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource};
 use crate::results::{PigaRecordingResult, Warning};
 
@@ -173,7 +175,9 @@ pub(crate) fn points(
     Ok((points, warnings))
 }
 
-/// Reads a PIGA table: rate and output columns, the σ and label columns when named.
+/// Reads a PIGA table: rate and output columns, the σ and label columns when named; as the
+/// laboratory exported it when the configuration gives its `format` (units converted, the
+/// headers' stated units checked).
 pub(super) fn load_piga_table(
     config: &PigaTableConfig,
     base: &Path,
@@ -181,33 +185,75 @@ pub(super) fn load_piga_table(
     load: &dyn DataSource,
 ) -> Result<PigaTableRows> {
     let file = base.join(&config.file);
-    let mut columns = vec![
-        TableColumn::required(config.rate_column.clone()),
-        TableColumn::required(config.output_column.clone()),
-    ];
-    if let Some(sigma) = &config.sigma_column {
-        columns.push(TableColumn::required(sigma.clone()));
-    }
-    let format = TableFormat {
-        delimiter: config.delimiter,
-        // A blank delimiter keeps its meaning here: runs of blanks separate fields.
-        whitespace: matches!(config.delimiter, ' ' | '\t'),
-        label: config.label_column.clone(),
-        ..TableFormat::new(columns, true)
+    let recording_error = |e: recording::RecordingError| PipelineError::Recording {
+        path: source.to_owned(),
+        field: "calibration.table".to_owned(),
+        source: Box::new(e),
     };
-    let read = load
-        .read_table(&file, &format)
-        .map_err(|e| PipelineError::Recording {
-            path: source.to_owned(),
-            field: "calibration.table".to_owned(),
-            source: Box::new(e),
-        })?;
-    let table = read.value;
-    let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
-    let rates = column(&config.rate_column);
-    let outputs = column(&config.output_column);
-    let sigma = config.sigma_column.as_deref().map(column);
-    let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
+    let format = match &config.format {
+        Some(f) => {
+            if config.rate_column != default_rate_column()
+                || config.output_column != default_output_column()
+                || config.delimiter != ','
+                || config.sigma_column.is_some()
+                || config.label_column.is_some()
+            {
+                return Err(PipelineError::Unsupported {
+                    path: source.to_owned(),
+                    field: "calibration.table".to_owned(),
+                    reason: UnsupportedReason::TableFormatAndColumns,
+                });
+            }
+            f.table_format().map_err(recording_error)?
+        }
+        None => {
+            let mut columns = vec![
+                TableColumn::required(config.rate_column.clone()),
+                TableColumn::required(config.output_column.clone()),
+            ];
+            if let Some(sigma) = &config.sigma_column {
+                columns.push(TableColumn::required(sigma.clone()));
+            }
+            TableFormat {
+                delimiter: config.delimiter,
+                // A blank delimiter keeps its meaning here: runs of blanks separate fields.
+                whitespace: matches!(config.delimiter, ' ' | '\t'),
+                label: config.label_column.clone(),
+                ..TableFormat::new(columns, true)
+            }
+        }
+    };
+    let read = load.read_table(&file, &format).map_err(recording_error)?;
+    let (rates, outputs, sigma, labels, lines, rate_name, sigma_name) = match &config.format {
+        Some(f) => {
+            let t = recording::PigaTable::from_table(read.value, f).map_err(recording_error)?;
+            let lines: Vec<usize> = (0..t.len()).map(|i| t.line_of_row(i)).collect();
+            (
+                t.rate_deg_s,
+                t.output_rad_s,
+                t.sigma_rad_s,
+                t.labels,
+                lines,
+                f.rate.column.trim().to_owned(),
+                f.sigma.as_ref().map(|c| c.column.trim().to_owned()),
+            )
+        }
+        None => {
+            let table = read.value;
+            let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
+            let rates = column(&config.rate_column);
+            let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
+            (
+                rates,
+                column(&config.output_column),
+                config.sigma_column.as_deref().map(column),
+                table.labels().map(<[String]>::to_vec),
+                lines,
+                config.rate_column.clone(),
+                config.sigma_column.clone(),
+            )
+        }
+    };
     let bad =
         |i: usize, column: &str, value: f64, reason: InvalidReason| PipelineError::TableValue {
             path: source.to_owned(),
@@ -219,14 +265,9 @@ pub(super) fn load_piga_table(
             reason,
         };
     if let Some(i) = rates.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
-        return Err(bad(
-            i,
-            &config.rate_column,
-            rates[i],
-            InvalidReason::RateNotPositive,
-        ));
+        return Err(bad(i, &rate_name, rates[i], InvalidReason::RateNotPositive));
     }
-    if let (Some(name), Some(sigma)) = (&config.sigma_column, &sigma)
+    if let (Some(name), Some(sigma)) = (&sigma_name, &sigma)
         && let Some(i) = sigma.iter().position(|s| !(s.is_finite() && *s > 0.0))
     {
         return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
@@ -236,7 +277,7 @@ pub(super) fn load_piga_table(
         rates_deg_s: rates,
         outputs_rad_s: outputs,
         sigma_rad_s: sigma,
-        labels: table.labels().map(<[String]>::to_vec),
+        labels,
         lines,
         digest: read.digest,
     })

@@ -54,6 +54,8 @@ pub(crate) struct Setting<'a> {
     pub(crate) type_b: &'a TypeB,
     /// σ(C_r) and the degrees of freedom of the phase's fit (`None`: C_r exact).
     pub(crate) c_r_sigma: Option<(f64, usize)>,
+    /// The probe's measuring direction (echoed with C_r).
+    pub(crate) probe_direction: harmonics::ProbeDirection,
 }
 
 /// The calibration's uncertainty evaluation, set up: the eq. 18 fit, the measurement model,
@@ -267,6 +269,7 @@ mod tests {
                 nominal,
                 type_b: &tb,
                 c_r_sigma: Some((4e-10, 10)),
+                probe_direction: harmonics::ProbeDirection::AgainstO1X1,
             };
             let e = evaluate(&inputs, &points, &setting).unwrap();
             let x: Vec<f64> = e.quantities.iter().map(|q| q.value).collect();

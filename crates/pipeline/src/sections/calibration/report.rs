@@ -9,7 +9,7 @@ use super::validate::{CalibrationInputs, K1Choice};
 use crate::results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
     Estimate, Headline, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance,
-    PigaCoefficients, Warning,
+    PigaCoefficients, ProbeSign, Warning,
 };
 
 /// The results of an evaluated calibration.
@@ -270,6 +270,10 @@ pub(crate) fn results(
         condition_number: fit.condition_number,
         budget,
         monte_carlo,
+        probe_direction: match setting.probe_direction {
+            harmonics::ProbeDirection::AlongO1X1 => ProbeSign::AlongO1X1,
+            _ => ProbeSign::AgainstO1X1,
+        },
         headline,
         warnings,
     }

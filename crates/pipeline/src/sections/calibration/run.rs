@@ -71,6 +71,7 @@ fn setting<'a>(inputs: &Core, c: &'a CalibrationInputs, phase: &PhaseResults) ->
         },
         type_b: &c.type_b,
         c_r_sigma: phase.fit.c_r_sigma_m_s2.map(|s| (s, phase.fit.dof)),
+        probe_direction: inputs.lever.probe_direction,
     }
 }
 
