@@ -88,6 +88,7 @@ mod binary;
 mod digest;
 mod error;
 mod lab;
+mod read;
 #[cfg(feature = "synthetic")]
 mod synth;
 mod text;
@@ -123,11 +124,10 @@ pub use lab::piga_table::{
 };
 #[doc(hidden)]
 pub use lab::probe::parse_recording_reference;
-pub use lab::probe::{
-    AngleSourceKind, Recording, load_recording, load_recording_digested, parse_recording,
-};
+pub use lab::probe::{AngleSourceKind, Recording};
 pub use lab::volts::{GapUnit, ProbeSensitivity, SensitivityUnit};
 pub use lab::write::{ProbeColumns, WriteOptions, write_probe_csv};
+pub use read::{load_recording, load_recording_digested, parse_recording};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 #[doc(hidden)]

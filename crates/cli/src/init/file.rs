@@ -117,17 +117,11 @@ impl Finding {
 /// layout (`None`: a field that is not a number).
 pub(crate) type ColumnReader<'a> = dyn Fn(&Layout, &str) -> Result<Vec<f64>, String> + 'a;
 
-/// Understands one file from its bytes; `read_column` reads a whole column by header name
-/// with the sniffed layout (the recording crate's table reader, at the edge).
+/// Understands one delimited-text file from its bytes; `read_column` reads a whole column by
+/// header name with the sniffed layout (the recording crate's table reader, at the edge).
+/// TDMS and MAT files go to [`super::binary`] instead ([`super::understand`] chooses).
 pub(crate) fn understand(path: &Path, bytes: &[u8], read_column: &ColumnReader<'_>) -> Finding {
     let mut f = Finding::new(path);
-    let extension = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    if matches!(extension.as_deref(), Some("tdms" | "mat")) {
-        super::binary::understand(&mut f, bytes, extension.as_deref() == Some("tdms"));
-        return f;
-    }
     let layout = match sniff(bytes) {
         Ok(l) => l,
         Err(e) => {

@@ -74,11 +74,11 @@ impl Init {
         let findings: Vec<Finding> = paths
             .iter()
             .map(|path| match std::fs::read(path) {
-                Ok(bytes) => file::understand(path, &bytes, &|layout, name| {
+                Ok(bytes) => understand(path, &bytes, &|layout, name| {
                     read_column(&bytes, path, layout, name)
                 }),
                 Err(e) => {
-                    let mut f = file::understand(path, b"", &|_, _| Err(String::new()));
+                    let mut f = understand(path, b"", &|_, _| Err(String::new()));
                     f.problems = vec![format!("cannot be read: {e}")];
                     f
                 }
@@ -442,4 +442,18 @@ fn phase_key(f: &Finding, base: &Path) -> String {
     } else {
         key.strip_suffix("_probe").unwrap_or(key).to_owned()
     }
+}
+
+/// Understands one file from its bytes: a `.tdms` or `.mat` file by its channels
+/// ([`binary`]), any other as delimited text ([`file`]).
+fn understand(path: &Path, bytes: &[u8], read_column: &file::ColumnReader<'_>) -> Finding {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if matches!(extension.as_deref(), Some("tdms" | "mat")) {
+        let mut f = Finding::new(path);
+        binary::understand(&mut f, bytes, extension.as_deref() == Some("tdms"));
+        return f;
+    }
+    file::understand(path, bytes, read_column)
 }

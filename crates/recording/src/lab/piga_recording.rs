@@ -12,10 +12,11 @@ use serde::{Deserialize, Serialize};
 use super::format::{
     AngleSource, AngleUnit, Column, DecimalMark, Delimiter, OnBadSamples, RecordingFormat, TimeUnit,
 };
-use super::probe::{AngleSourceKind, Recording, load_recording, parse_recording};
+use super::probe::{AngleSourceKind, Recording};
 use super::volts::GapUnit;
 use crate::digest::FileDigest;
 use crate::error::{RecordingError, Result};
+use crate::read::{load_recording, parse_recording};
 
 /// Default name of the output-angle column.
 pub const PIGA_OUTPUT_ANGLE_COLUMN: &str = "output_rad";
@@ -218,8 +219,7 @@ pub fn load_piga_recording_digested(
     path: &Path,
     format: &PigaRecordingFormat,
 ) -> Result<(PigaRecording, FileDigest)> {
-    let (samples, digest) =
-        crate::lab::probe::load_recording_digested(path, &format.probe_format()?)?;
+    let (samples, digest) = crate::read::load_recording_digested(path, &format.probe_format()?)?;
     Ok((
         PigaRecording::from_recording(samples, format.output.unit)?,
         digest,

@@ -119,7 +119,7 @@ pub fn write_probe_csv<W: Write>(
 mod tests {
     use super::*;
     use crate::lab::format::RecordingFormat;
-    use crate::lab::probe::parse_recording;
+    use crate::read::parse_recording;
 
     #[test]
     fn refuses_what_the_reader_would_refuse() {
