@@ -13,7 +13,9 @@ use serde::{Deserialize, Serialize};
 use crate::error::{PipelineError, Result};
 
 mod certificate;
+mod symmetric;
 pub use certificate::*;
+pub use symmetric::*;
 
 /// A whole study: one centrifuge, one PIGA, and any number of named probe phases (before
 /// balancing, with a trial weight, after balancing, ...).
@@ -58,6 +60,11 @@ pub struct StudyConfig {
     /// calibration section; `docs/CERTIFICATE.md`).
     #[serde(default)]
     pub certificate: Option<CertificateConfig>,
+    /// The two-orientation (IA in / IA out) calibration: k2 and the total radius growth C
+    /// from the PIGA alone, compared with a probe phase's C_r (absent: not run;
+    /// `docs/SYMMETRIC.md`).
+    #[serde(default)]
+    pub symmetric: Option<SymmetricConfig>,
 }
 
 /// The counterweight section (`counterweight: (...)`): what a `radius_change` phase, one
@@ -599,10 +606,10 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "FitSettings" => "phases[…].points.fit",
         "MechanismConfig" => "mechanism",
         "CalibrationConfig" => "calibration",
-        "PigaTableConfig" => "calibration.table",
+        "PigaTableConfig" => "calibration.table (or symmetric.orientations[…].table)",
         "PigaRecordingSet" => "calibration.recordings",
         "K1Config" => "calibration.k1",
-        "TrialsConfig" => "calibration.trials",
+        "TrialsConfig" => "calibration.trials (or symmetric.trials)",
         "UncertaintyConfig" => "uncertainty",
         "BalanceConfig" => "balance",
         "TrialMassConfig" => "balance.trial_mass (or balance.two_plane.trial_mass)",
@@ -625,6 +632,9 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "LimitUnitName" => "certificate.limits[…].unit",
         "DecisionRuleName" => "certificate.decision_rule",
         "AuthorisationConfig" => "certificate.authorisation",
+        "SymmetricConfig" => "symmetric",
+        "OrientationConfig" => "symmetric.orientations[…]",
+        "OrientationName" => "symmetric.orientations[…].orientation",
         _ => "this section",
     })
 }

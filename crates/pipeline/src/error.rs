@@ -263,6 +263,15 @@ pub enum PipelineError {
     /// A study file could not be read: missing, too large, or not UTF-8 text.
     #[error(transparent)]
     File(#[from] edge_io::EdgeIoError),
+    /// The two-orientation calibration refuses its data sets or its fit (the source names the
+    /// field, `symmetric.orientations[1].radius_m`).
+    #[error("{}", path.display())]
+    Symmetric {
+        /// The configuration file.
+        path: PathBuf,
+        /// What is wrong.
+        source: Box<calibration::SymmetricError>,
+    },
     /// Several errors, each complete, in the configuration's order.
     #[error("{} errors:{}", errors.len(), list(errors))]
     Several {

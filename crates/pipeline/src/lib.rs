@@ -76,6 +76,7 @@ pub use config::{
     RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TrialsConfig, UncertaintyConfig,
     Weighting,
 };
+pub use config::{OrientationConfig, OrientationName, SymmetricConfig};
 pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
@@ -97,6 +98,10 @@ pub use results::{
     MonteCarlo, MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult,
     PigaResult, PointResult, ProbeTrace, RadiusModel, StudyInputs, StudyResults, Warning,
     WarningCode, model_name,
+};
+pub use results::{
+    MountingResults, ProbeComparison, SymmetricBudgets, SymmetricHeadline, SymmetricMonteCarlo,
+    SymmetricResults,
 };
 pub use sections::calibration::CalibrationMeasurement;
 pub use sections::phases::Progress;

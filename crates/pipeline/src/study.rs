@@ -17,6 +17,7 @@ use crate::sections::calibration::{self, CalibrationInputs, CalibrationMeasureme
 use crate::sections::certificate::{self, Certificate};
 use crate::sections::mechanism::{self, Mechanism};
 use crate::sections::phases::{self, Phases, Progress};
+use crate::sections::symmetric::{self, SymmetricInputs};
 
 /// The validated inputs of a study.
 #[derive(Debug, Clone)]
@@ -30,6 +31,7 @@ pub struct Inputs {
     certificate: Option<Certificate>,
     /// The configuration file's size and SHA-256 as the edge read it.
     config_digest: Option<FileDigest>,
+    symmetric: Option<SymmetricInputs>,
 }
 
 impl Inputs {
@@ -88,6 +90,11 @@ impl Inputs {
             .as_ref()
             .map(|c| certificate::validate(&check, c, &config))
             .transpose()?;
+        let symmetric = config
+            .symmetric
+            .as_ref()
+            .map(|s| symmetric::validate(&check, s, &config, &names, core.base(), load))
+            .transpose()?;
         let base = core.base().to_owned();
         let phases = checked.load(&config.phases, &base, source, load)?;
         let calibration = match (config.calibration.as_ref(), calibration_refs) {
@@ -103,6 +110,7 @@ impl Inputs {
             counterweight,
             certificate,
             config_digest: None,
+            symmetric,
         })
     }
 
@@ -122,12 +130,16 @@ impl Inputs {
     }
 
     /// Every data file the study read, in the configuration's order: the phases' probe
-    /// recordings, then the calibration's PIGA table or raw PIGA output recordings; each with
-    /// its role, the field naming it and its size and SHA-256 as read.
+    /// recordings, then the calibration's PIGA table or raw PIGA output recordings, then the
+    /// two-orientation section's PIGA tables; each with its role, the field naming it and its
+    /// size and SHA-256 as read.
     pub fn input_files(&self) -> Vec<InputFile<'_>> {
         let mut files: Vec<InputFile<'_>> = self.phases.input_files().collect();
         if let Some(c) = &self.calibration {
             files.extend(c.input_files());
+        }
+        if let Some(s) = &self.symmetric {
+            files.extend(s.input_files());
         }
         files
     }
@@ -225,6 +237,14 @@ pub fn run_with_progress(
         (Some(cert), Some(c)) => Some(certificate::run(cert, c)),
         _ => None,
     };
+    let symmetric = match inputs.symmetric.as_ref() {
+        Some(s) => {
+            let (results, more) = symmetric::run(core, s, &phases)?;
+            warnings.extend(more);
+            Some(results)
+        }
+        None => None,
+    };
     let results = StudyResults {
         study: core.name.clone(),
         inputs: StudyInputs {
@@ -240,6 +260,7 @@ pub fn run_with_progress(
         balance,
         counterweight,
         certificate,
+        symmetric,
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {

@@ -11,6 +11,7 @@ mod certificate;
 mod common;
 mod mechanism;
 mod phases;
+mod symmetric;
 mod warning;
 
 pub use balance::*;
@@ -19,6 +20,7 @@ pub use certificate::*;
 pub use common::{DegreesOfFreedom, Estimate, InfiniteDof};
 pub use mechanism::*;
 pub use phases::*;
+pub use symmetric::*;
 pub use warning::{Warning, WarningCode};
 
 /// All results of a study.
@@ -47,6 +49,9 @@ pub struct StudyResults {
     /// The calibration certificate's statements (when configured; `certificate.html`).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub certificate: Option<CertificateResults>,
+    /// The two-orientation (IA in / IA out) calibration (when configured).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub symmetric: Option<SymmetricResults>,
 }
 
 /// Scalar inputs of the study.

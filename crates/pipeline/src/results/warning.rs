@@ -41,6 +41,14 @@ pub enum WarningCode {
     /// plane.
     #[serde(rename = "cone_c_r")]
     ConeCr,
+    /// The two-orientation fit's s·ω⁴ term is hard to tell apart from the others (VIF above
+    /// 1e4).
+    #[serde(rename = "omega4_not_separable")]
+    Omega4NotSeparable,
+    /// The PIGA's total radius growth C and the probe's C_r disagree (|z| > 3).
+    ProbeDisagrees,
+    /// Type B inputs of the study that the two-orientation budget does not carry.
+    SymmetricTypeBOmitted,
 }
 
 impl WarningCode {
@@ -63,6 +71,9 @@ impl WarningCode {
             Self::RateOutsidePhase => "rate_outside_phase",
             Self::CorrectionUncertain => "correction_uncertain",
             Self::ConeCr => "cone_c_r",
+            Self::Omega4NotSeparable => "omega4_not_separable",
+            Self::ProbeDisagrees => "probe_disagrees",
+            Self::SymmetricTypeBOmitted => "symmetric_type_b_omitted",
         }
     }
 
@@ -85,6 +96,9 @@ impl WarningCode {
             Self::RateOutsidePhase => "calibration rate outside the compensating phase's rates",
             Self::CorrectionUncertain => "correction mass uncertain",
             Self::ConeCr => "cone C_r differs from the two-probe C_r",
+            Self::Omega4NotSeparable => "ω⁴ term hard to separate in the two-orientation fit",
+            Self::ProbeDisagrees => "the PIGA's radius growth and the probe's disagree",
+            Self::SymmetricTypeBOmitted => "Type B inputs not in the two-orientation budget",
         }
     }
 }
@@ -268,6 +282,59 @@ impl Warning {
                  mechanism section that uses the phase's C_r is off by the difference"
             ),
             location: "balance.two_plane".into(),
+        }
+    }
+
+    /// `omega4_not_separable`: the two-orientation fit's s·ω⁴ column has a variance inflation
+    /// factor `vif` above `limit`.
+    #[must_use]
+    pub fn omega4_not_separable(vif: f64, limit: f64) -> Self {
+        Self {
+            code: WarningCode::Omega4NotSeparable,
+            message: format!(
+                "the ω⁴ term of the two-orientation fit (the one that measures the radius growth \
+                 C) has a variance inflation factor of {vif:.2e}, above {limit:.0e}: over these \
+                 rates it is close to a combination of the ω, ω³ and a³ terms, so C and k2 are \
+                 known only as well as their stated uncertainties say, which this correlation \
+                 enlarges; rates spread lower and higher separate them better"
+            ),
+            location: "symmetric.orientations".into(),
+        }
+    }
+
+    /// `probe_disagrees`: the PIGA's C and phase `phase`'s C_r differ by `difference ± u`
+    /// m·s² (`z`).
+    #[must_use]
+    pub fn probe_disagrees(phase: &str, difference: f64, u: f64, z: f64) -> Self {
+        Self {
+            code: WarningCode::ProbeDisagrees,
+            message: format!(
+                "the radius growth C the PIGA measures in its two orientations differs from the \
+                 probe's C_r of phase `{phase}` by {difference:+.3e} ± {u:.1e} m·s² (C − C_r; \
+                 z = {z:+.1}, beyond ±3). Either the radius grows in a way the probe does not see (the arm \
+                 stretching under centrifugal load, a mount that gives), and a k2 compensated \
+                 with the probe keeps that part of the error; or the probe's declaration is \
+                 wrong: its measuring direction (`lever.probe_direction`), the unit of its gap \
+                 column (`format`), or the lever heights. Check the declaration first; if it \
+                 is right, state the symmetric k2"
+            ),
+            location: "symmetric.compare_with".into(),
+        }
+    }
+
+    /// `symmetric_type_b_omitted`: the `uncertainty` section's inputs `names` (non-zero) are
+    /// not in the two-orientation budget.
+    #[must_use]
+    pub fn symmetric_type_b_omitted(names: &[&str]) -> Self {
+        Self {
+            code: WarningCode::SymmetricTypeBOmitted,
+            message: format!(
+                "the two-orientation budget holds the fit's noise and u(g) only; the \
+                 `uncertainty` section's {} are not propagated to its k2 and C (the calibration \
+                 section's budget carries them)",
+                names.join(", ")
+            ),
+            location: "symmetric".into(),
         }
     }
 }

@@ -7,10 +7,12 @@
 //! - [`mechanism`]: a calibration simulated with each phase's C_r (eq. 17–19);
 //! - [`calibration`]: the PIGA's calibration on measured data and its uncertainty;
 //! - [`balance`]: the balance advisor and the counterweight;
-//! - [`certificate`]: the calibration certificate's statements and conformity.
+//! - [`certificate`]: the calibration certificate's statements and conformity;
+//! - [`symmetric`]: the two-orientation (IA in / IA out) calibration.
 
 pub(crate) mod balance;
 pub(crate) mod calibration;
 pub(crate) mod certificate;
 pub(crate) mod mechanism;
 pub(crate) mod phases;
+pub(crate) mod symmetric;

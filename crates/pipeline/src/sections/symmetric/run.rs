@@ -1,0 +1,310 @@
+//! The two-orientation section's run: the joint fit of eq. 23, its GUM and Monte Carlo
+//! evaluation with the §8 comparison, the probe phase's C_r against the PIGA's C, k2 by the
+//! probe method on the IA-in data set, and the results with their warnings.
+
+use ::calibration::{
+    GAMMA_VIF_LIMIT, Orientation, OrientationData, ProbeCr, SymmetricError, SymmetricEvaluation,
+    SymmetricWarning, evaluate_symmetric, fit_symmetric,
+};
+use uncertainty::{Dof, McOptions, Trials};
+
+use super::validate::SymmetricInputs;
+use crate::error::{PipelineError, Result};
+use crate::inputs::Core;
+use crate::results::{
+    BudgetLine, Coefficient, DegreesOfFreedom, Estimate, Headline, InfiniteDof, MonteCarloOutput,
+    MountingResults, PhaseResults, ProbeComparison, SymmetricBudgets, SymmetricHeadline,
+    SymmetricMonteCarlo, SymmetricResults, Warning,
+};
+
+/// Runs the section against the study's phase results (the probe phase's C_r).
+pub(crate) fn run(
+    core: &Core,
+    s: &SymmetricInputs,
+    phases: &[PhaseResults],
+) -> Result<(SymmetricResults, Vec<Warning>)> {
+    let _span = tracing::info_span!("symmetric").entered();
+    let fail = |e: SymmetricError| PipelineError::Symmetric {
+        path: core.source.clone(),
+        source: Box::new(e),
+    };
+    let rates: Vec<Vec<f64>> = s
+        .sets
+        .iter()
+        .map(|d| {
+            d.rates_deg_s
+                .iter()
+                .map(|&r| units::deg_s_to_rad_s(r))
+                .collect()
+        })
+        .collect();
+    let data: Vec<OrientationData<'_>> = s
+        .sets
+        .iter()
+        .zip(&rates)
+        .map(|(d, w)| OrientationData {
+            field: &d.field,
+            orientation: Some(d.orientation),
+            radius_m: Some(d.radius_m),
+            rates_rad_s: w,
+            output_rad_s: &d.outputs_rad_s,
+            sigma_rad_s: d.sigma_rad_s.as_deref(),
+        })
+        .collect();
+    let fit = fit_symmetric(&data, core.g_m_s2, "symmetric.orientations").map_err(fail)?;
+    let phase = &phases[s.phase];
+    let c_r_u = phase.fit.c_r_sigma_m_s2.unwrap_or(0.0);
+    let probe = ProbeCr {
+        c_r_m_s2: phase.fit.c_r_m_s2,
+        u_m_s2: c_r_u,
+        dof: (c_r_u > 0.0 && phase.fit.dof > 0).then_some(phase.fit.dof as f64),
+    };
+    let options = McOptions {
+        seed: s.seed,
+        trials: s.trials.map_or(McOptions::default().trials, Trials::Fixed),
+        ..McOptions::default()
+    };
+    let e = evaluate_symmetric(&fit, s.g_u_m_s2, Some(probe), Some(&options)).map_err(fail)?;
+    let mc = e
+        .monte_carlo
+        .as_ref()
+        .expect("the Monte Carlo method was asked for");
+    let validation =
+        uncertainty::validate(&e.gum, mc, 2).map_err(|u| fail(SymmetricError::Uncertainty(u)))?;
+    let coefficient = |name: &str| {
+        let o = e.gum.output(name).expect("the model names its outputs");
+        Coefficient {
+            value: o.estimate,
+            u: o.standard_uncertainty,
+            u95: o.expanded_uncertainty,
+            k: o.coverage_factor,
+            dof: dof_value(o.dof),
+        }
+    };
+    let mc_output = |name: &str| {
+        let o = mc.output(name).expect("the model names its outputs");
+        let v = validation.output(name).expect("validated per output");
+        MonteCarloOutput {
+            mean: o.estimate,
+            u: o.standard_uncertainty,
+            low95: o.coverage_interval.0,
+            high95: o.coverage_interval.1,
+            gum_agrees: v.agrees,
+            tolerance: v.tolerance,
+            d_low: v.d_low,
+            d_high: v.d_high,
+            heavy_tailed: o.heavy_tailed,
+        }
+    };
+    let mountings: Vec<MountingResults> = [Orientation::IaIn, Orientation::IaOut]
+        .iter()
+        .enumerate()
+        .map(|(k, &o)| {
+            let m = fit.mounting(o);
+            let set = s
+                .sets
+                .iter()
+                .find(|d| d.orientation == o)
+                .expect("one data set per orientation");
+            let tag = if k == 0 { "IA in" } else { "IA out" };
+            let res = &fit.residuals_rad_s[k];
+            MountingResults {
+                orientation: match o {
+                    Orientation::IaIn => "ia_in",
+                    Orientation::IaOut => "ia_out",
+                }
+                .to_owned(),
+                field: set.field.clone(),
+                radius_m: m.radius_m,
+                table: set.file.display().to_string(),
+                points: set.rates_deg_s.len(),
+                distinct_rates: m.distinct_rates,
+                k0: coefficient(&format!("k0 ({tag})")),
+                k1: coefficient(&format!("k1 ({tag})")),
+                omega: Estimate {
+                    value: m.b1.0,
+                    u: m.b1.1,
+                },
+                residual_sd_rad_s: (res.iter().map(|r| r * r).sum::<f64>()
+                    / res.len().max(1) as f64)
+                    .sqrt(),
+            }
+        })
+        .collect();
+    let k2 = coefficient("k2");
+    let c = coefficient("C");
+    let difference = coefficient("C − C_r");
+    let monte_carlo = SymmetricMonteCarlo {
+        trials: mc.trials,
+        seed: s.seed,
+        gum_agrees: ["k2", "k3", "C", "Δk2,total"]
+            .iter()
+            .all(|n| validation.output(n).is_some_and(|v| v.agrees)),
+        k2: mc_output("k2"),
+        k3: mc_output("k3"),
+        c: mc_output("C"),
+        delta_k2_total: mc_output("Δk2,total"),
+        difference: Some(mc_output("C − C_r")),
+    };
+    let headline = SymmetricHeadline {
+        k2: Headline::of(&k2, &monte_carlo.k2),
+        c: Headline::of(&c, &monte_carlo.c),
+    };
+    let k2_probe = probe_k2(core, s, probe).map_err(fail)?;
+    let (d, u, z) = e
+        .probe_difference
+        .expect("the evaluation was given the probe");
+    let comparison = ProbeComparison {
+        phase: phase.name.clone(),
+        chosen_by: s.chosen_by.to_owned(),
+        c_r_m_s2: Estimate {
+            value: probe.c_r_m_s2,
+            u: probe.u_m_s2,
+        },
+        difference_m_s2: Coefficient {
+            value: d,
+            u,
+            ..difference
+        },
+        z,
+        agrees: z.abs() <= ::calibration::Z_LIMIT,
+        k2_probe,
+        k2_probe_u95: 2.0 * k2_probe.u,
+        k2_difference: k2.value - k2_probe.value,
+    };
+    let all: f64 = fit.residuals_rad_s.iter().flatten().map(|r| r * r).sum();
+    let results = SymmetricResults {
+        mountings,
+        k2,
+        k3: coefficient("k3"),
+        c_m_s2: c,
+        delta_k2_total: coefficient("Δk2,total"),
+        g_m_s2: Estimate {
+            value: core.g_m_s2,
+            u: s.g_u_m_s2,
+        },
+        dof: fit.fit.dof,
+        residual_sd_rad_s: (all / fit.fit.dof.max(1) as f64).sqrt(),
+        omega4_vif: fit.gamma_vif,
+        condition_number: fit.fit.condition_number,
+        budget: SymmetricBudgets {
+            k2: budget(&e, "k2"),
+            c: budget(&e, "C"),
+        },
+        monte_carlo,
+        headline,
+        probe: Some(comparison),
+    };
+    let mut warnings: Vec<Warning> = e
+        .warnings
+        .iter()
+        .map(|w| match *w {
+            SymmetricWarning::GammaNotSeparable { vif } => {
+                Warning::omega4_not_separable(vif, GAMMA_VIF_LIMIT)
+            }
+            SymmetricWarning::ProbeDisagrees {
+                difference_m_s2,
+                u_m_s2,
+                z,
+            } => Warning::probe_disagrees(&phase.name, difference_m_s2, u_m_s2, z),
+        })
+        .collect();
+    if !s.omitted_type_b.is_empty() {
+        warnings.push(Warning::symmetric_type_b_omitted(&s.omitted_type_b));
+    }
+    Ok((results, warnings))
+}
+
+/// k2 by the probe method: the IA-in data set's eq. 18 fit (at its radius, k1 fitted),
+/// compensated with the probe's C_r (eq. 19), with its standard uncertainty from the fit and
+/// u(C_r).
+fn probe_k2(
+    core: &Core,
+    s: &SymmetricInputs,
+    probe: ProbeCr,
+) -> std::result::Result<Estimate, SymmetricError> {
+    let set = s
+        .sets
+        .iter()
+        .find(|d| d.orientation == Orientation::IaIn)
+        .expect("one data set per orientation");
+    let rates: Vec<f64> = set
+        .rates_deg_s
+        .iter()
+        .map(|&r| units::deg_s_to_rad_s(r))
+        .collect();
+    let geometry = identify::Geometry {
+        radius_m: set.radius_m,
+        g_m_s2: core.g_m_s2,
+    };
+    let compensation = identify::Compensation {
+        c_r: identify::CrEstimate {
+            c_r_m_s2: probe.c_r_m_s2,
+            c_r_sigma_m_s2: probe.u_m_s2,
+        },
+        k1: identify::K1Source::Fitted,
+    };
+    let cal = match &set.sigma_rad_s {
+        Some(sigma) => identify::identify_compensated_weighted(
+            &rates,
+            &set.outputs_rad_s,
+            sigma,
+            geometry,
+            &compensation,
+        ),
+        None => identify::identify_compensated(&rates, &set.outputs_rad_s, geometry, &compensation),
+    }
+    .map_err(SymmetricError::Fit)?;
+    Ok(Estimate {
+        value: cal.k2_rad_s_g2,
+        u: cal.k2_sigma_rad_s_g2,
+    })
+}
+
+fn dof_value(dof: Dof) -> DegreesOfFreedom {
+    match dof {
+        Dof::Finite(nu) => DegreesOfFreedom::Finite(nu),
+        Dof::Infinite => DegreesOfFreedom::Infinite(InfiniteDof::Infinite),
+    }
+}
+
+/// One output's budget: the fit's ten coefficients as one line (their correlated
+/// contribution), then g and the probe's C_r where they contribute.
+fn budget(e: &SymmetricEvaluation, name: &str) -> Vec<BudgetLine> {
+    let output = e.gum.output(name).expect("the model names its outputs");
+    let quantities = e.inputs.quantities();
+    let terms = ::calibration::SYMMETRIC_TERMS;
+    let group = &output.contributions[..terms];
+    let share: f64 = group.iter().map(|c| c.variance_percent).sum();
+    let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
+    let mut lines = vec![BudgetLine {
+        quantity: "PIGA mean outputs: the two-orientation fit (noise, from its residuals)"
+            .to_owned(),
+        evaluation: "A".to_owned(),
+        value: None,
+        u: contribution,
+        sensitivity: 1.0,
+        contribution,
+        percent: share,
+        dof: dof_value(quantities[0].dof),
+    }];
+    for (c, q) in output.contributions.iter().zip(quantities).skip(terms) {
+        if c.sensitivity == 0.0 {
+            continue;
+        }
+        lines.push(BudgetLine {
+            quantity: q.name.clone(),
+            evaluation: match q.kind {
+                uncertainty::Evaluation::TypeA => "A".to_owned(),
+                uncertainty::Evaluation::TypeB => "B".to_owned(),
+            },
+            value: Some(q.value),
+            u: q.standard_uncertainty,
+            sensitivity: c.sensitivity,
+            contribution: c.uncertainty,
+            percent: c.variance_percent,
+            dof: dof_value(q.dof),
+        });
+    }
+    lines
+}
