@@ -25,6 +25,7 @@ mod plot;
 mod provenance;
 mod summary;
 mod svgplot;
+mod symmetric;
 
 pub use balance::balance_polar_svg;
 pub use certificate::certificate_html;

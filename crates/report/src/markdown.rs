@@ -80,6 +80,9 @@ pub fn render(
     if let Some(c) = &results.calibration {
         crate::calibration::section(&mut out, c);
     }
+    if let Some(s) = &results.symmetric {
+        crate::symmetric::section(&mut out, s);
+    }
     if let Some(b) = &results.balance {
         crate::balance::section(&mut out, b);
     }

@@ -5,6 +5,7 @@
 mod certificate;
 mod expected;
 mod outputs;
+mod symmetric;
 
 use std::path::{Path, PathBuf};
 
