@@ -606,7 +606,7 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "FitSettings" => "phases[…].points.fit",
         "MechanismConfig" => "mechanism",
         "CalibrationConfig" => "calibration",
-        "PigaTableConfig" => "calibration.table (or symmetric.orientations[…].table)",
+        "PigaTableConfig" => "calibration.table",
         "PigaRecordingSet" => "calibration.recordings",
         "K1Config" => "calibration.k1",
         "TrialsConfig" => "calibration.trials (or symmetric.trials)",

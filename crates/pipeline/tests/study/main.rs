@@ -16,6 +16,7 @@ mod provenance;
 mod recordings;
 mod scenarios;
 mod symmetric;
+mod symmetric_study;
 mod type_b;
 
 use std::path::{Path, PathBuf};

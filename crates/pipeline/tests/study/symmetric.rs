@@ -18,8 +18,8 @@ use simulate::{Mount, MountingSpec, Orientation, OutputNoise, Scenario, Simulati
 
 use crate::root;
 
-const C_R: f64 = 1.6e-6;
-const K2: f64 = 5.0e-7;
+pub(crate) const C_R: f64 = 1.6e-6;
+pub(crate) const K2: f64 = 5.0e-7;
 const G: f64 = 9.8;
 const R_IN: f64 = 2.5;
 const R_OUT: f64 = 2.54;
@@ -31,7 +31,7 @@ fn rates_deg_s() -> Vec<f64> {
 
 /// The campaign scenario with both mountings (R_out = R_in + 40 mm, a bias shift of
 /// 4e-6 rad/s), an arm stretch `c_a`, table noise 1e-7 rad/s and 12 rates.
-fn scenario(seed: u64, c_a: f64) -> simulate::LoadedScenario {
+pub(crate) fn scenario(seed: u64, c_a: f64) -> simulate::LoadedScenario {
     let text = std::fs::read_to_string(root().join("fixtures/scenarios/campaign.ron")).unwrap();
     let mut loaded = Scenario::parse(&text, Path::new("campaign.ron")).unwrap();
     let s = &mut loaded.scenario;
@@ -86,7 +86,7 @@ fn fit_tables(sim: &Simulation) -> SymmetricFit {
 }
 
 /// Probe recordings in memory for the study's probe phase.
-struct Files(HashMap<PathBuf, Vec<u8>>);
+pub(crate) struct Files(pub(crate) HashMap<PathBuf, Vec<u8>>);
 
 impl DataSource for Files {
     fn recording(
@@ -102,11 +102,11 @@ impl DataSource for Files {
     }
 }
 
-const DIR: &str = "/nonexistent/symmetric";
+pub(crate) const DIR: &str = "/nonexistent/symmetric";
 
 /// How the lab declares its probe in the study.
 #[derive(Clone, Copy, PartialEq)]
-enum Declared {
+pub(crate) enum Declared {
     /// As it is.
     Right,
     /// Measuring along O1X1 while it measures against.
@@ -115,9 +115,12 @@ enum Declared {
     MillimetresReadAsMicrometres,
 }
 
-/// C_r from the study's probe phase, as the lab declares the probe: the campaign study's
-/// probe phase on the simulation's probe recordings.
-fn probe_c_r(sim: &Simulation, declared: Declared) -> ProbeCr {
+/// The campaign study's probe phase on the simulation's probe recordings, as the lab
+/// declares the probe: the study text (no calibration section) and its files in memory.
+pub(crate) fn probe_study(
+    sim: &Simulation,
+    declared: Declared,
+) -> (String, HashMap<PathBuf, Vec<u8>>) {
     let mut files = HashMap::new();
     for r in &sim.recordings {
         let mut r = r.clone();
@@ -150,6 +153,13 @@ fn probe_c_r(sim: &Simulation, declared: Declared) -> ProbeCr {
             "probe_direction: along_o1_x1",
         );
     }
+    (text, files)
+}
+
+/// C_r from the study's probe phase, as the lab declares the probe: the campaign study's
+/// probe phase on the simulation's probe recordings.
+fn probe_c_r(sim: &Simulation, declared: Declared) -> ProbeCr {
+    let (text, files) = probe_study(sim, declared);
     let source = Path::new(DIR).join("study.ron");
     let config = StudyConfig::from_ron(&text, &source).unwrap();
     let inputs = Inputs::new(config, &source, &Files(files)).unwrap();

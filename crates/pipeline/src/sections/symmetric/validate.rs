@@ -111,8 +111,10 @@ pub(crate) fn validate(
         .enumerate()
         .filter_map(|(i, o)| o.orientation.map(|n| (i, orientation(n))))
         .collect();
+    let mut same = false;
     for (k, &(i, o)) in declared.iter().enumerate() {
         if let Some(&(j, _)) = declared[..k].iter().find(|(_, p)| *p == o) {
+            same = true;
             errors.push(symmetric_error(
                 check,
                 SymmetricError::SameOrientation {
@@ -126,7 +128,7 @@ pub(crate) fn validate(
     let has = |o: Orientation| declared.iter().any(|(_, p)| *p == o);
     let undeclared = declared.len() < config.orientations.len();
     // an undeclared orientation is reported as missing, not as a second one absent
-    let both = undeclared || (has(Orientation::IaIn) && has(Orientation::IaOut));
+    let both = undeclared || same || (has(Orientation::IaIn) && has(Orientation::IaOut));
     if config.orientations.len() > 2 || !both {
         let words: Vec<&str> = config
             .orientations

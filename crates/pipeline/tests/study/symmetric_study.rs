@@ -1,0 +1,170 @@
+//! The two-orientation calibration through the study (`symmetric:` in a study file, issue 20):
+//! the simulated campaign's tables and probe recordings in memory, the study's results and
+//! warnings; and a bad section refused with every problem named at once.
+
+use std::path::{Path, PathBuf};
+
+use pipeline::{Inputs, PipelineError, StudyConfig, StudyResults, WarningCode};
+use simulate::{Orientation, Simulation};
+
+use super::symmetric::{C_R, DIR, Declared, Files, K2, probe_study, scenario};
+
+/// The symmetric section on the simulation's two mounting tables, compared with the probe
+/// phase (declared as `declared`); a small fixed Monte Carlo count.
+fn study(sim: &Simulation, declared: Declared) -> StudyResults {
+    let (text, mut files) = probe_study(sim, declared);
+    let mut sets = String::new();
+    for m in &sim.mountings {
+        let (name, file) = match m.orientation {
+            Orientation::IaIn => ("ia_in", "piga_ia_in.csv"),
+            Orientation::IaOut => ("ia_out", "piga_ia_out.csv"),
+        };
+        let mut csv = String::from("rate_deg_s,output_rad_s\n");
+        for r in &m.piga {
+            csv.push_str(&format!("{:?},{:?}\n", r.rate_deg_s, r.output_rad_s));
+        }
+        files.insert(Path::new(DIR).join(file), csv.into_bytes());
+        sets.push_str(&format!(
+            "(orientation: {name}, radius_m: {:?}, table: (file: \"{file}\")),",
+            m.radius_m
+        ));
+    }
+    let end = text.rfind(')').unwrap();
+    let text = format!(
+        "{}    symmetric: (orientations: [{sets}], compare_with: \"spindle\", trials: fixed(2000)),\n)\n",
+        &text[..end]
+    );
+    let source = Path::new(DIR).join("study.ron");
+    let config = StudyConfig::from_ron(&text, &source).unwrap();
+    let inputs = Inputs::new(config, &source, &Files(files)).unwrap();
+    pipeline::run(&inputs).unwrap()
+}
+
+fn warned(r: &StudyResults, code: WarningCode) -> bool {
+    r.warnings.iter().any(|w| w.code == code)
+}
+
+/// C_a = 0.3·C_r, R_out = R_in + 40 mm, a bias shift: the study recovers k2 and C within
+/// U95, reports C − C_r with z > 3 and the warning naming both candidates; k2 both ways.
+/// With C_a = 0, |z| < 3 and no warning.
+#[test]
+fn the_study_sees_the_arm_stretch_the_probe_misses() {
+    let c_a = 0.3 * C_R;
+    let r = study(
+        &simulate::simulate(&scenario(21, c_a)).unwrap(),
+        Declared::Right,
+    );
+    let s = r.symmetric.as_ref().expect("a two-orientation section");
+    assert!((s.k2.value - K2).abs() < s.k2.u95, "k2 {:?}", s.k2);
+    assert!(
+        (s.c_m_s2.value - (C_R + c_a)).abs() < s.c_m_s2.u95,
+        "C {:?}",
+        s.c_m_s2
+    );
+    assert_eq!(s.mountings[0].orientation, "ia_in");
+    assert_eq!(s.mountings[1].orientation, "ia_out");
+    assert_eq!(s.monte_carlo.trials, 2000);
+    let p = s.probe.as_ref().expect("a probe comparison");
+    assert_eq!(p.phase, "spindle");
+    assert!(p.z > 3.0, "z = {}", p.z);
+    assert!(!p.agrees);
+    assert!((p.difference_m_s2.value - c_a).abs() < p.difference_m_s2.u95);
+    // k2 both ways: the probe method keeps k1·C_a·g/R² of arm stretch
+    let left = 0.56 * c_a * 9.8 / (2.5 * 2.5);
+    assert!((p.k2_probe.value - (K2 + left)).abs() < p.k2_probe_u95);
+    assert!(warned(&r, WarningCode::ProbeDisagrees));
+    let w = r
+        .warnings
+        .iter()
+        .find(|w| w.code == WarningCode::ProbeDisagrees)
+        .unwrap();
+    assert!(w.message.contains("does not see") && w.message.contains("probe_direction"));
+    // the ordinary 35–200 deg/s design: the ω⁴ term's VIF is above 1e4, and it is said
+    assert!(s.omega4_vif > 1e4);
+    assert!(warned(&r, WarningCode::Omega4NotSeparable));
+
+    let r0 = study(
+        &simulate::simulate(&scenario(21, 0.0)).unwrap(),
+        Declared::Right,
+    );
+    let p0 = r0.symmetric.as_ref().unwrap().probe.as_ref().unwrap();
+    assert!(p0.z.abs() < 3.0, "z = {}", p0.z);
+    assert!(p0.agrees);
+    assert!(!warned(&r0, WarningCode::ProbeDisagrees));
+}
+
+/// The probe declared along O1X1 instead of against it, and a mm gap column read as µm, in a
+/// study with both orientations: each gives the warning.
+#[test]
+fn a_wrong_probe_declaration_warns_through_the_study() {
+    let sim = simulate::simulate(&scenario(22, 0.0)).unwrap();
+    for declared in [Declared::WrongSign, Declared::MillimetresReadAsMicrometres] {
+        let r = study(&sim, declared);
+        let p = r.symmetric.as_ref().unwrap().probe.as_ref().unwrap();
+        assert!(p.z.abs() > 3.0, "z = {}", p.z);
+        assert!(warned(&r, WarningCode::ProbeDisagrees));
+    }
+}
+
+/// A section with a missing radius, the same orientation twice and tables with too few
+/// rates: every problem named at once by its field.
+#[test]
+fn a_bad_section_names_every_problem_at_once() {
+    let sim = simulate::simulate(&scenario(23, 0.0)).unwrap();
+    let (text, mut files) = probe_study(&sim, Declared::Right);
+    let few = b"rate_deg_s,output_rad_s\n50,0.1\n100,0.4\n150,0.9\n".to_vec();
+    files.insert(PathBuf::from(DIR).join("a.csv"), few.clone());
+    files.insert(PathBuf::from(DIR).join("b.csv"), few);
+    let end = text.rfind(')').unwrap();
+    let text = format!(
+        "{}    symmetric: (orientations: [(orientation: ia_in, table: (file: \"a.csv\")), \
+         (orientation: ia_in, radius_m: 2.54, table: (file: \"b.csv\"))]),\n)\n",
+        &text[..end]
+    );
+    let source = Path::new(DIR).join("study.ron");
+    let config = StudyConfig::from_ron(&text, &source).unwrap();
+    let err = Inputs::new(config, &source, &Files(files)).unwrap_err();
+    let PipelineError::Several { errors } = &err else {
+        panic!("{err}")
+    };
+    let text: Vec<String> = errors.iter().map(|e| super::chain(e)).collect();
+    let all = text.join("\n");
+    assert_eq!(errors.len(), 4, "{all}");
+    assert!(
+        text[0].contains("symmetric.orientations[0].radius_m: the radius is missing"),
+        "{all}"
+    );
+    assert!(
+        text[1].contains("symmetric.orientations[1].orientation: both data sets are `IA in`"),
+        "{all}"
+    );
+    assert!(
+        text[2].contains("symmetric.orientations[0].table") && text[2].contains("3 distinct rates"),
+        "{all}"
+    );
+    assert!(
+        text[3].contains("symmetric.orientations[1].table") && text[3].contains("at least 6"),
+        "{all}"
+    );
+
+    // one data set only
+    let sim = simulate::simulate(&scenario(23, 0.0)).unwrap();
+    let (text, mut files) = probe_study(&sim, Declared::Right);
+    let mut csv = String::from("rate_deg_s,output_rad_s\n");
+    for r in &sim.mountings[0].piga {
+        csv.push_str(&format!("{:?},{:?}\n", r.rate_deg_s, r.output_rad_s));
+    }
+    files.insert(PathBuf::from(DIR).join("a.csv"), csv.into_bytes());
+    let end = text.rfind(')').unwrap();
+    let text = format!(
+        "{}    symmetric: (orientations: [(orientation: ia_in, radius_m: 2.5, table: (file: \"a.csv\"))]),\n)\n",
+        &text[..end]
+    );
+    let config = StudyConfig::from_ron(&text, &source).unwrap();
+    let err = Inputs::new(config, &source, &Files(files)).unwrap_err();
+    let message = super::chain(&err);
+    assert!(
+        message.contains("symmetric.orientations: a two-orientation calibration needs one data set with the IA in and one with the IA out"),
+        "{message}"
+    );
+}
