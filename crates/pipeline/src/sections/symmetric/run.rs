@@ -287,6 +287,7 @@ fn budget(e: &SymmetricEvaluation, name: &str) -> Vec<BudgetLine> {
         contribution,
         percent: share,
         dof: dof_value(quantities[0].dof),
+        note: None,
     }];
     for (c, q) in output.contributions.iter().zip(quantities).skip(terms) {
         if c.sensitivity == 0.0 {
@@ -304,6 +305,7 @@ fn budget(e: &SymmetricEvaluation, name: &str) -> Vec<BudgetLine> {
             contribution: c.uncertainty,
             percent: c.variance_percent,
             dof: dof_value(q.dof),
+            note: None,
         });
     }
     lines

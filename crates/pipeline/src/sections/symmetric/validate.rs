@@ -193,23 +193,24 @@ pub(crate) fn validate(
     let (g_u_m_s2, omitted_type_b) = match &study.uncertainty {
         None => (0.0, Vec::new()),
         Some(u) => {
-            if let Err(e) = check.non_negative("uncertainty.g_u_m_s2", u.g_u_m_s2) {
+            let g_u = u.g_u_m_s2.unwrap_or(0.0);
+            if let Err(e) = check.non_negative("uncertainty.g_u_m_s2", g_u) {
                 errors.push(e);
             }
             let omitted: Vec<&'static str> = [
-                ("u(R)", u.radius_u_m),
-                ("the rate scale", u.rate_u_relative),
+                ("u(R)", u.radius_u_m.unwrap_or(0.0)),
+                ("the rate scale", u.rate_u_relative.unwrap_or(0.0)),
                 (
                     "the lever heights",
-                    u.pivot_to_probe_u_mm + u.probe_to_piga_u_mm,
+                    u.pivot_to_probe_u_mm.unwrap_or(0.0) + u.probe_to_piga_u_mm.unwrap_or(0.0),
                 ),
-                ("the probe gain", u.probe_gain_u_relative),
+                ("the probe gain", u.probe_gain_u_relative.unwrap_or(0.0)),
             ]
             .into_iter()
             .filter(|(_, v)| *v > 0.0)
             .map(|(n, _)| n)
             .collect();
-            (u.g_u_m_s2.max(0.0), omitted)
+            (g_u.max(0.0), omitted)
         }
     };
     // the tables, then their rates
@@ -295,61 +296,82 @@ fn read_table(
 ) -> Result<TableColumns> {
     let field = format!("{field}.table");
     let file = base.join(&config.file);
-    let mut columns = vec![
-        TableColumn::required(config.rate_column.clone()),
-        TableColumn::required(config.output_column.clone()),
-    ];
-    if let Some(sigma) = &config.sigma_column {
-        columns.push(TableColumn::required(sigma.clone()));
-    }
-    let format = TableFormat {
-        delimiter: config.delimiter,
-        whitespace: matches!(config.delimiter, ' ' | '\t'),
-        label: config.label_column.clone(),
-        ..TableFormat::new(columns, true)
+    let recording_error = |e: recording::RecordingError| PipelineError::Recording {
+        path: source.to_owned(),
+        field: field.clone(),
+        source: Box::new(e),
     };
-    let read = load
-        .read_table(&file, &format)
-        .map_err(|e| PipelineError::Recording {
-            path: source.to_owned(),
-            field: field.clone(),
-            source: Box::new(e),
-        })?;
-    let table = read.value;
-    let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
-    let rates = column(&config.rate_column);
-    let outputs = column(&config.output_column);
-    let sigma = config.sigma_column.as_deref().map(column);
+    let format = match &config.format {
+        // an exported table's format (columns, units, decimal mark) replaces the column names
+        Some(f) => f.table_format().map_err(recording_error)?,
+        None => {
+            let mut columns = vec![
+                TableColumn::required(config.rate_column.clone()),
+                TableColumn::required(config.output_column.clone()),
+            ];
+            if let Some(sigma) = &config.sigma_column {
+                columns.push(TableColumn::required(sigma.clone()));
+            }
+            TableFormat {
+                delimiter: config.delimiter,
+                whitespace: matches!(config.delimiter, ' ' | '\t'),
+                label: config.label_column.clone(),
+                ..TableFormat::new(columns, true)
+            }
+        }
+    };
+    let read = load.read_table(&file, &format).map_err(recording_error)?;
+    let digest = read.digest.clone();
+    let (rates, outputs, sigma, lines, rate_name, output_name, sigma_name) = match &config.format {
+        Some(f) => {
+            let t = recording::PigaTable::from_table(read.value, f).map_err(recording_error)?;
+            let lines: Vec<usize> = (0..t.len()).map(|i| t.line_of_row(i)).collect();
+            (
+                t.rate_deg_s,
+                t.output_rad_s,
+                t.sigma_rad_s,
+                lines,
+                f.rate.column.trim().to_owned(),
+                f.output.column.trim().to_owned(),
+                f.sigma.as_ref().map(|c| c.column.trim().to_owned()),
+            )
+        }
+        None => {
+            let table = read.value;
+            let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
+            let rates = column(&config.rate_column);
+            let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
+            (
+                rates,
+                column(&config.output_column),
+                config.sigma_column.as_deref().map(column),
+                lines,
+                config.rate_column.clone(),
+                config.output_column.clone(),
+                config.sigma_column.clone(),
+            )
+        }
+    };
     let bad =
         |i: usize, column: &str, value: f64, reason: InvalidReason| PipelineError::TableValue {
             path: source.to_owned(),
             field: field.clone(),
             file: file.clone(),
-            line: table.line_of_row(i),
+            line: lines[i],
             column: column.to_owned(),
             value,
             reason,
         };
     if let Some(i) = rates.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
-        return Err(bad(
-            i,
-            &config.rate_column,
-            rates[i],
-            InvalidReason::RateNotPositive,
-        ));
+        return Err(bad(i, &rate_name, rates[i], InvalidReason::RateNotPositive));
     }
     if let Some(i) = outputs.iter().position(|y| !y.is_finite()) {
-        return Err(bad(
-            i,
-            &config.output_column,
-            outputs[i],
-            InvalidReason::NotFinite,
-        ));
+        return Err(bad(i, &output_name, outputs[i], InvalidReason::NotFinite));
     }
-    if let (Some(name), Some(sigma)) = (&config.sigma_column, &sigma)
+    if let (Some(name), Some(sigma)) = (&sigma_name, &sigma)
         && let Some(i) = sigma.iter().position(|s| !(s.is_finite() && *s > 0.0))
     {
         return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
     }
-    Ok((file, rates, outputs, sigma, read.digest))
+    Ok((file, rates, outputs, sigma, digest))
 }
