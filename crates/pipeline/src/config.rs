@@ -14,8 +14,10 @@ use crate::error::{PipelineError, Result};
 
 mod certificate;
 mod symmetric;
+mod table;
 pub use certificate::*;
 pub use symmetric::*;
+pub use table::*;
 
 /// A whole study: one centrifuge, one PIGA, and any number of named probe phases (before
 /// balancing, with a trial weight, after balancing, ...).
@@ -206,50 +208,8 @@ pub struct CalibrationConfig {
     pub trials: TrialsConfig,
 }
 
-/// How many Monte Carlo trials the uncertainty evaluation draws.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum TrialsConfig {
-    /// Until the results are stable to two significant digits (JCGM 101 §7.9).
-    #[default]
-    Adaptive,
-    /// Exactly this many (at least 2000: JCGM 101 §7.2 asks for 100/(1 − p)).
-    Fixed(u64),
-}
-
 const fn default_seed() -> u64 {
     1
-}
-
-/// A PIGA table file and its columns.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PigaTableConfig {
-    /// The file, relative to the study file's folder unless absolute.
-    pub file: PathBuf,
-    /// Header name of the rate column, deg/s (default `rate_deg_s`).
-    #[serde(default = "default_rate_column")]
-    pub rate_column: String,
-    /// Header name of the mean-output column, rad/s (default `output_rad_s`).
-    #[serde(default = "default_output_column")]
-    pub output_column: String,
-    /// Field delimiter (default `,`).
-    #[serde(default = "default_delimiter")]
-    pub delimiter: char,
-    /// Header name of a column holding each mean output's standard uncertainty, rad/s
-    /// (absent: the fit is unweighted). With it, the fit is weighted by `1/σᵢ`.
-    #[serde(default)]
-    pub sigma_column: Option<String>,
-    /// Header name of a text column labelling each row (a repeat, an orientation), shown
-    /// with its residual; rows with the same label are compared.
-    #[serde(default)]
-    pub label_column: Option<String>,
-    /// The table as the laboratory exported it (delimiter, decimal comma, lines to skip,
-    /// named columns with their units, σ and label columns), the same `format` block as
-    /// `recording`'s PIGA-table reader takes; with it, the columns are named in it and not
-    /// by the keys above (`docs/CONFIGURATION.md`).
-    #[serde(default)]
-    pub format: Option<recording::PigaTableFormat>,
 }
 
 /// Raw PIGA output recordings, one per rate (`docs/YOUR-DATA.md`).
@@ -271,18 +231,6 @@ pub struct PigaRecordingSet {
 
 const fn default_piga_order() -> usize {
     2
-}
-
-pub(crate) fn default_rate_column() -> String {
-    "rate_deg_s".to_owned()
-}
-
-pub(crate) fn default_output_column() -> String {
-    "output_rad_s".to_owned()
-}
-
-const fn default_delimiter() -> char {
-    ','
 }
 
 /// Where the calibration's k1 comes from.

@@ -7,7 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{PigaTableConfig, TrialsConfig};
+use super::table::{PigaTableConfig, TrialsConfig};
 
 /// The two-orientation calibration (`symmetric: (...)`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
