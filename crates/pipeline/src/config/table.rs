@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use recording::{RecordingError, TableColumn, TableFormat};
 use serde::{Deserialize, Serialize};
 
 /// How many Monte Carlo trials the uncertainty evaluation draws.
@@ -58,4 +59,46 @@ pub(crate) fn default_output_column() -> String {
 
 const fn default_delimiter() -> char {
     ','
+}
+
+/// Why a PIGA table's settings give no reader format.
+#[derive(Debug)]
+pub(crate) enum TableLayoutError {
+    /// Column keys given beside a `format` block (which names the columns itself).
+    FormatAndColumns,
+    /// The `format` block itself is not a readable format.
+    Recording(RecordingError),
+}
+
+impl PigaTableConfig {
+    /// The table reader's format: the exported table's `format` block when given (then no
+    /// column key may be set beside it), else the named columns and delimiter. One for the
+    /// calibration section and the two-orientation one.
+    pub(crate) fn reader_format(&self) -> Result<TableFormat, TableLayoutError> {
+        if let Some(f) = &self.format {
+            if self.rate_column != default_rate_column()
+                || self.output_column != default_output_column()
+                || self.delimiter != ','
+                || self.sigma_column.is_some()
+                || self.label_column.is_some()
+            {
+                return Err(TableLayoutError::FormatAndColumns);
+            }
+            return f.table_format().map_err(TableLayoutError::Recording);
+        }
+        let mut columns = vec![
+            TableColumn::required(self.rate_column.clone()),
+            TableColumn::required(self.output_column.clone()),
+        ];
+        if let Some(sigma) = &self.sigma_column {
+            columns.push(TableColumn::required(sigma.clone()));
+        }
+        Ok(TableFormat {
+            delimiter: self.delimiter,
+            // A blank delimiter keeps its meaning here: runs of blanks separate fields.
+            whitespace: matches!(self.delimiter, ' ' | '\t'),
+            label: self.label_column.clone(),
+            ..TableFormat::new(columns, true)
+        })
+    }
 }

@@ -4,11 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
-use recording::{FileDigest, TableColumn, TableFormat};
+use recording::FileDigest;
 
-use crate::config::{
-    PigaRecordingSet, PigaTableConfig, default_output_column, default_rate_column,
-};
+use crate::config::{PigaRecordingSet, PigaTableConfig, TableLayoutError};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource};
 use crate::results::{PigaRecordingResult, Warning};
@@ -190,39 +188,14 @@ pub(super) fn load_piga_table(
         field: "calibration.table".to_owned(),
         source: Box::new(e),
     };
-    let format = match &config.format {
-        Some(f) => {
-            if config.rate_column != default_rate_column()
-                || config.output_column != default_output_column()
-                || config.delimiter != ','
-                || config.sigma_column.is_some()
-                || config.label_column.is_some()
-            {
-                return Err(PipelineError::Unsupported {
-                    path: source.to_owned(),
-                    field: "calibration.table".to_owned(),
-                    reason: UnsupportedReason::TableFormatAndColumns,
-                });
-            }
-            f.table_format().map_err(recording_error)?
-        }
-        None => {
-            let mut columns = vec![
-                TableColumn::required(config.rate_column.clone()),
-                TableColumn::required(config.output_column.clone()),
-            ];
-            if let Some(sigma) = &config.sigma_column {
-                columns.push(TableColumn::required(sigma.clone()));
-            }
-            TableFormat {
-                delimiter: config.delimiter,
-                // A blank delimiter keeps its meaning here: runs of blanks separate fields.
-                whitespace: matches!(config.delimiter, ' ' | '\t'),
-                label: config.label_column.clone(),
-                ..TableFormat::new(columns, true)
-            }
-        }
-    };
+    let format = config.reader_format().map_err(|e| match e {
+        TableLayoutError::FormatAndColumns => PipelineError::Unsupported {
+            path: source.to_owned(),
+            field: "calibration.table".to_owned(),
+            reason: UnsupportedReason::TableFormatAndColumns,
+        },
+        TableLayoutError::Recording(e) => recording_error(e),
+    })?;
     let read = load.read_table(&file, &format).map_err(recording_error)?;
     let (rates, outputs, sigma, labels, lines, rate_name, sigma_name) = match &config.format {
         Some(f) => {

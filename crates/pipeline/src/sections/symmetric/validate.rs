@@ -5,9 +5,11 @@
 use std::path::{Path, PathBuf};
 
 use ::calibration::{MIN_RATES_PER_ORIENTATION, Orientation, SymmetricError};
-use recording::{FileDigest, TableColumn, TableFormat};
+use recording::FileDigest;
 
-use crate::config::{OrientationName, PigaTableConfig, StudyConfig, SymmetricConfig, TrialsConfig};
+use crate::config::{
+    OrientationName, PigaTableConfig, StudyConfig, SymmetricConfig, TableLayoutError, TrialsConfig,
+};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource, InputFile, InputRole, PhaseNames};
 
@@ -301,25 +303,14 @@ fn read_table(
         field: field.clone(),
         source: Box::new(e),
     };
-    let format = match &config.format {
-        // an exported table's format (columns, units, decimal mark) replaces the column names
-        Some(f) => f.table_format().map_err(recording_error)?,
-        None => {
-            let mut columns = vec![
-                TableColumn::required(config.rate_column.clone()),
-                TableColumn::required(config.output_column.clone()),
-            ];
-            if let Some(sigma) = &config.sigma_column {
-                columns.push(TableColumn::required(sigma.clone()));
-            }
-            TableFormat {
-                delimiter: config.delimiter,
-                whitespace: matches!(config.delimiter, ' ' | '\t'),
-                label: config.label_column.clone(),
-                ..TableFormat::new(columns, true)
-            }
-        }
-    };
+    let format = config.reader_format().map_err(|e| match e {
+        TableLayoutError::FormatAndColumns => PipelineError::Unsupported {
+            path: source.to_owned(),
+            field: field.clone(),
+            reason: UnsupportedReason::TableFormatAndColumns,
+        },
+        TableLayoutError::Recording(e) => recording_error(e),
+    })?;
     let read = load.read_table(&file, &format).map_err(recording_error)?;
     let digest = read.digest.clone();
     let (rates, outputs, sigma, lines, rate_name, output_name, sigma_name) = match &config.format {
