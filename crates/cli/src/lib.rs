@@ -54,7 +54,7 @@ enum Command {
     /// Score the least-squares solver on the NIST StRD linear-regression datasets (LRE).
     Accuracy(accuracy::Accuracy),
     /// Identify k0…k3 (eq. 18) from a PIGA output table, optionally compensating Δk2 (eq. 19).
-    Identify(identify::Identify),
+    Identify(Box<identify::Identify>),
     /// Simulate a calibration from a scenario: probe recordings, piga.csv and truth.json.
     Simulate(simulate::Simulate),
     /// Fit eq. 20 per revolution to a probe recording and average the coefficients.

@@ -73,8 +73,8 @@ pub use config::{
 pub use config::{
     CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
     PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName,
-    RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TrialsConfig, UncertaintyConfig,
-    Weighting,
+    RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TableLayoutError, TrialsConfig,
+    UncertaintyConfig, Weighting,
 };
 pub use config::{OrientationConfig, OrientationName, SymmetricConfig};
 pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};

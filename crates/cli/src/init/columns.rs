@@ -114,7 +114,16 @@ const WORDS: &[(Role, &[&str])] = &[
     ),
     (
         Role::Rate,
-        &["rate", "speed", "omega", "drehzahl", "spindle rate"],
+        &[
+            "rate",
+            "speed",
+            "omega",
+            "drehzahl",
+            "drehrate",
+            "winkelgeschwindigkeit",
+            "vitesse",
+            "spindle rate",
+        ],
     ),
     (
         Role::Sigma,

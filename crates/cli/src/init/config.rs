@@ -91,8 +91,18 @@ pub(crate) fn render(plan: &Plan<'_>, relative: &RelativePath<'_>) -> String {
             "        table: (\n            file: {:?},",
             relative(&table.path)
         );
+        let indent = if table.table_block {
+            s.push_str("            // The table as exported: recording's PIGA-table format.\n");
+            s.push_str("            format: (\n");
+            "                "
+        } else {
+            "            "
+        };
         for setting in &table.format {
-            let _ = writeln!(s, "            {},  // {}", setting.ron, setting.evidence);
+            let _ = writeln!(s, "{indent}{},  // {}", setting.ron, setting.evidence);
+        }
+        if table.table_block {
+            s.push_str("            ),\n");
         }
         s.push_str("        ),\n");
         calibration_tail(&mut s, &compensate);

@@ -6,11 +6,8 @@ use std::path::{Path, PathBuf};
 
 use super::columns::{Column, Role, angle_unit, is_voltage, length_unit, time_unit};
 use super::rate::{pulse_rate_deg_s, rate_from_name, slope_deg_s, unwrap_rad};
+pub(crate) use super::setting::{PLACEHOLDER, Setting, quoted};
 use super::sniff::{Delim, Layout, sniff};
-
-/// The placeholder left where the user must write a value; `check` and `study` refuse a
-/// configuration that still holds it.
-pub(crate) const PLACEHOLDER: &str = "FILL_IN";
 
 /// What a file is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,29 +28,6 @@ impl Kind {
             Self::PigaTable => "PIGA table",
             Self::PigaRecording => "PIGA output recording",
         }
-    }
-}
-
-/// One setting of the format: its RON text in the study file and why.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Setting {
-    /// `key: value` as the study file writes it.
-    pub(crate) ron: String,
-    /// The evidence, or what is missing when the value is a placeholder.
-    pub(crate) evidence: String,
-}
-
-impl Setting {
-    pub(crate) fn new(ron: impl Into<String>, evidence: impl Into<String>) -> Self {
-        Self {
-            ron: ron.into(),
-            evidence: evidence.into(),
-        }
-    }
-
-    /// Whether the user must fill it in.
-    fn is_placeholder(&self) -> bool {
-        self.ron.contains(PLACEHOLDER)
     }
 }
 
@@ -86,6 +60,9 @@ pub(crate) struct Finding {
     pub(crate) rate: Option<Rate>,
     /// What stops this file from being used (then no configuration is written).
     pub(crate) problems: Vec<String>,
+    /// A PIGA table whose settings go in a `format` block (decimal comma, lines above the
+    /// header, units other than deg/s and rad/s) rather than the plain column keys.
+    pub(crate) table_block: bool,
 }
 
 impl Finding {
@@ -98,6 +75,7 @@ impl Finding {
             angle_words: String::new(),
             rate: None,
             problems: Vec::new(),
+            table_block: false,
         }
     }
 
@@ -184,7 +162,9 @@ pub(crate) fn understand(path: &Path, bytes: &[u8], read_column: &ColumnReader<'
         ));
     }
     match kind {
-        Kind::PigaTable => table(&mut f, &columns, &layout),
+        Kind::PigaTable => {
+            f.table_block = super::table::table(&mut f.format, &mut f.problems, &columns, &layout);
+        }
         Kind::Probe | Kind::PigaRecording => {
             recording(&mut f, kind, &columns, &layout, read_column);
         }
@@ -201,92 +181,6 @@ impl Layout {
             Delim::Whitespace => " ".to_owned(),
         }
     }
-}
-
-/// A column named in the study file.
-fn quoted(name: &str) -> String {
-    format!("{name:?}")
-}
-
-/// The table's settings (`calibration.table`).
-fn table(f: &mut Finding, columns: &[Column], layout: &Layout) {
-    let pick = |role: Role| columns.iter().find(|c| c.role == role);
-    let (Some(rate), Some(output)) = (pick(Role::Rate), pick(Role::Output)) else {
-        return;
-    };
-    // The study's table reader takes a delimiter only (no decimal comma, no lines above the
-    // header): say so rather than write a configuration it refuses.
-    if layout.decimal_comma {
-        f.problems.push(
-            "a PIGA table with a decimal comma: the study's table reader takes a decimal \
-             point only; write it with points"
-                .to_owned(),
-        );
-    }
-    if layout.skip_lines > 0 {
-        f.problems.push(format!(
-            "a PIGA table with {} lines above its header: the study's table reader skips only \
-             `#` comment lines; mark them with `#`",
-            layout.skip_lines
-        ));
-    }
-    f.format.retain(|s| s.ron.starts_with("delimiter"));
-    if layout.delimiter == Delim::Whitespace {
-        f.format = vec![Setting::new(
-            "delimiter: ' '",
-            "fields separated by blanks (a blank delimiter means runs of blanks)",
-        )];
-    }
-    let unit_is = |c: &Column, want: &[&str]| {
-        c.unit
-            .as_deref()
-            .is_none_or(|u| want.contains(&u.to_lowercase().replace(' ', "").as_str()))
-    };
-    if !unit_is(rate, &["deg/s", "°/s", "dps"]) {
-        f.problems.push(format!(
-            "column `{}`: the study reads a table's rates in deg/s",
-            rate.name
-        ));
-    }
-    if !unit_is(output, &["rad/s"]) {
-        f.problems.push(format!(
-            "column `{}`: the study reads a table's mean outputs in rad/s",
-            output.name
-        ));
-    }
-    f.format.push(Setting::new(
-        format!("rate_column: {}", quoted(&rate.name)),
-        format!("the rate column{}", unit_words(rate)),
-    ));
-    f.format.push(Setting::new(
-        format!("output_column: {}", quoted(&output.name)),
-        format!("the mean-output column{}", unit_words(output)),
-    ));
-    if let Some(sigma) = pick(Role::Sigma) {
-        f.format.push(Setting::new(
-            format!("sigma_column: {}", quoted(&sigma.name)),
-            "each output's standard uncertainty: the fit is weighted by it",
-        ));
-    }
-    // A column of text (a repeat, an orientation) labels the rows.
-    if let Some(i) = (0..layout.header.len()).find(|&i| {
-        layout
-            .rows
-            .iter()
-            .all(|r| r.get(i).is_some_and(Option::is_none))
-    }) {
-        f.format.push(Setting::new(
-            format!("label_column: {}", quoted(&layout.header[i])),
-            "a text column: each row's label (rows of one label are compared)",
-        ));
-    }
-}
-
-fn unit_words(c: &Column) -> String {
-    c.unit.as_deref().map_or_else(
-        || " (no unit in the header)".to_owned(),
-        |u| format!(" ({u})"),
-    )
 }
 
 /// A probe or PIGA output recording's settings: time, gap or output, the angle reference;

@@ -10,7 +10,9 @@ mod columns;
 pub(crate) mod config;
 mod file;
 mod rate;
+mod setting;
 mod sniff;
+mod table;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

@@ -641,3 +641,62 @@ fn seven_recordings_with_one_fault_give_one_grouped_message() {
     assert!(err.contains("7 problems (1 distinct)"), "{err}");
     assert!(err.contains("the same in 7 files"), "{err}");
 }
+
+/// A PIGA table as a German DAQ exports it (metadata lines, `;`, decimal comma, units in
+/// the header, a label column) beside the campaign's probe recordings: `init` writes its
+/// `format` block, and the study's calibration equals the one from the same rows written
+/// plainly (`rate_deg_s,output_rad_s`), which `init` writes with the column keys.
+#[test]
+fn a_german_piga_table_export_is_written_as_its_format_block() {
+    let export = root().join("fixtures/recordings/piga-table-de/piga_export_utf8.csv");
+    let text = std::fs::read_to_string(&export).unwrap();
+    let mut plain = String::from("rate_deg_s,output_rad_s,Lage\n");
+    for line in text.lines().skip(6).filter(|l| !l.trim().is_empty()) {
+        let f: Vec<&str> = line.split(';').collect();
+        plain += &format!(
+            "{},{},{}\n",
+            f[0].replace(',', "."),
+            f[1].replace(',', "."),
+            f[3]
+        );
+    }
+    let calibration = |tag: &str, name: &str, contents: &str| {
+        let tmp = Scratch::new(tag);
+        for entry in std::fs::read_dir(root().join("fixtures/campaign")).unwrap() {
+            let path = entry.unwrap().path();
+            if path
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("probe_")
+            {
+                std::fs::copy(&path, tmp.0.join(path.file_name().unwrap())).unwrap();
+            }
+        }
+        std::fs::write(tmp.0.join(name), contents).unwrap();
+        let (_, _, printed) = init_and_study(&tmp.0);
+        let config = std::fs::read_to_string(tmp.0.join("study.ron")).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(tmp.0.join("out/results.json")).unwrap())
+                .unwrap();
+        (json["calibration"].clone(), config, printed)
+    };
+    let (german, config, printed) = calibration("piga-de", "piga_export.csv", &text);
+    let table = &config[config.find("table: (").unwrap()..config.find("compensate_with").unwrap()];
+    assert!(table.contains("format: ("), "{table}");
+    assert!(config.contains("decimal: comma"), "{config}");
+    assert!(config.contains("skip_lines: 5"), "{config}");
+    assert!(
+        config.contains(r#"rate: (column: "Drehrate [°/s]", unit: deg_s)"#),
+        "{config}"
+    );
+    assert!(config.contains(r#"label: "Lage""#), "{config}");
+    assert!(printed.contains("PIGA table"), "{printed}");
+    let (reference, config, _) = calibration("piga-plain", "piga.csv", &plain);
+    assert!(config.contains(r#"rate_column: "rate_deg_s""#), "{config}");
+    let table = &config[config.find("table: (").unwrap()..config.find("compensate_with").unwrap()];
+    assert!(!table.contains("format"), "{table}");
+    assert_eq!(german["points"], reference["points"]);
+    assert_eq!(german["coefficients"], reference["coefficients"]);
+    assert_eq!(german["delta_k2"], reference["delta_k2"]);
+}

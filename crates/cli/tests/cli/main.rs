@@ -2,6 +2,7 @@
 
 mod harmonics;
 mod human;
+mod identify;
 mod init;
 mod outputs;
 mod plan;

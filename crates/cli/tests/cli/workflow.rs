@@ -172,6 +172,24 @@ fn identify_takes_r_g_k1_and_c_r_from_a_studys_results() {
     // configured 0.56).
     assert_eq!(results["calibration"]["k1_source"], "fitted");
     same(&c["k1_used_rad_s_g"], &v["k1_implied_rad_s_g"]["value"]);
+    // Without --phase, the phase the study's calibration compensated with (`spindle`).
+    assert_eq!(results["calibration"]["compensate_with"], "spindle");
+    let json = ok(&xtask(&[
+        "identify",
+        root().join("fixtures/campaign/piga.csv").to_str().unwrap(),
+        "--from",
+        dir.join("results.json").to_str().unwrap(),
+    ]));
+    assert!(
+        json.contains(
+            "phase `spindle` of the study, the one the study's calibration compensated with"
+        ),
+        "{json}"
+    );
+    assert!(
+        json.contains("fitted, as the study's calibration chose"),
+        "{json}"
+    );
     // An unknown phase is named, with the study's phases.
     let out = xtask(&[
         "identify",

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use recording::{RecordingError, TableColumn, TableFormat};
+use recording::{Column, Delimiter, PigaTableFormat, RateUnit, RecordingError, TableFormat};
 use serde::{Deserialize, Serialize};
 
 /// How many Monte Carlo trials the uncertainty evaluation draws.
@@ -62,19 +62,29 @@ const fn default_delimiter() -> char {
 }
 
 /// Why a PIGA table's settings give no reader format.
-#[derive(Debug)]
-pub(crate) enum TableLayoutError {
+#[derive(Debug, thiserror::Error)]
+pub enum TableLayoutError {
     /// Column keys given beside a `format` block (which names the columns itself).
+    #[error(
+        "column keys (`rate_column`, `output_column`, `delimiter`, `sigma_column`, \
+         `label_column`) beside a `format` block, which names the columns itself"
+    )]
     FormatAndColumns,
     /// The `format` block itself is not a readable format.
+    #[error(transparent)]
     Recording(RecordingError),
 }
 
 impl PigaTableConfig {
-    /// The table reader's format: the exported table's `format` block when given (then no
-    /// column key may be set beside it), else the named columns and delimiter. One for the
-    /// calibration section and the two-orientation one.
-    pub(crate) fn reader_format(&self) -> Result<TableFormat, TableLayoutError> {
+    /// The table's layout as `recording`'s PIGA-table reader takes it: the exported table's
+    /// `format` block when given (then no column key may be set beside it), else the named
+    /// columns (rates in deg/s, outputs and σ in rad/s) and the delimiter (a blank or a tab:
+    /// runs of blanks). The one conversion of a configuration's table settings, used by the
+    /// calibration section, the two-orientation one and `centrifuge-cal identify`.
+    ///
+    /// # Errors
+    /// [`TableLayoutError::FormatAndColumns`] for column keys beside a `format` block.
+    pub fn piga_format(&self) -> Result<PigaTableFormat, TableLayoutError> {
         if let Some(f) = &self.format {
             if self.rate_column != default_rate_column()
                 || self.output_column != default_output_column()
@@ -84,21 +94,39 @@ impl PigaTableConfig {
             {
                 return Err(TableLayoutError::FormatAndColumns);
             }
-            return f.table_format().map_err(TableLayoutError::Recording);
+            return Ok(f.clone());
         }
-        let mut columns = vec![
-            TableColumn::required(self.rate_column.clone()),
-            TableColumn::required(self.output_column.clone()),
-        ];
-        if let Some(sigma) = &self.sigma_column {
-            columns.push(TableColumn::required(sigma.clone()));
-        }
-        Ok(TableFormat {
-            delimiter: self.delimiter,
-            // A blank delimiter keeps its meaning here: runs of blanks separate fields.
-            whitespace: matches!(self.delimiter, ' ' | '\t'),
+        Ok(PigaTableFormat {
+            delimiter: if matches!(self.delimiter, ' ' | '\t') {
+                Delimiter::Whitespace
+            } else {
+                Delimiter::Char(self.delimiter)
+            },
+            rate: Column {
+                column: self.rate_column.clone(),
+                unit: RateUnit::DegS,
+            },
+            output: Column {
+                column: self.output_column.clone(),
+                unit: RateUnit::RadS,
+            },
+            sigma: self.sigma_column.clone().map(|column| Column {
+                column,
+                unit: RateUnit::RadS,
+            }),
             label: self.label_column.clone(),
-            ..TableFormat::new(columns, true)
+            ..PigaTableFormat::default()
         })
+    }
+
+    /// The text-table reader's format of [`piga_format`](Self::piga_format), checked.
+    ///
+    /// # Errors
+    /// As [`piga_format`](Self::piga_format), and [`TableLayoutError::Recording`] for a
+    /// delimiter that cannot separate numbers with the decimal mark or a column named twice.
+    pub fn reader_format(&self) -> Result<TableFormat, TableLayoutError> {
+        self.piga_format()?
+            .table_format()
+            .map_err(TableLayoutError::Recording)
     }
 }

@@ -504,6 +504,19 @@ fn hint_text(hint: &Option<Hint>) -> String {
 pub type Result<T, E = RecordingError> = std::result::Result<T, E>;
 
 impl RecordingError {
+    /// Takes the error's hint out of it (its message then ends without one), for a caller
+    /// that words the hint in its own options (`centrifuge-cal identify`'s flags instead of
+    /// a configuration's keys).
+    pub fn take_hint(&mut self) -> Option<Hint> {
+        match self {
+            Self::MissingColumn { hint, .. }
+            | Self::Parse { hint, .. }
+            | Self::NonFinite { hint, .. }
+            | Self::Samples { hint, .. } => hint.take(),
+            _ => None,
+        }
+    }
+
     /// The error with its line moved by `offset` (for a piece parsed apart).
     pub(crate) fn with_line_offset(mut self, offset: usize) -> Self {
         match &mut self {

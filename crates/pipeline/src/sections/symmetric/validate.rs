@@ -303,46 +303,24 @@ fn read_table(
         field: field.clone(),
         source: Box::new(e),
     };
-    let format = config.reader_format().map_err(|e| match e {
+    let layout_error = |e| match e {
         TableLayoutError::FormatAndColumns => PipelineError::Unsupported {
             path: source.to_owned(),
             field: field.clone(),
             reason: UnsupportedReason::TableFormatAndColumns,
         },
         TableLayoutError::Recording(e) => recording_error(e),
-    })?;
+    };
+    let layout = config.piga_format().map_err(layout_error)?;
+    let format = config.reader_format().map_err(layout_error)?;
     let read = load.read_table(&file, &format).map_err(recording_error)?;
     let digest = read.digest.clone();
-    let (rates, outputs, sigma, lines, rate_name, output_name, sigma_name) = match &config.format {
-        Some(f) => {
-            let t = recording::PigaTable::from_table(read.value, f).map_err(recording_error)?;
-            let lines: Vec<usize> = (0..t.len()).map(|i| t.line_of_row(i)).collect();
-            (
-                t.rate_deg_s,
-                t.output_rad_s,
-                t.sigma_rad_s,
-                lines,
-                f.rate.column.trim().to_owned(),
-                f.output.column.trim().to_owned(),
-                f.sigma.as_ref().map(|c| c.column.trim().to_owned()),
-            )
-        }
-        None => {
-            let table = read.value;
-            let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
-            let rates = column(&config.rate_column);
-            let lines: Vec<usize> = (0..rates.len()).map(|i| table.line_of_row(i)).collect();
-            (
-                rates,
-                column(&config.output_column),
-                config.sigma_column.as_deref().map(column),
-                lines,
-                config.rate_column.clone(),
-                config.output_column.clone(),
-                config.sigma_column.clone(),
-            )
-        }
-    };
+    let t = recording::PigaTable::from_table(read.value, &layout).map_err(recording_error)?;
+    let lines: Vec<usize> = (0..t.len()).map(|i| t.line_of_row(i)).collect();
+    let (rates, outputs, sigma) = (t.rate_deg_s, t.output_rad_s, t.sigma_rad_s);
+    let rate_name = layout.rate.column.trim().to_owned();
+    let output_name = layout.output.column.trim().to_owned();
+    let sigma_name = layout.sigma.as_ref().map(|c| c.column.trim().to_owned());
     let bad =
         |i: usize, column: &str, value: f64, reason: InvalidReason| PipelineError::TableValue {
             path: source.to_owned(),

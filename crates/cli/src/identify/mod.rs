@@ -3,13 +3,47 @@
 
 use std::path::{Path, PathBuf};
 
+mod from;
+
+use from::FromStudy;
+
 use crate::console::{Console, ConsoleError};
 use anyhow::Context as _;
 use identify::{
     Calibration, CompensatedCalibration, Compensation, CrEstimate, Geometry, IdentifyError,
     K1Source, identify_calibration, identify_compensated,
 };
-use recording::{TableColumn, TableFormat};
+use pipeline::{PigaTableConfig, TableLayoutError};
+use recording::{Column, DecimalMark, Delimiter, Hint, PigaTable, PigaTableFormat, RateUnit};
+
+/// An error reading the table, its hint in identify's options.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+struct TableError(String);
+
+/// A reader's hint (which names a key of a study's `format` block) in identify's options.
+fn option_hint(hint: Hint) -> String {
+    match hint {
+        Hint::DecimalComma => {
+            "decimal comma? pass `--decimal comma` (with another delimiter than `,`, e.g. \
+             `--delimiter ';'`)"
+                .to_owned()
+        }
+        Hint::DecimalPoint => "decimal point? leave out `--decimal comma`".to_owned(),
+        Hint::Delimiter => {
+            "another delimiter? pass `--delimiter` with the character between the fields".to_owned()
+        }
+        Hint::HeaderDelimiter { found } => format!(
+            "the header looks separated by {found:?}: pass `--delimiter '{found}'` (a blank \
+             for runs of blanks)"
+        ),
+        Hint::SkipLines => "metadata lines above the header? pass `--skip-lines N` with their \
+             number, or name the header's columns with `--rate-column` and `--output-column`"
+            .to_owned(),
+        // Not a table's: the reader gives these for probe recordings only.
+        other => other.to_string(),
+    }
+}
 
 /// A row of the PIGA table whose value takes the eq. 18 design (powers of ω up to ω⁶, or the
 /// compensated output) out of double precision, named by its line in the file.
@@ -35,18 +69,35 @@ pub(crate) struct Identify {
     /// Read by the study's table reader with the same options (the flags below, as a study's
     /// `calibration.table` names them).
     file: PathBuf,
-    /// Header name of the rate column, deg/s (a study's `rate_column`).
+    /// Header name of the rate column (a study's `rate_column`, or `rate.column` of its
+    /// `format` block).
     #[arg(long, default_value = "rate_deg_s")]
     rate_column: String,
-    /// Header name of the mean-output column, rad/s (a study's `output_column`).
+    /// Unit of the rate column: deg_s, rad_s, rpm or deg_h (`rate.unit`; a unit the header
+    /// states at its end, as in `Drehrate [°/s]`, must agree).
+    #[arg(long, default_value = "deg_s", value_parser = RATE_UNITS)]
+    rate_unit: String,
+    /// Header name of the mean-output column (a study's `output_column`, or `output.column`).
     #[arg(long, default_value = "output_rad_s")]
     output_column: String,
+    /// Unit of the output column and of the σ column: deg_s, rad_s, rpm or deg_h
+    /// (`output.unit`).
+    #[arg(long, default_value = "rad_s", value_parser = RATE_UNITS)]
+    output_unit: String,
     /// Field delimiter, one character; a blank or a tab means runs of blanks (a study's
     /// `delimiter`).
     #[arg(long, default_value_t = ',')]
     delimiter: char,
-    /// Header name of each output's standard uncertainty, rad/s: the fit is weighted by 1/σ
-    /// (a study's `sigma_column`).
+    /// Decimal mark of the numbers: `point` or `comma` (a study's `decimal`; with a comma
+    /// the delimiter must not be `,`).
+    #[arg(long, default_value = "point", value_parser = ["point", "comma"])]
+    decimal: String,
+    /// Lines before the header, blank ones included, as exports write metadata there (a
+    /// study's `skip_lines`).
+    #[arg(long, default_value_t = 0)]
+    skip_lines: usize,
+    /// Header name of each output's standard uncertainty, in the output's unit: the fit is
+    /// weighted by 1/σ (a study's `sigma_column`).
     #[arg(long)]
     sigma_column: Option<String>,
     /// Header name of a text column labelling each row (a study's `label_column`).
@@ -59,12 +110,14 @@ pub(crate) struct Identify {
     #[arg(long, required_unless_present = "from", conflicts_with = "from")]
     g: Option<f64>,
     /// A study's results.json: R and g as the study used them, C_r and σ(C_r) of the phase
-    /// named by --phase, and k1 as the study chose it (fitted or given by its calibration;
+    /// its calibration compensated with (or the one named by --phase), and k1 as the study
+    /// chose it (fitted or given by its calibration;
     /// without one, the k1 of its Δk2). Instead of --radius-m, --g, --k1, --c-r-m-s2,
     /// --c-r-sigma-m-s2.
-    #[arg(long, requires = "phase", conflicts_with_all = ["radius_m", "k1", "c_r_m_s2", "c_r_sigma_m_s2"])]
+    #[arg(long, conflicts_with_all = ["radius_m", "k1", "c_r_m_s2", "c_r_sigma_m_s2"])]
     from: Option<PathBuf>,
-    /// The phase of --from whose C_r compensates.
+    /// The phase of --from whose C_r compensates (default: the one the study's calibration
+    /// compensated with).
     #[arg(long, requires = "from")]
     phase: Option<String>,
     /// k1 (rad/(s·g)) for the compensation. Without it, k1 is implied by the fitted ω²
@@ -83,30 +136,123 @@ pub(crate) struct Identify {
     json: bool,
 }
 
+/// The rate units `--rate-unit` and `--output-unit` take (their configuration names).
+const RATE_UNITS: [&str; 4] = ["deg_s", "rad_s", "rpm", "deg_h"];
+
+/// The rate unit named `key` (one of [`RATE_UNITS`], which clap checked).
+fn rate_unit(key: &str) -> RateUnit {
+    [
+        RateUnit::DegS,
+        RateUnit::RadS,
+        RateUnit::Rpm,
+        RateUnit::DegH,
+    ]
+    .into_iter()
+    .find(|u| u.key() == key)
+    .unwrap_or(RateUnit::DegS)
+}
+
 impl Identify {
-    /// The table format, built as the study builds it from `calibration.table`.
-    fn table_format(&self) -> TableFormat {
-        let mut columns = vec![
-            TableColumn::required(self.rate_column.clone()),
-            TableColumn::required(self.output_column.clone()),
-        ];
-        if let Some(sigma) = &self.sigma_column {
-            columns.push(TableColumn::required(sigma.clone()));
-        }
-        TableFormat {
-            delimiter: self.delimiter,
-            whitespace: matches!(self.delimiter, ' ' | '\t'),
-            label: self.label_column.clone(),
-            ..TableFormat::new(columns, true)
+    /// The table's settings as a study's `calibration.table` with a `format` block holds
+    /// them; the study's own conversion ([`PigaTableConfig::piga_format`]) turns them into
+    /// the reader's format, so a table reads here as in the study.
+    fn table_config(&self) -> PigaTableConfig {
+        let column = |column: &str, unit: &str| Column {
+            column: column.to_owned(),
+            unit: rate_unit(unit),
+        };
+        PigaTableConfig {
+            file: self.file.clone(),
+            rate_column: "rate_deg_s".to_owned(),
+            output_column: "output_rad_s".to_owned(),
+            delimiter: ',',
+            sigma_column: None,
+            label_column: None,
+            format: Some(PigaTableFormat {
+                delimiter: if matches!(self.delimiter, ' ' | '\t') {
+                    Delimiter::Whitespace
+                } else {
+                    Delimiter::Char(self.delimiter)
+                },
+                decimal: if self.decimal == "comma" {
+                    DecimalMark::Comma
+                } else {
+                    DecimalMark::Point
+                },
+                skip_lines: self.skip_lines,
+                rate: column(&self.rate_column, &self.rate_unit),
+                output: column(&self.output_column, &self.output_unit),
+                sigma: self
+                    .sigma_column
+                    .as_deref()
+                    .map(|c| column(c, &self.output_unit)),
+                label: self.label_column.clone(),
+            }),
         }
     }
 
+    /// Reads the table as the study reads its `calibration.table`: rates in deg/s, outputs
+    /// and σ in rad/s; a reader's hint names identify's options.
+    fn read_table(&self) -> anyhow::Result<PigaTable> {
+        let config = self.table_config();
+        let layout = config.piga_format()?;
+        let format = config.reader_format().map_err(|e| self.located_hint(e))?;
+        let table = recording::load_table(&self.file, &format)
+            .and_then(|t| PigaTable::from_table(t, &layout))
+            .map_err(|e| self.located_hint(TableLayoutError::Recording(e)))?;
+        Ok(table)
+    }
+
+    /// A reader's error with its hint in identify's options instead of a study's keys.
+    fn located_hint(&self, e: TableLayoutError) -> anyhow::Error {
+        use recording::RecordingError as E;
+        let TableLayoutError::Recording(mut e) = e else {
+            return anyhow::Error::new(e);
+        };
+        let option = |column: &str, rate: &'static str, output: &'static str| {
+            if column.trim() == self.rate_column.trim() {
+                rate
+            } else {
+                output
+            }
+        };
+        let hint = e.take_hint().map(option_hint);
+        let text = match (&e, hint) {
+            (
+                E::ColumnUnit {
+                    path,
+                    line,
+                    column,
+                    stated,
+                    declared,
+                    suggested,
+                },
+                _,
+            ) => format!(
+                "{}:{line}: column `{column}` states its unit as {stated:?} in the header, but \
+                 is read in {declared} (hint: pass `{} {suggested}`)",
+                path.display(),
+                option(column, "--rate-unit", "--output-unit")
+            ),
+            (_, Some(hint)) => format!("{e} (hint: {hint})"),
+            (E::MissingColumn { column, .. }, None) => {
+                let flag = if column.trim() == self.output_column.trim() {
+                    "--output-column"
+                } else {
+                    option(column, "--rate-column", "--sigma-column")
+                };
+                format!("{e} (hint: name the column as the header writes it with `{flag}`)")
+            }
+            (_, None) => e.to_string(),
+        };
+        anyhow::Error::new(TableError(text))
+    }
+
     pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let table = recording::load_table(&self.file, &self.table_format())?;
-        let column = |name: &str| table.column(name).unwrap_or(&[]).to_vec();
-        let rate_deg_s = column(&self.rate_column);
-        let output = column(&self.output_column);
-        let sigma = self.sigma_column.as_deref().map(column);
+        let table = self.read_table()?;
+        let rate_deg_s = table.rate_deg_s.clone();
+        let output = table.output_rad_s.clone();
+        let sigma = table.sigma_rad_s.clone();
         let rate_rad_s: Vec<f64> = rate_deg_s.iter().map(|d| d.to_radians()).collect();
         let output_rad_s = &output;
         let context = || format!("identifying {}", self.file.display());
@@ -128,9 +274,9 @@ impl Identify {
                 other => anyhow::Error::new(other).context(context()),
             }
         };
-        let from = match (&self.from, &self.phase) {
-            (Some(path), Some(phase)) => Some(FromStudy::read(path, phase)?),
-            _ => None,
+        let from = match &self.from {
+            Some(path) => Some(FromStudy::read(path, self.phase.as_deref())?),
+            None => None,
         };
         let geometry = match &from {
             Some(f) => f.geometry,
@@ -212,6 +358,9 @@ impl Identify {
                 &Stated {
                     g: &g_words,
                     k1: &k1_words,
+                    c_r: from
+                        .as_ref()
+                        .map_or("given with --c-r-m-s2", |f| f.c_r_words.as_str()),
                 },
             )?;
         }
@@ -219,10 +368,11 @@ impl Identify {
     }
 }
 
-/// Where g and k1 come from, in words.
+/// Where g, k1 and C_r come from, in words.
 struct Stated<'a> {
     g: &'a str,
     k1: &'a str,
+    c_r: &'a str,
 }
 
 /// The coverage factor for 95 % with `dof` degrees of freedom (Student t; normal without a
@@ -309,9 +459,10 @@ fn print_report(
     if let Some(c) = comp {
         writeln!(
             console,
-            "compensation: C_r = {:.5e} ± {:.3e} m·s², k1 = {:.8} rad/(s·g) ({})",
+            "compensation: C_r = {:.5e} ± {:.3e} m·s² ({}), k1 = {:.8} rad/(s·g) ({})",
             c.compensation.c_r.c_r_m_s2,
             c.compensation.c_r.c_r_sigma_m_s2,
+            stated.c_r,
             c.k1_used_rad_s_g,
             stated.k1
         )?;
@@ -433,10 +584,14 @@ mod tests {
         let args = Identify {
             file: f.0.clone(),
             rate_column: "rate_deg_s".into(),
+            rate_unit: "deg_s".into(),
             output_column: "output_rad_s".into(),
+            output_unit: "rad_s".into(),
             delimiter: ',',
             sigma_column: None,
             label_column: None,
+            decimal: "point".into(),
+            skip_lines: 0,
             radius_m: Some(2.5),
             g: Some(9.8),
             from: None,
@@ -465,10 +620,14 @@ mod tests {
         let args = Identify {
             file: f.0.clone(),
             rate_column: "rate_deg_s".into(),
+            rate_unit: "deg_s".into(),
             output_column: "output_rad_s".into(),
+            output_unit: "rad_s".into(),
             delimiter: ',',
             sigma_column: None,
             label_column: None,
+            decimal: "point".into(),
+            skip_lines: 0,
             radius_m: Some(r),
             g: Some(g),
             from: None,
@@ -478,14 +637,9 @@ mod tests {
             c_r_sigma_m_s2: Some(1e-8),
             json: true,
         };
-        let table = recording::load_table(&args.file, &args.table_format()).unwrap();
-        let rates: Vec<f64> = table
-            .column("rate_deg_s")
-            .unwrap()
-            .iter()
-            .map(|d| d.to_radians())
-            .collect();
-        let outputs = table.column("output_rad_s").unwrap().to_vec();
+        let table = args.read_table().unwrap();
+        let rates: Vec<f64> = table.rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let outputs = table.output_rad_s.clone();
         let comp = Compensation {
             c_r: CrEstimate {
                 c_r_m_s2: c_r,
@@ -503,109 +657,5 @@ mod tests {
         assert_eq!(json["distinct_rates"], 8);
         assert!(json["compensated"]["k2_rad_s_g2"].as_f64().is_some());
         args.run().unwrap();
-    }
-}
-
-/// What `--from results.json --phase NAME` takes from a study's results.
-#[derive(Debug)]
-struct FromStudy {
-    results: PathBuf,
-    geometry: Geometry,
-    /// k1 given (`None`: fitted, as the study's calibration chose).
-    k1_rad_s_g: Option<f64>,
-    /// Where k1 comes from, in words.
-    k1_words: String,
-    c_r: CrEstimate,
-}
-
-impl FromStudy {
-    fn read(path: &Path, phase: &str) -> anyhow::Result<Self> {
-        let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES * 4)?;
-        let json: serde_json::Value = serde_json::from_str(&text)
-            .with_context(|| format!("{}: not a results.json", path.display()))?;
-        let number = |value: &serde_json::Value, key: &str| -> anyhow::Result<f64> {
-            value
-                .get(key)
-                .and_then(serde_json::Value::as_f64)
-                .filter(|v| v.is_finite())
-                .with_context(|| format!("{}: no finite number at `{key}`", path.display()))
-        };
-        let inputs = json
-            .get("inputs")
-            .with_context(|| format!("{}: no `inputs` section", path.display()))?;
-        let phases = json
-            .get("phases")
-            .and_then(serde_json::Value::as_array)
-            .with_context(|| format!("{}: no `phases` list", path.display()))?;
-        let names: Vec<&str> = phases
-            .iter()
-            .filter_map(|p| p.get("name").and_then(serde_json::Value::as_str))
-            .collect();
-        let found = phases
-            .iter()
-            .find(|p| p.get("name").and_then(serde_json::Value::as_str) == Some(phase))
-            .with_context(|| {
-                format!(
-                    "{}: no phase named `{phase}` (the study's phases: {})",
-                    path.display(),
-                    names.join(", ")
-                )
-            })?;
-        // A phase with no σ(C_r) (an exact two-point fit) compensates with C_r taken as exact.
-        let sigma = found
-            .get("c_r_sigma_m_s2")
-            .and_then(serde_json::Value::as_f64)
-            .unwrap_or(0.0);
-        // k1 as the study chose it: its calibration's (fitted or given); without a
-        // calibration, the configured k1 its Δk2 used.
-        let calibration = json.get("calibration").filter(|c| c.is_object());
-        let (k1_rad_s_g, k1_words) = match calibration {
-            Some(cal) => match cal.get("k1_source").and_then(serde_json::Value::as_str) {
-                Some("fitted") => (
-                    None,
-                    "fitted, as the study's calibration chose (c₂·g/R)".to_owned(),
-                ),
-                Some("given") => {
-                    let k1 = cal
-                        .get("coefficients")
-                        .and_then(|c| c.get("k1"))
-                        .map(|k| number(k, "value"))
-                        .transpose()?
-                        .with_context(|| {
-                            format!("{}: no `calibration.coefficients.k1`", path.display())
-                        })?;
-                    (
-                        Some(k1),
-                        "given, as the study's calibration chose".to_owned(),
-                    )
-                }
-                other => anyhow::bail!(
-                    "{}: `calibration.k1_source` is {other:?}: expected \"fitted\" or \"given\"",
-                    path.display()
-                ),
-            },
-            None => (
-                Some(number(inputs, "k1_rad_s_g")?),
-                "the study's configured k1, which its Δk2 used (the study has no calibration)"
-                    .to_owned(),
-            ),
-        };
-        let g_m_s2 = match calibration {
-            Some(cal) => number(cal, "g_m_s2")?,
-            None => number(inputs, "g_m_s2")?,
-        };
-        Ok(Self {
-            results: path.to_path_buf(),
-            geometry: Geometry {
-                radius_m: number(inputs, "radius_m")?,
-                g_m_s2,
-            },
-            k1_rad_s_g,
-            k1_words,
-            c_r: CrEstimate {
-                c_r_m_s2: number(found, "c_r_m_s2")?,
-                c_r_sigma_m_s2: sigma,
-            },
-        })
     }
 }
