@@ -16,6 +16,7 @@ mod identify;
 mod init;
 mod paths;
 mod plan;
+mod plan_two;
 mod problems;
 mod progress;
 mod regress;

@@ -48,6 +48,9 @@ const LATITUDE_DEG: f64 = 45.0;
 impl PlanCmd {
     pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
         let inputs = load(&self.config)?;
+        if inputs.two_orientations.is_some() {
+            return self.run_two(&inputs, places);
+        }
         let context = || format!("planning {}", self.config.display());
         let plan = planning::plan(&inputs).with_context(context)?;
         let mut comparison = Vec::new();
@@ -123,6 +126,95 @@ impl PlanCmd {
                 out.display()
             )?;
         }
+        Ok(())
+    }
+}
+
+impl PlanCmd {
+    /// A plan file with `two_orientations`: the two-orientation plan beside the probe
+    /// method's in the same budget (`--compare-rates` evaluates rates for the probe method).
+    fn run_two(&self, inputs: &PlanInputs, places: &Places) -> anyhow::Result<()> {
+        let context = || format!("planning {}", self.config.display());
+        let plan = planning::plan_two_orientations(inputs).with_context(context)?;
+        let mut comparison = Vec::new();
+        if !self.compare_rates.is_empty() {
+            let e = planning::evaluate_rates(inputs, &self.compare_rates, Allocation::Optimal)
+                .with_context(|| "evaluating --compare-rates".to_owned())?;
+            comparison.push(serde_json::json!({
+                "method": "probe",
+                "allocation": "optimal",
+                "rates_deg_s": e.rates_deg_s,
+                "revolutions": e.revolutions,
+                "u_k2_fit_rad_s_g2": e.u_k2_fit_rad_s_g2,
+                "u_ratio_to_plan": e.u_k2_fit_rad_s_g2 / plan.probe_method.u_k2_fit_rad_s_g2,
+            }));
+        }
+        let check = match self.simulate {
+            Some(n) => {
+                let spinner = crate::progress::spinner(format!(
+                    "simulating the two-orientation plan {n} times"
+                ));
+                let check =
+                    crate::plan_two::simulate_check(inputs, &plan, n, self.seed, LATITUDE_DEG);
+                spinner.finish_and_clear();
+                Some(check?)
+            }
+            None => None,
+        };
+        let mut value = serde_json::json!({
+            "config": self.config.display().to_string(),
+            "two_orientations": plan,
+        });
+        if !comparison.is_empty() {
+            value["comparison"] = serde_json::Value::Array(comparison.clone());
+        }
+        if let Some(c) = &check {
+            value["simulation"] = serde_json::to_value(c)?;
+        }
+        let json = serde_json::to_string_pretty(&value)?;
+        let out = self.out.clone().unwrap_or_else(|| places.output("plan"));
+        let mut set = edge_io::OutputSet::create(&out, PLAN_FILES)?;
+        set.write("plan.json", json.as_bytes())?;
+        set.write(
+            "run_sheet.csv",
+            crate::plan_two::run_sheet_csv(&plan).as_bytes(),
+        )?;
+        set.write(
+            "run_sheet.md",
+            crate::plan_two::run_sheet_md(&plan).as_bytes(),
+        )?;
+        set.commit()
+            .with_context(|| format!("writing the plan into {}", out.display()))?;
+        let mut console = Console::stdout();
+        if self.json {
+            writeln!(console, "{json}")?;
+            return Ok(());
+        }
+        let mut text = crate::plan_two::summary(&plan);
+        for c in &comparison {
+            let _ = writeln!(
+                text,
+                "--compare-rates for the probe method with optimal allocation: u(k2) of the fit {:.4e} ({:.3} × the probe plan's)",
+                c["u_k2_fit_rad_s_g2"].as_f64().unwrap_or_default(),
+                c["u_ratio_to_plan"].as_f64().unwrap_or_default()
+            );
+        }
+        if let Some(c) = &check {
+            text.push_str(&format!(
+                "simulation: {} two-orientation campaigns through the exact chain, each fitted as the study does: SD of k2 {:.4e} against predicted u {:.4e}: ratio {:.4} (± {:.4} from the number of campaigns)\n",
+                c.campaigns,
+                c.simulated_sd_rad_s_g2,
+                c.predicted_u_rad_s_g2,
+                c.ratio,
+                c.ratio_standard_error
+            ));
+        }
+        write!(console, "{text}")?;
+        writeln!(
+            console,
+            "wrote plan.json, run_sheet.csv and run_sheet.md into {}",
+            out.display()
+        )?;
         Ok(())
     }
 }

@@ -404,6 +404,7 @@ mod tests {
                 bias_fraction: 0.1,
             },
             search: Search::default(),
+            two_orientations: None,
         })
         .unwrap()
     }

@@ -134,6 +134,15 @@ pub enum PlanningError {
         /// The result's field.
         field: &'static str,
     },
+    /// A two-orientation plan was asked for a plan file without `two_orientations`.
+    #[error(
+        "the plan file has no `two_orientations` section: add one with the radius of each \
+         mounting (`ia_in: (radius_m: …), ia_out: (radius_m: …)`) to plan both orientations"
+    )]
+    MissingTwoOrientations,
+    /// The two-orientation joint fit failed.
+    #[error("the two-orientation fit")]
+    Symmetric(#[source] calibration::SymmetricError),
     /// The least-squares solver failed.
     #[error("least squares")]
     Identify(#[source] identify::IdentifyError),

@@ -26,6 +26,10 @@ pub struct PlanInputs {
     /// The design criterion and the exchange algorithm's settings.
     #[cfg_attr(feature = "serde", serde(default))]
     pub search: Search,
+    /// Both orientations (IA in and IA out) for the probe-free calibration of issue 20
+    /// ([`plan_two_orientations`](crate::plan_two_orientations)); absent: the probe method only.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub two_orientations: Option<crate::TwoOrientations>,
 }
 
 /// The centrifuge.

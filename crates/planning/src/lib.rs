@@ -14,6 +14,13 @@
 //!   campaigns.
 //! * [`evaluate_rates`]: the fit part of u(k2) of given rates (e.g. the paper's six), and
 //!   [`exhaustive_k2`]: the exhaustive optimum on a small grid.
+//! * [`plan_two_orientations`] (issue 20): with [`TwoOrientations`] in the inputs, the rates
+//!   and revolutions in both mountings (IA in and IA out) for the smallest u(k2) of the joint
+//!   fit of eq. 23 (`calibration::fit_symmetric`, rows `calibration::symmetric_row`), the time
+//!   split between them, on a round rate grid ([`RateGrid`]) with a lack-of-fit reserve
+//!   ([`LackOfFitReserve`]) and their costs in u(k2), beside the probe method's plan in the
+//!   same budget; [`simulate_two_orientation_plan`] checks it against simulated campaigns
+//!   fitted by the calibration's own joint fit.
 //!
 //! ```
 //! use planning::*;
@@ -41,6 +48,7 @@
 //!         u95_k2_rad_s_g2: 1e-6, tolerance_k2_rad_s_g2: 5e-6, bias_fraction: 0.1,
 //!     },
 //!     search: Search::default(),
+//!     two_orientations: None,
 //! };
 //! let p = plan(&inputs)?;
 //! assert_eq!(p.points.len(), 8);
@@ -62,7 +70,8 @@
 //! - `serde`: `Serialize`/`Deserialize` on the inputs and the results.
 //!
 //! # References
-//! Liu Y. et al. (2025), eq. 17–19; JCGM 100:2008; IEEE Std 836 (test-uncertainty ratio);
+//! Liu Y. et al. (2025), eq. 17–19; eq. 23 of `docs/theory.md` section 11 (two
+//! orientations); JCGM 100:2008; IEEE Std 836 (test-uncertainty ratio);
 //! Fedorov (1972) and Meyer & Nachtsheim (1995) for exchange algorithms; Silvey, Titterington
 //! & Torsney (1978) for the multiplicative algorithm.
 
@@ -70,7 +79,11 @@ mod check;
 mod design;
 mod error;
 mod inputs;
+mod joint;
 mod plan;
+mod two_check;
+mod two_inputs;
+mod two_plan;
 
 pub use check::{MIN_CAMPAIGNS, SimulationCheck, expected_outputs, simulate_plan};
 pub use error::{PlanningError, Result};
@@ -81,4 +94,12 @@ pub use inputs::{
 pub use plan::{
     Allocation, BudgetLine, ExhaustiveComparison, Expanded, Plan, PlanPoint, RateEvaluation,
     evaluate_rates, exhaustive_k2, plan,
+};
+pub use two_check::simulate_two_orientation_plan;
+pub use two_inputs::{
+    DEFAULT_STEP_DEG_S, LackOfFitReserve, MountingPlan, RateGrid, TwoOrientations,
+};
+pub use two_plan::{
+    MountingSchedule, OrientationPoint, ReserveCost, RoundingCost, TwoOrientationPlan,
+    expected_two_orientation_outputs, plan_two_orientations,
 };

@@ -144,13 +144,7 @@ const BUDGET_INPUTS: [(usize, &str); 9] = [
 /// revolutions ([`PlanningError::BudgetTooShort`]), and a target the best plan misses
 /// ([`PlanningError::TargetUnreachable`]).
 pub fn plan(inputs: &PlanInputs) -> Result<Plan> {
-    let p = Problem::new(inputs)?;
-    p.check_budget()?;
-    let best = design::search(&p).ok_or_else(|| PlanningError::Singular {
-        rates_deg_s: Vec::new(),
-    })?;
-    let revolutions = design::whole_revolutions(&p, &best);
-    let plan = describe(&p, &best, &revolutions)?;
+    let plan = plan_unchecked(inputs)?;
     let target = inputs.target.u95_k2_rad_s_g2;
     if plan.compensated.u95_rad_s_g2 > target {
         let k = plan.compensated.k;
@@ -172,6 +166,17 @@ pub fn plan(inputs: &PlanInputs) -> Result<Plan> {
         });
     }
     Ok(plan)
+}
+
+/// The plan without the check of its target (the probe method beside a two-orientation plan).
+pub(crate) fn plan_unchecked(inputs: &PlanInputs) -> Result<Plan> {
+    let p = Problem::new(inputs)?;
+    p.check_budget()?;
+    let best = design::search(&p).ok_or_else(|| PlanningError::Singular {
+        rates_deg_s: Vec::new(),
+    })?;
+    let revolutions = design::whole_revolutions(&p, &best);
+    describe(&p, &best, &revolutions)
 }
 
 /// The weighted eq. 18 design of a plan's points (rows `x_i/σ_i`, raw regressors).

@@ -80,3 +80,51 @@ fn an_unreachable_target_names_the_binding_constraint() {
         "{stderr}"
     );
 }
+
+/// A two-orientation plan (issue 20): the human output in words (snapshot), its run sheet
+/// with both mountings, and the probe method beside it in plan.json.
+#[test]
+fn two_orientation_plan_in_words() {
+    let dir = out_dir("two");
+    let out = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
+        .args([
+            "plan",
+            "--config",
+            "fixtures/plans/two-orientations.ron",
+            "--simulate",
+            "1000",
+            "--out",
+        ])
+        .arg(&dir)
+        .current_dir(root())
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout)
+        .unwrap()
+        .replace(&dir.display().to_string(), "<tmp>");
+    let found = crate::human::rust_identifiers(&text);
+    assert!(found.is_empty(), "Rust identifiers {found:?} in\n{text}");
+    let value: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("plan.json")).unwrap()).unwrap();
+    let csv = std::fs::read_to_string(dir.join("run_sheet.csv")).unwrap();
+    let md = std::fs::read_to_string(dir.join("run_sheet.md")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(csv.lines().count(), 17, "a header and sixteen points");
+    assert_eq!(csv.lines().filter(|l| l.contains(",ia_out,")).count(), 8);
+    assert!(md.contains("turn the PIGA round"), "{md}");
+    let two = &value["two_orientations"];
+    assert!(
+        two["probe_method"]["compensated"]["u_rad_s_g2"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
+    let ratio = value["simulation"]["ratio"].as_f64().unwrap();
+    assert!((ratio - 1.0).abs() < 0.1, "simulated/predicted {ratio}");
+    insta::assert_snapshot!("two_orientation_plan", text);
+}

@@ -5,3 +5,4 @@ mod exhaustive;
 mod infeasible;
 mod paper;
 mod simulation;
+mod two_orientations;
