@@ -393,14 +393,11 @@ pub(crate) fn search_near(p: &JointProblem, rates_deg_s: [&[f64]; 2]) -> Option<
     let mut d = Vec::new();
     for (range, rates) in p.ranges.iter().zip(rates_deg_s) {
         for &r in rates {
-            let nearest = range
-                .clone()
-                .filter(|k| !d.contains(k))
-                .min_by(|&a, &b| {
-                    (p.rates_deg_s[a] - r)
-                        .abs()
-                        .total_cmp(&(p.rates_deg_s[b] - r).abs())
-                });
+            let nearest = range.clone().filter(|k| !d.contains(k)).min_by(|&a, &b| {
+                (p.rates_deg_s[a] - r)
+                    .abs()
+                    .total_cmp(&(p.rates_deg_s[b] - r).abs())
+            });
             if let Some(k) = nearest {
                 d.push(k);
             }
