@@ -560,21 +560,15 @@ fn to_json(
 mod tests {
     use super::*;
 
-    /// A file under the system temp directory, removed on drop.
-    struct TempFile(PathBuf);
+    /// A file in its own scratch folder, removed on drop.
+    struct TempFile(PathBuf, #[allow(dead_code)] test_support::Scratch);
 
     impl TempFile {
         fn new(name: &str, contents: &str) -> Self {
-            let path = std::env::temp_dir()
-                .join(format!("xtask-identify-{}-{name}.csv", std::process::id()));
+            let dir = test_support::Scratch::new(&format!("cli-identify-unit-{name}"));
+            let path = dir.path().join(format!("{name}.csv"));
             std::fs::write(&path, contents).unwrap();
-            Self(path)
-        }
-    }
-
-    impl Drop for TempFile {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_file(&self.0);
+            Self(path, dir)
         }
     }
 

@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use test_support::Scratch;
 
 fn fixture() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/recordings/probe_120deg_s.csv")
@@ -16,26 +17,22 @@ fn xtask(args: &[&str]) -> Output {
         .expect("runs")
 }
 
-/// A temporary file with the given text, removed on drop.
-struct Temp(PathBuf);
+/// A file with the given text in its own scratch folder, removed on drop.
+struct Temp {
+    _dir: Scratch,
+    path: PathBuf,
+}
 
 impl Temp {
     fn new(name: &str, text: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("xtask-harmonics-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join(name);
+        let dir = Scratch::new(&format!("cli-harmonics-{name}"));
+        let path = dir.path().join(name);
         std::fs::write(&path, text).unwrap();
-        Self(path)
+        Self { _dir: dir, path }
     }
 
     fn path(&self) -> &str {
-        self.0.to_str().unwrap()
-    }
-}
-
-impl Drop for Temp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
+        self.path.to_str().unwrap()
     }
 }
 

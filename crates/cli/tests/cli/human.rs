@@ -5,30 +5,13 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use test_support::Scratch;
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
         .canonicalize()
         .unwrap()
-}
-
-/// A scratch folder of this test, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("cli-human-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
 }
 
 /// Runs `centrifuge-cal ARGS` in the workspace root; its standard output with the machine's
@@ -116,7 +99,7 @@ fn the_identifier_check_catches_what_it_must() {
 
 #[test]
 fn study_regress_and_harmonics() {
-    let tmp = Scratch::new("study");
+    let tmp = Scratch::new("cli-human-study");
     let out = tmp.0.join("study");
     let (text, ok) = run(&["study", "--out", out.to_str().unwrap()], &tmp.0);
     assert!(ok, "{text}");
@@ -144,7 +127,7 @@ fn study_regress_and_harmonics() {
 
 #[test]
 fn recordings_study() {
-    let tmp = Scratch::new("recordings");
+    let tmp = Scratch::new("cli-human-recordings");
     let out = tmp.0.join("study");
     let (text, ok) = run(
         &[
@@ -163,7 +146,7 @@ fn recordings_study() {
 
 #[test]
 fn simulate_then_identify() {
-    let tmp = Scratch::new("simulate");
+    let tmp = Scratch::new("cli-human-simulate");
     let sim = tmp.0.join("sim");
     let (text, ok) = run(
         &[
@@ -201,7 +184,7 @@ fn simulate_then_identify() {
 
 #[test]
 fn plan_and_accuracy() {
-    let tmp = Scratch::new("plan");
+    let tmp = Scratch::new("cli-human-plan");
     let out = tmp.0.join("plan");
     let (text, ok) = run(
         &[

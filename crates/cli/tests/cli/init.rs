@@ -7,6 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+pub(crate) use test_support::Scratch;
+
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
@@ -16,24 +18,6 @@ fn cli(args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("runs")
-}
-
-/// A scratch folder, removed on drop.
-pub(crate) struct Scratch(pub(crate) PathBuf);
-
-impl Scratch {
-    pub(crate) fn new(tag: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("cli-init-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
 }
 
 /// One simulated recording: its declared rate and samples (time s, gap µm, angle deg).
@@ -84,7 +68,7 @@ fn simulated() -> Vec<Simulated> {
     static SIMULATED: std::sync::OnceLock<Vec<Simulated>> = std::sync::OnceLock::new();
     SIMULATED
         .get_or_init(|| {
-            let scratch = Scratch::new("simulated");
+            let scratch = Scratch::new("cli-init-simulated");
             simulate_into(&scratch.0);
             read_simulated(&scratch.0.join("sim"))
         })
@@ -252,7 +236,7 @@ fn named(_: usize, rate: f64) -> String {
 
 #[test]
 fn documented_format() {
-    let tmp = Scratch::new("documented");
+    let tmp = Scratch::new("cli-init-documented");
     write_variant(
         &tmp.0,
         &simulated(),
@@ -292,7 +276,7 @@ fn documented_format() {
 #[test]
 fn european_daq_export() {
     // CRLF, five metadata lines, `;`, decimal comma, mm, an encoder in counts that wraps.
-    let tmp = Scratch::new("european");
+    let tmp = Scratch::new("cli-init-european");
     let header = "Messgerät: XY-3000\r\nDatum: 2025-03-01\r\nKanal: 2\r\nAbtastrate: 25 Hz\r\n\r\n\
                   Zeit [s];Spalt [mm];Winkel [cnt]";
     write_variant(
@@ -316,7 +300,7 @@ fn european_daq_export() {
 
 #[test]
 fn tab_separated_with_units_and_time_in_ms() {
-    let tmp = Scratch::new("tab-ms");
+    let tmp = Scratch::new("cli-init-tab-ms");
     write_variant(
         &tmp.0,
         &simulated(),
@@ -333,7 +317,7 @@ fn tab_separated_with_units_and_time_in_ms() {
 #[test]
 fn index_pulse_and_rates_measured() {
     // No rate in the names (`run_1.csv`…): each rate is measured from the index pulses.
-    let tmp = Scratch::new("index");
+    let tmp = Scratch::new("cli-init-index");
     let sims = simulated();
     for (k, s) in sims.iter().enumerate() {
         let mut text = String::from("time_s,gap_um,index\n");
@@ -352,7 +336,7 @@ fn index_pulse_and_rates_measured() {
 
 #[test]
 fn encoder_counts_and_epoch_time() {
-    let tmp = Scratch::new("epoch");
+    let tmp = Scratch::new("cli-init-epoch");
     write_variant(
         &tmp.0,
         &simulated(),
@@ -372,7 +356,7 @@ fn encoder_counts_and_epoch_time() {
 
 #[test]
 fn a_header_without_units_leaves_placeholders_the_study_refuses() {
-    let tmp = Scratch::new("no-units");
+    let tmp = Scratch::new("cli-init-no-units");
     write_variant(
         &tmp.0,
         &simulated(),
@@ -417,13 +401,13 @@ fn a_header_without_units_leaves_placeholders_the_study_refuses() {
 #[test]
 fn bad_input_is_explained_file_by_file_and_nothing_is_written() {
     // An empty folder.
-    let empty = Scratch::new("empty");
+    let empty = Scratch::new("cli-init-empty");
     let out = cli(&["init", empty.0.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("no data file"));
 
     // Two files at one rate, and a file of unknown shape.
-    let tmp = Scratch::new("bad");
+    let tmp = Scratch::new("cli-init-bad");
     let sims = simulated();
     write_variant(
         &tmp.0,
@@ -452,7 +436,7 @@ fn bad_input_is_explained_file_by_file_and_nothing_is_written() {
 
 #[test]
 fn no_overwrite_without_force() {
-    let tmp = Scratch::new("force");
+    let tmp = Scratch::new("cli-init-force");
     write_variant(
         &tmp.0,
         &simulated(),
@@ -538,7 +522,7 @@ fn mat_files_with_units_in_the_variable_names() {
 
 #[test]
 fn a_probe_in_volts_in_tdms_or_mat_asks_for_its_sensitivity() {
-    let tmp = Scratch::new("volts");
+    let tmp = Scratch::new("cli-init-volts");
     for (file, unit) in [
         ("probe_120deg_s_volts.tdms", "the file's unit `V`"),
         ("probe_120deg_s_volts.mat", "the unit `V` in its name"),
@@ -576,7 +560,7 @@ fn a_probe_in_volts_in_tdms_or_mat_asks_for_its_sensitivity() {
 
 #[test]
 fn an_unreadable_binary_file_is_named_with_what_was_wrong() {
-    let tmp = Scratch::new("binary-bad");
+    let tmp = Scratch::new("cli-init-binary-bad");
     std::fs::write(tmp.0.join("probe_120deg_s.tdms"), b"TDSm\x02").unwrap();
     std::fs::write(tmp.0.join("probe_60deg_s.mat"), b"not a mat file").unwrap();
     let out = cli(&["init", tmp.0.to_str().unwrap()]);
@@ -596,7 +580,7 @@ fn an_unreadable_binary_file_is_named_with_what_was_wrong() {
 #[test]
 fn seven_recordings_with_one_fault_give_one_grouped_message() {
     // Seven files written with a decimal comma, a configuration that does not say so.
-    let tmp = Scratch::new("seven");
+    let tmp = Scratch::new("cli-init-seven");
     let mut files = String::new();
     for k in 0..7 {
         let name = format!("probe_{}deg_s.csv", 20 * (k + 1));

@@ -41,7 +41,7 @@ fn the_readme_path_calibrates_fixture_files() {
     assert!(commands.len() <= 5, "{commands:?}");
     assert!(commands[0].starts_with("git clone"), "{commands:?}");
     assert_eq!(commands[1], "cargo install --path crates/cli");
-    let tmp = Scratch::new("readme");
+    let tmp = Scratch::new("cli-init-readme");
     let lab = tmp.0.join("spindle");
     std::fs::create_dir_all(&lab).unwrap();
     let fixture = root().join("fixtures/campaign");

@@ -2,28 +2,11 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use test_support::Scratch;
 
 use edge_io::{EdgeIoError, OutputSet, fault};
 
 const OWNED: &[&str] = &["results.json", "report.md", "probe_*.svg"];
-
-/// A fresh parent directory under the system temp directory, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("edge-io-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 /// Every file of a directory tree with its bytes, and the names of the parent's entries.
 fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
@@ -57,7 +40,7 @@ fn write_set(target: &Path, files: &[(&str, &str)]) -> edge_io::Result<Vec<PathB
 
 #[test]
 fn a_new_directory_gets_exactly_the_set() {
-    let scratch = Scratch::new("new");
+    let scratch = Scratch::new("edge-io-new");
     let target = scratch.0.join("nested/study");
     let paths = write_set(&target, &[("results.json", "{}"), ("report.md", "# r")]).unwrap();
     assert_eq!(
@@ -72,7 +55,7 @@ fn a_new_directory_gets_exactly_the_set() {
 
 #[test]
 fn a_second_run_replaces_the_set_and_drops_files_it_does_not_write() {
-    let scratch = Scratch::new("replace");
+    let scratch = Scratch::new("edge-io-replace");
     let target = scratch.0.join("study");
     write_set(
         &target,
@@ -91,7 +74,7 @@ fn a_second_run_replaces_the_set_and_drops_files_it_does_not_write() {
 
 #[test]
 fn a_failure_at_the_last_file_leaves_the_previous_set_byte_identical() {
-    let scratch = Scratch::new("fail-last");
+    let scratch = Scratch::new("edge-io-fail-last");
     let target = scratch.0.join("study");
     write_set(
         &target,
@@ -130,7 +113,7 @@ fn a_failure_at_the_last_file_leaves_the_previous_set_byte_identical() {
 
 #[test]
 fn the_fault_hook_fails_the_named_file_only_while_armed() {
-    let scratch = Scratch::new("fault");
+    let scratch = Scratch::new("edge-io-fault");
     let target = scratch.0.join("study");
     write_set(&target, &[("results.json", "previous")]).unwrap();
     let before = snapshot(&target);
@@ -150,7 +133,7 @@ fn the_fault_hook_fails_the_named_file_only_while_armed() {
 
 #[test]
 fn a_directory_with_foreign_entries_is_refused_and_left_alone() {
-    let scratch = Scratch::new("foreign");
+    let scratch = Scratch::new("edge-io-foreign");
     let target = scratch.0.join("home");
     std::fs::create_dir_all(target.join("photos")).unwrap();
     std::fs::write(target.join("notes.txt"), "keep me").unwrap();
@@ -173,7 +156,7 @@ fn a_directory_with_foreign_entries_is_refused_and_left_alone() {
 
 #[test]
 fn a_foreign_entry_that_appears_before_commit_stops_the_swap() {
-    let scratch = Scratch::new("foreign-late");
+    let scratch = Scratch::new("edge-io-foreign-late");
     let target = scratch.0.join("study");
     write_set(&target, &[("results.json", "previous")]).unwrap();
     let mut set = OutputSet::create(&target, OWNED).unwrap();
@@ -189,7 +172,7 @@ fn a_foreign_entry_that_appears_before_commit_stops_the_swap() {
 
 #[test]
 fn bad_names_are_refused() {
-    let scratch = Scratch::new("names");
+    let scratch = Scratch::new("edge-io-names");
     let target = scratch.0.join("study");
     let mut set = OutputSet::create(&target, OWNED).unwrap();
     set.write("results.json", b"x").unwrap();
@@ -216,7 +199,7 @@ fn bad_names_are_refused() {
 
 #[test]
 fn a_file_or_a_root_is_not_an_output_directory() {
-    let scratch = Scratch::new("not-dir");
+    let scratch = Scratch::new("edge-io-not-dir");
     let file = scratch.0.join("results");
     std::fs::write(&file, "a file").unwrap();
     assert!(matches!(
@@ -232,7 +215,7 @@ fn a_file_or_a_root_is_not_an_output_directory() {
 
 #[test]
 fn a_run_killed_between_the_renames_is_restored_by_the_next() {
-    let scratch = Scratch::new("recover");
+    let scratch = Scratch::new("edge-io-recover");
     let target = scratch.0.join("study");
     // As a kill between the two renames leaves it: no target, the previous set as `old`.
     let old = scratch.0.join("study.old-4000000-7");
@@ -256,7 +239,7 @@ fn a_run_killed_between_the_renames_is_restored_by_the_next() {
 
 #[test]
 fn an_old_directory_beside_a_complete_swap_is_removed() {
-    let scratch = Scratch::new("old-after-swap");
+    let scratch = Scratch::new("edge-io-old-after-swap");
     let target = scratch.0.join("study");
     write_set(&target, &[("results.json", "new")]).unwrap();
     std::fs::create_dir_all(scratch.0.join("study.old-4000000-1")).unwrap();
@@ -268,7 +251,7 @@ fn an_old_directory_beside_a_complete_swap_is_removed() {
 #[cfg(unix)]
 #[test]
 fn a_symlinked_target_replaces_the_directory_behind_the_link() {
-    let scratch = Scratch::new("symlink");
+    let scratch = Scratch::new("edge-io-symlink");
     let real = scratch.0.join("real");
     write_set(&real, &[("results.json", "1")]).unwrap();
     let link = scratch.0.join("link");

@@ -2,33 +2,17 @@
 //! its uncertainty over simulated campaigns, and typed errors on bad calibration input.
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use pipeline::{DataSource, Inputs, PipelineError, StudyConfig};
+use pipeline::{Inputs, PipelineError, StudyConfig};
 use rayon::prelude::*;
-use recording::{Recording, RecordingError, RecordingFormat, Table, TableFormat};
 use simulate::Scenario;
+use test_support::MemoryFiles;
 
 use crate::root;
 
 /// A simulated campaign's files, in memory.
-struct Campaign {
-    files: HashMap<PathBuf, Vec<u8>>,
-}
-
-impl DataSource for Campaign {
-    fn recording(
-        &self,
-        path: &Path,
-        format: &RecordingFormat,
-    ) -> Result<Recording, RecordingError> {
-        recording::parse_recording(&self.files[path], path, format)
-    }
-
-    fn table(&self, path: &Path, format: &TableFormat) -> Result<Table, RecordingError> {
-        recording::parse_table(&self.files[path], path, format)
-    }
-}
+type Campaign = MemoryFiles;
 
 const DIR: &str = "/nonexistent/campaign";
 
@@ -61,7 +45,7 @@ fn campaign_of(seed: u64, table_noise_rad_s: f64, change: impl Fn(&mut Scenario)
         Path::new(DIR).join("piga.csv"),
         simulate::piga_csv_text(&simulation.piga).into_bytes(),
     );
-    Campaign { files }
+    MemoryFiles(files)
 }
 
 /// The campaign with noise from run to run: 1e-9 rad/s on each rate's mean output, in the
@@ -248,17 +232,15 @@ fn bad_calibration_input_is_a_typed_error() {
     );
 
     // Six distinct rates (the table keeps only six rows).
-    let mut few = Campaign {
-        files: data.files.clone(),
-    };
+    let mut few = MemoryFiles(data.0.clone());
     let table = Path::new(DIR).join("piga.csv");
-    let text6: String = String::from_utf8(few.files[&table].clone())
+    let text6: String = String::from_utf8(few.0[&table].clone())
         .unwrap()
         .lines()
         .take(7)
         .map(|l| format!("{l}\n"))
         .collect();
-    few.files.insert(table.clone(), text6.into_bytes());
+    few.0.insert(table.clone(), text6.into_bytes());
     let e = error_of(&text, &few);
     assert!(
         matches!(
@@ -273,13 +255,11 @@ fn bad_calibration_input_is_a_typed_error() {
     );
 
     // A rate that is not > 0 names the table's file, line and column.
-    let mut negative = Campaign {
-        files: data.files.clone(),
-    };
-    let text_neg = String::from_utf8(negative.files[&table].clone())
+    let mut negative = MemoryFiles(data.0.clone());
+    let text_neg = String::from_utf8(negative.0[&table].clone())
         .unwrap()
         .replacen("\n30,", "\n-30,", 1);
-    negative.files.insert(table.clone(), text_neg.into_bytes());
+    negative.0.insert(table.clone(), text_neg.into_bytes());
     let e = error_of(&text, &negative);
     assert!(
         matches!(&e, PipelineError::TableValue { line: 3, column, value, .. } if column == "rate_deg_s" && *value == -30.0),
@@ -287,14 +267,12 @@ fn bad_calibration_input_is_a_typed_error() {
     );
 
     // A non-finite output names the table's file and line.
-    let mut bad = Campaign {
-        files: data.files.clone(),
-    };
-    let text_nan = String::from_utf8(bad.files[&table].clone())
+    let mut bad = MemoryFiles(data.0.clone());
+    let text_nan = String::from_utf8(bad.0[&table].clone())
         .unwrap()
         .replacen("\n30,", "\n30,NaN,", 1)
         .replace("NaN,0.", "NaN\n#0.");
-    bad.files.insert(table.clone(), text_nan.into_bytes());
+    bad.0.insert(table.clone(), text_nan.into_bytes());
     let e = error_of(&text, &bad);
     let message = crate::chain(&e);
     assert!(
@@ -363,15 +341,13 @@ fn bad_raw_recording_input_is_a_typed_error() {
     );
 
     // A NaN output names the file and its line.
-    let mut bad = Campaign {
-        files: data.files.clone(),
-    };
+    let mut bad = MemoryFiles(data.0.clone());
     let file = Path::new(DIR).join("piga_050.0000deg_s.csv");
-    let csv = String::from_utf8(bad.files[&file].clone()).unwrap();
+    let csv = String::from_utf8(bad.0[&file].clone()).unwrap();
     let mut lines: Vec<String> = csv.lines().map(str::to_owned).collect();
     let fields: Vec<String> = lines[4].split(',').map(str::to_owned).collect();
     lines[4] = format!("{},NaN,{}", fields[0], fields[2]);
-    bad.files
+    bad.0
         .insert(file, format!("{}\n", lines.join("\n")).into_bytes());
     let e = error_of(&text, &bad);
     let message = crate::chain(&e);
@@ -398,7 +374,7 @@ fn bad_raw_recording_input_is_a_typed_error() {
 /// The campaign's table with a σ column and a label column: rows `b` carry an offset.
 fn labelled(data: &Campaign, offset_rad_s: f64) -> Campaign {
     let table = Path::new(DIR).join("piga.csv");
-    let csv = String::from_utf8(data.files[&table].clone()).unwrap();
+    let csv = String::from_utf8(data.0[&table].clone()).unwrap();
     let mut out = String::from("rate_deg_s,output_rad_s,sigma_rad_s,run\n");
     for (i, line) in csv.lines().skip(1).enumerate() {
         let f: Vec<&str> = line.split(',').collect();
@@ -406,9 +382,9 @@ fn labelled(data: &Campaign, offset_rad_s: f64) -> Campaign {
         let y: f64 = f[1].parse::<f64>().unwrap() + if i % 2 == 0 { 0.0 } else { offset_rad_s };
         out.push_str(&format!("{},{y},1e-9,{label}\n", f[0]));
     }
-    let mut files = data.files.clone();
+    let mut files = data.0.clone();
     files.insert(table, out.into_bytes());
-    Campaign { files }
+    MemoryFiles(files)
 }
 
 #[test]
@@ -447,10 +423,10 @@ fn a_sigma_column_weights_the_fit_and_labels_are_compared() {
     // σ ≤ 0 names the file, line and column.
     let mut zero = labelled(&data, 0.0);
     let table = Path::new(DIR).join("piga.csv");
-    let csv = String::from_utf8(zero.files[&table].clone())
+    let csv = String::from_utf8(zero.0[&table].clone())
         .unwrap()
         .replacen(",1e-9,b", ",0,b", 1);
-    zero.files.insert(table.clone(), csv.into_bytes());
+    zero.0.insert(table.clone(), csv.into_bytes());
     let e = error_of(&text, &zero);
     assert!(
         matches!(&e, PipelineError::TableValue { line: 3, column, .. } if column == "sigma_rad_s"),
@@ -518,16 +494,16 @@ fn eight_rates_leave_two_degrees_of_freedom_and_say_what_that_means() {
     // interval and the result says why its mean and u are not to be used.
     let data = campaign(9);
     let table = Path::new(DIR).join("piga.csv");
-    let csv = String::from_utf8(data.files[&table].clone()).unwrap();
+    let csv = String::from_utf8(data.0[&table].clone()).unwrap();
     let keep = ["20", "40", "60", "90", "120", "150", "180", "200"];
     let eight: String = csv
         .lines()
         .filter(|l| l.starts_with("rate") || keep.contains(&l.split(',').next().unwrap()))
         .map(|l| format!("{l}\n"))
         .collect();
-    let mut files = data.files.clone();
+    let mut files = data.0.clone();
     files.insert(table, eight.into_bytes());
-    let results = run(&table_study_text("adaptive"), &Campaign { files }).unwrap();
+    let results = run(&table_study_text("adaptive"), &MemoryFiles(files)).unwrap();
     let c = results.calibration.unwrap();
     assert_eq!(c.dof, 2);
     assert!(c.monte_carlo.trials < 10_000_000);

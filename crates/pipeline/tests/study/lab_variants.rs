@@ -10,10 +10,8 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use pipeline::{DataSource, Inputs, PipelineError, StudyConfig, StudyResults};
-use recording::{
-    AngleSourceKind, Hint, Recording, RecordingError, RecordingFormat, Table, TableFormat,
-};
+use pipeline::{Inputs, PipelineError, StudyConfig, StudyResults};
+use recording::{AngleSourceKind, Hint, RecordingError};
 use simulate::{Scenario, SimulatedRecording};
 
 /// The C_r of the simulated spindle, m·s².
@@ -98,21 +96,7 @@ fn study(
 }
 
 /// Files held in memory as text, parsed as the study asks.
-struct Texts(HashMap<PathBuf, Vec<u8>>);
-
-impl DataSource for Texts {
-    fn recording(
-        &self,
-        path: &Path,
-        format: &RecordingFormat,
-    ) -> Result<Recording, RecordingError> {
-        recording::parse_recording(&self.0[path], path, format)
-    }
-
-    fn table(&self, path: &Path, format: &TableFormat) -> Result<Table, RecordingError> {
-        recording::parse_table(&self.0[path], path, format)
-    }
-}
+use test_support::MemoryFiles as Texts;
 
 /// C_r, its σ and the warning codes.
 fn c_r(results: &StudyResults) -> (f64, f64, Vec<String>) {

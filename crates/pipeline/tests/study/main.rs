@@ -14,12 +14,13 @@ mod mechanism;
 mod paper;
 mod provenance;
 mod recordings;
-mod scenarios;
 mod symmetric;
 mod symmetric_study;
 mod type_b;
 
 use std::path::{Path, PathBuf};
+
+use test_support::scenarios;
 
 /// The workspace root.
 fn root() -> PathBuf {

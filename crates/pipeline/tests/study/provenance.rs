@@ -2,7 +2,8 @@
 //! configuration, the probe recordings and the calibration's PIGA table or raw recordings,
 //! each with its size and SHA-256 taken as it was read, and nothing read again afterwards.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use test_support::Scratch;
 
 use report::FileRecord;
 use serde_json::Value;
@@ -16,25 +17,6 @@ fn results_json(config: &Path) -> Value {
     let provenance = report::Provenance::of_study(&study, None).unwrap();
     let text = report::results_json_with_provenance(&results, &provenance).unwrap();
     serde_json::from_str(&text).unwrap()
-}
-
-/// A scratch folder, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir =
-            std::env::temp_dir().join(format!("pipeline-provenance-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
 }
 
 /// The campaign study with its calibration read from the PIGA table at `table` instead of
@@ -106,7 +88,7 @@ fn the_campaign_lists_its_piga_recordings_with_their_sha256() {
 
 #[test]
 fn a_table_calibration_lists_its_piga_table_as_it_was_read() {
-    let scratch = Scratch::new("table");
+    let scratch = Scratch::new("pipeline-provenance-table");
     let table = scratch.0.join("piga.csv");
     let original = std::fs::read(root().join("fixtures/campaign/piga.csv")).unwrap();
     std::fs::write(&table, &original).unwrap();

@@ -11,9 +11,8 @@ use calibration::{
     OrientationData, ProbeCr, SymmetricError, SymmetricEvaluation, SymmetricFit, SymmetricWarning,
     evaluate_symmetric, fit_symmetric,
 };
-use pipeline::{DataSource, Inputs, StudyConfig};
+use pipeline::{Inputs, StudyConfig};
 use rayon::prelude::*;
-use recording::{Recording, RecordingError, RecordingFormat, Table, TableFormat};
 use simulate::{Mount, MountingSpec, Orientation, OutputNoise, Scenario, Simulation};
 
 use crate::root;
@@ -86,21 +85,7 @@ fn fit_tables(sim: &Simulation) -> SymmetricFit {
 }
 
 /// Probe recordings in memory for the study's probe phase.
-pub(crate) struct Files(pub(crate) HashMap<PathBuf, Vec<u8>>);
-
-impl DataSource for Files {
-    fn recording(
-        &self,
-        path: &Path,
-        format: &RecordingFormat,
-    ) -> Result<Recording, RecordingError> {
-        recording::parse_recording(&self.0[path], path, format)
-    }
-
-    fn table(&self, path: &Path, format: &TableFormat) -> Result<Table, RecordingError> {
-        recording::parse_table(&self.0[path], path, format)
-    }
-}
+use test_support::MemoryFiles as Files;
 
 pub(crate) const DIR: &str = "/nonexistent/symmetric";
 

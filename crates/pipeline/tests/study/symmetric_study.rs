@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use pipeline::{Inputs, PipelineError, StudyConfig, StudyResults, WarningCode};
 use simulate::{Orientation, Simulation};
 
-use super::symmetric::{C_R, DIR, Declared, Files, K2, probe_study, scenario};
+use super::symmetric::{C_R, DIR, Declared, K2, probe_study, scenario};
+use test_support::MemoryFiles as Files;
 
 /// The symmetric section on the simulation's two mounting tables, compared with the probe
 /// phase (declared as `declared`); a small fixed Monte Carlo count.

@@ -1,6 +1,6 @@
 //! Behaviour of the simulator: scenario validation, the probe model and the files it writes.
 
-mod common;
+use test_support::scenarios as common;
 mod files;
 mod probe_model;
 mod scenario_errors;

@@ -1,6 +1,7 @@
 //! Bad scenarios give typed errors that name the file and the field; never a panic.
 
 use std::path::{Path, PathBuf};
+use test_support::Scratch;
 
 use edge_io::EdgeIoError;
 use simulate::{Scenario, SimulateError};
@@ -369,27 +370,9 @@ fn unreadable_file_is_a_read_error() {
     }
 }
 
-/// A fresh directory under the system temp directory, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("simulate-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 #[test]
 fn a_scenario_with_a_byte_order_mark_loads() {
-    let dir = Scratch::new("bom");
+    let dir = Scratch::new("simulate-bom");
     let path = dir.0.join("post-balance.ron");
     std::fs::write(&path, format!("\u{FEFF}{POST_BALANCE}")).unwrap();
     assert_eq!(
@@ -400,7 +383,7 @@ fn a_scenario_with_a_byte_order_mark_loads() {
 
 #[test]
 fn a_scenario_above_the_cap_is_refused_unread() {
-    let dir = Scratch::new("huge");
+    let dir = Scratch::new("simulate-huge");
     let path = dir.0.join("huge.ron");
     // 2 GiB of holes: read whole, it would be gigabytes of memory before the RON error
     std::fs::File::create(&path)
