@@ -9,7 +9,9 @@
 //!   implementing [`uncertainty::MeasurementModel`] for the GUM and Monte Carlo evaluations.
 //! - [`fit`]: the eq. 18 fit with and without compensation (eq. 19), weighted by the points'
 //!   σ, widened by the Paule–Mandel τ when the points scatter more than their σ say.
-//! - [`variance_inflation`] with [`VIF_LIMIT`]; the χ² limits [`lack_of_fit_limit`] and
+//! - [`coefficient_inflation`]: how much wider u(k0…k3) are than an evenly spread design's
+//!   (warned on above [`INFLATION_LIMIT`]) and than without the nuisance terms ω, ω³;
+//!   [`variance_inflation`] (a diagnostic); the χ² limits [`lack_of_fit_limit`] and
 //!   [`label_offset_limit`].
 //! - [`measurement_inputs`]: the model's input quantities for a fit (the Type B inputs and
 //!   the fit's coefficients as one correlated Type A group).
@@ -42,7 +44,10 @@ pub use symmetric::{
     SymmetricError, SymmetricEvaluation, SymmetricFit, SymmetricModel, SymmetricWarning, Z_LIMIT,
     evaluate_symmetric, fit_symmetric, symmetric_inputs, symmetric_row,
 };
-pub use vif::{VIF_LIMIT, variance_inflation};
+pub use vif::{
+    CoefficientInflation, INFLATION_LIMIT, NUISANCE_TERMS, REFERENCE_LOW_FRACTION, REPORTED_TERMS,
+    VIF_LIMIT, coefficient_inflation, variance_inflation,
+};
 
 /// Number of coefficients of the eq. 18 design.
 pub const TERMS: usize = 6;

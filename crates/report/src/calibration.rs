@@ -243,7 +243,8 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
     }
     let _ = writeln!(
         out,
-        "Design: condition number {:.3e}; variance inflation of ω, ω², ω³, a², a³: {}.\n",
+        "Design: condition number {:.3e}; variance inflation of ω, ω², ω³, a², a³: {} \
+         (large on every polynomial design in ω; a diagnostic only).",
         c.condition_number,
         c.variance_inflation
             .iter()
@@ -251,7 +252,30 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
             .collect::<Vec<_>>()
             .join(", ")
     );
+    if let Some(i) = &c.u_inflation {
+        let _ = writeln!(
+            out,
+            "u(k2) is {} times that of the same number of rates spread evenly over {}–{} deg/s \
+             (warned above {}); the ω and ω³ nuisance terms widen u(k2) {} times, the price of \
+             an unbiased fit on any design.",
+            times(i.versus_spread.k2),
+            times(i.reference_from_deg_s),
+            times(i.reference_to_deg_s),
+            i.limit,
+            times(i.nuisance.k2),
+        );
+    }
+    let _ = writeln!(out);
     for w in &c.warnings {
         let _ = writeln!(out, "> **Warning:** {w}\n");
+    }
+}
+
+/// A factor or rate as a person writes it: 2.7, 36, 7139.
+fn times(f: f64) -> String {
+    if f < 10.0 {
+        format!("{f:.1}")
+    } else {
+        format!("{f:.0}")
     }
 }

@@ -246,8 +246,13 @@ pub struct CalibrationResults {
     pub correlation: Vec<Vec<f64>>,
     /// The design's terms: `1, ω, ω², ω³, a², a³`.
     pub terms: Vec<String>,
-    /// Variance inflation factor of each non-constant term.
+    /// Variance inflation factor of each non-constant term (a diagnostic: every polynomial
+    /// design in ω has large ones, so no warning is based on them).
     pub variance_inflation: Vec<f64>,
+    /// How much wider u(k0…k3) are than they need be: what the warning on the rates is
+    /// based on (`None` when it could not be computed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub u_inflation: Option<UncertaintyInflation>,
     /// Condition number of the column-scaled design.
     pub condition_number: f64,
     /// Uncertainty budgets per coefficient (JCGM 100): k2's is `budget.k2`.
@@ -262,6 +267,24 @@ pub struct CalibrationResults {
     pub headline: PigaCoefficients<Headline>,
     /// Warnings in plain words (terms hard to separate, a budget without Type B inputs...).
     pub warnings: Vec<String>,
+}
+
+/// How much wider the coefficients' standard uncertainties are than they need be
+/// (`calibration::coefficient_inflation`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct UncertaintyInflation {
+    /// u over the u of the same number of points with the same total weight, evenly spread
+    /// from `reference_from_deg_s` to `reference_to_deg_s`; warned on above `limit`.
+    pub versus_spread: PigaCoefficients<f64>,
+    /// The reference design's lowest rate (10 % of the top rate), °/s.
+    pub reference_from_deg_s: f64,
+    /// The reference design's top rate (the design's own), °/s.
+    pub reference_to_deg_s: f64,
+    /// The factor above which the study warns.
+    pub limit: f64,
+    /// u in the fit over u in the same fit without the ω and ω³ nuisance columns: their
+    /// price, large on every design (a diagnostic).
+    pub nuisance: PigaCoefficients<f64>,
 }
 
 /// The probe's measuring direction, as the study file names it.

@@ -553,3 +553,71 @@ fn with_few_points_tau_is_still_found_when_the_points_scatter_too_much() {
     }
     assert!(scattered >= 6, "{scattered}");
 }
+
+/// The campaign's table cut to the rates `keep` (°/s, as the table writes them).
+fn table_of(data: &Campaign, keep: &[&str]) -> Campaign {
+    let table = Path::new(DIR).join("piga.csv");
+    let csv = String::from_utf8(data.files[&table].clone()).unwrap();
+    let kept: String = csv
+        .lines()
+        .filter(|l| l.starts_with("rate") || keep.contains(&l.split(',').next().unwrap()))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let mut files = data.files.clone();
+    files.insert(table, kept.into_bytes());
+    Campaign { files }
+}
+
+/// The warnings of a calibration that speak of its rates' power to separate the
+/// coefficients.
+fn separation_warnings(c: &pipeline::CalibrationResults) -> Vec<&String> {
+    c.warnings
+        .iter()
+        .filter(|w| w.contains("separate") || w.contains("variance inflation"))
+        .collect()
+}
+
+#[test]
+fn well_spread_rates_give_no_separation_warning_though_their_vifs_are_large() {
+    // The campaign fixture's 20 rates (raw recordings, weighted), and a 12-rate campaign
+    // from its table (unweighted): every VIF is large (a polynomial design in ω), but u(k2) is
+    // within a factor 2 of an evenly spread design's, and nothing is said.
+    let data = campaign(10);
+    let full = run(&study_text("fixed(2000)"), &data).unwrap();
+    let twelve = [
+        "20", "30", "40", "60", "80", "100", "120", "140", "160", "180", "195", "200",
+    ];
+    let part = run(&table_study_text("fixed(2000)"), &table_of(&data, &twelve)).unwrap();
+    for results in [full, part] {
+        let c = results.calibration.unwrap();
+        assert!(c.variance_inflation.iter().all(|&v| v > 1e3), "{c:?}");
+        let i = c.u_inflation.expect("computed");
+        assert!(i.versus_spread.k2 < 2.0, "{i:?}");
+        assert!(i.nuisance.k2 > 10.0, "{i:?}");
+        assert!(separation_warnings(&c).is_empty(), "{:?}", c.warnings);
+    }
+}
+
+#[test]
+fn bunched_rates_say_how_much_wider_u_k2_is() {
+    // Seven rates bunched at 150–200 °/s: u(k2) is hundreds of times what the same seven
+    // rates spread over 20–200 °/s would give, and the warning says so with the figure.
+    let data = campaign(11);
+    let bunched = ["150", "160", "170", "180", "190", "195", "200"];
+    let results = run(&table_study_text("fixed(2000)"), &table_of(&data, &bunched)).unwrap();
+    let c = results.calibration.as_ref().unwrap();
+    let i = c.u_inflation.expect("computed");
+    assert!(i.versus_spread.k2 > 100.0, "{i:?}");
+    let w = separation_warnings(c);
+    assert_eq!(w.len(), 1, "{:?}", c.warnings);
+    let figure = format!("u(k2) is {:.0} times", i.versus_spread.k2);
+    assert!(w[0].contains(&figure), "{} / {figure}", w[0]);
+    assert!(
+        w[0].contains("7 rates spread evenly from 20 to 200 deg/s"),
+        "{}",
+        w[0]
+    );
+    // and the terminal summary carries it
+    let summary = report::summary_text(&results).expect("a calibration");
+    assert!(summary.contains(&figure), "{summary}");
+}

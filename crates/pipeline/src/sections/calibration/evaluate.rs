@@ -33,6 +33,8 @@ pub(crate) struct Evaluated {
     #[cfg_attr(not(test), allow(dead_code))]
     pub(crate) model: CalibrationModel,
     pub(crate) vif: [f64; 5],
+    /// How much wider u(k0…k3) are than an evenly spread design's (`None`: not computable).
+    pub(crate) inflation: Option<::calibration::CoefficientInflation>,
     pub(crate) gum: uncertainty::GumResult,
     pub(crate) mc: uncertainty::McResult,
     pub(crate) validation: uncertainty::Validation,
@@ -64,6 +66,7 @@ pub(crate) struct Setup {
     pub(crate) cal: CompensatedCalibration,
     pub(crate) model: CalibrationModel,
     pub(crate) vif: [f64; 5],
+    pub(crate) inflation: Option<::calibration::CoefficientInflation>,
     pub(crate) quantities: Vec<uncertainty::InputQuantity>,
     pub(crate) set: uncertainty::Inputs,
     pub(crate) options: uncertainty::McOptions,
@@ -119,6 +122,14 @@ pub(crate) fn setup(
     );
     let vif =
         ::calibration::variance_inflation(&cal, &rates_rad_s, weighting.sigma_used.as_deref());
+    // a design the fit accepted gives these too; should one not, the results say so by
+    // leaving them out
+    let inflation = ::calibration::coefficient_inflation(
+        &rates_rad_s,
+        weighting.sigma_used.as_deref(),
+        geometry,
+    )
+    .ok();
     let type_b = setting.type_b.values;
     let k1 = match inputs.k1 {
         K1Choice::Fitted => ::calibration::K1Input::Fitted,
@@ -155,6 +166,7 @@ pub(crate) fn setup(
         cal,
         model,
         vif,
+        inflation,
         quantities,
         set,
         options,
@@ -173,6 +185,7 @@ pub(crate) fn evaluate(
         cal,
         model,
         vif,
+        inflation,
         quantities,
         set,
         options,
@@ -186,6 +199,7 @@ pub(crate) fn evaluate(
         cal,
         model,
         vif,
+        inflation,
         gum: gum_result,
         mc,
         validation,

@@ -9,7 +9,7 @@ use super::validate::{CalibrationInputs, K1Choice};
 use crate::results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
     Estimate, Headline, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance,
-    PigaCoefficients, ProbeSign, Warning,
+    PigaCoefficients, ProbeSign, UncertaintyInflation, Warning,
 };
 
 /// The results of an evaluated calibration.
@@ -164,17 +164,12 @@ pub(crate) fn results(
         k3: mc_output("k3"),
     };
     let mut warnings = Vec::new();
-    let worst =
-        e.vif.iter().enumerate().fold(
-            (0, 0.0_f64),
-            |acc, (j, &v)| if v > acc.1 { (j + 1, v) } else { acc },
-        );
-    if worst.1 > ::calibration::VIF_LIMIT {
-        warnings.push(format!(
-            "terms hard to separate: the {} term's variance inflation factor is {:.3e} (above {:e}); \
-             its coefficient is strongly correlated with the others' — more, and more widely spread, rates separate them",
-            TERM_NAMES[worst.0], worst.1, ::calibration::VIF_LIMIT
-        ));
+    if let Some(w) = e
+        .inflation
+        .as_ref()
+        .and_then(|i| degraded_warning(i, &points.rates_deg_s))
+    {
+        warnings.push(w);
     }
     if !inputs.type_b_given {
         warnings.push(
@@ -267,6 +262,7 @@ pub(crate) fn results(
         correlation,
         terms: TERM_NAMES.iter().map(|t| (*t).to_owned()).collect(),
         variance_inflation: e.vif.to_vec(),
+        u_inflation: e.inflation.as_ref().map(u_inflation),
         condition_number: fit.condition_number,
         budget,
         monte_carlo,
@@ -471,4 +467,65 @@ pub(crate) fn data_warnings(c: &CalibrationResults, phase_rates_deg_s: &[f64]) -
         ));
     }
     warnings
+}
+
+/// The results' account of how much wider u(k0…k3) are than they need be.
+fn u_inflation(i: &::calibration::CoefficientInflation) -> UncertaintyInflation {
+    let coefficients = |a: [f64; 4]| PigaCoefficients {
+        k0: a[0],
+        k1: a[1],
+        k2: a[2],
+        k3: a[3],
+    };
+    UncertaintyInflation {
+        versus_spread: coefficients(i.versus_spread),
+        reference_from_deg_s: i.reference_rad_s.0.to_degrees(),
+        reference_to_deg_s: i.reference_rad_s.1.to_degrees(),
+        limit: ::calibration::INFLATION_LIMIT,
+        nuisance: coefficients(i.nuisance),
+    }
+}
+
+/// A factor as a person writes it: 2.7, 36, 7139.
+fn times(f: f64) -> String {
+    if f < 10.0 {
+        format!("{f:.1}")
+    } else {
+        format!("{f:.0}")
+    }
+}
+
+/// The warning when the rates make u(k0…k3) more than [`::calibration::INFLATION_LIMIT`]
+/// times what the same number of rates, evenly spread, would give.
+fn degraded_warning(
+    i: &::calibration::CoefficientInflation,
+    rates_deg_s: &[f64],
+) -> Option<String> {
+    if !i.degraded() {
+        return None;
+    }
+    let over: Vec<String> = ::calibration::CoefficientInflation::NAMES
+        .iter()
+        .zip(&i.versus_spread)
+        .filter(|(_, f)| **f > ::calibration::INFLATION_LIMIT)
+        .map(|(n, f)| format!("u({n}) is {} times", times(*f)))
+        .collect();
+    let (lo, hi) = rates_deg_s
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| {
+            (a.min(r), b.max(r))
+        });
+    Some(format!(
+        "the rates cannot separate the coefficients well: {} what the same {} rates spread evenly \
+         from {} to {} deg/s would give (limit {}). Over {}–{} deg/s the a² and a³ terms are hard to \
+         tell apart from the ω and ω³ nuisance terms and from each other; spread the rates over 10–100 % \
+         of the top rate",
+        over.join(", "),
+        rates_deg_s.len(),
+        times(i.reference_rad_s.0.to_degrees()),
+        times(i.reference_rad_s.1.to_degrees()),
+        ::calibration::INFLATION_LIMIT,
+        times(lo),
+        times(hi),
+    ))
 }
