@@ -21,6 +21,9 @@ pub enum WarningCode {
     DroppedRevolutions,
     /// A raw PIGA recording's per-revolution outputs scatter beyond white noise.
     OutputSpread,
+    /// A probe signal implausible for its gap column's declared unit (a mean gap below a
+    /// micrometre, a first harmonic below a probe's own noise): C_r wrong by the unit's factor.
+    ImplausibleGapUnit,
     /// Another diagnostic of a recording (one this version does not name).
     Recording,
     /// The radius-error residuals exceed their white-noise σ.
@@ -62,6 +65,7 @@ impl WarningCode {
             Self::DriftNotFitted => "drift_not_fitted",
             Self::DroppedRevolutions => "dropped_revolutions",
             Self::OutputSpread => "output_spread",
+            Self::ImplausibleGapUnit => "implausible_gap_unit",
             Self::Recording => "recording",
             Self::LackOfFit => "lack_of_fit",
             Self::SecondProbePhase => "second_probe_phase",
@@ -87,6 +91,7 @@ impl WarningCode {
             Self::DriftNotFitted => "gap drifts, drift not fitted",
             Self::DroppedRevolutions => "revolutions dropped",
             Self::OutputSpread => "PIGA output varies between revolutions",
+            Self::ImplausibleGapUnit => "probe signal implausible for its declared unit",
             Self::Recording => "recording diagnostic",
             Self::LackOfFit => "radius-error fit worse than the noise",
             Self::SecondProbePhase => "phase read with the first probe's lever",
@@ -148,6 +153,7 @@ impl Warning {
             D::DriftNotFitted { .. } => WarningCode::DriftNotFitted,
             D::DroppedRevolutions { .. } => WarningCode::DroppedRevolutions,
             D::OutputSpread { .. } => WarningCode::OutputSpread,
+            D::ImplausibleGap { .. } => WarningCode::ImplausibleGapUnit,
             _ => WarningCode::Recording,
         };
         Self {

@@ -26,6 +26,17 @@ fn campaign_with(seed: u64, table_noise_rad_s: f64) -> Campaign {
 
 /// [`campaign_with`] with the scenario changed by `change` first.
 fn campaign_of(seed: u64, table_noise_rad_s: f64, change: impl Fn(&mut Scenario)) -> Campaign {
+    campaign_gap(seed, table_noise_rad_s, 1.0, change)
+}
+
+/// [`campaign_of`] with the probe recordings' gap column multiplied by `gap_scale` (1e-3:
+/// written in mm while the study reads µm).
+fn campaign_gap(
+    seed: u64,
+    table_noise_rad_s: f64,
+    gap_scale: f64,
+    change: impl Fn(&mut Scenario),
+) -> Campaign {
     let text = std::fs::read_to_string(root().join("fixtures/scenarios/campaign.ron")).unwrap();
     let mut loaded = Scenario::parse(&text, Path::new("campaign.ron")).unwrap();
     loaded.scenario.seed = seed;
@@ -34,6 +45,8 @@ fn campaign_of(seed: u64, table_noise_rad_s: f64, change: impl Fn(&mut Scenario)
     let simulation = simulate::simulate(&loaded).unwrap();
     let mut files = HashMap::new();
     for r in &simulation.recordings {
+        let mut r = r.clone();
+        r.gap_um.iter_mut().for_each(|g| *g *= gap_scale);
         let mut csv = Vec::new();
         r.write_csv(&mut csv).unwrap();
         files.insert(Path::new(DIR).join(&r.file_name), csv);
@@ -620,4 +633,45 @@ fn bunched_rates_say_how_much_wider_u_k2_is() {
     // and the terminal summary carries it
     let summary = report::summary_text(&results).expect("a calibration");
     assert!(summary.contains(&figure), "{summary}");
+}
+
+#[test]
+fn a_gap_column_in_mm_declared_in_um_is_named_in_results_summary_and_report() {
+    // The probe recordings' gap column holds mm; the study reads µm (its default): C_r is
+    // 1000 times too small. The probe signal is implausible for `um`, and the warning naming
+    // the unit reaches results.json, the terminal summary and report.md.
+    let results = run(
+        &table_study_text("fixed(2000)"),
+        &campaign_gap(12, 1e-9, 1e-3, |_| {}),
+    )
+    .unwrap();
+    let said = "implausible for the gap column's declared unit `um`";
+    let w: Vec<_> = results
+        .warnings
+        .iter()
+        .filter(|w| w.code == "implausible_gap_unit")
+        .collect();
+    assert!(!w.is_empty(), "{:?}", results.warnings);
+    assert!(
+        w.iter().all(|w| w.message.contains(said)),
+        "{}",
+        w[0].message
+    );
+    assert!(w[0].location.contains("probe_"), "{}", w[0].location);
+    let json = report::results_json(&results).unwrap();
+    assert!(json.contains("\"implausible_gap_unit\""));
+    assert!(json.contains(said));
+    let summary = report::summary_text(&results).expect("a calibration");
+    assert!(summary.contains(said), "{summary}");
+    assert!(report::render(&results, None, None).contains(said));
+    // declared right, nothing is said
+    let right = run(&table_study_text("fixed(2000)"), &campaign(12)).unwrap();
+    assert!(
+        !right
+            .warnings
+            .iter()
+            .any(|w| w.code == "implausible_gap_unit"),
+        "{:?}",
+        right.warnings
+    );
 }
