@@ -570,15 +570,15 @@ fn with_few_points_tau_is_still_found_when_the_points_scatter_too_much() {
 /// The campaign's table cut to the rates `keep` (°/s, as the table writes them).
 fn table_of(data: &Campaign, keep: &[&str]) -> Campaign {
     let table = Path::new(DIR).join("piga.csv");
-    let csv = String::from_utf8(data.files[&table].clone()).unwrap();
+    let csv = String::from_utf8(data.0[&table].clone()).unwrap();
     let kept: String = csv
         .lines()
         .filter(|l| l.starts_with("rate") || keep.contains(&l.split(',').next().unwrap()))
         .map(|l| format!("{l}\n"))
         .collect();
-    let mut files = data.files.clone();
+    let mut files = data.0.clone();
     files.insert(table, kept.into_bytes());
-    Campaign { files }
+    MemoryFiles(files)
 }
 
 /// The warnings of a calibration that speak of its rates' power to separate the
