@@ -35,7 +35,9 @@
 //! own radius and bias shift, and `arm_stretch_m_s2` (`C_a`) grows the radius at the PIGA by
 //! `C_a·ω²` beyond the spindle's motion, unseen by the probe: the mount of eq. 10 becomes
 //! `Trans(R_s + C_a ω², 0, 0)·Rot(z₂, 180°)` (IA in) or `Trans(R_s + C_a ω², 0, 0)` (IA out)
-//! ([`Mount`], [`mounted_rate_point`], [`piga_table_mounted`]).
+//! ([`Mount`], [`mounted_rate_point`], [`piga_table_mounted`]). [`mounted_piga_recording`]
+//! gives one mounting's raw PIGA output recording at a rate on its own (the test planner's
+//! check of a plan's points through the study's reduction).
 
 mod error;
 mod generate;
@@ -47,7 +49,7 @@ pub use error::{Result, SimulateError};
 pub use generate::{
     MountingRateTruth, MountingTruth, OutputNoise, PigaRow, ProbeTruth, RadiusGrowthTruth,
     SimulatedMounting, SimulatedPigaRecording, SimulatedRecording, Simulation, Truth, TruthRate,
-    mounting_recording_file_name, piga_table, piga_table_mounted, simulate,
+    mounted_piga_recording, mounting_recording_file_name, piga_table, piga_table_mounted, simulate,
 };
 pub use mounting::{Mount, Orientation, mounted_rate_point};
 pub use scenario::{

@@ -4,5 +4,6 @@
 mod exhaustive;
 mod infeasible;
 mod paper;
+mod raw;
 mod simulation;
 mod two_orientations;

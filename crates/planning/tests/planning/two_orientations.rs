@@ -29,10 +29,11 @@ pub(crate) fn inputs() -> PlanInputs {
     i
 }
 
-/// The plan's noise-free mean outputs through the exact chain (`simulate::piga_table_mounted`,
-/// zero noise), IA in then IA out.
-pub(crate) fn exact_outputs(inputs: &PlanInputs, plan: &TwoOrientationPlan) -> [Vec<f64>; 2] {
-    let spec = inputs.two_orientations.as_ref().unwrap();
+/// The plan file's centrifuge (the expected C_r as the spindle's dynamic drift, latitude
+/// 45°) and PIGA for the exact chain.
+pub(crate) fn centrifuge_and_piga(
+    inputs: &PlanInputs,
+) -> (kinematics::Centrifuge, accel_model::PigaCoefficients) {
     let centrifuge = kinematics::Centrifuge {
         radius_m: inputs.centrifuge.radius_m,
         site: kinematics::Site {
@@ -52,6 +53,14 @@ pub(crate) fn exact_outputs(inputs: &PlanInputs, plan: &TwoOrientationPlan) -> [
         k2_rad_s_g2: p.k2_rad_s_g2,
         k3_rad_s_g3: p.k3_rad_s_g3,
     };
+    (centrifuge, piga)
+}
+
+/// The plan's noise-free mean outputs through the exact chain (`simulate::piga_table_mounted`,
+/// zero noise), IA in then IA out.
+pub(crate) fn exact_outputs(inputs: &PlanInputs, plan: &TwoOrientationPlan) -> [Vec<f64>; 2] {
+    let spec = inputs.two_orientations.as_ref().unwrap();
+    let (centrifuge, piga) = centrifuge_and_piga(inputs);
     [0, 1].map(|k| {
         let m = &plan.mountings[k];
         let spec_m = [spec.ia_in, spec.ia_out][k];

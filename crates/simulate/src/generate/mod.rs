@@ -21,7 +21,9 @@ use piga::{mounted_points, record_piga};
 use probe::{Lever, readers, record};
 
 pub use noise::OutputNoise;
-pub use piga::{mounting_recording_file_name, piga_table, piga_table_mounted};
+pub use piga::{
+    mounted_piga_recording, mounting_recording_file_name, piga_table, piga_table_mounted,
+};
 pub use simulation::{
     MountingRateTruth, MountingTruth, PigaRow, ProbeTruth, RadiusGrowthTruth, SimulatedMounting,
     SimulatedPigaRecording, SimulatedRecording, Simulation, Truth, TruthRate,

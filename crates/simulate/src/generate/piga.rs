@@ -5,8 +5,11 @@ use accel_model::{PigaCoefficients, RatePoint, rate_points};
 use kinematics::Centrifuge;
 use rand_distr::Distribution;
 
-use super::noise::{MOUNTING_STREAM, OutputNoise, normal, orientation_index, stream};
+use super::noise::{
+    MOUNTING_RECORDING_STREAM, MOUNTING_STREAM, OutputNoise, normal, orientation_index, stream,
+};
 use super::simulation::{PigaRow, SimulatedPigaRecording, SimulatedRecording};
+use crate::error::SimulateError;
 use crate::mounting::{Mount, Orientation, mounted_rate_point};
 use crate::scenario::PigaRecordingSpec;
 
@@ -96,6 +99,96 @@ pub fn piga_table_mounted(
             output_rad_s: noise.added_to_stream(purpose, point.output_rad_s, rate_deg_s),
         })
         .collect())
+}
+
+/// A raw PIGA output recording in one mounting at one rate, on its own (no probe
+/// recording): `revolutions` whole spindle revolutions sampled evenly at about
+/// `sample_rate_hz` (the last sample at exactly the end of the last revolution), the output
+/// angle `ω̄_out·t + e` with `ω̄_out` the mounting's exact mean output
+/// ([`mounted_rate_point`]) and white angle noise `e` of σ `angle_noise_rad` from the
+/// mounting's recording stream keyed by `seed`; no ripple, no encoder column (the study takes
+/// the spindle angle from the declared rate). For checking a plan's points through the
+/// study's reduction (`recording::reduce_piga_recording`).
+///
+/// # Errors
+/// [`SimulateError::InvalidField`] for a rate or sample rate that is not finite and
+/// positive, a negative or non-finite noise, or no revolution;
+/// [`SimulateError::AccelModel`] for a mounting or PIGA the model refuses. Both name the
+/// recording's file name as the path.
+#[allow(clippy::too_many_arguments)]
+pub fn mounted_piga_recording(
+    centrifuge: &Centrifuge,
+    piga: &PigaCoefficients,
+    mount: &Mount,
+    rate_deg_s: f64,
+    revolutions: u32,
+    sample_rate_hz: f64,
+    angle_noise_rad: f64,
+    seed: u64,
+) -> crate::Result<SimulatedPigaRecording> {
+    let file_name = mounting_recording_file_name(mount.orientation, rate_deg_s);
+    for (field, value, ok, reason) in [
+        (
+            "rate_deg_s",
+            rate_deg_s,
+            rate_deg_s > 0.0,
+            "must be finite and > 0",
+        ),
+        (
+            "sample_rate_hz",
+            sample_rate_hz,
+            sample_rate_hz > 0.0,
+            "must be finite and > 0",
+        ),
+        (
+            "angle_noise_rad",
+            angle_noise_rad,
+            angle_noise_rad >= 0.0,
+            "must be finite and ≥ 0",
+        ),
+        (
+            "revolutions",
+            f64::from(revolutions),
+            revolutions > 0,
+            "must be ≥ 1",
+        ),
+    ] {
+        if !(ok && value.is_finite()) {
+            return Err(SimulateError::InvalidField {
+                path: file_name.clone().into(),
+                field: field.to_owned(),
+                value,
+                reason,
+            });
+        }
+    }
+    let w = rate_deg_s.to_radians();
+    let point = mounted_rate_point(centrifuge, piga, mount, w).map_err(|source| {
+        SimulateError::AccelModel {
+            path: file_name.clone().into(),
+            field: "piga".to_owned(),
+            source,
+        }
+    })?;
+    let duration_s = f64::from(revolutions) * std::f64::consts::TAU / w;
+    let intervals = (duration_s * sample_rate_hz).round().max(1.0) as usize;
+    let purpose = MOUNTING_RECORDING_STREAM[orientation_index(mount.orientation)];
+    let mut rng = stream(seed, purpose, rate_deg_s.to_bits());
+    let noise = normal(angle_noise_rad);
+    let time_s: Vec<f64> = (0..=intervals)
+        .map(|i| duration_s * i as f64 / intervals as f64)
+        .collect();
+    let output_rad = time_s
+        .iter()
+        .map(|&t| point.output_rad_s * t + noise.as_ref().map_or(0.0, |d| d.sample(&mut rng)))
+        .collect();
+    Ok(SimulatedPigaRecording {
+        rate_deg_s,
+        file_name,
+        time_s,
+        output_rad,
+        angle_deg: None,
+    })
 }
 
 /// File name of a mounting's raw PIGA output recording at a rate:
