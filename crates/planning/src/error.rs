@@ -81,6 +81,29 @@ pub enum PlanningError {
         /// Points.
         points: usize,
     },
+    /// A two-orientation plan's remount, settling and minimum revolutions alone exceed the
+    /// time budget.
+    #[error(
+        "schedule.budget_s = {budget_s} s is shorter than the {needed_s:.1} s that turning the \
+         PIGA round (two_orientations.remount_s = {remount_s} s), settling ({settling_s:.1} s) \
+         and the minimum revolutions ({minimum_s:.1} s) of {points} points in two mountings \
+         need, by {:.1} s",
+        needed_s - budget_s
+    )]
+    TwoOrientationBudgetTooShort {
+        /// The budget, s.
+        budget_s: f64,
+        /// The least time of any two-orientation plan with this many points, s.
+        needed_s: f64,
+        /// Of which the remount, s.
+        remount_s: f64,
+        /// Of which settling, s.
+        settling_s: f64,
+        /// Of which the minimum revolutions at the fastest candidates, s.
+        minimum_s: f64,
+        /// Points in both mountings.
+        points: usize,
+    },
     /// The best plan within the budget misses the target U95(k2).
     #[error(
         "target.u95_k2_rad_s_g2 = {target:.4e} rad/(s·g²) is not reached: the best plan within \

@@ -250,7 +250,8 @@ pub(crate) fn fit_points(
 /// [`PlanningError::MissingTwoOrientations`]; the errors of [`plan`](crate::plan) for the
 /// common fields; [`PlanningError::InvalidField`] for a two-orientation field;
 /// [`PlanningError::RateRange`] and [`PlanningError::TooFewCandidates`] for a mounting;
-/// [`PlanningError::BudgetTooShort`]; [`PlanningError::Symmetric`] from the fit.
+/// [`PlanningError::TwoOrientationBudgetTooShort`]; [`PlanningError::Symmetric`] from the
+/// fit.
 pub fn plan_two_orientations(inputs: &PlanInputs) -> Result<TwoOrientationPlan> {
     let spec = spec(inputs)?;
     spec.validate()?;
@@ -374,12 +375,13 @@ fn search(p: &JointProblem, extra: usize) -> Result<joint::Allocated> {
     let least = p.min_times(&cheapest, &vec![p.min_revolutions; cheapest.len()]);
     let free = p.free_time(&cheapest, &least);
     if free < 0.0 {
-        let settling_s = p.settling_s * cheapest.len() as f64 + p.remount_s;
-        return Err(PlanningError::BudgetTooShort {
+        let settling_s = p.settling_s * cheapest.len() as f64;
+        return Err(PlanningError::TwoOrientationBudgetTooShort {
             budget_s: p.budget_s,
             needed_s: p.budget_s - free,
+            remount_s: p.remount_s,
             settling_s,
-            minimum_s: p.budget_s - free - settling_s,
+            minimum_s: p.budget_s - free - settling_s - p.remount_s,
             points: cheapest.len(),
         });
     }

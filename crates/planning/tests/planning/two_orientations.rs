@@ -175,3 +175,52 @@ fn a_plan_file_without_two_orientations_is_refused() {
     let e = plan_two_orientations(&inputs).unwrap_err();
     assert!(e.to_string().contains("two_orientations"), "{e}");
 }
+
+#[test]
+fn bad_two_orientation_fields_are_named() {
+    use planning::PlanningError;
+    let field_of = |edit: &dyn Fn(&mut TwoOrientations)| {
+        let mut i = inputs();
+        edit(i.two_orientations.as_mut().unwrap());
+        match plan_two_orientations(&i) {
+            Err(PlanningError::InvalidField { field, .. }) => field,
+            other => panic!("{other:?}"),
+        }
+    };
+    assert_eq!(
+        field_of(&|t| t.ia_out.radius_m = 0.0),
+        "two_orientations.ia_out.radius_m"
+    );
+    assert_eq!(
+        field_of(&|t| t.rates = RateGrid::Round { step_deg_s: -5.0 }),
+        "two_orientations.rates.step_deg_s"
+    );
+    assert_eq!(
+        field_of(&|t| t.reserve.time_fraction = 1.0),
+        "two_orientations.reserve.time_fraction"
+    );
+    assert_eq!(
+        field_of(&|t| t.remount_s = f64::NAN),
+        "two_orientations.remount_s"
+    );
+    // A grid too coarse for six rates and the reserve in a mounting.
+    let mut coarse = inputs();
+    coarse.two_orientations.as_mut().unwrap().rates = RateGrid::Round { step_deg_s: 40.0 };
+    assert!(matches!(
+        plan_two_orientations(&coarse),
+        Err(PlanningError::TooFewCandidates {
+            in_range: 5,
+            need: 8,
+            ..
+        })
+    ));
+    // A remount that leaves no time for the points.
+    let mut long = inputs();
+    long.two_orientations.as_mut().unwrap().remount_s = 7000.0;
+    let e = plan_two_orientations(&long).unwrap_err();
+    assert!(
+        matches!(e, PlanningError::TwoOrientationBudgetTooShort { .. }),
+        "{e}"
+    );
+    assert!(e.to_string().contains("two_orientations.remount_s"), "{e}");
+}
