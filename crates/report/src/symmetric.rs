@@ -209,12 +209,15 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
     let _ = writeln!(
         out,
         "Joint fit: {} residual degrees of freedom, residual SD {:.2e} rad/s, condition number \
-         {:.3e}, variance inflation factor of the ω⁴ term {:.3e}. g = {} m/s² with u(g) = {:.1e} \
-         m/s².\n",
+         {:.3e}, variance inflation factor of the ω⁴ term {:.3e} (a diagnostic); fitting C \
+         makes u(k2) {:.2} times what it would be with C known (k2 and C correlated at {:+.3}; \
+         warned above 3). g = {} m/s² with u(g) = {:.1e} m/s².\n",
         s.dof,
         s.residual_sd_rad_s,
         s.condition_number,
         s.omega4_vif,
+        s.k2_inflation_by_omega4,
+        s.k2_c_correlation,
         format::plain(s.g_m_s2.value),
         s.g_m_s2.u
     );

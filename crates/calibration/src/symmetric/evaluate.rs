@@ -140,10 +140,15 @@ pub fn symmetric_inputs(
 /// What the two-orientation evaluation warns about.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SymmetricWarning {
-    /// The `s·ω⁴` term cannot be told apart from the others: C and k2 are not separated.
+    /// The `s·ω⁴` term cannot be told apart from k2: fitting C widens u(k2) more than
+    /// [`K2_INFLATION_LIMIT`](crate::K2_INFLATION_LIMIT) times.
     GammaNotSeparable {
-        /// Its variance inflation factor.
+        /// Its variance inflation factor (a diagnostic).
         vif: f64,
+        /// u(k2) in the joint fit over u(k2) with C known.
+        k2_inflation: f64,
+        /// Correlation of the k2 and C estimates.
+        correlation: f64,
     },
     /// The PIGA's C and the probe's C_r disagree (|z| > 3): radius growth the probe does not
     /// see (arm stretch), or the probe's declared sign, unit or lever is wrong.
@@ -200,7 +205,11 @@ pub fn evaluate_symmetric(
         .map_err(SymmetricError::Uncertainty)?;
     let mut warnings = Vec::new();
     if !fit.separable() {
-        warnings.push(SymmetricWarning::GammaNotSeparable { vif: fit.gamma_vif });
+        warnings.push(SymmetricWarning::GammaNotSeparable {
+            vif: fit.gamma_vif,
+            k2_inflation: fit.k2_inflation,
+            correlation: fit.k2_gamma_correlation,
+        });
     }
     let probe_difference = probe.is_some().then(|| {
         let o = &gum.outputs[8];

@@ -5,8 +5,8 @@ use identify::{Fit, LstsqOptions, lstsq_with};
 
 use super::error::SymmetricError;
 use super::terms::{
-    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION, Orientation, OrientationData,
-    SYMMETRIC_TERMS, distinct, index, symmetric_row,
+    GAMMA_TERM, K2_INFLATION_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION, Orientation,
+    OrientationData, SYMMETRIC_TERMS, distinct, index, symmetric_row,
 };
 
 /// One mounting's own coefficients.
@@ -44,8 +44,15 @@ pub struct SymmetricFit {
     pub c_m_s2: (f64, f64),
     /// `Δk2,total = k̄1·C·g/R_in²` at the IA-in radius, rad/(s·g²), and its standard error.
     pub delta_k2_total_rad_s_g2: (f64, f64),
-    /// Variance inflation factor of the `s·ω⁴` column.
+    /// Variance inflation factor of the `s·ω⁴` column (a diagnostic: about 1e6 on every
+    /// ordinary design, where C is well determined).
     pub gamma_vif: f64,
+    /// Correlation of the k2 and γ (hence C) estimates in the joint fit.
+    pub k2_gamma_correlation: f64,
+    /// u(k2) in the joint fit over u(k2) in the same fit with γ known (the `s·ω⁴` column
+    /// dropped): `1/√(1 − ρ²)`, ρ = [`SymmetricFit::k2_gamma_correlation`]. What fitting C
+    /// costs k2; the study warns above [`K2_INFLATION_LIMIT`](crate::K2_INFLATION_LIMIT).
+    pub k2_inflation: f64,
     /// Gravity used to form `a_s`, m/s².
     pub g_m_s2: f64,
     /// Residuals `output − fitted`, rad/s, IA in's points then IA out's, each in its data
@@ -59,10 +66,12 @@ pub struct SymmetricFit {
 }
 
 impl SymmetricFit {
-    /// Whether the `s·ω⁴` term can be told apart from the others (VIF ≤ 1e4).
+    /// Whether the `s·ω⁴` term (C) can be told apart from k2: fitting it widens u(k2) by no
+    /// more than [`K2_INFLATION_LIMIT`](crate::K2_INFLATION_LIMIT). (Until issue 20's review
+    /// this was "VIF ≤ 1e4", which no ordinary design meets.)
     #[must_use]
     pub fn separable(&self) -> bool {
-        self.gamma_vif <= GAMMA_VIF_LIMIT
+        self.k2_inflation <= K2_INFLATION_LIMIT
     }
 
     /// The mounting of an orientation.
@@ -297,6 +306,15 @@ pub fn fit_symmetric(
     let r_in = sets[0].1;
     let dk2_scale = g_m_s2 * g_m_s2 / (r_in * r_in);
     let gamma_vif = vif(&x, &weights, &fit, GAMMA_TERM);
+    // Var(k2 | full) = Var(k2 | γ known) + Cov(k2, γ)²/Var(γ): the ratio is 1/(1 − ρ²)
+    let u = &fit.unscaled_covariance;
+    let rho =
+        u[(K2_TERM, GAMMA_TERM)] / (u[(K2_TERM, K2_TERM)] * u[(GAMMA_TERM, GAMMA_TERM)]).sqrt();
+    let k2_gamma_correlation = rho.clamp(-1.0, 1.0);
+    let k2_inflation = 1.0
+        / (1.0 - k2_gamma_correlation.powi(2))
+            .max(f64::MIN_POSITIVE)
+            .sqrt();
     let result = SymmetricFit {
         mountings,
         k2_rad_s_g2: pair(K2_TERM),
@@ -306,6 +324,8 @@ pub fn fit_symmetric(
         c_m_s2: (c_value, var_c.max(0.0).sqrt()),
         delta_k2_total_rad_s_g2: (gamma * dk2_scale, se[GAMMA_TERM] * dk2_scale),
         gamma_vif,
+        k2_gamma_correlation,
+        k2_inflation,
         g_m_s2,
         residuals_rad_s,
         birge_ratio,
@@ -327,4 +347,98 @@ fn vif(x: &nalgebra::DMatrix<f64>, weights: &[f64], fit: &Fit, j: usize) -> f64 
         .map(|i| w2[i] * (raw(i) - mean) * (raw(i) - mean))
         .sum();
     fit.unscaled_covariance[(j, j)] * ss
+}
+
+#[cfg(test)]
+mod separability {
+    use super::*;
+
+    /// A joint fit of two noise-free data sets at rates `a` (IA in, radius `ra`) and `b`
+    /// (IA out, radius `rb`), °/s.
+    fn fit_of(a: &[f64], ra: f64, b: &[f64], rb: f64) -> SymmetricFit {
+        let rad = |v: &[f64]| v.iter().map(|d| d.to_radians()).collect::<Vec<f64>>();
+        let (wa, wb) = (rad(a), rad(b));
+        let ya: Vec<f64> = wa
+            .iter()
+            .map(|w| 0.56 * ra * w * w / 9.8 + 1e-9 * w)
+            .collect();
+        let yb: Vec<f64> = wb
+            .iter()
+            .map(|w| -0.56 * rb * w * w / 9.8 - 2e-9 * w)
+            .collect();
+        let data = [
+            OrientationData {
+                field: "a",
+                orientation: Some(Orientation::IaIn),
+                radius_m: Some(ra),
+                rates_rad_s: &wa,
+                output_rad_s: &ya,
+                sigma_rad_s: None,
+            },
+            OrientationData {
+                field: "b",
+                orientation: Some(Orientation::IaOut),
+                radius_m: Some(rb),
+                rates_rad_s: &wb,
+                output_rad_s: &yb,
+                sigma_rad_s: None,
+            },
+        ];
+        fit_symmetric(&data, 9.8, "o").expect("a full-rank design")
+    }
+
+    fn wide() -> Vec<f64> {
+        (0..12).map(|i| 35.0 + 15.0 * f64::from(i)).collect()
+    }
+
+    #[test]
+    fn the_ordinary_design_separates_k2_and_c_though_its_vif_is_large() {
+        // the fixture's design: 12 rates 35–200 °/s in both mountings, R 2.50 and 2.54 m
+        let f = fit_of(&wide(), 2.5, &wide(), 2.54);
+        assert!(f.gamma_vif > 1e6, "{}", f.gamma_vif);
+        assert!(f.k2_inflation < 1.5, "{}", f.k2_inflation);
+        assert!(f.separable());
+        // equal radii and rates: k2 and C come from the sum and the difference of the two
+        // mountings' ω⁴ coefficients, uncorrelated whatever the VIF
+        let same = fit_of(&wide(), 2.5, &wide(), 2.5);
+        assert!(same.k2_gamma_correlation.abs() < 1e-6, "{same:?}");
+    }
+
+    #[test]
+    fn one_mounting_at_low_rates_only_cannot_separate_them() {
+        // IA out measured at 35–60 °/s only: its ω⁴ coefficient is barely known, so k2 and C
+        // both rest on IA in's alone
+        let f = fit_of(&wide(), 2.5, &[35.0, 40.0, 45.0, 50.0, 55.0, 60.0], 2.54);
+        assert!(f.k2_inflation > 5.0, "{}", f.k2_inflation);
+        assert!(f.k2_gamma_correlation.abs() > 0.98);
+        assert!(!f.separable());
+    }
+
+    #[test]
+    fn the_inflation_is_u_k2_over_u_k2_with_c_known() {
+        // the identity checked against a fit without the s·ω⁴ column, through the same QR
+        let a = wide();
+        let b = [35.0, 40.0, 45.0, 50.0, 55.0, 60.0];
+        let f = fit_of(&a, 2.5, &b, 2.54);
+        let mut rows = Vec::new();
+        for (o, r, rates) in [
+            (Orientation::IaIn, 2.5, &a[..]),
+            (Orientation::IaOut, 2.54, &b[..]),
+        ] {
+            for d in rates {
+                let row = symmetric_row(o, r, 9.8, d.to_radians());
+                rows.push(row[..GAMMA_TERM].to_vec());
+            }
+        }
+        let x = nalgebra::DMatrix::from_fn(rows.len(), GAMMA_TERM, |i, j| rows[i][j]);
+        let reduced = lstsq_with(&x, &vec![0.0; rows.len()], &LstsqOptions::default()).unwrap();
+        let ratio = (f.fit.unscaled_covariance[(K2_TERM, K2_TERM)]
+            / reduced.unscaled_covariance[(K2_TERM, K2_TERM)])
+            .sqrt();
+        assert!(
+            (ratio / f.k2_inflation - 1.0).abs() < 1e-6,
+            "{ratio} vs {}",
+            f.k2_inflation
+        );
+    }
 }

@@ -25,6 +25,6 @@ pub use evaluate::{
 };
 pub use fit::{MountingFit, SymmetricFit, fit_symmetric};
 pub use terms::{
-    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION, Orientation, OrientationData,
-    SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS, Z_LIMIT, symmetric_row,
+    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION,
+    Orientation, OrientationData, SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS, Z_LIMIT, symmetric_row,
 };

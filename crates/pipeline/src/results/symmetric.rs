@@ -121,8 +121,16 @@ pub struct SymmetricResults {
     pub dof: usize,
     /// Residual standard deviation of the joint fit, rad/s.
     pub residual_sd_rad_s: f64,
-    /// Variance inflation factor of the s·ω⁴ column.
+    /// Variance inflation factor of the s·ω⁴ column (a diagnostic: about 1e6 on every
+    /// ordinary design).
     pub omega4_vif: f64,
+    /// u(k2) in the joint fit over u(k2) with C known (the s·ω⁴ column dropped),
+    /// `1/√(1 − ρ²)`: what fitting C costs k2; warned on above 3.
+    #[serde(default)]
+    pub k2_inflation_by_omega4: f64,
+    /// Correlation ρ of the k2 and C estimates in the joint fit.
+    #[serde(default)]
+    pub k2_c_correlation: f64,
     /// Condition number of the column-scaled design.
     pub condition_number: f64,
     /// Uncertainty budgets (JCGM 100).

@@ -44,8 +44,8 @@ pub enum WarningCode {
     /// plane.
     #[serde(rename = "cone_c_r")]
     ConeCr,
-    /// The two-orientation fit's s·ω⁴ term is hard to tell apart from the others (VIF above
-    /// 1e4).
+    /// The two-orientation fit's s·ω⁴ term (C) is hard to tell apart from k2: fitting it
+    /// widens u(k2) more than 3 times.
     #[serde(rename = "omega4_not_separable")]
     Omega4NotSeparable,
     /// The PIGA's total radius growth C and the probe's C_r disagree (|z| > 3).
@@ -291,18 +291,21 @@ impl Warning {
         }
     }
 
-    /// `omega4_not_separable`: the two-orientation fit's s·ω⁴ column has a variance inflation
-    /// factor `vif` above `limit`.
+    /// `omega4_not_separable`: fitting the two-orientation fit's s·ω⁴ term (C) widens u(k2)
+    /// `k2_inflation` times (above `limit`) over a fit with C known, the k2 and C estimates
+    /// correlated at `correlation`; `vif` is the column's variance inflation factor.
     #[must_use]
-    pub fn omega4_not_separable(vif: f64, limit: f64) -> Self {
+    pub fn omega4_not_separable(k2_inflation: f64, correlation: f64, limit: f64, vif: f64) -> Self {
         Self {
             code: WarningCode::Omega4NotSeparable,
             message: format!(
-                "the ω⁴ term of the two-orientation fit (the one that measures the radius growth \
-                 C) has a variance inflation factor of {vif:.2e}, above {limit:.0e}: over these \
-                 rates it is close to a combination of the ω, ω³ and a³ terms, so C and k2 are \
-                 known only as well as their stated uncertainties say, which this correlation \
-                 enlarges; rates spread lower and higher separate them better"
+                "k2 and the radius growth C are hard to tell apart in the two-orientation fit: \
+                 fitting C (the ω⁴ term that changes sign with the orientation) makes u(k2) \
+                 {k2_inflation:.1} times what it would be with C known (warned above {limit}); \
+                 their estimates are correlated at {correlation:+.3} (variance inflation factor of \
+                 the ω⁴ term {vif:.1e}). Both are stated with uncertainties that carry this, but \
+                 k2 from the PIGA alone is far less precise than the design could give: measure \
+                 both orientations over the same wide band of rates, with comparable noise"
             ),
             location: "symmetric.orientations".into(),
         }

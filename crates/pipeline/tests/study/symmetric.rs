@@ -207,11 +207,13 @@ fn the_symmetric_fit_sees_the_arm_stretch_the_probe_misses() {
     let (_, _, z0) = e0.probe_difference.unwrap();
     assert!(z0.abs() < 3.0, "z = {z0}");
     assert!(!disagrees(&e0));
-    // Over 35–200 deg/s the s·ω⁴ column is close to the other odd powers (VIF ≈ 1e6, above
-    // the 1e4 of issue 20): the warning is given, and the uncertainty carries it.
-    assert!(!fit.separable(), "VIF {}", fit.gamma_vif);
+    // Over 35–200 deg/s the s·ω⁴ column's VIF is about 1e6 (above issue 20's 1e4), yet C is
+    // known to a few per cent and fitting it hardly widens u(k2): nothing is said.
+    assert!(fit.gamma_vif > 1e4, "VIF {}", fit.gamma_vif);
+    assert!(fit.k2_inflation < 2.0, "{}", fit.k2_inflation);
+    assert!(fit.separable());
     assert!(
-        e.warnings
+        !e.warnings
             .iter()
             .any(|w| matches!(w, SymmetricWarning::GammaNotSeparable { .. }))
     );
@@ -423,15 +425,24 @@ fn bad_orientation_sets_are_refused_by_field() {
     ));
 }
 
-/// Two mountings at the same radius with rates so close that s·ω⁴ and a² hardly differ:
-/// the fit says the s·ω⁴ term cannot be told apart (VIF above 1e4).
+/// IA in over 35–200 °/s, IA out at 35–60 °/s only: IA out's ω⁴ coefficient is barely
+/// known, so k2 and C both rest on IA in's and cannot be told apart (ρ ≈ −0.98, u(k2) five
+/// times what it is with C known). The fit says so. (Equal radii and bunched rates do not:
+/// there k2 and C come from the sum and difference of the mountings' ω⁴ coefficients,
+/// uncorrelated, however large the VIF.)
 #[test]
 fn an_inseparable_omega4_term_is_reported() {
-    let w: Vec<f64> = (0..6)
-        .map(|i| (190.0 + f64::from(i)).to_radians())
+    let w: Vec<f64> = (0..12)
+        .map(|i| (35.0 + 15.0 * f64::from(i)).to_radians())
         .collect();
-    let y: Vec<f64> = w.iter().map(|w| 0.56 * 2.5 * w * w / G).collect();
-    let yo: Vec<f64> = y.iter().map(|v| -v).collect();
+    let wo: Vec<f64> = (0..6)
+        .map(|i| (35.0 + 5.0 * f64::from(i)).to_radians())
+        .collect();
+    let y: Vec<f64> = w
+        .iter()
+        .map(|w| 0.56 * 2.5 * w * w / G + 1e-9 * w)
+        .collect();
+    let yo: Vec<f64> = wo.iter().map(|w| -0.56 * 2.54 * w * w / G).collect();
     let data = [
         OrientationData {
             field: "o[0]",
@@ -444,27 +455,32 @@ fn an_inseparable_omega4_term_is_reported() {
         OrientationData {
             field: "o[1]",
             orientation: Some(calibration::Orientation::IaOut),
-            radius_m: Some(2.5),
-            rates_rad_s: &w,
+            radius_m: Some(2.54),
+            rates_rad_s: &wo,
             output_rad_s: &yo,
             sigma_rad_s: None,
         },
     ];
-    match fit_symmetric(&data, G, "o") {
-        Ok(fit) => {
-            assert!(!fit.separable(), "VIF {}", fit.gamma_vif);
-            let e = evaluate_symmetric(&fit, 0.0, None, None);
-            if let Ok(e) = e {
-                assert!(
-                    e.warnings
-                        .iter()
-                        .any(|w| matches!(w, SymmetricWarning::GammaNotSeparable { .. }))
-                );
-            }
-        }
-        // a design the solver finds rank-deficient is refused outright: also not a number
-        // without a warning
-        Err(SymmetricError::Fit(_)) => {}
-        Err(other) => panic!("{other}"),
-    }
+    let fit = fit_symmetric(&data, G, "o").unwrap();
+    assert!(!fit.separable(), "{}", fit.k2_inflation);
+    assert!(fit.k2_inflation > 5.0, "{}", fit.k2_inflation);
+    let e = evaluate_symmetric(&fit, 0.0, None, None).unwrap();
+    let w = e
+        .warnings
+        .iter()
+        .find_map(|w| match *w {
+            SymmetricWarning::GammaNotSeparable { k2_inflation, .. } => Some(k2_inflation),
+            SymmetricWarning::ProbeDisagrees { .. } => None,
+        })
+        .expect("the warning");
+    assert_eq!(w, fit.k2_inflation);
+    // the study's words give the figure
+    let words = pipeline::Warning::omega4_not_separable(
+        fit.k2_inflation,
+        fit.k2_gamma_correlation,
+        calibration::K2_INFLATION_LIMIT,
+        fit.gamma_vif,
+    );
+    let figure = format!("u(k2) {:.1} times", fit.k2_inflation);
+    assert!(words.message.contains(&figure), "{}", words.message);
 }

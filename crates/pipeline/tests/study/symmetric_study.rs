@@ -80,9 +80,15 @@ fn the_study_sees_the_arm_stretch_the_probe_misses() {
         .find(|w| w.code == WarningCode::ProbeDisagrees)
         .unwrap();
     assert!(w.message.contains("does not see") && w.message.contains("probe_direction"));
-    // the ordinary 35–200 deg/s design: the ω⁴ term's VIF is above 1e4, and it is said
+    // the ordinary 35–200 deg/s design: the ω⁴ term's VIF is above 1e4 (a diagnostic), but
+    // fitting C widens u(k2) little, and nothing is said
     assert!(s.omega4_vif > 1e4);
-    assert!(warned(&r, WarningCode::Omega4NotSeparable));
+    assert!(
+        s.k2_inflation_by_omega4 < 2.0,
+        "{}",
+        s.k2_inflation_by_omega4
+    );
+    assert!(!warned(&r, WarningCode::Omega4NotSeparable));
 
     let r0 = study(
         &simulate::simulate(&scenario(21, 0.0)).unwrap(),

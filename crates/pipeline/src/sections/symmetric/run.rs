@@ -3,7 +3,7 @@
 //! probe method on the IA-in data set, and the results with their warnings.
 
 use ::calibration::{
-    GAMMA_VIF_LIMIT, Orientation, OrientationData, ProbeCr, SymmetricError, SymmetricEvaluation,
+    K2_INFLATION_LIMIT, Orientation, OrientationData, ProbeCr, SymmetricError, SymmetricEvaluation,
     SymmetricWarning, evaluate_symmetric, fit_symmetric,
 };
 use uncertainty::{Dof, McOptions, Trials};
@@ -186,6 +186,8 @@ pub(crate) fn run(
         dof: fit.fit.dof,
         residual_sd_rad_s: (all / fit.fit.dof.max(1) as f64).sqrt(),
         omega4_vif: fit.gamma_vif,
+        k2_inflation_by_omega4: fit.k2_inflation,
+        k2_c_correlation: fit.k2_gamma_correlation,
         condition_number: fit.fit.condition_number,
         budget: SymmetricBudgets {
             k2: budget(&e, "k2"),
@@ -199,9 +201,11 @@ pub(crate) fn run(
         .warnings
         .iter()
         .map(|w| match *w {
-            SymmetricWarning::GammaNotSeparable { vif } => {
-                Warning::omega4_not_separable(vif, GAMMA_VIF_LIMIT)
-            }
+            SymmetricWarning::GammaNotSeparable {
+                vif,
+                k2_inflation,
+                correlation,
+            } => Warning::omega4_not_separable(k2_inflation, correlation, K2_INFLATION_LIMIT, vif),
             SymmetricWarning::ProbeDisagrees {
                 difference_m_s2,
                 u_m_s2,
