@@ -189,20 +189,30 @@ pub fn expected_two_orientation_outputs(
 ) -> Result<[Vec<f64>; 2]> {
     let spec = spec(inputs)?;
     let b = expected_coefficients(inputs, spec);
-    Ok(plan.mountings.each_ref().map(|m| {
+    Ok(outputs_of(&plan.mountings, plan.g_m_s2, &b))
+}
+
+/// The mean outputs of eq. 23 with coefficients `b` at the mountings' points (each row from
+/// `calibration::symmetric_row`).
+fn outputs_of(
+    mountings: &[MountingSchedule; 2],
+    g_m_s2: f64,
+    b: &[f64; SYMMETRIC_TERMS],
+) -> [Vec<f64>; 2] {
+    mountings.each_ref().map(|m| {
         m.points
             .iter()
             .map(|q| {
                 let row = symmetric_row(
                     m.orientation,
                     m.radius_m,
-                    plan.g_m_s2,
+                    g_m_s2,
                     units::deg_s_to_rad_s(q.rate_deg_s),
                 );
-                row.iter().zip(&b).map(|(x, c)| x * c).sum()
+                row.iter().zip(b).map(|(x, c)| x * c).sum()
             })
             .collect()
-    }))
+    })
 }
 
 fn spec(inputs: &PlanInputs) -> Result<&TwoOrientations> {
@@ -439,20 +449,7 @@ fn outcome(
         recording_s: 0.0,
         duration_s: 0.0,
     });
-    let outputs: [Vec<f64>; 2] = schedules.each_ref().map(|m| {
-        m.points
-            .iter()
-            .map(|q| {
-                let row = symmetric_row(
-                    m.orientation,
-                    m.radius_m,
-                    g_m_s2,
-                    units::deg_s_to_rad_s(q.rate_deg_s),
-                );
-                row.iter().zip(expected).map(|(x, c)| x * c).sum()
-            })
-            .collect()
-    });
+    let outputs = outputs_of(&schedules, g_m_s2, expected);
     let fit = fit_points(&schedules, g_m_s2, [&outputs[0], &outputs[1]])?;
     Ok(Outcome { mountings, fit })
 }

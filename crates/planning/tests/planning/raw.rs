@@ -8,8 +8,8 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
-use super::two_orientations::{centrifuge_and_piga, inputs};
-use planning::{TwoOrientationPlan, plan_two_orientations};
+use super::two_orientations::{centrifuge_and_piga, inputs, plan};
+use planning::TwoOrientationPlan;
 
 /// Samples per second of the raw recordings (36 per revolution at 200 deg/s).
 const SAMPLE_RATE_HZ: f64 = 20.0;
@@ -61,7 +61,7 @@ fn reduce(
 #[test]
 fn raw_recordings_through_the_studys_reduction_agree_with_the_table_level_check() {
     let inputs = inputs();
-    let plan = plan_two_orientations(&inputs).unwrap();
+    let plan = plan();
     let points: Vec<(usize, usize)> = (0..2)
         .flat_map(|k| (0..plan.mountings[k].points.len()).map(move |i| (k, i)))
         .collect();
@@ -74,7 +74,7 @@ fn raw_recordings_through_the_studys_reduction_agree_with_the_table_level_check(
         .par_iter()
         .map(|&(k, i)| {
             let u = (0..8)
-                .map(|s| reduce(&inputs, &plan, k, i, PROBE_NOISE_RAD, 900 + s).2)
+                .map(|s| reduce(&inputs, plan, k, i, PROBE_NOISE_RAD, 900 + s).2)
                 .sum::<f64>()
                 / 8.0;
             PROBE_NOISE_RAD * plan.mountings[k].points[i].sigma_mean_rad_s / u
@@ -88,7 +88,7 @@ fn raw_recordings_through_the_studys_reduction_agree_with_the_table_level_check(
             let mut outputs = [Vec::new(), Vec::new()];
             let mut sigma = [Vec::new(), Vec::new()];
             for (&(k, i), &a) in points.iter().zip(&angle_noise) {
-                let (w, y, s) = reduce(&inputs, &plan, k, i, a, 1000 + c);
+                let (w, y, s) = reduce(&inputs, plan, k, i, a, 1000 + c);
                 rates[k].push(w);
                 outputs[k].push(y);
                 sigma[k].push(s);

@@ -29,6 +29,12 @@ pub(crate) fn inputs() -> PlanInputs {
     i
 }
 
+/// The plan of [`inputs`], computed once for the tests that share it.
+pub(crate) fn plan() -> &'static TwoOrientationPlan {
+    static PLAN: std::sync::OnceLock<TwoOrientationPlan> = std::sync::OnceLock::new();
+    PLAN.get_or_init(|| plan_two_orientations(&inputs()).unwrap())
+}
+
 /// The plan file's centrifuge (the expected C_r as the spindle's dynamic drift, latitude
 /// 45°) and PIGA for the exact chain.
 pub(crate) fn centrifuge_and_piga(
@@ -91,9 +97,9 @@ pub(crate) fn exact_outputs(inputs: &PlanInputs, plan: &TwoOrientationPlan) -> [
 #[test]
 fn predicted_u_k2_agrees_with_1000_campaigns_through_the_exact_chain() {
     let inputs = inputs();
-    let plan = plan_two_orientations(&inputs).unwrap();
-    let y = exact_outputs(&inputs, &plan);
-    let check = simulate_two_orientation_plan(&plan, [&y[0], &y[1]], 1000, 11).unwrap();
+    let plan = plan();
+    let y = exact_outputs(&inputs, plan);
+    let check = simulate_two_orientation_plan(plan, [&y[0], &y[1]], 1000, 11).unwrap();
     // The SD of 1000 draws has a relative standard error of 2.2 %: 10 % is 4.5 of them.
     assert!((check.ratio - 1.0).abs() < 0.10, "{check:?}");
     // The joint fit's k2 has no Δk2: the exact chain's noise-free k2 is the PIGA's own k2
@@ -112,13 +118,13 @@ fn predicted_u_k2_agrees_with_1000_campaigns_through_the_exact_chain() {
 #[test]
 fn the_first_order_outputs_give_the_exact_chains_k2() {
     let inputs = inputs();
-    let plan = plan_two_orientations(&inputs).unwrap();
-    let first = expected_two_orientation_outputs(&inputs, &plan).unwrap();
-    let exact = exact_outputs(&inputs, &plan);
+    let plan = plan();
+    let first = expected_two_orientation_outputs(&inputs, plan).unwrap();
+    let exact = exact_outputs(&inputs, plan);
     // The outputs differ by the ω terms (the Earth rate's Coriolis term), which the exact
     // chain has and eq. 23's b1 columns absorb: the fitted k2 agree to a small part of u.
     let k2 = |y: &[Vec<f64>; 2]| {
-        simulate_two_orientation_plan(&plan, [&y[0], &y[1]], 10, 1)
+        simulate_two_orientation_plan(plan, [&y[0], &y[1]], 10, 1)
             .unwrap()
             .noise_free_k2_rad_s_g2
     };
@@ -130,7 +136,7 @@ fn the_first_order_outputs_give_the_exact_chains_k2() {
 #[test]
 fn the_plan_uses_round_rates_keeps_a_reserve_and_states_their_costs() {
     let inputs = inputs();
-    let plan = plan_two_orientations(&inputs).unwrap();
+    let plan = plan();
     assert!(plan.total_time_s <= 7200.0);
     for m in &plan.mountings {
         // Six rates for the fit and two for the reserve, all distinct, on the 5 deg/s grid.
