@@ -10,7 +10,8 @@ use crate::error::{HarmonicsError, Requirement, Result};
 use crate::geometry::FirstHarmonic;
 use crate::kernel::{AngleMap, Centring, MAX_ORDER, accumulate};
 use crate::signal::{
-    IncompleteRevolution, ProbeSignal, Segmentation, SpindleAngle, exact_max_gap, segment,
+    IncompleteRevolution, ProbeSignal, Segmentation, SpindleAngle, check_gap_outside,
+    exact_max_gap, gap_not_finite, segment,
 };
 use crate::solve::{parameter_count, solve};
 
@@ -258,6 +259,11 @@ pub fn analyze(signal: &ProbeSignal<'_>, config: &FitConfig) -> Result<HarmonicA
 /// Fewest samples in the revolutions used for which they are fitted in parallel.
 const PARALLEL_SAMPLES: usize = 1 << 16;
 
+/// Whether any value of `x` is not finite.
+fn first_non_finite_in(x: &[f64]) -> bool {
+    x.iter().any(|v| !v.is_finite())
+}
+
 /// Fits one revolution (its sampling already checked).
 fn fit_revolution(
     signal: &ProbeSignal<'_>,
@@ -284,6 +290,13 @@ fn fit_revolution(
         map,
         centre,
     );
+    if !sums.yy.is_finite() {
+        // A non-finite sample (or one beyond ~1e154, which the solution names below): the
+        // recording's first non-finite sample is the error, as before the fit.
+        if first_non_finite_in(&signal.gap[range.clone()]) {
+            return Err(gap_not_finite(signal.gap).expect("a non-finite sample was seen"));
+        }
+    }
     let sol = solve(&sums, order, config.drift, r)?;
     let coefficients = Coefficients {
         l0: sol.x[0] + centre.y_ref,
@@ -460,6 +473,9 @@ pub(crate) fn analyze_segmented(
             });
         }
     }
+    // A non-finite gap sample outside the revolutions fitted (inside them the fit's own
+    // pass finds it).
+    check_gap_outside(signal.gap, revolutions)?;
     // The revolutions are independent: fit them on all cores when there is enough work
     // (`RAYON_NUM_THREADS=1` keeps it to one), and report the first failure in order.
     let fit = |(r, range): (usize, &Range<usize>)| {

@@ -10,15 +10,18 @@
 //! formed.
 //!
 //! Samples are processed in blocks of `BLOCK`: first `cos θ, sin θ` of every sample of the
-//! block, then each order `k = 2…2N` in one loop that forms `cos kθ, sin kθ` by the
-//! recurrence and adds them to their sums while they are still in registers. Every sum keeps
-//! `LANES` independent lanes (lane `l` takes the samples `i ≡ l mod LANES`, in order), which
-//! the compiler turns into SIMD, and the result is bit for bit that of adding `LANES` samples
-//! at a time (a unit test checks it). On an AVX2 machine this took the 2.88 M-sample fit from
-//! 28–31 ms to 19 ms: adding every sample to every sum at once kept some 50 accumulators in
-//! flight, more than the CPU's 16 vector registers, and stalled on the stores
-//! (docs/PERFORMANCE.md). `pulp` dispatches at run time to the widest instruction set the CPU
-//! has (the workspace forbids `unsafe`, so no intrinsics here).
+//! block, then the orders `k = 2…2N` in runs of a few orders: a run reads the two stored
+//! orders below its first, forms its orders by the recurrence in registers, adds each to its
+//! sums there, and stores only its last two orders for the next run (`DATA_RUN` data orders
+//! or `MOMENT_RUN` moment orders per run, as many as keep the sums in the CPU's registers).
+//! Every sum keeps `LANES` independent lanes (lane `l` takes the samples `i ≡ l mod LANES`,
+//! in order), which the compiler turns into SIMD, and the result is bit for bit that of
+//! adding `LANES` samples at a time (a unit test checks it). On the AVX2 machine of
+//! docs/PERFORMANCE.md the 2.88 M-sample fit took 28–31 ms with every sum updated per
+//! sample (some 50 accumulators in flight, more than the 16 vector registers), 19 ms with
+//! one order per loop and eight lanes, and 14–16 ms with runs of orders and four lanes
+//! (half the loads and stores of the basis). `pulp` dispatches at run time to the widest
+//! instruction set the CPU has (the workspace forbids `unsafe`, so no intrinsics here).
 
 // Lane loops index several arrays at once; that is what vectorises.
 #![allow(clippy::needless_range_loop)]
@@ -31,10 +34,14 @@ pub const MAX_ORDER: usize = 8;
 pub(crate) const MOMENTS: usize = 2 * MAX_ORDER + 1;
 /// Samples per accumulation step: lane `l` of every sum takes the samples `i ≡ l (mod LANES)`
 /// in order, so the result does not depend on how the pass is blocked.
-const LANES: usize = 8;
+const LANES: usize = 4;
 /// Samples per block: the basis `cos kθ, sin kθ` of a block is formed first, then each sum
 /// runs over the block with its lanes held in registers (a multiple of `LANES`).
 const BLOCK: usize = 64;
+/// Data orders (`k ≤ N`) formed per loop over a block without drift (four sums each).
+const DATA_RUN: usize = 2;
+/// Moment orders (`N < k ≤ 2N`) formed per loop over a block (two sums each).
+const MOMENT_RUN: usize = 4;
 
 /// How a sample's angle follows from its source value `x`: `θ = (x − shift)·scale + offset`.
 #[derive(Debug, Clone, Copy)]
@@ -245,46 +252,128 @@ impl<const W: usize> Acc<W> {
             lane_dots(&mut a, tau, [tau, yv, &cos[1][..len], &sin[1][..len]]);
             [self.tau_tau, self.tau_y, self.tau_cos[1], self.tau_sin[1]] = a;
         }
-        // Orders 2…2N: each formed by the recurrence and summed in the same loop, while it
-        // is still in a register.
-        for k in 2..=2 * N {
-            let (c_lo, c_hi) = cos.split_at_mut(k);
-            let (s_lo, s_hi) = sin.split_at_mut(k);
-            let previous = Previous {
-                c1: &c_lo[1][..len],
-                c: [&c_lo[k - 1][..len], &c_lo[k - 2][..len]],
-                s: [&s_lo[k - 1][..len], &s_lo[k - 2][..len]],
-            };
-            let (ck, sk) = (&mut c_hi[0][..len], &mut s_hi[0][..len]);
-            if k <= N {
-                let mut a = [
-                    self.cos[k],
-                    self.sin[k],
-                    self.y_cos[k],
-                    self.y_sin[k],
-                    self.tau_cos[k],
-                    self.tau_sin[k],
-                ];
-                next_order::<W, true, DRIFT>(&previous, ck, sk, yv, tau, &mut a);
-                [
-                    self.cos[k],
-                    self.sin[k],
-                    self.y_cos[k],
-                    self.y_sin[k],
-                    self.tau_cos[k],
-                    self.tau_sin[k],
-                ] = a;
+        // Orders 2…2N, several per loop: the recurrence runs in registers from the two
+        // stored orders below the first of a run, and only the run's last two orders are
+        // stored for the next run. A run holds as many orders as keep its sums in
+        // registers: data orders (k ≤ N) carry four or six sums each, moment orders two.
+        let data_run = if DRIFT { 1 } else { DATA_RUN };
+        let mut k = 2;
+        while k <= 2 * N {
+            let (data, last) = if k <= N {
+                (true, N.min(k + data_run - 1))
             } else {
-                let mut a = [
-                    self.cos[k],
-                    self.sin[k],
-                    [0.0; W],
-                    [0.0; W],
-                    [0.0; W],
-                    [0.0; W],
-                ];
-                next_order::<W, false, false>(&previous, ck, sk, yv, tau, &mut a);
-                [self.cos[k], self.sin[k]] = [a[0], a[1]];
+                (false, (2 * N).min(k + MOMENT_RUN - 1))
+            };
+            let store = last < 2 * N;
+            let run = last + 1 - k;
+            macro_rules! go {
+                ($p:literal) => {
+                    if data {
+                        self.order_run::<$p, true, DRIFT>(basis, k, len, store)
+                    } else {
+                        self.order_run::<$p, false, false>(basis, k, len, store)
+                    }
+                };
+            }
+            match run {
+                1 => go!(1),
+                2 => go!(2),
+                3 => go!(3),
+                _ => go!(4),
+            }
+            k = last + 1;
+        }
+    }
+
+    /// Forms the orders `k0 … k0+P−1` of a block by the recurrence, with the two orders below
+    /// `k0` read from `basis`, and adds them lane by lane in sample order to their sums (with
+    /// the data products for `DATA`, the drift products as well for `DRIFT`), keeping each
+    /// order's values in registers; with `store`, the run's last two orders go back into
+    /// `basis` for the next run. Per lane the operations are those of [`Acc::add`].
+    #[inline(always)]
+    fn order_run<const P: usize, const DATA: bool, const DRIFT: bool>(
+        &mut self,
+        basis: &mut Basis,
+        k0: usize,
+        len: usize,
+        store: bool,
+    ) {
+        let Basis { cos, sin, y, tau } = basis;
+        let mut a = [[[0.0; W]; 6]; P];
+        for p in 0..P {
+            a[p][0] = self.cos[k0 + p];
+            a[p][1] = self.sin[k0 + p];
+            if DATA {
+                a[p][2] = self.y_cos[k0 + p];
+                a[p][3] = self.y_sin[k0 + p];
+                if DRIFT {
+                    a[p][4] = self.tau_cos[k0 + p];
+                    a[p][5] = self.tau_sin[k0 + p];
+                }
+            }
+        }
+        let mut j = 0;
+        while j + W <= len {
+            let mut two_c1 = [0.0; W];
+            let (mut cp1, mut cp2, mut sp1, mut sp2) = ([0.0; W], [0.0; W], [0.0; W], [0.0; W]);
+            let (mut yv, mut tv) = ([0.0; W], [0.0; W]);
+            for l in 0..W {
+                let i = j + l;
+                two_c1[l] = cos[1][i] + cos[1][i];
+                cp1[l] = cos[k0 - 1][i];
+                cp2[l] = cos[k0 - 2][i];
+                sp1[l] = sin[k0 - 1][i];
+                sp2[l] = sin[k0 - 2][i];
+                if DATA {
+                    yv[l] = y[i];
+                    if DRIFT {
+                        tv[l] = tau[i];
+                    }
+                }
+            }
+            for p in 0..P {
+                let mut c = [0.0; W];
+                let mut s = [0.0; W];
+                for l in 0..W {
+                    c[l] = two_c1[l].mul_add(cp1[l], -cp2[l]);
+                    s[l] = two_c1[l].mul_add(sp1[l], -sp2[l]);
+                    a[p][0][l] += c[l];
+                    a[p][1][l] += s[l];
+                    if DATA {
+                        a[p][2][l] = yv[l].mul_add(c[l], a[p][2][l]);
+                        a[p][3][l] = yv[l].mul_add(s[l], a[p][3][l]);
+                        if DRIFT {
+                            a[p][4][l] = tv[l].mul_add(c[l], a[p][4][l]);
+                            a[p][5][l] = tv[l].mul_add(s[l], a[p][5][l]);
+                        }
+                    }
+                }
+                (cp2, cp1, sp2, sp1) = (cp1, c, sp1, s);
+            }
+            if store {
+                // Element by element: `copy_from_slice` here was measured slower (a call
+                // per four values instead of vector stores).
+                let k = k0 + P - 1;
+                #[allow(clippy::manual_memcpy)]
+                for l in 0..W {
+                    cos[k][j + l] = cp1[l];
+                    sin[k][j + l] = sp1[l];
+                    cos[k - 1][j + l] = cp2[l];
+                    sin[k - 1][j + l] = sp2[l];
+                }
+            }
+            j += W;
+        }
+        for p in 0..P {
+            self.cos[k0 + p] = a[p][0];
+            self.sin[k0 + p] = a[p][1];
+            if DATA {
+                self.y_cos[k0 + p] = a[p][2];
+                self.y_sin[k0 + p] = a[p][3];
+                if DRIFT {
+                    self.tau_cos[k0 + p] = a[p][4];
+                    self.tau_sin[k0 + p] = a[p][5];
+                }
             }
         }
     }
@@ -361,58 +450,6 @@ fn lane_dots<const W: usize, const G: usize>(acc: &mut [[f64; W]; G], u: &[f64],
             let cv = &v[g][j..j + W];
             for l in 0..W {
                 a[g][l] = cu[l].mul_add(cv[l], a[g][l]);
-            }
-        }
-        j += W;
-    }
-    *acc = a;
-}
-
-/// The two orders below the one to form, and `cos θ`, over a block.
-struct Previous<'a> {
-    c1: &'a [f64],
-    /// `cos (k−1)θ`, `cos (k−2)θ`.
-    c: [&'a [f64]; 2],
-    /// `sin (k−1)θ`, `sin (k−2)θ`.
-    s: [&'a [f64]; 2],
-}
-
-/// Forms `cos kθ`, `sin kθ` of a block into `ck`, `sk` by the Chebyshev recurrence and adds
-/// them, lane by lane in sample order, to `acc` = `[Σ cos, Σ sin, Σ y cos, Σ y sin, Σ τ cos,
-/// Σ τ sin]` (the data products with `DATA`, the drift products with `DRIFT` as well).
-#[inline(always)]
-fn next_order<const W: usize, const DATA: bool, const DRIFT: bool>(
-    previous: &Previous<'_>,
-    ck: &mut [f64],
-    sk: &mut [f64],
-    y: &[f64],
-    tau: &[f64],
-    acc: &mut [[f64; W]; 6],
-) {
-    let len = ck.len();
-    let (c1, [c1_prev, c2_prev], [s1_prev, s2_prev]) = (previous.c1, previous.c, previous.s);
-    let (c1, c1_prev, c2_prev) = (&c1[..len], &c1_prev[..len], &c2_prev[..len]);
-    let (s1_prev, s2_prev, sk, y) = (&s1_prev[..len], &s2_prev[..len], &mut sk[..len], &y[..len]);
-    let tau = if DRIFT { &tau[..len] } else { y };
-    let mut a = *acc;
-    let mut j = 0;
-    while j + W <= len {
-        for l in 0..W {
-            let i = j + l;
-            let two_c1 = c1[i] + c1[i];
-            let c = two_c1.mul_add(c1_prev[i], -c2_prev[i]);
-            let s = two_c1.mul_add(s1_prev[i], -s2_prev[i]);
-            ck[i] = c;
-            sk[i] = s;
-            a[0][l] += c;
-            a[1][l] += s;
-            if DATA {
-                a[2][l] = y[i].mul_add(c, a[2][l]);
-                a[3][l] = y[i].mul_add(s, a[3][l]);
-                if DRIFT {
-                    a[4][l] = tau[i].mul_add(c, a[4][l]);
-                    a[5][l] = tau[i].mul_add(s, a[5][l]);
-                }
             }
         }
         j += W;

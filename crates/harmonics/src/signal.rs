@@ -223,6 +223,28 @@ fn zero_if_finite(v: f64) -> f64 {
     v - v
 }
 
+/// [`HarmonicsError::NonFinite`] for the gap's first non-finite sample, if any.
+pub(crate) fn gap_not_finite(gap: &[f64]) -> Option<HarmonicsError> {
+    first_non_finite(gap).map(|index| HarmonicsError::NonFinite {
+        index,
+        column: "gap",
+        value: gap[index],
+    })
+}
+
+/// The gap's non-finite check on the samples outside `used` (ranges in order): the
+/// error names the recording's first non-finite gap sample wherever it is.
+pub(crate) fn check_gap_outside(gap: &[f64], used: &[Range<usize>]) -> Result<()> {
+    let mut from = 0;
+    for range in used.iter().chain(std::iter::once(&(gap.len()..gap.len()))) {
+        if range.start > from && first_non_finite(&gap[from..range.start]).is_some() {
+            return Err(gap_not_finite(gap).expect("a non-finite sample was seen"));
+        }
+        from = from.max(range.end);
+    }
+    Ok(())
+}
+
 /// Index of the first non-finite value, if any.
 fn first_non_finite(x: &[f64]) -> Option<usize> {
     pulp::Arch::new().dispatch(FirstNonFinite(x))
@@ -304,13 +326,9 @@ pub(crate) fn segment(
         });
     }
     let time_axis = check_time_axis(signal.time_s, max_gap_intervals)?;
-    if let Some(index) = first_non_finite(signal.gap) {
-        return Err(HarmonicsError::NonFinite {
-            index,
-            column: "gap",
-            value: signal.gap[index],
-        });
-    }
+    // The gap is checked where it is read: the fit's own pass over each revolution (its
+    // Σ(y − y₀)² is finite only when every sample is), and [`check_gap_outside`] for the
+    // samples no revolution uses. A separate pass here cost a read of the whole array.
     match signal.angle {
         SpindleAngle::Rate {
             rate_rad_s,

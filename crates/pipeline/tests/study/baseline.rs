@@ -16,8 +16,11 @@ use crate::root;
 /// fields are residuals — differences of nearly equal numbers (1e-3 µm of some 10 µm) —
 /// or rest on them, so that change is amplified about 1e4 times (a residual near zero may
 /// move by 1e-12 µm absolute). Every other number, C_r and Δk2 included, still agrees to
-/// 1e-12.
-const RESIDUAL_FIELDS: [&str; 6] = [
+/// 1e-12. A revolution's `residual_rms_um` is the same kind of difference (√(ΣY² − xᵀb)/n)
+/// and moved by 2e-12 (issue 21): the harmonic fit now adds its sums in four lanes instead of
+/// eight, which changes each sum in its last bit.
+const RESIDUAL_FIELDS: [&str; 7] = [
+    "residual_rms_um",
     "residuals_um",
     "residual_sd_um",
     "c_r_sigma_m_s2",
