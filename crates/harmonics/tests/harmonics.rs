@@ -387,6 +387,42 @@ mod refusals {
         );
     }
 
+    /// The gap is checked inside the fit's pass and outside the revolutions fitted: the
+    /// error names the recording's first non-finite sample wherever it lies.
+    #[test]
+    fn a_non_finite_gap_is_named_by_its_first_sample_wherever_it_lies() {
+        let gap_error =
+            |data: &SyntheticSamples, rec: &SyntheticRecording, config: &FitConfig| match analyze(
+                &rate_signal(rec, data),
+                config,
+            )
+            .unwrap_err()
+            {
+                HarmonicsError::NonFinite {
+                    index,
+                    column: "gap",
+                    ..
+                } => index,
+                e => panic!("{e}"),
+            };
+        let (rec, mut data) = base();
+        let last = data.gap.len() - 1; // in the trailing incomplete revolution
+        data.gap[last] = f64::INFINITY;
+        assert_eq!(gap_error(&data, &rec, &FitConfig::default()), last);
+        // Bad samples in the first revolution and after the last: the first by index.
+        data.gap[last - 3] = f64::NAN;
+        data.gap[20] = f64::NAN;
+        assert_eq!(gap_error(&data, &rec, &FitConfig::default()), 20);
+        // A sample beyond the revolutions asked for is still refused.
+        let (rec, mut data) = base();
+        data.gap[last] = f64::NAN;
+        let one = FitConfig {
+            revolutions: Some(1),
+            ..FitConfig::default()
+        };
+        assert_eq!(gap_error(&data, &rec, &one), last);
+    }
+
     #[test]
     fn a_finite_but_huge_sample_is_a_named_non_finite_result() {
         // One gap of 1e160 (finite): its square overflows ΣY². Before: Ok with std = inf and a
