@@ -108,6 +108,9 @@ pub fn certificate_html(
     );
     results_table(&mut out, c, &heads);
     compensation_block(&mut out, c, &heads[2]);
+    if let Some(s) = &results.symmetric {
+        crate::symmetric::certificate_block(&mut out, s, &heads[2].stated);
+    }
     conformity(&mut out, info);
     let _ = writeln!(
         out,

@@ -295,3 +295,82 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
         mc.trials, mc.seed,
     );
 }
+
+/// The certificate's statement of the two-orientation method (a study with both a
+/// `symmetric` and a `certificate` section): k2 from the PIGA alone beside the certified k2
+/// of the probe method (`probe_k2`, the results table's), and the PIGA's total radius
+/// growth C against the probe's C_r with its z. HTML.
+pub(crate) fn certificate_block(out: &mut String, s: &SymmetricResults, probe_k2: &Headline) {
+    use crate::format::esc;
+    let _ = writeln!(out, "<h3>Check by the two-orientation method</h3>");
+    let _ = writeln!(
+        out,
+        "<p>The PIGA was also measured with its input axis turned round (IA in, R = {} m; IA out, \
+         R = {} m) and both data sets fitted jointly (eq. 23): this gives k2 and the total dynamic \
+         radius growth C at the PIGA from the PIGA's own output, without the displacement probe. \
+         Intervals at 95 % coverage.</p>",
+        s.mountings
+            .first()
+            .map_or_else(String::new, |m| format::plain(m.radius_m)),
+        s.mountings
+            .get(1)
+            .map_or_else(String::new, |m| format::plain(m.radius_m)),
+    );
+    let _ = writeln!(out, "<table class=\"ident\"><tbody>");
+    crate::html::row(
+        out,
+        "k2, probe method (certified above)",
+        &esc(&format!(
+            "{} (interval from {})",
+            stated(probe_k2, "rad/(s·g²)"),
+            method(probe_k2)
+        )),
+    );
+    crate::html::row(
+        out,
+        "k2, two-orientation method",
+        &esc(&format!(
+            "{} (interval from {})",
+            stated(&s.headline.k2, "rad/(s·g²)"),
+            method(&s.headline.k2)
+        )),
+    );
+    crate::html::row(
+        out,
+        "total radius growth C",
+        &esc(&format!(
+            "{} (interval from {})",
+            stated(&s.headline.c, "m·s²"),
+            method(&s.headline.c)
+        )),
+    );
+    if let Some(p) = &s.probe {
+        crate::html::row(
+            out,
+            "C_r of the probe",
+            &esc(&format!(
+                "{} m·s² (standard uncertainty; phase “{}”)",
+                format::pair(p.c_r_m_s2.value, p.c_r_m_s2.u).joined(),
+                p.phase
+            )),
+        );
+        crate::html::row(
+            out,
+            "C − C_r",
+            &esc(&format!(
+                "{}, z = {:+.1}: {}",
+                with_u95(&p.difference_m_s2, "m·s²"),
+                p.z,
+                if p.z.abs() > 3.0 {
+                    "the PIGA sees radius growth the probe does not (arm stretch), or the probe's \
+                     declared sign convention, gap unit or lever heights are wrong; the probe \
+                     method's k2 is then off by k1·(C − C_r)·g/R²"
+                } else {
+                    "they agree within 3 standard uncertainties: the probe method's compensation \
+                     is confirmed by the PIGA's own output"
+                }
+            )),
+        );
+    }
+    let _ = writeln!(out, "</tbody></table>");
+}

@@ -169,3 +169,60 @@ fn study_writes_the_certificate_beside_results_json() {
     assert!(text.contains("CC-2026-0042"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The two-orientation fixture (`fixtures/studies/symmetric.ron`) with the campaign's
+/// uncertainty and certificate sections and a calibration of its IA-in table compensated
+/// with the probe phase: a study with both a `symmetric` and a `certificate` section.
+fn certified_two_orientation_study() -> pipeline::StudyResults {
+    let sym = std::fs::read_to_string("../../fixtures/studies/symmetric.ron").unwrap();
+    let camp = std::fs::read_to_string("../../fixtures/studies/campaign.ron").unwrap();
+    let block = |text: &str, start: &str| {
+        let i = text.find(start).unwrap();
+        let j = i + text[i..].find("\n    ),\n").unwrap() + "\n    ),\n".len();
+        (i, j)
+    };
+    let (ci, cj) = block(&camp, "    uncertainty: (");
+    let (ki, _) = block(&camp, "    certificate: (");
+    let certificate = &camp[ki..camp.rfind(')').unwrap()];
+    let (si, sj) = block(&sym, "    uncertainty: (");
+    let calibration = "    calibration: (\n        table: (file: \"../symmetric/piga_ia_in.csv\"),\n        \
+                       compensate_with: \"spindle\",\n        k1: fitted,\n        seed: 1,\n    ),\n";
+    let body = format!(
+        "{}{}{}{}",
+        &sym[..si],
+        &camp[ci..cj],
+        calibration,
+        &sym[sj..]
+    );
+    let end = body.rfind(')').unwrap();
+    let text = format!("{}{})\n", &body[..end], certificate);
+    let inputs = pipeline::parse_study(
+        &text,
+        Path::new("../../fixtures/studies/symmetric-certified.ron"),
+    )
+    .unwrap();
+    pipeline::run(&inputs).unwrap()
+}
+
+#[test]
+fn the_certificate_states_the_two_orientation_check() {
+    let results = certified_two_orientation_study();
+    assert!(results.symmetric.is_some() && results.calibration.is_some());
+    let html = report::certificate_html(&results, None, &software()).unwrap();
+    let start = html
+        .find("<h3>Check by the two-orientation method")
+        .expect("the two-orientation statement");
+    let end = start + html[start..].find("</table>").unwrap() + "</table>".len();
+    let part = &html[start..end];
+    // k2 both ways, C − C_r with its z: the fixture's arm stretch is seen (z ≈ +8)
+    for words in [
+        "k2, probe method (certified above)",
+        "k2, two-orientation method",
+        "C − C_r",
+        "z = +",
+        "arm stretch",
+    ] {
+        assert!(part.contains(words), "{words} not in\n{part}");
+    }
+    insta::assert_snapshot!("two_orientation_certificate_html", part);
+}
