@@ -119,9 +119,15 @@ pub struct TwoOrientationPlan {
     pub c_expected_m_s2: f64,
     /// Predicted u(C) from the PIGA alone, m·s².
     pub u_c_m_s2: f64,
-    /// Variance inflation factor of the `s·ω⁴` column (above 1e4 the study warns that C is
-    /// not separated).
+    /// Variance inflation factor of the `s·ω⁴` column (a diagnostic; about 1e6–1e7 on
+    /// ordinary designs).
     pub omega4_vif: f64,
+    /// What fitting C costs k2: u(k2) of the joint fit over u(k2) with C known,
+    /// `1/√(1 − ρ²)` (`calibration::SymmetricFit::k2_inflation`; the study warns that C and
+    /// k2 are not separated above [`calibration::K2_INFLATION_LIMIT`]).
+    pub k2_inflation: f64,
+    /// Whether the study will give that warning for this design.
+    pub c_separable: bool,
     /// 2-norm condition number of the column-scaled, weighted design.
     pub condition_number: f64,
     /// What the round grid costs against the unrounded optimum.
@@ -513,6 +519,8 @@ fn describe(
         c_expected_m_s2: inputs.c_r.expected_m_s2 + spec.arm_stretch_m_s2,
         u_c_m_s2: a.main.fit.c_m_s2.1,
         omega4_vif: a.main.fit.gamma_vif,
+        k2_inflation: a.main.fit.k2_inflation,
+        c_separable: a.main.fit.separable(),
         condition_number: a.main.fit.fit.condition_number,
         rounding: RoundingCost {
             step_deg_s: a.step,
@@ -549,6 +557,7 @@ fn check_finite(p: &TwoOrientationPlan) -> Result<()> {
         ("k", p.k),
         ("u_c_m_s2", p.u_c_m_s2),
         ("omega4_vif", p.omega4_vif),
+        ("k2_inflation", p.k2_inflation),
         ("condition_number", p.condition_number),
         ("recording_share_ia_in", p.recording_share_ia_in),
         ("rounding", p.rounding.cost_percent),

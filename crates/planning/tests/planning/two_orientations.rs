@@ -150,6 +150,12 @@ fn the_plan_uses_round_rates_keeps_a_reserve_and_states_their_costs() {
         }
     }
     assert_eq!(plan.fit_dof, 6);
+    // k2 and C are separated on this design: the study's warning will not fire.
+    assert!(
+        plan.c_separable && plan.k2_inflation < 1.5,
+        "{}",
+        plan.k2_inflation
+    );
     // Rounding costs little; the reserve costs something, stated.
     assert!(plan.rounding.cost_percent > -1.0 && plan.rounding.cost_percent < 10.0);
     assert!(plan.reserve.cost_percent > 0.0 && plan.reserve.cost_percent < 40.0);
