@@ -443,6 +443,9 @@ class Plan(_Result):
     revolutions: tuple[int, ...]
     u95_k2_rad_s_g2: float | None
     data: dict[str, Any]
+    #: For a two-orientation plan (a ``two_orientations`` section): the mounting of each
+    #: point (``"ia_in"`` or ``"ia_out"``), aligned with ``rates_deg_s``; empty otherwise.
+    orientations: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return self.data
@@ -456,6 +459,16 @@ def plan(config: PathLike | dict[str, Any]) -> Plan:
     else:
         text = _native.plan(os.fspath(config), None)
     data = json.loads(text)
+    two = data.get("two_orientations")
+    if two is not None:
+        mounted = [(m["orientation"], p) for m in two["mountings"] for p in m["points"]]
+        return Plan(
+            rates_deg_s=tuple(p["rate_deg_s"] for _, p in mounted),
+            revolutions=tuple(p["revolutions"] for _, p in mounted),
+            u95_k2_rad_s_g2=two.get("u95_k2_rad_s_g2"),
+            data=data,
+            orientations=tuple(o for o, _ in mounted),
+        )
     points = data.get("points", [])
     return Plan(
         rates_deg_s=tuple(p.get("rate_deg_s") for p in points),
