@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use anyhow::bail;
 use harmonics::{Coefficients, FitConfig, ProbeDirection};
 use recording::{
-    AngleSource, AngleSourceKind, AngleUnit, BinaryChannels, Delimiter, Recording,
-    RecordingAnalysis, RecordingFormat,
+    AngleSource, AngleSourceKind, AngleUnit, Delimiter, Recording, RecordingAnalysis,
+    RecordingFormat,
 };
 use serde_json::{Value, json};
 
@@ -177,47 +177,26 @@ impl Harmonics {
         Ok(f)
     }
 
-    /// The recording, read by the reader of its file's extension (binary files: the
-    /// format's column names and units, an encoder angle when the file has it).
+    /// The recording, read by the reader of its file's extension (`recording`'s
+    /// [`load_recording`](recording::load_recording), as the study reads it: binary files
+    /// with the format's names, units, angle source and bad-sample policies).
     fn load(&self, format: &RecordingFormat) -> anyhow::Result<Recording> {
-        let extension = self
-            .file
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        let binary = || BinaryChannels {
+        let format = RecordingFormat {
             group: self.group.clone(),
-            time: (!self.waveform_time).then(|| format.time.column.clone()),
-            gap: format.gap.column.clone(),
-            gap_unit: format.gap.unit,
-            angle: match &format.angle {
-                AngleSource::Encoder { column, .. } => Some(column.clone()),
-                _ => None,
-            },
-            angle_unit: match &format.angle {
-                AngleSource::Encoder { unit, .. } => *unit,
-                _ => AngleUnit::Deg,
-            },
-            max_gap_intervals: format.max_gap_intervals,
+            waveform_time: self.waveform_time,
+            ..format.clone()
         };
-        let only_binary = |flag: &str, given: bool| {
-            if given {
-                bail!("{flag} applies to TDMS and MAT files only");
-            }
-            Ok(())
-        };
-        Ok(match extension.as_deref() {
-            Some("tdms") => recording::load_tdms(&self.file, &binary())?,
-            Some("mat") => {
-                if self.waveform_time {
-                    bail!("--waveform-time applies to TDMS files only");
-                }
-                recording::load_mat(&self.file, &binary())?
-            }
-            _ => {
-                only_binary("--group", self.group.is_some())?;
-                only_binary("--waveform-time", self.waveform_time)?;
-                recording::load_recording(&self.file, format)?
-            }
+        recording::load_recording(&self.file, &format).map_err(|e| match e {
+            // The setting as this command's flag.
+            recording::RecordingError::SettingNotForFile {
+                setting,
+                applies_to,
+                ..
+            } => anyhow::anyhow!(
+                "--{} applies to {applies_to} only",
+                setting.replace('_', "-")
+            ),
+            e => e.into(),
         })
     }
 

@@ -8,7 +8,7 @@ use harmonics::{FitConfig, ProbeDirection};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use recording::{AngleSource, AngleUnit, BinaryChannels, RecordingFormat};
+use recording::RecordingFormat;
 
 use crate::errors::{self, Kind, Located};
 use crate::fit;
@@ -181,48 +181,19 @@ fn load(
     group: Option<String>,
     waveform_time: bool,
 ) -> Result<recording::Recording, Load> {
-    let extension = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let binary = || BinaryChannels {
-        group: group.clone(),
-        time: (!waveform_time).then(|| format.time.column.clone()),
-        gap: format.gap.column.clone(),
-        gap_unit: format.gap.unit,
-        angle: match &format.angle {
-            AngleSource::Encoder { column, .. } => Some(column.clone()),
-            _ => None,
-        },
-        angle_unit: match &format.angle {
-            AngleSource::Encoder { unit, .. } => *unit,
-            _ => AngleUnit::Deg,
-        },
-        max_gap_intervals: format.max_gap_intervals,
+    let format = RecordingFormat {
+        group,
+        waveform_time,
+        ..format.clone()
     };
-    match extension.as_deref() {
-        Some("tdms") => recording::load_tdms(path, &binary()).map_err(Load::Recording),
-        Some("mat") => {
-            if waveform_time {
-                return Err(Load::Usage(
-                    "waveform_time applies to TDMS files only".to_owned(),
-                ));
-            }
-            recording::load_mat(path, &binary()).map_err(Load::Recording)
-        }
-        _ => {
-            if group.is_some() {
-                return Err(Load::Usage(
-                    "group applies to TDMS and MAT files only".to_owned(),
-                ));
-            }
-            if waveform_time {
-                return Err(Load::Usage(
-                    "waveform_time applies to TDMS files only".to_owned(),
-                ));
-            }
-            recording::load_recording(path, format).map_err(Load::Recording)
-        }
-    }
+    recording::load_recording(path, &format).map_err(|e| match e {
+        recording::RecordingError::SettingNotForFile {
+            setting,
+            applies_to,
+            ..
+        } => Load::Usage(format!("{setting} applies to {applies_to} only")),
+        e => Load::Recording(e),
+    })
 }
 
 /// A Python value (dict, list, tuple, str, int, float, bool, None, a path) as a JSON value,

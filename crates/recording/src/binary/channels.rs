@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::decode::{BLOCK, first_non_finite};
 use crate::error::{BinaryDefect, BinaryFormat, BinaryPart, RecordingError, Result, Unsupported};
-use crate::lab::format::{ANGLE_COLUMN, AngleUnit, GAP_COLUMN, TIME_COLUMN};
+use crate::lab::format::{ANGLE_COLUMN, AngleUnit, GAP_COLUMN, OnBadSamples, TIME_COLUMN};
 use crate::lab::probe::Recording;
 use crate::lab::volts::{GapUnit, volts_to_um};
 
@@ -35,6 +35,13 @@ pub struct BinaryChannels {
     /// Largest interval between samples, in nominal (median) sample intervals, before the
     /// recording is refused as having a gap (default 3, as for CSV).
     pub max_gap_intervals: f64,
+    /// What a gap does: refuse the recording (default), or leave it for the analysis to
+    /// drop the revolutions it touches, as for CSV (`on_gap`).
+    pub on_gap: OnBadSamples,
+    /// What a NaN or infinite sample does: refuse the recording naming the channel and
+    /// sample index (default), or keep it for the analysis to drop its revolution, as for
+    /// CSV (`on_non_finite`).
+    pub on_non_finite: OnBadSamples,
 }
 
 impl Default for BinaryChannels {
@@ -47,6 +54,8 @@ impl Default for BinaryChannels {
             angle: Some(ANGLE_COLUMN.into()),
             angle_unit: AngleUnit::Deg,
             max_gap_intervals: 3.0,
+            on_gap: OnBadSamples::Error,
+            on_non_finite: OnBadSamples::Error,
         }
     }
 }
@@ -121,7 +130,9 @@ pub(crate) fn assemble(
                 found: s.values.len(),
             });
         }
-        if let Some(index) = (!s.finite).then(|| first_non_finite(&s.values)).flatten() {
+        // A non-finite sample is refused, or kept for the analysis to drop its revolution.
+        let check = !s.finite && channels.on_non_finite == OnBadSamples::Error;
+        if let Some(index) = check.then(|| first_non_finite(&s.values)).flatten() {
             return Err(RecordingError::NonFiniteSample {
                 path: path.to_path_buf(),
                 format,
@@ -131,8 +142,19 @@ pub(crate) fn assemble(
             });
         }
     }
-    if time.values.len() > 1 {
-        harmonics::check_time_axis(&time.values, channels.max_gap_intervals).map_err(|source| {
+    // As for CSV: with both policies strict, the time axis is checked whole (order and
+    // gaps); a format that drops revolutions leaves gaps and non-finite samples to the
+    // analysis, and only the order of finite times is checked here.
+    let strict =
+        channels.on_gap == OnBadSamples::Error && channels.on_non_finite == OnBadSamples::Error;
+    let limit = if strict {
+        channels.max_gap_intervals
+    } else {
+        f64::MAX
+    };
+    let finite_times = strict || time.values.iter().all(|t| t.is_finite());
+    if time.values.len() > 1 && finite_times {
+        harmonics::check_time_axis(&time.values, limit).map_err(|source| {
             RecordingError::TimeAxis {
                 path: path.to_path_buf(),
                 format,
@@ -163,6 +185,11 @@ pub(crate) fn assemble(
         channels.gap_unit.length_unit(),
         sensitivity,
         angle_rad,
+        (
+            channels.max_gap_intervals,
+            channels.on_gap,
+            channels.on_non_finite,
+        ),
     ))
 }
 

@@ -89,6 +89,8 @@ pub(crate) fn read_with_format(
         angle,
         angle_unit,
         max_gap_intervals: format.max_gap_intervals,
+        on_gap: format.on_gap,
+        on_non_finite: format.on_non_finite,
     };
     let read = |channels: &BinaryChannels| match (kind, bytes) {
         (BinaryFormat::Tdms, Some(b)) => tdms::parse_tdms(b, path, channels),

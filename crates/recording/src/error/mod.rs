@@ -397,7 +397,11 @@ pub enum RecordingError {
         found: usize,
     },
     /// A sample of a binary channel is NaN or infinite.
-    #[error("{}: {format} `{channel}` sample {index} is not finite ({value})", path.display())]
+    #[error(
+        "{}: {format} `{channel}` sample {index} is not finite ({value}) (hint: {})",
+        path.display(),
+        Hint::OnNonFinite
+    )]
     NonFiniteSample {
         /// The file.
         path: PathBuf,
@@ -438,7 +442,14 @@ pub enum RecordingError {
     },
     /// The time axis of a binary recording fails a check (order, gaps); the source names
     /// the sample index.
-    #[error("{}: {format} `{channel}`: bad time axis", path.display())]
+    #[error(
+        "{}: {format} `{channel}`: bad time axis{}",
+        path.display(),
+        match source {
+            HarmonicsError::SampleGap { .. } => format!(" (hint: {})", Hint::OnGap),
+            _ => String::new(),
+        }
+    )]
     TimeAxis {
         /// The file.
         path: PathBuf,

@@ -99,6 +99,7 @@ impl Recording {
         gap_unit: LengthUnit,
         sensitivity: Option<ProbeSensitivity>,
         angle_rad: Option<Vec<f64>>,
+        (max_gap_intervals, on_gap, on_non_finite): (f64, OnBadSamples, OnBadSamples),
     ) -> Self {
         Self {
             path,
@@ -114,9 +115,9 @@ impl Recording {
             angle_rad,
             start_angle_rad: 0.0,
             unread_columns: Vec::new(),
-            max_gap_intervals: RecordingFormat::default().max_gap_intervals,
-            on_gap: OnBadSamples::Error,
-            on_non_finite: OnBadSamples::Error,
+            max_gap_intervals,
+            on_gap,
+            on_non_finite,
             lines: LineTable::default(),
         }
     }

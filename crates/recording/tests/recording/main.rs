@@ -1,5 +1,6 @@
 //! Behaviour of the readers through the public API.
 
+mod bad_samples;
 mod binary;
 mod daqmx;
 mod piga_recording;
