@@ -182,8 +182,8 @@ impl Harmonics {
     /// with the format's names, units, angle source and bad-sample policies).
     fn load(&self, format: &RecordingFormat) -> anyhow::Result<Recording> {
         let format = RecordingFormat {
-            group: self.group.clone(),
-            waveform_time: self.waveform_time,
+            group: self.group.clone().or_else(|| format.group.clone()),
+            waveform_time: self.waveform_time || format.waveform_time,
             ..format.clone()
         };
         recording::load_recording(&self.file, &format).map_err(|e| match e {

@@ -181,9 +181,10 @@ fn load(
     group: Option<String>,
     waveform_time: bool,
 ) -> Result<recording::Recording, Load> {
+    // The arguments add to what the format itself says.
     let format = RecordingFormat {
-        group,
-        waveform_time,
+        group: group.or_else(|| format.group.clone()),
+        waveform_time: waveform_time || format.waveform_time,
         ..format.clone()
     };
     recording::load_recording(path, &format).map_err(|e| match e {
