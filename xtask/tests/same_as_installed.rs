@@ -9,8 +9,20 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
-/// The `centrifuge-cal` binary, built as `cargo build` builds it beside this test's own.
+/// The `centrifuge-cal` binary from crates/cli. `cargo test --workspace` has already built it
+/// beside this test's xtask binary (cli's own tests need it); that one is used when it is newer
+/// than the cli library xtask links and than every source file of crates/cli. Otherwise (this
+/// test run on its own after an edit) it is built here, as `cargo build` builds it. Building it
+/// here always would rebuild every workspace crate: a plain `cargo build -p cli` resolves the
+/// crates' features without the tests' dev-dependency features, which costs CI minutes.
 fn centrifuge_cal() -> PathBuf {
+    let xtask = PathBuf::from(env!("CARGO_BIN_EXE_xtask"));
+    let binary = xtask.with_file_name(format!("centrifuge-cal{}", std::env::consts::EXE_SUFFIX));
+    if is_fresh(&binary, &xtask) {
+        eprintln!("using {}, built by this cargo test", binary.display());
+        return binary;
+    }
+    eprintln!("building centrifuge-cal (older than its sources or not built)");
     let status = Command::new(env!("CARGO"))
         .args([
             "build",
@@ -24,10 +36,49 @@ fn centrifuge_cal() -> PathBuf {
         .status()
         .expect("cargo runs");
     assert!(status.success(), "cargo build of centrifuge-cal failed");
-    let xtask = PathBuf::from(env!("CARGO_BIN_EXE_xtask"));
-    let binary = xtask.with_file_name(format!("centrifuge-cal{}", std::env::consts::EXE_SUFFIX));
     assert!(binary.is_file(), "{} not built", binary.display());
     binary
+}
+
+/// Whether `binary` was built after the newest cli library in `xtask`'s `deps/` and after
+/// every file under crates/cli/src.
+fn is_fresh(binary: &Path, xtask: &Path) -> bool {
+    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
+    let Some(built) = modified(binary) else {
+        return false;
+    };
+    let mut inputs = Vec::new();
+    if let Some(dir) = xtask.parent() {
+        let deps = dir.join("deps");
+        if let Ok(entries) = std::fs::read_dir(&deps) {
+            for e in entries.flatten() {
+                let name = e.file_name().to_string_lossy().into_owned();
+                if name.starts_with("libcli-") && name.ends_with(".rlib") {
+                    inputs.push(e.path());
+                }
+            }
+        }
+    }
+    if inputs.is_empty() {
+        return false;
+    }
+    let mut stack = vec![root().join("crates/cli/src")];
+    while let Some(dir) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            return false;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                inputs.push(p);
+            }
+        }
+    }
+    inputs
+        .iter()
+        .all(|p| modified(p).is_some_and(|m| m <= built))
 }
 
 /// Runs `program ARGS --out DIR` and returns (stdout without the `wrote` lines, results.json).
