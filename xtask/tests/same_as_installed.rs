@@ -19,10 +19,8 @@ fn centrifuge_cal() -> PathBuf {
     let xtask = PathBuf::from(env!("CARGO_BIN_EXE_xtask"));
     let binary = xtask.with_file_name(format!("centrifuge-cal{}", std::env::consts::EXE_SUFFIX));
     if is_fresh(&binary, &xtask) {
-        eprintln!("using {}, built by this cargo test", binary.display());
         return binary;
     }
-    eprintln!("building centrifuge-cal (older than its sources or not built)");
     let status = Command::new(env!("CARGO"))
         .args([
             "build",
