@@ -32,28 +32,35 @@ fn row(out: &mut String, name: &str, unit: &str, c: &Coefficient) {
     );
 }
 
-fn budget_table(out: &mut String, lines: &[BudgetLine]) {
-    let _ = writeln!(
-        out,
-        "| input quantity | type | value | standard uncertainty | sensitivity ∂k2/∂x | contribution | % of u² | dof |"
+/// A GUM budget table of the report, one row per input quantity: its name (`quantity`), the
+/// cells every budget shows (type, value, standard uncertainty, sensitivity, contribution),
+/// then the cells of `last` (headings and contents, `|`-separated). The calibration section
+/// and the two-orientation section (`symmetric`) both write their budgets with it.
+pub(crate) fn budget_table(
+    out: &mut String,
+    lines: &[BudgetLine],
+    [quantity_head, sensitivity_head]: [&str; 2],
+    quantity: impl Fn(&BudgetLine) -> String,
+    (last_head, last): (&str, impl Fn(&BudgetLine) -> String),
+) {
+    let head = format!(
+        "| {quantity_head} | type | value | standard uncertainty | {sensitivity_head} | contribution | {last_head} |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "{head}");
+    // One `|---` a column.
+    let _ = writeln!(out, "{}|", "|---".repeat(head.matches(" | ").count() + 1));
     for l in lines {
         let _ = writeln!(
             out,
-            "| {}{} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.2} | {} |",
-            l.quantity,
-            l.note
-                .as_ref()
-                .map_or_else(String::new, |n| format!(" ({n})")),
+            "| {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {} |",
+            quantity(l),
             l.evaluation,
             l.value
                 .map_or_else(|| "—".to_owned(), |v| format!("{v:.6e}")),
             l.u,
             l.sensitivity,
             l.contribution,
-            l.percent,
-            dof(l.dof),
+            last(l),
         );
     }
     let _ = writeln!(out);
@@ -136,7 +143,18 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         c.uncompensated.k2.value, c.uncompensated.k2.u
     );
     let _ = writeln!(out, "### Uncertainty budget of k2 (JCGM 100)\n");
-    budget_table(out, &c.budget.k2);
+    budget_table(
+        out,
+        &c.budget.k2,
+        ["input quantity", "sensitivity ∂k2/∂x"],
+        |l| match &l.note {
+            Some(n) => format!("{} ({n})", l.quantity),
+            None => l.quantity.clone(),
+        },
+        ("% of u² | dof", |l| {
+            format!("{:.2} | {}", l.percent, dof(l.dof))
+        }),
+    );
     let mc = &c.monte_carlo;
     let _ = writeln!(
         out,

@@ -121,26 +121,10 @@ fn coefficient_row(out: &mut String, name: &str, unit: &str, c: &Coefficient) {
 }
 
 fn budget_table(out: &mut String, output: &str, lines: &[BudgetLine]) {
-    let _ = writeln!(
-        out,
-        "| input quantity ({output}) | type | value | standard uncertainty | sensitivity | contribution | % of u² |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
-    for l in lines {
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {} |",
-            l.quantity,
-            l.evaluation,
-            l.value
-                .map_or_else(|| "—".to_owned(), |v| format!("{v:.6e}")),
-            l.u,
-            l.sensitivity,
-            l.contribution,
-            format::percent(l.percent),
-        );
-    }
-    let _ = writeln!(out);
+    let quantity_head = format!("input quantity ({output})");
+    let last = ("% of u²", |l: &BudgetLine| format::percent(l.percent));
+    let heads = [quantity_head.as_str(), "sensitivity"];
+    crate::calibration::budget_table(out, lines, heads, |l| l.quantity.clone(), last);
 }
 
 /// Appends the report's two-orientation section.
