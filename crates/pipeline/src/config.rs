@@ -5,7 +5,7 @@
 //! library types (`harmonics::LeverGeometry`, `harmonics::FitConfig`, `identify::RadiusModel`)
 //! are built there, so renaming a library field cannot change the file format.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use recording::RecordingFormat;
 use serde::{Deserialize, Serialize};
@@ -210,27 +210,6 @@ pub struct CalibrationConfig {
 
 const fn default_seed() -> u64 {
     1
-}
-
-/// Raw PIGA output recordings, one per rate (`docs/YOUR-DATA.md`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PigaRecordingSet {
-    /// Layout of the files: time, the output angle (`output`: deg, rad or
-    /// `counts(per_rev)`), the spindle's angle source, delimiter, decimal mark, gaps and
-    /// non-finite samples; defaults to `time_s,output_rad[,angle_deg]`.
-    #[serde(default)]
-    pub format: recording::PigaRecordingFormat,
-    /// Harmonics of the spindle angle removed from the output angle in each revolution
-    /// with its slope (1 to 8, default 2).
-    #[serde(default = "default_piga_order")]
-    pub order: usize,
-    /// The recordings.
-    pub files: Vec<RecordingPoint>,
-}
-
-const fn default_piga_order() -> usize {
-    2
 }
 
 /// Where the calibration's k1 comes from.
@@ -468,16 +447,6 @@ impl Default for FitSettings {
     }
 }
 
-/// One recording and the rate it was taken at.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RecordingPoint {
-    /// Spindle rate, deg/s.
-    pub rate_deg_s: f64,
-    /// The CSV file, relative to the configuration file's folder unless absolute.
-    pub file: PathBuf,
-}
-
 /// The mechanism section (`mechanism: (...)` in the study file): a PIGA calibration simulated
 /// through the exact chain with the C_r each phase measured.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -550,12 +519,15 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "HarmonicPoint" => "phases[…].points (first_harmonic)",
         "RadiusPoint" => "phases[…].points (radius_error)",
         "RecordingSet" => "phases[…].points (recordings)",
-        "RecordingPoint" => "phases[…].points.files[…] (or calibration.recordings.files[…])",
+        "RecordingPoint" => {
+            "phases[…].points.files[…] (or calibration.recordings.files[…], \
+             symmetric.orientations[…].recordings.files[…])"
+        }
         "FitSettings" => "phases[…].points.fit",
         "MechanismConfig" => "mechanism",
         "CalibrationConfig" => "calibration",
-        "PigaTableConfig" => "calibration.table",
-        "PigaRecordingSet" => "calibration.recordings",
+        "PigaTableConfig" => "calibration.table (or symmetric.orientations[…].table)",
+        "PigaRecordingSet" => "calibration.recordings (or symmetric.orientations[…].recordings)",
         "K1Config" => "calibration.k1",
         "TrialsConfig" => "calibration.trials (or symmetric.trials)",
         "UncertaintyConfig" => "uncertainty",
@@ -674,7 +646,9 @@ mod tests {
             "(name: \"x\", radius_m: 1.0, g_m_s2: 9.8, k1_rad_s_g: 1.0, lever: (pivot_to_probe_mm: 1.0, probe_to_piga_mm: 1.0), phases: [], calibration: (compensate_with: \"a\", table: (rate_column: \"r\", output_column: \"y\")))",
         );
         assert!(
-            m.contains("missing field `file` in `calibration.table`"),
+            m.contains(
+                "missing field `file` in `calibration.table (or symmetric.orientations[…].table)`"
+            ),
             "{m}"
         );
         assert!(!m.contains("PigaTableConfig"), "{m}");

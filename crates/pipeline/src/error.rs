@@ -400,7 +400,15 @@ pub enum UnsupportedReason {
 
 impl PipelineError {
     /// `Ok` for no error, the error itself for one, [`PipelineError::Several`] for more.
-    pub(crate) fn from_list(mut errors: Vec<Self>) -> Result<()> {
+    pub(crate) fn from_list(errors: Vec<Self>) -> Result<()> {
+        // a list of lists is one list: every problem at the same level, in order
+        let mut errors: Vec<Self> = errors
+            .into_iter()
+            .flat_map(|e| match e {
+                Self::Several { errors } => errors,
+                e => vec![e],
+            })
+            .collect();
         match errors.len() {
             0 => Ok(()),
             1 => Err(errors.remove(0)),

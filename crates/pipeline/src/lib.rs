@@ -20,7 +20,8 @@
 //! # Modules
 //! The configuration's format (`config`, serde DTOs) and the output format (`results`) are
 //! leaves; the core (`inputs`: the data source, the centrifuge's geometry, field checks)
-//! uses only them; each section (`sections::{phases, mechanism, calibration, balance}`)
+//! uses only them; `piga_data` (the PIGA's table or raw output recordings, read and reduced
+//! to points) is core shared by the calibration and two-orientation sections; each section (`sections::{phases, mechanism, calibration, balance}`)
 //! validates its part of the configuration, runs on values and fills its results, using
 //! only the core and the formats; `study` orders the sections; `load` is the edge.
 //!
@@ -57,6 +58,7 @@ mod config;
 mod error;
 mod inputs;
 mod load;
+mod piga_data;
 mod results;
 mod sections;
 mod study;

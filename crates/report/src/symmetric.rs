@@ -52,9 +52,10 @@ fn lines(out: &mut String, s: &SymmetricResults) {
     if let Some(p) = &s.probe {
         let _ = writeln!(
             out,
-            "  k2 by the probe method   {}  (IA-in data compensated with phase `{}`, U with k = 2)",
+            "  k2 by the probe method   {}  (IA-in data compensated with phase `{}`, U from the GUM with k = {})",
             format::pair(p.k2_probe.value, p.k2_probe_u95).joined() + " rad/(s·g²)",
-            p.phase
+            p.phase,
+            probe_k(p)
         );
     }
     let _ = writeln!(
@@ -124,7 +125,11 @@ fn budget_table(out: &mut String, output: &str, lines: &[BudgetLine]) {
     let quantity_head = format!("input quantity ({output})");
     let last = ("% of u²", |l: &BudgetLine| format::percent(l.percent));
     let heads = [quantity_head.as_str(), "sensitivity"];
-    crate::calibration::budget_table(out, lines, heads, |l| l.quantity.clone(), last);
+    let quantity = |l: &BudgetLine| match &l.note {
+        Some(note) => format!("{} ({note})", l.quantity),
+        None => l.quantity.clone(),
+    };
+    crate::calibration::budget_table(out, lines, heads, quantity, last);
 }
 
 /// Appends the report's two-orientation section.
@@ -141,20 +146,20 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
     );
     let _ = writeln!(
         out,
-        "| mounting | radius m | table | points | distinct rates | residual SD rad/s |"
+        "| mounting | radius m | data | points | distinct rates | residual SD rad/s |"
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|");
     for m in &s.mountings {
         let _ = writeln!(
             out,
-            "| {} | {} | `{}` | {} | {} | {:.2e} |",
+            "| {} | {} | {} | {} | {} | {:.2e} |",
             if m.orientation == "ia_in" {
                 "IA in"
             } else {
                 "IA out"
             },
             format::plain(m.radius_m),
-            m.table,
+            mounting_data(m),
             m.points,
             m.distinct_rates,
             m.residual_sd_rad_s
@@ -235,7 +240,8 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
         );
         let _ = writeln!(
             out,
-            "| the probe method (IA-in data compensated with the probe's C_r; k = 2) | {} | rad/(s·g²) |",
+            "| the probe method (IA-in data compensated with the probe's C_r; GUM with the calibration's Type B inputs, k = {}) | {} | rad/(s·g²) |",
+            probe_k(p),
             format::pair(p.k2_probe.value, p.k2_probe_u95).joined()
         );
         let _ = writeln!(
@@ -247,6 +253,9 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
     let _ = writeln!(out, "### Uncertainty budgets (GUM)\n");
     budget_table(out, "k2", &s.budget.k2);
     budget_table(out, "C", &s.budget.c);
+    if let Some(lines) = &s.budget.difference {
+        budget_table(out, "C − C_r", lines);
+    }
     let mc = &s.monte_carlo;
     let outputs = [
         ("k2", mc.k2.gum_agrees),
@@ -280,81 +289,22 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
     );
 }
 
-/// The certificate's statement of the two-orientation method (a study with both a
-/// `symmetric` and a `certificate` section): k2 from the PIGA alone beside the certified k2
-/// of the probe method (`probe_k2`, the results table's), and the PIGA's total radius
-/// growth C against the probe's C_r with its z. HTML.
-pub(crate) fn certificate_block(out: &mut String, s: &SymmetricResults, probe_k2: &Headline) {
-    use crate::format::esc;
-    let _ = writeln!(out, "<h3>Check by the two-orientation method</h3>");
-    let _ = writeln!(
-        out,
-        "<p>The PIGA was also measured with its input axis turned round (IA in, R = {} m; IA out, \
-         R = {} m) and both data sets fitted jointly (eq. 23): this gives k2 and the total dynamic \
-         radius growth C at the PIGA from the PIGA's own output, without the displacement probe. \
-         Intervals at 95 % coverage.</p>",
-        s.mountings
-            .first()
-            .map_or_else(String::new, |m| format::plain(m.radius_m)),
-        s.mountings
-            .get(1)
-            .map_or_else(String::new, |m| format::plain(m.radius_m)),
-    );
-    let _ = writeln!(out, "<table class=\"ident\"><tbody>");
-    crate::html::row(
-        out,
-        "k2, probe method (certified above)",
-        &esc(&format!(
-            "{} (interval from {})",
-            stated(probe_k2, "rad/(s·g²)"),
-            method(probe_k2)
-        )),
-    );
-    crate::html::row(
-        out,
-        "k2, two-orientation method",
-        &esc(&format!(
-            "{} (interval from {})",
-            stated(&s.headline.k2, "rad/(s·g²)"),
-            method(&s.headline.k2)
-        )),
-    );
-    crate::html::row(
-        out,
-        "total radius growth C",
-        &esc(&format!(
-            "{} (interval from {})",
-            stated(&s.headline.c, "m·s²"),
-            method(&s.headline.c)
-        )),
-    );
-    if let Some(p) = &s.probe {
-        crate::html::row(
-            out,
-            "C_r of the probe",
-            &esc(&format!(
-                "{} m·s² (standard uncertainty; phase “{}”)",
-                format::pair(p.c_r_m_s2.value, p.c_r_m_s2.u).joined(),
-                p.phase
-            )),
-        );
-        crate::html::row(
-            out,
-            "C − C_r",
-            &esc(&format!(
-                "{}, z = {:+.1}: {}",
-                with_u95(&p.difference_m_s2, "m·s²"),
-                p.z,
-                if p.z.abs() > 3.0 {
-                    "the PIGA sees radius growth the probe does not (arm stretch), or the probe's \
-                     declared sign convention, gap unit or lever heights are wrong; the probe \
-                     method's k2 is then off by k1·(C − C_r)·g/R²"
-                } else {
-                    "they agree within 3 standard uncertainties: the probe method's compensation \
-                     is confirmed by the PIGA's own output"
-                }
-            )),
-        );
+/// A mounting's data in words: its table, or its raw recordings reduced to points.
+fn mounting_data(m: &pipeline::MountingResults) -> String {
+    match &m.table {
+        Some(t) => format!("table `{t}`"),
+        None => format!(
+            "{} raw output recordings, each reduced to its mean over whole revolutions",
+            m.recordings.len()
+        ),
     }
-    let _ = writeln!(out, "</tbody></table>");
+}
+
+/// The coverage factor of the probe method's k2, U95/u.
+fn probe_k(p: &pipeline::ProbeComparison) -> String {
+    if p.k2_probe.u > 0.0 {
+        format::coverage_factor(p.k2_probe_u95 / p.k2_probe.u)
+    } else {
+        "—".to_owned()
+    }
 }

@@ -1,5 +1,6 @@
 //! The `symmetric` section of the study file (`docs/SYMMETRIC.md`): the two-orientation
-//! (IA in / IA out) calibration of issue 20, one PIGA table per orientation.
+//! (IA in / IA out) calibration of issue 20, one data set per orientation: a PIGA table, or
+//! raw PIGA output recordings one per rate.
 //!
 //! The orientation and the radius of each data set are optional in the file so that the
 //! section's validation can name every one that is missing at once (the parser would stop at
@@ -7,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::table::{PigaTableConfig, TrialsConfig};
+use super::table::{PigaRecordingSet, PigaTableConfig, TrialsConfig};
 
 /// The two-orientation calibration (`symmetric: (...)`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -43,8 +44,15 @@ pub struct OrientationConfig {
     /// The static radius of this mounting (PIGA centre of mass to the spindle axis), m.
     #[serde(default)]
     pub radius_m: Option<f64>,
-    /// The PIGA table of this mounting, read as the calibration section reads its table.
-    pub table: PigaTableConfig,
+    /// The PIGA table of this mounting, read as the calibration section reads its table
+    /// (exactly one of `table` and `recordings`).
+    #[serde(default)]
+    pub table: Option<PigaTableConfig>,
+    /// Raw PIGA output recordings of this mounting, one file per rate, each reduced to its
+    /// mean output over whole spindle revolutions as the calibration section reduces its
+    /// recordings (exactly one of `table` and `recordings`).
+    #[serde(default)]
+    pub recordings: Option<PigaRecordingSet>,
 }
 
 /// An orientation as the study file names it.

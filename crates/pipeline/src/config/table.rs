@@ -1,6 +1,6 @@
-//! The PIGA table of a calibration (or of one orientation of a two-orientation one) and the
-//! Monte Carlo trial count: shared by the study file's sections, so they live apart from the
-//! study's own configuration.
+//! The PIGA's data of a calibration (or of one orientation of a two-orientation one) — a
+//! table, or raw output recordings — and the Monte Carlo trial count: shared by the study
+//! file's sections, so they live apart from the study's own configuration.
 
 use std::path::PathBuf;
 
@@ -129,4 +129,35 @@ impl PigaTableConfig {
             .table_format()
             .map_err(TableLayoutError::Recording)
     }
+}
+
+/// Raw PIGA output recordings, one per rate (`docs/YOUR-DATA.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PigaRecordingSet {
+    /// Layout of the files: time, the output angle (`output`: deg, rad or
+    /// `counts(per_rev)`), the spindle's angle source, delimiter, decimal mark, gaps and
+    /// non-finite samples; defaults to `time_s,output_rad[,angle_deg]`.
+    #[serde(default)]
+    pub format: recording::PigaRecordingFormat,
+    /// Harmonics of the spindle angle removed from the output angle in each revolution
+    /// with its slope (1 to 8, default 2).
+    #[serde(default = "default_piga_order")]
+    pub order: usize,
+    /// The recordings.
+    pub files: Vec<RecordingPoint>,
+}
+
+const fn default_piga_order() -> usize {
+    2
+}
+
+/// One recording and the rate it was taken at.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordingPoint {
+    /// Spindle rate, deg/s.
+    pub rate_deg_s: f64,
+    /// The CSV file, relative to the configuration file's folder unless absolute.
+    pub file: PathBuf,
 }

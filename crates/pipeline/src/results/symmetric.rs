@@ -5,7 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::calibration::{BudgetLine, Coefficient, Headline, MonteCarloOutput};
+use super::calibration::{
+    BudgetLine, Coefficient, Headline, MonteCarloOutput, PigaRecordingResult,
+};
 use super::common::Estimate;
 
 /// One mounting of the PIGA and its own coefficients.
@@ -17,9 +19,13 @@ pub struct MountingResults {
     pub field: String,
     /// Its static radius, m.
     pub radius_m: f64,
-    /// The PIGA table read.
-    pub table: String,
-    /// Rows of the table.
+    /// The PIGA table read (absent for raw recordings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<String>,
+    /// Each raw PIGA output recording reduced to its point (empty for a table).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub recordings: Vec<PigaRecordingResult>,
+    /// Points fitted: the table's rows, or the recordings.
     pub points: usize,
     /// Distinct rates.
     pub distinct_rates: usize,
@@ -64,6 +70,9 @@ pub struct SymmetricBudgets {
     pub k2: Vec<BudgetLine>,
     /// C's.
     pub c: Vec<BudgetLine>,
+    /// C − C_r's, with a probe phase (where the probe's lever heights, gain and C_r enter).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub difference: Option<Vec<BudgetLine>>,
 }
 
 /// The stated 95 % intervals (JCGM 101 §8: the GUM's when the Monte Carlo validates it
@@ -93,9 +102,11 @@ pub struct ProbeComparison {
     /// Whether |z| ≤ 3.
     pub agrees: bool,
     /// k2 by the probe method: the IA-in data set's eq. 18 fit compensated with the phase's
-    /// C_r (k1 fitted), rad/(s·g²), with its standard uncertainty (fit and C_r).
+    /// C_r (k1 fitted), rad/(s·g²), with its standard uncertainty (the fit, C_r and the
+    /// study's Type B inputs, as in the calibration section).
     pub k2_probe: Estimate,
-    /// Its expanded uncertainty with k = 2.
+    /// Its expanded uncertainty for 95 % coverage, by the GUM as the calibration section
+    /// evaluates it (every Type B input of the study, at the IA-in radius).
     #[serde(rename = "k2_probe_U95")]
     pub k2_probe_u95: f64,
     /// k2 (symmetric) − k2 (probe), rad/(s·g²).

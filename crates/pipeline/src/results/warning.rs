@@ -50,8 +50,6 @@ pub enum WarningCode {
     Omega4NotSeparable,
     /// The PIGA's total radius growth C and the probe's C_r disagree (|z| > 3).
     ProbeDisagrees,
-    /// Type B inputs of the study that the two-orientation budget does not carry.
-    SymmetricTypeBOmitted,
 }
 
 impl WarningCode {
@@ -77,7 +75,6 @@ impl WarningCode {
             Self::ConeCr => "cone_c_r",
             Self::Omega4NotSeparable => "omega4_not_separable",
             Self::ProbeDisagrees => "probe_disagrees",
-            Self::SymmetricTypeBOmitted => "symmetric_type_b_omitted",
         }
     }
 
@@ -103,7 +100,6 @@ impl WarningCode {
             Self::ConeCr => "cone C_r differs from the two-probe C_r",
             Self::Omega4NotSeparable => "ω⁴ term hard to separate in the two-orientation fit",
             Self::ProbeDisagrees => "the PIGA's radius growth and the probe's disagree",
-            Self::SymmetricTypeBOmitted => "Type B inputs not in the two-orientation budget",
         }
     }
 }
@@ -195,15 +191,32 @@ impl Warning {
         }
     }
 
-    /// `calibration_unweighted`: a raw recording's mean output has no scatter.
+    /// `calibration_unweighted`: a raw recording's mean output has no scatter, so the
+    /// recordings at `location` (`calibration.recordings`) are fitted unweighted.
     #[must_use]
-    pub fn calibration_unweighted() -> Self {
+    pub fn calibration_unweighted(location: &str) -> Self {
         Self {
             code: WarningCode::CalibrationUnweighted,
             message: "a recording's mean output has no scatter across revolutions \
-                      (noise-free data?): the eq. 18 fit is unweighted"
+                      (noise-free data?): the fit of these recordings is unweighted"
                 .into(),
-            location: "calibration.recordings".into(),
+            location: location.into(),
+        }
+    }
+
+    /// `calibration_unweighted`: one orientation's points carry standard uncertainties (raw
+    /// recordings, or a table's σ column) and the other's do not, so the joint fit is
+    /// unweighted and the given σ are not used.
+    #[must_use]
+    pub fn symmetric_unweighted(with_sigma: &str, without_sigma: &str) -> Self {
+        Self {
+            code: WarningCode::CalibrationUnweighted,
+            message: format!(
+                "{with_sigma} gives each point's standard uncertainty but {without_sigma} does \
+                 not: the two-orientation fit is unweighted, its uncertainties come from the \
+                 residuals, and the given ones are not used (give `sigma_column` for a table)"
+            ),
+            location: without_sigma.into(),
         }
     }
 
@@ -328,22 +341,6 @@ impl Warning {
                  is right, state the symmetric k2"
             ),
             location: "symmetric.compare_with".into(),
-        }
-    }
-
-    /// `symmetric_type_b_omitted`: the `uncertainty` section's inputs `names` (non-zero) are
-    /// not in the two-orientation budget.
-    #[must_use]
-    pub fn symmetric_type_b_omitted(names: &[&str]) -> Self {
-        Self {
-            code: WarningCode::SymmetricTypeBOmitted,
-            message: format!(
-                "the two-orientation budget holds the fit's noise and u(g) only; the \
-                 `uncertainty` section's {} are not propagated to its k2 and C (the calibration \
-                 section's budget carries them)",
-                names.join(", ")
-            ),
-            location: "symmetric".into(),
         }
     }
 }

@@ -15,7 +15,9 @@ mod paper;
 mod provenance;
 mod recordings;
 mod symmetric;
+mod symmetric_recordings;
 mod symmetric_study;
+mod symmetric_type_b;
 mod type_b;
 
 use std::path::{Path, PathBuf};

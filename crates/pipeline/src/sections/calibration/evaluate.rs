@@ -13,8 +13,8 @@
 use ::calibration::{CalibrationModel, Weighting};
 use identify::CompensatedCalibration;
 
-use super::data::PigaPoints;
 use super::validate::{CalibrationInputs, K1Choice, TypeB};
+use crate::piga_data::PigaPoints;
 
 /// The nominal values the model is linearised around and scales from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -210,8 +210,8 @@ pub(crate) fn evaluate(
 
 #[cfg(test)]
 mod tests {
-    use super::super::data::{self, PigaData, PigaTableRows};
     use super::*;
+    use crate::piga_data::{self as data, PigaData, PigaTableRows};
     use std::path::{Path, PathBuf};
 
     /// Outputs of eq. 18 with given coefficients at `n` rates, plus a small deterministic
@@ -234,6 +234,7 @@ mod tests {
             })
             .collect();
         let rows = PigaTableRows {
+            field: "calibration.table".to_owned(),
             file: PathBuf::from("t.csv"),
             lines: (2..n + 2).collect(),
             rates_deg_s,

@@ -4,13 +4,11 @@
 //! - `validate`: the validated section and its validation (the compensating phase, k1, the
 //!   Monte Carlo trials, the `uncertainty` section's Type B inputs), and the reading of its
 //!   data;
-//! - `data`: the PIGA's data (a table, or raw output recordings) reduced to points;
 //! - `evaluate`: the eq. 18 fit, the measurement model and its GUM and Monte Carlo
 //!   evaluation, through the `calibration` crate (the mathematics, shared with the planner);
 //! - `report`: the mapping to results and the calibration's warnings;
 //! - `run`: the section's run, in that order.
 
-mod data;
 mod evaluate;
 mod report;
 mod run;

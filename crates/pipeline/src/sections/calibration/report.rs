@@ -3,9 +3,9 @@
 
 use ::calibration::{TERM_NAMES, TERMS, input, output};
 
-use super::data::{Origin, PigaPoints};
 use super::evaluate::{Evaluated, Setting};
 use super::validate::{CalibrationInputs, K1Choice};
+use crate::piga_data::{Origin, PigaPoints};
 use crate::results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
     Estimate, Headline, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance,

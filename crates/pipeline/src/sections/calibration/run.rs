@@ -3,12 +3,12 @@
 
 use ::calibration::CalibrationModel;
 
-use super::data;
 use super::evaluate::{CalibrationFailure, Nominal, Setting, evaluate, setup};
 use super::report;
 use super::validate::CalibrationInputs;
 use crate::error::{PipelineError, Result};
 use crate::inputs::Core;
+use crate::piga_data as data;
 use crate::results::{CalibrationResults, PhaseResults, Warning};
 
 /// Runs the calibration section, compensating with `phase` (its radius-error fit): the

@@ -1,12 +1,12 @@
 //! The calibration section's validation: the compensating phase, k1, the Monte Carlo
 //! trials, the `uncertainty` section's Type B inputs, and the reading of its data.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::data::{self, PigaData};
 use crate::config::{CalibrationConfig, K1Config, TrialsConfig, UncertaintyConfig};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
-use crate::inputs::{Check, DataSource, InputFile, InputRole, MIN_CALIBRATION_RATES, PhaseNames};
+use crate::inputs::{Check, DataSource, InputFile, MIN_CALIBRATION_RATES, PhaseNames};
+use crate::piga_data::{self as data, PigaData};
 
 /// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2: 100/(1 − p)).
 const MIN_TRIALS: u64 = 2000;
@@ -50,33 +50,13 @@ pub(crate) struct TypeB {
 impl CalibrationInputs {
     /// Every data file the section read: the PIGA table, or each raw recording.
     pub(crate) fn files(&self) -> Vec<&Path> {
-        match &self.data {
-            PigaData::Table(t) => vec![t.file.as_path()],
-            PigaData::Recordings { files, .. } => files.iter().map(|f| f.file.as_path()).collect(),
-        }
+        self.input_files().into_iter().map(|f| f.path).collect()
     }
 
     /// Every data file the section read, with its digest: the PIGA table, or each raw
     /// recording, in the configuration's order.
     pub(crate) fn input_files(&self) -> Vec<InputFile<'_>> {
-        match &self.data {
-            PigaData::Table(t) => vec![InputFile {
-                path: &t.file,
-                role: InputRole::PigaTable,
-                field: "calibration.table".to_owned(),
-                digest: t.digest.as_ref(),
-            }],
-            PigaData::Recordings { files, .. } => files
-                .iter()
-                .enumerate()
-                .map(|(i, f)| InputFile {
-                    path: &f.file,
-                    role: InputRole::PigaRecording,
-                    field: format!("calibration.recordings.files[{i}]"),
-                    digest: f.digest.as_ref(),
-                })
-                .collect(),
-        }
+        self.data.input_files()
     }
 }
 
@@ -255,25 +235,16 @@ pub(crate) fn load(
     source: &Path,
     load: &dyn DataSource,
 ) -> Result<CalibrationInputs> {
-    let (data, rates, field, file) = match (&config.table, &config.recordings) {
-        (Some(table), None) => {
-            let rows = data::load_piga_table(table, base, source, load)?;
-            let rates = rows.rates_deg_s.clone();
-            let file = rows.file.clone();
-            (PigaData::Table(rows), rates, "calibration.table", file)
-        }
+    let data = match (&config.table, &config.recordings) {
+        (Some(table), None) => PigaData::Table(data::load_piga_table(
+            table,
+            "calibration.table",
+            base,
+            source,
+            load,
+        )?),
         (None, Some(set)) => {
-            let files = data::load_piga_recordings(set, base, source, load)?;
-            let rates = files.iter().map(|f| f.rate_deg_s).collect();
-            (
-                PigaData::Recordings {
-                    order: set.order,
-                    files,
-                },
-                rates,
-                "calibration.recordings.files",
-                PathBuf::from("the recordings"),
-            )
+            data::load_piga_recordings(set, "calibration.recordings", base, source, load)?
         }
         _ => {
             return Err(PipelineError::Unsupported {
@@ -283,13 +254,15 @@ pub(crate) fn load(
             });
         }
     };
+    let rates = data.declared_rates_deg_s();
     let mut distinct: Vec<u64> = rates.iter().map(|r: &f64| r.to_bits()).collect();
     distinct.sort_unstable();
     distinct.dedup();
     if distinct.len() < MIN_CALIBRATION_RATES {
+        let (field, file) = data.named();
         return Err(PipelineError::TooFewRates {
             path: source.to_owned(),
-            field: field.to_owned(),
+            field,
             file,
             distinct: distinct.len(),
             need: MIN_CALIBRATION_RATES,

@@ -11,6 +11,7 @@ use uncertainty::{Dof, McOptions, Trials};
 use super::validate::SymmetricInputs;
 use crate::error::{PipelineError, Result};
 use crate::inputs::Core;
+use crate::piga_data::{self, PigaPoints};
 use crate::results::{
     BudgetLine, Coefficient, DegreesOfFreedom, Estimate, Headline, InfiniteDof, MonteCarloOutput,
     MountingResults, PhaseResults, ProbeComparison, SymmetricBudgets, SymmetricHeadline,
@@ -28,11 +29,36 @@ pub(crate) fn run(
         path: core.source.clone(),
         source: Box::new(e),
     };
-    let rates: Vec<Vec<f64>> = s
-        .sets
+    // each data set's points: a table's rows, or each raw recording reduced (every
+    // recording's problem at once, both orientations)
+    let mut reduced = Vec::with_capacity(s.sets.len());
+    let mut errors = Vec::new();
+    let mut warnings = Vec::new();
+    for d in &s.sets {
+        match piga_data::points(&d.data, &core.source) {
+            Ok((p, w)) => {
+                reduced.push(p);
+                warnings.extend(w);
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    // the joint fit is weighted only when both data sets give σ: say when one's are unused
+    if let ([a, b], [pa, pb]) = (s.sets.as_slice(), reduced.as_slice())
+        && pa.sigma_rad_s.is_some() != pb.sigma_rad_s.is_some()
+    {
+        let (with, without) = if pa.sigma_rad_s.is_some() {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        warnings.push(Warning::symmetric_unweighted(&with.field, &without.field));
+    }
+    let rates: Vec<Vec<f64>> = reduced
         .iter()
-        .map(|d| {
-            d.rates_deg_s
+        .map(|p| {
+            p.rates_deg_s
                 .iter()
                 .map(|&r| units::deg_s_to_rad_s(r))
                 .collect()
@@ -41,14 +67,15 @@ pub(crate) fn run(
     let data: Vec<OrientationData<'_>> = s
         .sets
         .iter()
+        .zip(&reduced)
         .zip(&rates)
-        .map(|(d, w)| OrientationData {
+        .map(|((d, p), w)| OrientationData {
             field: &d.field,
             orientation: Some(d.orientation),
             radius_m: Some(d.radius_m),
             rates_rad_s: w,
-            output_rad_s: &d.outputs_rad_s,
-            sigma_rad_s: d.sigma_rad_s.as_deref(),
+            output_rad_s: &p.outputs_rad_s,
+            sigma_rad_s: p.sigma_rad_s.as_deref(),
         })
         .collect();
     let fit = fit_symmetric(&data, core.g_m_s2, "symmetric.orientations").map_err(fail)?;
@@ -58,13 +85,15 @@ pub(crate) fn run(
         c_r_m_s2: phase.fit.c_r_m_s2,
         u_m_s2: c_r_u,
         dof: (c_r_u > 0.0 && phase.fit.dof > 0).then_some(phase.fit.dof as f64),
+        pivot_to_probe_mm: core.lever.pivot_to_probe_mm,
+        probe_to_piga_mm: core.lever.probe_to_piga_mm,
     };
     let options = McOptions {
         seed: s.seed,
         trials: s.trials.map_or(McOptions::default().trials, Trials::Fixed),
         ..McOptions::default()
     };
-    let e = evaluate_symmetric(&fit, s.g_u_m_s2, Some(probe), Some(&options)).map_err(fail)?;
+    let e = evaluate_symmetric(&fit, &s.type_b, Some(probe), Some(&options)).map_err(fail)?;
     let mc = e
         .monte_carlo
         .as_ref()
@@ -101,10 +130,11 @@ pub(crate) fn run(
         .enumerate()
         .map(|(k, &o)| {
             let m = fit.mounting(o);
-            let set = s
+            let (set, points) = s
                 .sets
                 .iter()
-                .find(|d| d.orientation == o)
+                .zip(&reduced)
+                .find(|(d, _)| d.orientation == o)
                 .expect("one data set per orientation");
             let tag = if k == 0 { "IA in" } else { "IA out" };
             let res = &fit.residuals_rad_s[k];
@@ -116,8 +146,9 @@ pub(crate) fn run(
                 .to_owned(),
                 field: set.field.clone(),
                 radius_m: m.radius_m,
-                table: set.file.display().to_string(),
-                points: set.rates_deg_s.len(),
+                table: points.table.as_ref().map(|t| t.display().to_string()),
+                recordings: points.recordings.clone(),
+                points: points.rates_deg_s.len(),
                 distinct_rates: m.distinct_rates,
                 k0: coefficient(&format!("k0 ({tag})")),
                 k1: coefficient(&format!("k1 ({tag})")),
@@ -150,7 +181,7 @@ pub(crate) fn run(
         k2: Headline::of(&k2, &monte_carlo.k2),
         c: Headline::of(&c, &monte_carlo.c),
     };
-    let k2_probe = probe_k2(core, s, probe).map_err(fail)?;
+    let (k2_probe, k2_probe_u95) = probe_k2(core, s, &reduced, probe).map_err(fail)?;
     let (d, u, z) = e
         .probe_difference
         .expect("the evaluation was given the probe");
@@ -169,7 +200,7 @@ pub(crate) fn run(
         z,
         agrees: z.abs() <= ::calibration::Z_LIMIT,
         k2_probe,
-        k2_probe_u95: 2.0 * k2_probe.u,
+        k2_probe_u95,
         k2_difference: k2.value - k2_probe.value,
     };
     let all: f64 = fit.residuals_rad_s.iter().flatten().map(|r| r * r).sum();
@@ -181,7 +212,7 @@ pub(crate) fn run(
         delta_k2_total: coefficient("Δk2,total"),
         g_m_s2: Estimate {
             value: core.g_m_s2,
-            u: s.g_u_m_s2,
+            u: s.type_b.g_u_m_s2,
         },
         dof: fit.fit.dof,
         residual_sd_rad_s: (all / fit.fit.dof.max(1) as f64).sqrt(),
@@ -190,49 +221,49 @@ pub(crate) fn run(
         k2_c_correlation: fit.k2_gamma_correlation,
         condition_number: fit.fit.condition_number,
         budget: SymmetricBudgets {
-            k2: budget(&e, "k2"),
-            c: budget(&e, "C"),
+            k2: budget(&e, "k2", &s.type_b_notes),
+            c: budget(&e, "C", &s.type_b_notes),
+            difference: Some(budget(&e, "C − C_r", &s.type_b_notes)),
         },
         monte_carlo,
         headline,
         probe: Some(comparison),
     };
-    let mut warnings: Vec<Warning> = e
-        .warnings
-        .iter()
-        .map(|w| match *w {
-            SymmetricWarning::GammaNotSeparable {
-                vif,
-                k2_inflation,
-                correlation,
-            } => Warning::omega4_not_separable(k2_inflation, correlation, K2_INFLATION_LIMIT, vif),
-            SymmetricWarning::ProbeDisagrees {
-                difference_m_s2,
-                u_m_s2,
-                z,
-            } => Warning::probe_disagrees(&phase.name, difference_m_s2, u_m_s2, z),
-        })
-        .collect();
-    if !s.omitted_type_b.is_empty() {
-        warnings.push(Warning::symmetric_type_b_omitted(&s.omitted_type_b));
-    }
+    warnings.extend(e.warnings.iter().map(|w| match *w {
+        SymmetricWarning::GammaNotSeparable {
+            vif,
+            k2_inflation,
+            correlation,
+        } => Warning::omega4_not_separable(k2_inflation, correlation, K2_INFLATION_LIMIT, vif),
+        SymmetricWarning::ProbeDisagrees {
+            difference_m_s2,
+            u_m_s2,
+            z,
+        } => Warning::probe_disagrees(&phase.name, difference_m_s2, u_m_s2, z),
+    }));
     Ok((results, warnings))
 }
 
-/// k2 by the probe method: the IA-in data set's eq. 18 fit (at its radius, k1 fitted),
-/// compensated with the probe's C_r (eq. 19), with its standard uncertainty from the fit and
-/// u(C_r).
+/// k2 by the probe method, as the calibration section computes it: the IA-in data set's
+/// eq. 18 fit (at its radius, k1 fitted, weighted with the Paule–Mandel τ when the points
+/// give σ), compensated with the probe's C_r (eq. 19), and its uncertainty from
+/// [`CalibrationModel`](::calibration::CalibrationModel) by the GUM with every Type B input
+/// of the study (u(R) of the IA-in radius, g, the rate scale, the lever heights, the probe
+/// gain) and u(C_r): the value, its standard uncertainty and U95.
 fn probe_k2(
     core: &Core,
     s: &SymmetricInputs,
+    reduced: &[PigaPoints],
     probe: ProbeCr,
-) -> std::result::Result<Estimate, SymmetricError> {
-    let set = s
+) -> std::result::Result<(Estimate, f64), SymmetricError> {
+    use ::calibration::{CalibrationModel, CrInput, K1Input, K1Mode, Nominal, output};
+    let (set, points) = s
         .sets
         .iter()
-        .find(|d| d.orientation == Orientation::IaIn)
+        .zip(reduced)
+        .find(|(d, _)| d.orientation == Orientation::IaIn)
         .expect("one data set per orientation");
-    let rates: Vec<f64> = set
+    let rates: Vec<f64> = points
         .rates_deg_s
         .iter()
         .map(|&r| units::deg_s_to_rad_s(r))
@@ -241,28 +272,45 @@ fn probe_k2(
         radius_m: set.radius_m,
         g_m_s2: core.g_m_s2,
     };
-    let compensation = identify::Compensation {
-        c_r: identify::CrEstimate {
-            c_r_m_s2: probe.c_r_m_s2,
-            c_r_sigma_m_s2: probe.u_m_s2,
-        },
-        k1: identify::K1Source::Fitted,
-    };
-    let cal = match &set.sigma_rad_s {
-        Some(sigma) => identify::identify_compensated_weighted(
-            &rates,
-            &set.outputs_rad_s,
-            sigma,
-            geometry,
-            &compensation,
-        ),
-        None => identify::identify_compensated(&rates, &set.outputs_rad_s, geometry, &compensation),
-    }
+    let compensation = ::calibration::compensation(probe.c_r_m_s2, probe.u_m_s2, None);
+    let fitted = ::calibration::fit(
+        &rates,
+        &points.outputs_rad_s,
+        points.sigma_rad_s.as_deref(),
+        geometry,
+        &compensation,
+    )
     .map_err(SymmetricError::Fit)?;
-    Ok(Estimate {
-        value: cal.k2_rad_s_g2,
-        u: cal.k2_sigma_rad_s_g2,
-    })
+    let nominal = Nominal {
+        radius_m: set.radius_m,
+        g_m_s2: core.g_m_s2,
+        pivot_to_probe_mm: probe.pivot_to_probe_mm,
+        probe_to_piga_mm: probe.probe_to_piga_mm,
+    };
+    let c_r = CrInput {
+        c_r_m_s2: probe.c_r_m_s2,
+        sigma: probe.dof.map(|nu| (probe.u_m_s2, nu as usize)),
+    };
+    let (_, inputs) = ::calibration::measurement_inputs(
+        &nominal,
+        &s.type_b,
+        c_r,
+        K1Input::Fitted,
+        &fitted.calibration.uncompensated.fit,
+        fitted.weighting.group_dof,
+    )
+    .map_err(SymmetricError::Uncertainty)?;
+    let model = CalibrationModel::new(nominal, K1Mode::Fitted);
+    let gum = uncertainty::gum(&model, &inputs, &uncertainty::GumOptions::default())
+        .map_err(SymmetricError::Uncertainty)?;
+    let k2 = &gum.outputs[output::K2];
+    Ok((
+        Estimate {
+            value: k2.estimate,
+            u: k2.standard_uncertainty,
+        },
+        k2.expanded_uncertainty,
+    ))
 }
 
 fn dof_value(dof: Dof) -> DegreesOfFreedom {
@@ -273,8 +321,12 @@ fn dof_value(dof: Dof) -> DegreesOfFreedom {
 }
 
 /// One output's budget: the fit's ten coefficients as one line (their correlated
-/// contribution), then g and the probe's C_r where they contribute.
-fn budget(e: &SymmetricEvaluation, name: &str) -> Vec<BudgetLine> {
+/// contribution), then every other input that enters the output (g, the rate scale, each
+/// mounting's radius; with the probe its lever heights, gain and C_r), each with what the
+/// study says of it (`notes`, by the input of `calibration::input` it is: not stated, the
+/// reason for a zero, where its u comes from).
+fn budget(e: &SymmetricEvaluation, name: &str, notes: &[(usize, String)]) -> Vec<BudgetLine> {
+    use ::calibration::{input, symmetric_input as si};
     let output = e.gum.output(name).expect("the model names its outputs");
     let quantities = e.inputs.quantities();
     let terms = ::calibration::SYMMETRIC_TERMS;
@@ -293,10 +345,33 @@ fn budget(e: &SymmetricEvaluation, name: &str) -> Vec<BudgetLine> {
         dof: dof_value(quantities[0].dof),
         note: None,
     }];
-    for (c, q) in output.contributions.iter().zip(quantities).skip(terms) {
-        if c.sensitivity == 0.0 {
+    for (k, (c, q)) in output
+        .contributions
+        .iter()
+        .zip(quantities)
+        .enumerate()
+        .skip(terms)
+    {
+        // an input the output does not depend on (C on g: a change of g rescales k1 and
+        // γ = k1·C/g alike); a sensitivity of rounding size is no dependence either
+        if (c.sensitivity * q.value).abs() <= 1e-9 * output.estimate.abs() {
             continue;
         }
+        let study_input = match k {
+            si::G => Some(input::G),
+            si::RATE_SCALE => Some(input::RATE_SCALE),
+            si::RADIUS_IN | si::RADIUS_OUT => Some(input::RADIUS),
+            si::PIVOT_TO_PROBE => Some(input::PIVOT_TO_PROBE),
+            si::PROBE_TO_PIGA => Some(input::PROBE_TO_PIGA),
+            si::PROBE_GAIN => Some(input::PROBE_GAIN),
+            _ => None,
+        };
+        let note = study_input.and_then(|i| {
+            notes
+                .iter()
+                .find(|(index, _)| *index == i)
+                .map(|(_, n)| n.clone())
+        });
         lines.push(BudgetLine {
             quantity: q.name.clone(),
             evaluation: match q.kind {
@@ -309,7 +384,7 @@ fn budget(e: &SymmetricEvaluation, name: &str) -> Vec<BudgetLine> {
             contribution: c.uncertainty,
             percent: c.variance_percent,
             dof: dof_value(q.dof),
-            note: None,
+            note,
         });
     }
     lines

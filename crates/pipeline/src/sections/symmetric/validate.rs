@@ -1,17 +1,16 @@
 //! The two-orientation section's validation: every missing or contradictory field of its
 //! data sets at once, in the configuration's keys, the probe phase it compares with, the
-//! Type B inputs it carries, and the reading of its PIGA tables.
+//! Type B inputs it carries, and the reading of its data (a PIGA table or raw PIGA output
+//! recordings per orientation, through the calibration section's readers in `piga_data`).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use ::calibration::{MIN_RATES_PER_ORIENTATION, Orientation, SymmetricError};
-use recording::FileDigest;
 
-use crate::config::{
-    OrientationName, PigaTableConfig, StudyConfig, SymmetricConfig, TableLayoutError, TrialsConfig,
-};
+use crate::config::{OrientationName, StudyConfig, SymmetricConfig, TrialsConfig};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
-use crate::inputs::{Check, DataSource, InputFile, InputRole, PhaseNames};
+use crate::inputs::{Check, DataSource, InputFile, PhaseNames};
+use crate::piga_data::{self, PigaData};
 
 /// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2).
 const MIN_TRIALS: u64 = 2000;
@@ -23,12 +22,8 @@ pub(crate) struct OrientationSet {
     pub(crate) field: String,
     pub(crate) orientation: Orientation,
     pub(crate) radius_m: f64,
-    pub(crate) file: PathBuf,
-    pub(crate) rates_deg_s: Vec<f64>,
-    pub(crate) outputs_rad_s: Vec<f64>,
-    pub(crate) sigma_rad_s: Option<Vec<f64>>,
-    /// The table's size and SHA-256 as read, when the data source keeps them.
-    pub(crate) digest: Option<FileDigest>,
+    /// Its PIGA table, or its raw output recordings (reduced to points by the run).
+    pub(crate) data: PigaData,
 }
 
 /// The validated two-orientation section.
@@ -42,21 +37,18 @@ pub(crate) struct SymmetricInputs {
     pub(crate) seed: u64,
     /// `None`: adaptive.
     pub(crate) trials: Option<u64>,
-    /// u(g), m/s² (the `uncertainty` section's; 0 without one).
-    pub(crate) g_u_m_s2: f64,
-    /// The `uncertainty` section's non-zero inputs the two-orientation model does not carry.
-    pub(crate) omitted_type_b: Vec<&'static str>,
+    /// The Type B standard uncertainties (the `uncertainty` section's; an input it does not
+    /// state is 0): u(R) applies to each mounting's radius, the two independent.
+    pub(crate) type_b: ::calibration::TypeB,
+    /// What the budget says beside an input (by its index in `calibration::input`): that it
+    /// is not stated, the reason for a zero, or where the probe gain's uncertainty comes from.
+    pub(crate) type_b_notes: Vec<(usize, String)>,
 }
 
 impl SymmetricInputs {
     /// Every data file the section read, with its digest, in the configuration's order.
     pub(crate) fn input_files(&self) -> impl Iterator<Item = InputFile<'_>> {
-        self.sets.iter().map(|s| InputFile {
-            path: &s.file,
-            role: InputRole::PigaTable,
-            field: format!("{}.table", s.field),
-            digest: s.digest.as_ref(),
-        })
+        self.sets.iter().flat_map(|s| s.data.input_files())
     }
 }
 
@@ -192,43 +184,22 @@ pub(crate) fn validate(
             Some(n)
         }
     };
-    let (g_u_m_s2, omitted_type_b) = match &study.uncertainty {
-        None => (0.0, Vec::new()),
-        Some(u) => {
-            let g_u = u.g_u_m_s2.unwrap_or(0.0);
-            if let Err(e) = check.non_negative("uncertainty.g_u_m_s2", g_u) {
-                errors.push(e);
-            }
-            let omitted: Vec<&'static str> = [
-                ("u(R)", u.radius_u_m.unwrap_or(0.0)),
-                ("the rate scale", u.rate_u_relative.unwrap_or(0.0)),
-                (
-                    "the lever heights",
-                    u.pivot_to_probe_u_mm.unwrap_or(0.0) + u.probe_to_piga_u_mm.unwrap_or(0.0),
-                ),
-                ("the probe gain", u.probe_gain_u_relative.unwrap_or(0.0)),
-            ]
-            .into_iter()
-            .filter(|(_, v)| *v > 0.0)
-            .map(|(n, _)| n)
-            .collect();
-            (g_u.max(0.0), omitted)
-        }
-    };
-    // the tables, then their rates
+    let (type_b, type_b_notes) = type_b(check, study, phase, &mut errors);
+    // the data sets (a table or raw recordings), then their rates
     let mut sets = Vec::with_capacity(config.orientations.len());
     for (i, o) in config.orientations.iter().enumerate() {
-        match read_table(&o.table, &field(i), base, check.path, load) {
-            Ok((file, rates_deg_s, outputs_rad_s, sigma_rad_s, digest)) => {
-                let distinct = distinct(&rates_deg_s);
+        match read_data(o, &field(i), base, check.path, load) {
+            Ok(data) => {
+                let distinct = distinct(&data.declared_rates_deg_s());
                 let o_label = o
                     .orientation
                     .map_or("undeclared", |n| orientation(n).label());
                 if distinct < MIN_RATES_PER_ORIENTATION {
+                    let (named, file) = data.named();
                     errors.push(symmetric_error(
                         check,
                         SymmetricError::TooFewRates {
-                            field: format!("{}.table ({})", field(i), file.display()),
+                            field: format!("{named} ({})", file.display()),
                             orientation: o_label,
                             distinct,
                             need: MIN_RATES_PER_ORIENTATION,
@@ -240,11 +211,7 @@ pub(crate) fn validate(
                         field: field(i),
                         orientation: orientation(n),
                         radius_m: r,
-                        file,
-                        rates_deg_s,
-                        outputs_rad_s,
-                        sigma_rad_s,
-                        digest,
+                        data,
                     });
                 }
             }
@@ -258,9 +225,111 @@ pub(crate) fn validate(
         chosen_by,
         seed: config.seed,
         trials,
-        g_u_m_s2,
-        omitted_type_b,
+        type_b,
+        type_b_notes,
     })
+}
+
+/// The Type B inputs of the two-orientation budget from the `uncertainty` section (each
+/// finite and ≥ 0; one it does not state, or no section, is 0 and the budget says so), with
+/// the probe gain stated by the compared phase's recordings in volts instead when they state
+/// it (stating it in both places is refused, as in the calibration section). Problems go to
+/// `errors`.
+fn type_b(
+    check: &Check<'_>,
+    study: &StudyConfig,
+    phase: usize,
+    errors: &mut Vec<PipelineError>,
+) -> (::calibration::TypeB, Vec<(usize, String)>) {
+    use ::calibration::input;
+    let u = study.uncertainty.as_ref();
+    let stated_gain = study.phases.get(phase).and_then(|p| {
+        let crate::config::Points::Recordings(set) = &p.points else {
+            return None;
+        };
+        let sensitivity = set.format.gap.unit.sensitivity().ok()??;
+        Some((
+            sensitivity.relative_u(),
+            format!("phases[{phase}].points.format.gap.unit (u_sensitivity)"),
+        ))
+    });
+    let fields = [
+        ("radius_u_m", u.and_then(|u| u.radius_u_m), input::RADIUS),
+        ("g_u_m_s2", u.and_then(|u| u.g_u_m_s2), input::G),
+        (
+            "rate_u_relative",
+            u.and_then(|u| u.rate_u_relative),
+            input::RATE_SCALE,
+        ),
+        (
+            "pivot_to_probe_u_mm",
+            u.and_then(|u| u.pivot_to_probe_u_mm),
+            input::PIVOT_TO_PROBE,
+        ),
+        (
+            "probe_to_piga_u_mm",
+            u.and_then(|u| u.probe_to_piga_u_mm),
+            input::PROBE_TO_PIGA,
+        ),
+        (
+            "probe_gain_u_relative",
+            u.and_then(|u| u.probe_gain_u_relative),
+            input::PROBE_GAIN,
+        ),
+    ];
+    let mut values = [0.0; 6];
+    let mut notes = Vec::new();
+    for (slot, (name, value, index)) in fields.into_iter().enumerate() {
+        let field = format!("uncertainty.{name}");
+        if index == input::PROBE_GAIN
+            && let Some((gain, stated)) = &stated_gain
+        {
+            if value.is_some() {
+                errors.push(PipelineError::StatedTwice {
+                    path: check.path.to_owned(),
+                    field,
+                    other: stated.clone(),
+                    what: "the probe gain's uncertainty",
+                });
+            }
+            values[slot] = *gain;
+            notes.push((
+                index,
+                format!("from the probe's stated sensitivity ({stated})"),
+            ));
+            continue;
+        }
+        let Some(v) = value else {
+            notes.push((index, format!("not stated (`{field}`): taken as 0")));
+            continue;
+        };
+        if let Err(e) = check.non_negative(&field, v) {
+            errors.push(e);
+            continue;
+        }
+        values[slot] = v;
+        if v == 0.0 {
+            let reason = u
+                .and_then(|u| u.zero_reasons.get(name))
+                .filter(|r| !r.trim().is_empty());
+            notes.push((
+                index,
+                reason.map_or_else(
+                    || "taken as 0, no reason given (`uncertainty.zero_reasons`)".to_owned(),
+                    |r| format!("taken as 0: {r}"),
+                ),
+            ));
+        }
+    }
+    let type_b = ::calibration::TypeB {
+        radius_u_m: values[0],
+        g_u_m_s2: values[1],
+        rate_u_relative: values[2],
+        pivot_to_probe_u_mm: values[3],
+        probe_to_piga_u_mm: values[4],
+        probe_gain_u_relative: values[5],
+    };
+    (type_b, notes)
 }
 
 const fn orientation(n: OrientationName) -> Orientation {
@@ -277,70 +346,31 @@ fn distinct(rates: &[f64]) -> usize {
     v.len()
 }
 
-/// Columns read from a PIGA table: the file, rates (deg/s), outputs (rad/s), σ, and the
-/// file's digest.
-type TableColumns = (
-    PathBuf,
-    Vec<f64>,
-    Vec<f64>,
-    Option<Vec<f64>>,
-    Option<FileDigest>,
-);
-
-/// Reads one data set's PIGA table with the calibration section's format options (rate and
-/// output columns, delimiter, σ column); rates must be > 0 and σ > 0.
-fn read_table(
-    config: &PigaTableConfig,
+/// Reads one data set: its PIGA table or its raw recordings (exactly one), with the
+/// calibration section's readers, errors naming `symmetric.orientations[i].table` or
+/// `….recordings.files[j]`.
+fn read_data(
+    o: &crate::config::OrientationConfig,
     field: &str,
     base: &Path,
     source: &Path,
     load: &dyn DataSource,
-) -> Result<TableColumns> {
-    let field = format!("{field}.table");
-    let file = base.join(&config.file);
-    let recording_error = |e: recording::RecordingError| PipelineError::Recording {
-        path: source.to_owned(),
-        field: field.clone(),
-        source: Box::new(e),
-    };
-    let layout_error = |e| match e {
-        TableLayoutError::FormatAndColumns => PipelineError::Unsupported {
+) -> Result<PigaData> {
+    match (&o.table, &o.recordings) {
+        (Some(table), None) => Ok(PigaData::Table(piga_data::load_piga_table(
+            table,
+            &format!("{field}.table"),
+            base,
+            source,
+            load,
+        )?)),
+        (None, Some(set)) => {
+            piga_data::load_piga_recordings(set, &format!("{field}.recordings"), base, source, load)
+        }
+        _ => Err(PipelineError::Unsupported {
             path: source.to_owned(),
-            field: field.clone(),
-            reason: UnsupportedReason::TableFormatAndColumns,
-        },
-        TableLayoutError::Recording(e) => recording_error(e),
-    };
-    let layout = config.piga_format().map_err(layout_error)?;
-    let format = config.reader_format().map_err(layout_error)?;
-    let read = load.read_table(&file, &format).map_err(recording_error)?;
-    let digest = read.digest.clone();
-    let t = recording::PigaTable::from_table(read.value, &layout).map_err(recording_error)?;
-    let lines: Vec<usize> = (0..t.len()).map(|i| t.line_of_row(i)).collect();
-    let (rates, outputs, sigma) = (t.rate_deg_s, t.output_rad_s, t.sigma_rad_s);
-    let rate_name = layout.rate.column.trim().to_owned();
-    let output_name = layout.output.column.trim().to_owned();
-    let sigma_name = layout.sigma.as_ref().map(|c| c.column.trim().to_owned());
-    let bad =
-        |i: usize, column: &str, value: f64, reason: InvalidReason| PipelineError::TableValue {
-            path: source.to_owned(),
-            field: field.clone(),
-            file: file.clone(),
-            line: lines[i],
-            column: column.to_owned(),
-            value,
-            reason,
-        };
-    if let Some(i) = rates.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
-        return Err(bad(i, &rate_name, rates[i], InvalidReason::RateNotPositive));
+            field: field.to_owned(),
+            reason: UnsupportedReason::CalibrationNeedsOneSource,
+        }),
     }
-    if let Some(i) = outputs.iter().position(|y| !y.is_finite()) {
-        return Err(bad(i, &output_name, outputs[i], InvalidReason::NotFinite));
-    }
-    if let (Some(name), Some(sigma)) = (&sigma_name, &sigma)
-        && let Some(i) = sigma.iter().position(|s| !(s.is_finite() && *s > 0.0))
-    {
-        return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
-    }
-    Ok((file, rates, outputs, sigma, digest))
 }

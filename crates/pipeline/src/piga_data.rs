@@ -1,5 +1,8 @@
-//! The calibration's data: a PIGA table read as it is, or raw PIGA output recordings each
-//! reduced to its mean output over whole spindle revolutions; both become points.
+//! The PIGA's data of a calibration (the `calibration` section, or one orientation of the
+//! `symmetric` one): a PIGA table read as it is, or raw PIGA output recordings each reduced to
+//! its mean output over whole spindle revolutions; both become points. Every error and
+//! warning names the configuration field the data set comes from (`calibration.table`,
+//! `symmetric.orientations[1].recordings.files[3]`).
 
 use std::path::{Path, PathBuf};
 
@@ -8,7 +11,7 @@ use recording::FileDigest;
 
 use crate::config::{PigaRecordingSet, PigaTableConfig, TableLayoutError};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
-use crate::inputs::{Check, DataSource};
+use crate::inputs::{Check, DataSource, InputFile, InputRole};
 use crate::results::{PigaRecordingResult, Warning};
 
 /// The PIGA's data: a table, or raw output recordings to reduce.
@@ -16,15 +19,63 @@ use crate::results::{PigaRecordingResult, Warning};
 pub(crate) enum PigaData {
     Table(PigaTableRows),
     Recordings {
+        /// The configuration field of the set (`calibration.recordings`).
+        field: String,
         /// Harmonics of the spindle angle removed per revolution.
         order: usize,
         files: Vec<LoadedPigaRecording>,
     },
 }
 
+impl PigaData {
+    /// The declared rate of each point, deg/s (a table's rows, or each recording's rate as
+    /// the study file declares it).
+    pub(crate) fn declared_rates_deg_s(&self) -> Vec<f64> {
+        match self {
+            Self::Table(t) => t.rates_deg_s.clone(),
+            Self::Recordings { files, .. } => files.iter().map(|f| f.rate_deg_s).collect(),
+        }
+    }
+
+    /// Every data file, with its digest and configuration field: the table, or each
+    /// recording in the configuration's order.
+    pub(crate) fn input_files(&self) -> Vec<InputFile<'_>> {
+        match self {
+            Self::Table(t) => vec![InputFile {
+                path: &t.file,
+                role: InputRole::PigaTable,
+                field: t.field.clone(),
+                digest: t.digest.as_ref(),
+            }],
+            Self::Recordings { field, files, .. } => files
+                .iter()
+                .enumerate()
+                .map(|(i, f)| InputFile {
+                    path: &f.file,
+                    role: InputRole::PigaRecording,
+                    field: format!("{field}.files[{i}]"),
+                    digest: f.digest.as_ref(),
+                })
+                .collect(),
+        }
+    }
+
+    /// The field and file a "too few rates" error names: the table, or the recordings.
+    pub(crate) fn named(&self) -> (String, PathBuf) {
+        match self {
+            Self::Table(t) => (t.field.clone(), t.file.clone()),
+            Self::Recordings { field, .. } => {
+                (format!("{field}.files"), PathBuf::from("the recordings"))
+            }
+        }
+    }
+}
+
 /// A PIGA table's rows, checked (rates > 0, σ > 0).
 #[derive(Debug, Clone)]
 pub(crate) struct PigaTableRows {
+    /// The configuration field of the table (`calibration.table`).
+    pub(crate) field: String,
     pub(crate) file: PathBuf,
     pub(crate) rates_deg_s: Vec<f64>,
     pub(crate) outputs_rad_s: Vec<f64>,
@@ -80,7 +131,7 @@ pub(crate) fn points(
     data: &PigaData,
     source: &Path,
 ) -> std::result::Result<(PigaPoints, Vec<Warning>), PipelineError> {
-    let (order, files) = match data {
+    let (set_field, order, files) = match data {
         PigaData::Table(t) => {
             return Ok((
                 PigaPoints {
@@ -95,7 +146,11 @@ pub(crate) fn points(
                 Vec::new(),
             ));
         }
-        PigaData::Recordings { order, files } => (*order, files),
+        PigaData::Recordings {
+            field,
+            order,
+            files,
+        } => (field, *order, files),
     };
     let reduced: Vec<_> = files
         .par_iter()
@@ -120,7 +175,7 @@ pub(crate) fn points(
         recordings: Vec::with_capacity(files.len()),
     };
     for (i, (f, result)) in files.iter().zip(reduced).enumerate() {
-        let field = format!("calibration.recordings.files[{i}]");
+        let field = format!("{set_field}.files[{i}]");
         let r = match result {
             Ok(r) => r,
             Err(e) => {
@@ -168,16 +223,18 @@ pub(crate) fn points(
         .is_some_and(|s| s.iter().any(|v| !v.is_finite() || *v <= 0.0))
     {
         points.sigma_rad_s = None;
-        warnings.push(Warning::calibration_unweighted());
+        warnings.push(Warning::calibration_unweighted(set_field));
     }
     Ok((points, warnings))
 }
 
-/// Reads a PIGA table: rate and output columns, the σ and label columns when named; as the
-/// laboratory exported it when the configuration gives its `format` (units converted, the
-/// headers' stated units checked).
-pub(super) fn load_piga_table(
+/// Reads a PIGA table (the configuration field `field`, `calibration.table`): rate and
+/// output columns, the σ and label columns when named; as the laboratory exported it when the
+/// configuration gives its `format` (units converted, the headers' stated units checked).
+/// Rates must be finite and > 0, outputs finite, σ finite and > 0.
+pub(crate) fn load_piga_table(
     config: &PigaTableConfig,
+    field: &str,
     base: &Path,
     source: &Path,
     load: &dyn DataSource,
@@ -185,13 +242,13 @@ pub(super) fn load_piga_table(
     let file = base.join(&config.file);
     let recording_error = |e: recording::RecordingError| PipelineError::Recording {
         path: source.to_owned(),
-        field: "calibration.table".to_owned(),
+        field: field.to_owned(),
         source: Box::new(e),
     };
     let layout_error = |e| match e {
         TableLayoutError::FormatAndColumns => PipelineError::Unsupported {
             path: source.to_owned(),
-            field: "calibration.table".to_owned(),
+            field: field.to_owned(),
             reason: UnsupportedReason::TableFormatAndColumns,
         },
         TableLayoutError::Recording(e) => recording_error(e),
@@ -203,11 +260,12 @@ pub(super) fn load_piga_table(
     let lines: Vec<usize> = (0..t.len()).map(|i| t.line_of_row(i)).collect();
     let (rates, outputs, sigma, labels) = (t.rate_deg_s, t.output_rad_s, t.sigma_rad_s, t.labels);
     let rate_name = layout.rate.column.trim().to_owned();
+    let output_name = layout.output.column.trim().to_owned();
     let sigma_name = layout.sigma.as_ref().map(|c| c.column.trim().to_owned());
     let bad =
         |i: usize, column: &str, value: f64, reason: InvalidReason| PipelineError::TableValue {
             path: source.to_owned(),
-            field: "calibration.table".to_owned(),
+            field: field.to_owned(),
             file: file.clone(),
             line: lines[i],
             column: column.to_owned(),
@@ -217,12 +275,16 @@ pub(super) fn load_piga_table(
     if let Some(i) = rates.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
         return Err(bad(i, &rate_name, rates[i], InvalidReason::RateNotPositive));
     }
+    if let Some(i) = outputs.iter().position(|y| !y.is_finite()) {
+        return Err(bad(i, &output_name, outputs[i], InvalidReason::NotFinite));
+    }
     if let (Some(name), Some(sigma)) = (&sigma_name, &sigma)
         && let Some(i) = sigma.iter().position(|s| !(s.is_finite() && *s > 0.0))
     {
         return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
     }
     Ok(PigaTableRows {
+        field: field.to_owned(),
         file: file.clone(),
         rates_deg_s: rates,
         outputs_rad_s: outputs,
@@ -233,18 +295,19 @@ pub(super) fn load_piga_table(
     })
 }
 
-/// Reads raw PIGA output recordings in parallel, after checking their rates and the
-/// harmonic order.
-pub(super) fn load_piga_recordings(
+/// Reads raw PIGA output recordings (the configuration field `field`,
+/// `calibration.recordings`) in parallel, after checking their rates and the harmonic order.
+pub(crate) fn load_piga_recordings(
     set: &PigaRecordingSet,
+    field: &str,
     base: &Path,
     source: &Path,
     load: &dyn DataSource,
-) -> Result<Vec<LoadedPigaRecording>> {
+) -> Result<PigaData> {
     let check = Check { path: source };
     if !(1..=harmonics::MAX_ORDER).contains(&set.order) {
         return Err(check.invalid(
-            "calibration.recordings.order".to_owned(),
+            format!("{field}.order"),
             set.order as f64,
             InvalidReason::HarmonicOrder,
         ));
@@ -252,7 +315,7 @@ pub(super) fn load_piga_recordings(
     for (i, point) in set.files.iter().enumerate() {
         if !(point.rate_deg_s.is_finite() && point.rate_deg_s > 0.0) {
             return Err(check.invalid(
-                format!("calibration.recordings.files[{i}].rate_deg_s"),
+                format!("{field}.files[{i}].rate_deg_s"),
                 point.rate_deg_s,
                 InvalidReason::RateNotPositive,
             ));
@@ -280,11 +343,15 @@ pub(super) fn load_piga_recordings(
             }),
             Err(error) => errors.push(PipelineError::Recording {
                 path: source.to_owned(),
-                field: format!("calibration.recordings.files[{i}]"),
+                field: format!("{field}.files[{i}]"),
                 source: Box::new(error),
             }),
         }
     }
     PipelineError::from_list(errors)?;
-    Ok(files)
+    Ok(PigaData::Recordings {
+        field: field.to_owned(),
+        order: set.order,
+        files,
+    })
 }
