@@ -71,19 +71,6 @@ pub fn simulate_plan(
     campaigns: usize,
     seed: u64,
 ) -> Result<SimulationCheck> {
-    if campaigns < MIN_CAMPAIGNS {
-        return Err(PlanningError::TooFewCampaigns {
-            campaigns,
-            need: MIN_CAMPAIGNS,
-        });
-    }
-    let n = plan.points.len();
-    if noise_free_rad_s.len() != n {
-        return Err(PlanningError::OutputCount {
-            got: noise_free_rad_s.len(),
-            expected: n,
-        });
-    }
     let sigma: Vec<f64> = plan.points.iter().map(|q| q.sigma_mean_rad_s).collect();
     let rows: Vec<[f64; UNKNOWNS]> = plan
         .points
@@ -96,27 +83,69 @@ pub fn simulate_plan(
             )
         })
         .collect();
-    let x = DMatrix::from_fn(n, UNKNOWNS, |r, j| rows[r][j] / sigma[r]);
-    let fit = |y: &[f64]| -> Result<f64> {
-        let yw: Vec<f64> = y.iter().zip(&sigma).map(|(y, s)| y / s).collect();
+    let x = DMatrix::from_fn(rows.len(), UNKNOWNS, |r, j| rows[r][j] / sigma[r]);
+    let fit = |y: &[&[f64]]| -> Result<f64> {
+        let yw: Vec<f64> = y[0].iter().zip(&sigma).map(|(y, s)| y / s).collect();
         identify::lstsq(&x, &yw)
             .map(|f| f.coefficients[K2])
             .map_err(PlanningError::Identify)
     };
-    let noise_free_k2 = fit(noise_free_rad_s)?;
+    spread_of_k2(
+        &[(noise_free_rad_s, &sigma)],
+        campaigns,
+        seed,
+        plan.u_k2_fit_rad_s_g2,
+        fit,
+    )
+}
+
+/// The spread of k2 over `campaigns` simulated campaigns against `predicted_u_rad_s_g2`:
+/// `parts` holds each part's (a mounting's) noise-free mean outputs and their σ; campaign
+/// `c` adds a normal draw of each point's σ to its output (from its own `StdRng` seeded
+/// `seed + c`, in parallel, so the result does not depend on the number of threads) and
+/// `fit_k2` fits the parts' outputs. Shared by [`simulate_plan`] and
+/// [`simulate_two_orientation_plan`](crate::simulate_two_orientation_plan).
+pub(crate) fn spread_of_k2(
+    parts: &[(&[f64], &[f64])],
+    campaigns: usize,
+    seed: u64,
+    predicted_u_rad_s_g2: f64,
+    fit_k2: impl Fn(&[&[f64]]) -> Result<f64> + Sync,
+) -> Result<SimulationCheck> {
+    if campaigns < MIN_CAMPAIGNS {
+        return Err(PlanningError::TooFewCampaigns {
+            campaigns,
+            need: MIN_CAMPAIGNS,
+        });
+    }
+    for (noise_free, sigma) in parts {
+        if noise_free.len() != sigma.len() {
+            return Err(PlanningError::OutputCount {
+                got: noise_free.len(),
+                expected: sigma.len(),
+            });
+        }
+    }
+    let noise_free: Vec<&[f64]> = parts.iter().map(|p| p.0).collect();
+    let noise_free_k2 = fit_k2(&noise_free)?;
     let k2: Vec<f64> = (0..campaigns)
         .into_par_iter()
         .map(|c| {
             let mut rng = StdRng::seed_from_u64(seed.wrapping_add(c as u64));
-            let y: Vec<f64> = noise_free_rad_s
+            let y: Vec<Vec<f64>> = parts
                 .iter()
-                .zip(&sigma)
-                .map(|(m, s)| {
-                    let z: f64 = StandardNormal.sample(&mut rng);
-                    m + s * z
+                .map(|(noise_free, sigma)| {
+                    noise_free
+                        .iter()
+                        .zip(*sigma)
+                        .map(|(m, s)| {
+                            let z: f64 = StandardNormal.sample(&mut rng);
+                            m + s * z
+                        })
+                        .collect()
                 })
                 .collect();
-            fit(&y)
+            fit_k2(&y.iter().map(Vec::as_slice).collect::<Vec<_>>())
         })
         .collect::<Result<_>>()?;
     let mean = k2.iter().sum::<f64>() / campaigns as f64;
@@ -125,9 +154,9 @@ pub fn simulate_plan(
     Ok(SimulationCheck {
         campaigns,
         seed,
-        predicted_u_rad_s_g2: plan.u_k2_fit_rad_s_g2,
+        predicted_u_rad_s_g2,
         simulated_sd_rad_s_g2: sd,
-        ratio: sd / plan.u_k2_fit_rad_s_g2,
+        ratio: sd / predicted_u_rad_s_g2,
         ratio_standard_error: 1.0 / (2.0 * (campaigns - 1) as f64).sqrt(),
         mean_k2_rad_s_g2: mean,
         noise_free_k2_rad_s_g2: noise_free_k2,

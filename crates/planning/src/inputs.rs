@@ -1,6 +1,7 @@
 //! What a plan is made from, and its validation into a [`Problem`].
 
 use crate::error::{PlanningError, Result};
+use crate::exchange::{Grid, Space as _};
 
 /// Everything a plan needs: the centrifuge, the PIGA, the probe, the expected imbalance, the
 /// Type B uncertainties, the schedule's limits, the target and the search's settings.
@@ -110,6 +111,17 @@ pub enum NoiseSpec {
         /// σ of a one-second mean, rad/s·√s.
         sigma_1s_rad_s: f64,
     },
+}
+
+impl NoiseSpec {
+    /// Weight (1/variance of the mean output) per second of recording at a rate with `tau_s`
+    /// seconds per revolution, 1/(rad/s)².
+    pub(crate) fn info_per_s(self, tau_s: f64) -> f64 {
+        match self {
+            NoiseSpec::PerRevolution { sigma_rad_s } => 1.0 / (tau_s * sigma_rad_s * sigma_rad_s),
+            NoiseSpec::Density { sigma_1s_rad_s } => 1.0 / (sigma_1s_rad_s * sigma_1s_rad_s),
+        }
+    }
 }
 
 /// The displacement probe.
@@ -266,15 +278,8 @@ pub(crate) struct Problem {
     pub(crate) inputs: PlanInputs,
     /// Candidate rates, rad/s, ascending.
     pub(crate) rates_rad_s: Vec<f64>,
-    /// Eq. 18 regressors of each candidate, each column divided by its largest magnitude.
-    pub(crate) x: Vec<[f64; UNKNOWNS]>,
-    /// Column scales: the regressor is `x·scale`.
-    pub(crate) scale: [f64; UNKNOWNS],
-    /// Seconds per revolution of each candidate.
-    pub(crate) tau_s: Vec<f64>,
-    /// Weight (1/variance of the mean output) per second of recording at each candidate,
-    /// 1/(rad/s)².
-    pub(crate) info_per_s: Vec<f64>,
+    /// Their eq. 18 regressors (scaled), seconds per revolution and weight per second.
+    pub(crate) grid: Grid<UNKNOWNS>,
     /// The highest allowed rate (the lower of the rate and acceleration limits), deg/s.
     pub(crate) max_rate_deg_s: f64,
 }
@@ -448,54 +453,20 @@ impl Problem {
             .iter()
             .map(|&w| regressors(w, c.radius_m, c.g_m_s2))
             .collect();
-        let mut scale = [0.0_f64; UNKNOWNS];
-        for r in &raw {
-            for (s, v) in scale.iter_mut().zip(r) {
-                *s = s.max(v.abs());
-            }
-        }
-        let x = raw
-            .iter()
-            .map(|r| std::array::from_fn(|j| r[j] / scale[j]))
-            .collect();
-        let tau_s: Vec<f64> = rates_rad_s
-            .iter()
-            .map(|w| std::f64::consts::TAU / w)
-            .collect();
-        let fastest = tau_s.iter().copied().fold(f64::INFINITY, f64::min);
+        let grid = Grid::new(&rates_rad_s, &raw, p.noise);
+        let fastest = grid.tau_s.iter().copied().fold(f64::INFINITY, f64::min);
         field(
             "schedule.budget_s",
             s.budget_s,
             s.budget_s / fastest <= MAX_REVOLUTIONS,
             "must allow at most 1e9 revolutions at the fastest candidate",
         )?;
-        let info_per_s = tau_s
-            .iter()
-            .map(|tau| match p.noise {
-                NoiseSpec::PerRevolution { sigma_rad_s } => 1.0 / (tau * sigma_rad_s * sigma_rad_s),
-                NoiseSpec::Density { sigma_1s_rad_s } => 1.0 / (sigma_1s_rad_s * sigma_1s_rad_s),
-            })
-            .collect();
         Ok(Problem {
             inputs: inputs.clone(),
             rates_rad_s,
-            x,
-            scale,
-            tau_s,
-            info_per_s,
+            grid,
             max_rate_deg_s: max_rate,
         })
-    }
-
-    /// Seconds of recording that remain for a design after settling and the minimum
-    /// revolutions (negative: the design does not fit).
-    pub(crate) fn free_time(&self, design: &[usize]) -> f64 {
-        let s = &self.inputs.schedule;
-        let fixed: f64 = design
-            .iter()
-            .map(|&i| f64::from(s.min_revolutions) * self.tau_s[i])
-            .sum();
-        s.budget_s - s.settling_s * design.len() as f64 - fixed
     }
 
     /// Checks that the cheapest design fits the budget.

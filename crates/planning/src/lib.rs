@@ -78,6 +78,7 @@
 mod check;
 mod design;
 mod error;
+mod exchange;
 mod inputs;
 mod joint;
 mod plan;

@@ -2,8 +2,9 @@
 
 use nalgebra::DMatrix;
 
-use crate::design::{self, Allocated};
+use crate::design;
 use crate::error::{PlanningError, Result};
+use crate::exchange::{self, Allocated, Space as _};
 use calibration::{input, output};
 
 use crate::inputs::{Criterion, K2, PlanInputs, Problem, UNKNOWNS, regressors};
@@ -211,8 +212,8 @@ fn fit_u_k2(p: &Problem, design: &[usize], sigma: &[f64]) -> Result<(f64, f64)> 
 
 /// σ of a point's mean output after `revolutions` at candidate `i`.
 fn sigma_mean(p: &Problem, i: usize, revolutions: u32) -> f64 {
-    let t = f64::from(revolutions) * p.tau_s[i];
-    (1.0 / (t * p.info_per_s[i])).sqrt()
+    let t = f64::from(revolutions) * p.grid.tau_s[i];
+    (1.0 / (t * p.grid.info_per_s[i])).sqrt()
 }
 
 /// σ of a point's radius error at the PIGA plane from the probe: the first-harmonic
@@ -220,7 +221,7 @@ fn sigma_mean(p: &Problem, i: usize, revolutions: u32) -> f64 {
 /// to the PIGA plane by the lever ratio.
 fn sigma_radius(p: &Problem, i: usize, revolutions: u32) -> f64 {
     let pr = &p.inputs.probe;
-    let t = f64::from(revolutions) * p.tau_s[i];
+    let t = f64::from(revolutions) * p.grid.tau_s[i];
     let lever = (pr.pivot_to_probe_mm + pr.probe_to_piga_mm) / pr.pivot_to_probe_mm;
     lever * pr.noise_um * 1e-6 * (2.0 / (pr.sample_rate_hz * t)).sqrt()
 }
@@ -360,13 +361,13 @@ fn describe(p: &Problem, best: &Allocated, revolutions: &[u32]) -> Result<Plan> 
     let recording: f64 = design
         .iter()
         .zip(&revs)
-        .map(|(&i, &n)| f64::from(n) * p.tau_s[i])
+        .map(|(&i, &n)| f64::from(n) * p.grid.tau_s[i])
         .sum();
-    let per_rev: f64 = design.iter().map(|&i| p.tau_s[i]).sum();
+    let per_rev: f64 = design.iter().map(|&i| p.grid.tau_s[i]).sum();
     let equal = recording / per_rev;
     let sigma_equal: Vec<f64> = design
         .iter()
-        .map(|&i| (1.0 / (equal * p.tau_s[i] * p.info_per_s[i])).sqrt())
+        .map(|&i| (1.0 / (equal * p.grid.tau_s[i] * p.grid.info_per_s[i])).sqrt())
         .collect();
     let (u_equal, _) = fit_u_k2(p, &design, &sigma_equal)?;
     let fit_dof = design.len() - UNKNOWNS;
@@ -393,7 +394,7 @@ fn describe(p: &Problem, best: &Allocated, revolutions: &[u32]) -> Result<Plan> 
         .zip(&revs)
         .zip(sigma.iter().zip(&sigma_r))
         .map(|((&i, &n), (&sm, &sr))| {
-            let recording_s = f64::from(n) * p.tau_s[i];
+            let recording_s = f64::from(n) * p.grid.tau_s[i];
             PlanPoint {
                 rate_deg_s: p.rates_rad_s[i].to_degrees(),
                 revolutions: n,
@@ -556,11 +557,11 @@ pub fn evaluate_rates(
     }
     let revolutions = match allocation {
         Allocation::Optimal => {
-            let a = design::allocate_final(&p, &design, Criterion::K2).ok_or_else(singular)?;
+            let a = exchange::allocate_final(&p, &design, Criterion::K2).ok_or_else(singular)?;
             design::whole_revolutions(&p, &a)
         }
         Allocation::EqualRevolutions => {
-            let per_rev: f64 = design.iter().map(|&i| p.tau_s[i]).sum();
+            let per_rev: f64 = design.iter().map(|&i| p.grid.tau_s[i]).sum();
             let n = ((s.budget_s - s.settling_s * design.len() as f64) / per_rev).floor();
             vec![(n as u32).max(s.min_revolutions); design.len()]
         }
@@ -568,13 +569,13 @@ pub fn evaluate_rates(
     let time: Vec<f64> = design
         .iter()
         .zip(&revolutions)
-        .map(|(&i, &n)| f64::from(n) * p.tau_s[i])
+        .map(|(&i, &n)| f64::from(n) * p.grid.tau_s[i])
         .collect();
-    let var = design::var_k2_scaled(&p, &design, &time).ok_or_else(singular)?;
+    let var = exchange::var_k2_scaled(&p, &design, &time).ok_or_else(singular)?;
     Ok(RateEvaluation {
         rates_deg_s: rates_deg_s.to_vec(),
         revolutions,
-        u_k2_fit_rad_s_g2: var.sqrt() / p.scale[K2],
+        u_k2_fit_rad_s_g2: var.sqrt() / p.grid.scale[K2],
     })
 }
 
@@ -609,7 +610,7 @@ pub fn exhaustive_k2(inputs: &PlanInputs) -> Result<ExhaustiveComparison> {
     }
     let best = subsets
         .par_iter()
-        .filter_map(|d| design::allocate_final(&p, d, Criterion::K2))
+        .filter_map(|d| exchange::allocate_final(&p, d, Criterion::K2))
         .min_by(|a, b| a.value.total_cmp(&b.value))
         .ok_or_else(|| PlanningError::Singular {
             rates_deg_s: Vec::new(),
@@ -624,9 +625,9 @@ pub fn exhaustive_k2(inputs: &PlanInputs) -> Result<ExhaustiveComparison> {
     Ok(ExhaustiveComparison {
         designs: subsets.len(),
         exhaustive_rates_deg_s: rates(&best.design),
-        exhaustive_u_k2_fit_rad_s_g2: best.value.sqrt() / p.scale[K2],
+        exhaustive_u_k2_fit_rad_s_g2: best.value.sqrt() / p.grid.scale[K2],
         planner_rates_deg_s: rates(&planned.design),
-        planner_u_k2_fit_rad_s_g2: planned.value.sqrt() / p.scale[K2],
+        planner_u_k2_fit_rad_s_g2: planned.value.sqrt() / p.grid.scale[K2],
     })
 }
 

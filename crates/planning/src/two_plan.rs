@@ -8,7 +8,8 @@ use calibration::{
 };
 
 use crate::error::{PlanningError, Result};
-use crate::inputs::{PlanInputs, Problem};
+use crate::exchange::{self, Allocated, Budget, FINAL_ITERATIONS, Space as _};
+use crate::inputs::{Criterion, PlanInputs, Problem};
 use crate::joint::{self, JointProblem, Limits};
 use crate::plan::{Plan, plan_unchecked};
 use crate::two_inputs::{LackOfFitReserve, RateGrid, TwoOrientations, round_grid};
@@ -322,10 +323,13 @@ pub fn plan_two_orientations(inputs: &PlanInputs) -> Result<TwoOrientationPlan> 
         g_m_s2: c.g_m_s2,
         radius_m: radii,
         noise: inputs.piga.noise,
-        budget_s: s.budget_s,
-        settling_s: s.settling_s,
-        remount_s: spec.remount_s,
-        min_revolutions: s.min_revolutions,
+        budget: Budget {
+            budget_s: s.budget_s,
+            settling_s: s.settling_s,
+            remount_s: spec.remount_s,
+            min_revolutions: s.min_revolutions,
+            allow_repeats: false,
+        },
         restarts: inputs.search.restarts,
         seed: inputs.search.seed,
     };
@@ -353,7 +357,7 @@ pub fn plan_two_orientations(inputs: &PlanInputs) -> Result<TwoOrientationPlan> 
         Some(b) => b,
         None => search(&p_other, extra)?,
     };
-    let solve = |p: &JointProblem, best: &joint::Allocated, r: LackOfFitReserve| {
+    let solve = |p: &JointProblem, best: &Allocated, r: LackOfFitReserve| {
         outcome(p, best, r, &radii, c.g_m_s2, &expected)
     };
     let main = solve(&p_chosen, &best_chosen, reserve)?;
@@ -381,23 +385,23 @@ pub fn plan_two_orientations(inputs: &PlanInputs) -> Result<TwoOrientationPlan> 
 
 /// The c-optimal design with six rates per orientation, after checking that the cheapest
 /// design with the reserve's rates fits the budget.
-fn search(p: &JointProblem, extra: usize) -> Result<joint::Allocated> {
+fn search(p: &JointProblem, extra: usize) -> Result<Allocated> {
     // The cheapest design: the fastest rates of each mounting at their least revolutions.
     let cheapest: Vec<usize> = p
         .ranges
         .iter()
         .flat_map(|r| r.clone().rev().take(MIN_RATES_PER_ORIENTATION + extra))
         .collect();
-    let least = p.min_times(&cheapest, &vec![p.min_revolutions; cheapest.len()]);
-    let free = p.free_time(&cheapest, &least);
+    let free = p.free_time(&cheapest);
     if free < 0.0 {
-        let settling_s = p.settling_s * cheapest.len() as f64;
+        let b = p.budget;
+        let settling_s = b.settling_s * cheapest.len() as f64;
         return Err(PlanningError::TwoOrientationBudgetTooShort {
-            budget_s: p.budget_s,
-            needed_s: p.budget_s - free,
-            remount_s: p.remount_s,
+            budget_s: b.budget_s,
+            needed_s: b.budget_s - free,
+            remount_s: b.remount_s,
             settling_s,
-            minimum_s: p.budget_s - free - settling_s - p.remount_s,
+            minimum_s: b.budget_s - free - settling_s - b.remount_s,
             points: cheapest.len(),
         });
     }
@@ -409,7 +413,7 @@ fn search(p: &JointProblem, extra: usize) -> Result<joint::Allocated> {
 /// The reserve and whole revolutions of a searched design, and its predicted figures.
 fn outcome(
     p: &JointProblem,
-    best: &joint::Allocated,
+    best: &Allocated,
     reserve: LackOfFitReserve,
     radii: &[f64; 2],
     g_m_s2: f64,
@@ -420,26 +424,26 @@ fn outcome(
     };
     let (design, min_revs) = if reserve.is_off() {
         let n = best.design.len();
-        (best.design.clone(), vec![p.min_revolutions; n])
+        (best.design.clone(), vec![p.budget.min_revolutions; n])
     } else {
         let d = joint::add_reserve(p, &best.design, reserve.extra_rates_per_orientation);
         let revs = joint::reserve_revolutions(p, &d, reserve.time_fraction);
         (d, revs)
     };
-    let min_s = p.min_times(&design, &min_revs);
-    let a =
-        joint::allocate(p, &design, &min_s, None, joint::FINAL_ITERATIONS).ok_or_else(singular)?;
-    let revs = joint::whole_revolutions(p, &a, &min_revs);
+    let min_s = p.recording_s(&design, &min_revs);
+    let a = exchange::allocate(p, &design, &min_s, None, Criterion::K2, FINAL_ITERATIONS)
+        .ok_or_else(singular)?;
+    let revs = exchange::whole_revolutions(p, &a, &min_revs);
     let mut mountings: [Vec<OrientationPoint>; 2] = [Vec::new(), Vec::new()];
     for (&i, &n) in design.iter().zip(&revs) {
-        let recording_s = f64::from(n) * p.tau_s[i];
+        let recording_s = f64::from(n) * p.grid.tau_s[i];
         mountings[p.side(i)].push(OrientationPoint {
             rate_deg_s: p.rates_deg_s[i],
             revolutions: n,
             recording_s,
-            settling_s: p.settling_s,
-            duration_s: recording_s + p.settling_s,
-            sigma_mean_rad_s: (1.0 / (recording_s * p.info_per_s[i])).sqrt(),
+            settling_s: p.budget.settling_s,
+            duration_s: recording_s + p.budget.settling_s,
+            sigma_mean_rad_s: (1.0 / (recording_s * p.grid.info_per_s[i])).sqrt(),
             reserve: !best.design.contains(&i),
         });
     }
