@@ -39,10 +39,11 @@ pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
 pub use quantities::{CrInput, K1Input, TypeB, measurement_inputs};
 pub use symmetric::{
-    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION,
-    MountingFit, Orientation, OrientationData, ProbeCr, SYMMETRIC_OUTPUTS, SYMMETRIC_TERM_NAMES,
-    SYMMETRIC_TERMS, SymmetricError, SymmetricEvaluation, SymmetricFit, SymmetricModel,
-    SymmetricWarning, Z_LIMIT, evaluate_symmetric, fit_symmetric, symmetric_inputs, symmetric_row,
+    B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,
+    MIN_RATES_PER_ORIENTATION, MountingFit, Orientation, OrientationData, ProbeCr,
+    SYMMETRIC_OUTPUTS, SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS, SymmetricError, SymmetricEvaluation,
+    SymmetricFit, SymmetricModel, SymmetricWarning, Z_LIMIT, evaluate_symmetric, fit_symmetric,
+    symmetric_input, symmetric_inputs, symmetric_row,
 };
 pub use vif::{
     CoefficientInflation, INFLATION_LIMIT, NUISANCE_TERMS, REFERENCE_LOW_FRACTION, REPORTED_TERMS,

@@ -5,8 +5,8 @@ use identify::{Fit, LstsqOptions, lstsq_with};
 
 use super::error::SymmetricError;
 use super::terms::{
-    GAMMA_TERM, K2_INFLATION_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION, Orientation,
-    OrientationData, SYMMETRIC_TERMS, distinct, index, symmetric_row,
+    B3_TERM, GAMMA_TERM, K2_INFLATION_LIMIT, K2_TERM, K3_TERM, MIN_RATES_PER_ORIENTATION,
+    Orientation, OrientationData, SYMMETRIC_TERMS, distinct, index, symmetric_row,
 };
 
 /// One mounting's own coefficients.
@@ -60,6 +60,12 @@ pub struct SymmetricFit {
     pub residuals_rad_s: [Vec<f64>; 2],
     /// Birge ratio `√(χ²/ν)` of a weighted fit (`None` unweighted).
     pub birge_ratio: Option<f64>,
+    /// The fit's coefficients for a term `ω⁶` of the same sign in both mountings (a column
+    /// eq. 23 does not have): the least-squares projection `X⁺·ω⁶` through the same QR (and
+    /// weights). [`SymmetricModel`](crate::SymmetricModel) uses it for what a change of the
+    /// radii does to the shared `s·a_s³` column that no rescaling of k3 absorbs
+    /// (`docs/theory.md` section 11).
+    pub omega6_response: [f64; SYMMETRIC_TERMS],
     /// The least-squares fit (coefficients in [`SYMMETRIC_TERM_NAMES`](crate::SYMMETRIC_TERM_NAMES)' order; for a weighted
     /// fit the covariance is `(XᵀWX)⁻¹` times the squared Birge ratio when above 1).
     pub fit: Fit,
@@ -227,6 +233,7 @@ pub fn fit_symmetric(
     let mut x = nalgebra::DMatrix::zeros(rows, SYMMETRIC_TERMS);
     let mut y = Vec::with_capacity(rows);
     let mut weights = Vec::with_capacity(rows);
+    let mut omega6 = Vec::with_capacity(rows);
     let mut r = 0;
     for (d, radius) in &sets {
         let o = d.orientation.unwrap_or(Orientation::IaIn);
@@ -242,10 +249,15 @@ pub fn fit_symmetric(
             }
             y.push(out * wt);
             weights.push(wt);
+            omega6.push(w.powi(6) * wt);
             r += 1;
         }
     }
     let mut fit = lstsq_with(&x, &y, &LstsqOptions::default()).map_err(SymmetricError::Fit)?;
+    let omega6_response = lstsq_with(&x, &omega6, &LstsqOptions::default())
+        .map_err(SymmetricError::Fit)?
+        .coefficients;
+    let omega6_response: [f64; SYMMETRIC_TERMS] = std::array::from_fn(|j| omega6_response[j]);
     let birge_ratio = weighted.then(|| {
         let chi2: f64 = fit.residuals.iter().map(|e| e * e).sum();
         (chi2 / fit.dof.max(1) as f64).sqrt()
@@ -318,8 +330,8 @@ pub fn fit_symmetric(
     let result = SymmetricFit {
         mountings,
         k2_rad_s_g2: pair(K2_TERM),
-        k3_rad_s_g3: pair(8),
-        b3: pair(6),
+        k3_rad_s_g3: pair(K3_TERM),
+        b3: pair(B3_TERM),
         gamma: pair(GAMMA_TERM),
         c_m_s2: (c_value, var_c.max(0.0).sqrt()),
         delta_k2_total_rad_s_g2: (gamma * dk2_scale, se[GAMMA_TERM] * dk2_scale),
@@ -329,6 +341,7 @@ pub fn fit_symmetric(
         g_m_s2,
         residuals_rad_s,
         birge_ratio,
+        omega6_response,
         fit,
     };
     Ok(result)

@@ -16,15 +16,18 @@
 mod error;
 mod evaluate;
 mod fit;
+#[cfg(test)]
+mod refit_tests;
 mod terms;
 
 pub use error::SymmetricError;
 pub use evaluate::{
     ProbeCr, SYMMETRIC_OUTPUTS, SymmetricEvaluation, SymmetricModel, SymmetricWarning,
-    evaluate_symmetric, symmetric_inputs,
+    evaluate_symmetric, symmetric_input, symmetric_inputs,
 };
 pub use fit::{MountingFit, SymmetricFit, fit_symmetric};
 pub use terms::{
-    GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, MIN_RATES_PER_ORIENTATION,
-    Orientation, OrientationData, SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS, Z_LIMIT, symmetric_row,
+    B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,
+    MIN_RATES_PER_ORIENTATION, Orientation, OrientationData, SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS,
+    Z_LIMIT, symmetric_row,
 };

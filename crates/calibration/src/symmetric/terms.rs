@@ -34,8 +34,12 @@ pub const SYMMETRIC_TERM_NAMES: [&str; SYMMETRIC_TERMS] = [
     "gamma = k1·C/g",
 ];
 
+/// Index of the b3 (`s·ω³`) coefficient.
+pub const B3_TERM: usize = 6;
 /// Index of the k2 coefficient.
 pub const K2_TERM: usize = 7;
+/// Index of the k3 (`s·a_s³`) coefficient.
+pub const K3_TERM: usize = 8;
 /// Index of the `s·ω⁴` coefficient γ = k1·C/g.
 pub const GAMMA_TERM: usize = 9;
 
@@ -95,9 +99,9 @@ pub fn symmetric_row(
     row[base] = 1.0;
     row[base + 1] = s * w;
     row[base + 2] = s * a;
-    row[6] = s * w * w * w;
+    row[B3_TERM] = s * w * w * w;
     row[K2_TERM] = a * a;
-    row[8] = s * a * a * a;
+    row[K3_TERM] = s * a * a * a;
     row[GAMMA_TERM] = s * w * w * w * w;
     row
 }

@@ -154,11 +154,18 @@ fn probe_c_r(sim: &Simulation, declared: Declared) -> ProbeCr {
         c_r_m_s2: fit.c_r_m_s2,
         u_m_s2: fit.c_r_sigma_m_s2.unwrap(),
         dof: Some(fit.dof as f64),
+        // the campaign study's lever
+        pivot_to_probe_mm: 700.0,
+        probe_to_piga_mm: 510.0,
     }
 }
 
 fn evaluate(fit: &SymmetricFit, probe: ProbeCr) -> SymmetricEvaluation {
-    evaluate_symmetric(fit, 1e-5, Some(probe), None).unwrap()
+    let type_b = calibration::TypeB {
+        g_u_m_s2: 1e-5,
+        ..calibration::TypeB::default()
+    };
+    evaluate_symmetric(fit, &type_b, Some(probe), None).unwrap()
 }
 
 fn disagrees(e: &SymmetricEvaluation) -> bool {
@@ -361,7 +368,7 @@ fn the_symmetric_k2_interval_covers_the_truth() {
                 })
                 .collect();
             let fit = fit_symmetric(&data, G, "t").unwrap();
-            let e = evaluate_symmetric(&fit, 0.0, None, None).unwrap();
+            let e = evaluate_symmetric(&fit, &calibration::TypeB::default(), None, None).unwrap();
             let k2 = e.gum.output("k2").unwrap();
             let (lo, hi) = k2.coverage_interval();
             (k2.estimate, k2.standard_uncertainty, lo <= K2 && K2 <= hi)
@@ -464,7 +471,7 @@ fn an_inseparable_omega4_term_is_reported() {
     let fit = fit_symmetric(&data, G, "o").unwrap();
     assert!(!fit.separable(), "{}", fit.k2_inflation);
     assert!(fit.k2_inflation > 5.0, "{}", fit.k2_inflation);
-    let e = evaluate_symmetric(&fit, 0.0, None, None).unwrap();
+    let e = evaluate_symmetric(&fit, &calibration::TypeB::default(), None, None).unwrap();
     let w = e
         .warnings
         .iter()
