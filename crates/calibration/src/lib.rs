@@ -45,6 +45,7 @@ pub use symmetric::{
     SymmetricFit, SymmetricModel, SymmetricWarning, Z_LIMIT, evaluate_symmetric, fit_symmetric,
     symmetric_input, symmetric_inputs, symmetric_row,
 };
+pub use symmetric::{MountingDesign, SymmetricSpread, symmetric_spread};
 pub use vif::{
     CoefficientInflation, INFLATION_LIMIT, NUISANCE_TERMS, REFERENCE_LOW_FRACTION, REPORTED_TERMS,
     VIF_LIMIT, coefficient_inflation, variance_inflation,

@@ -164,7 +164,7 @@ fn unscaled_variances(
 
 /// The points' σ as a function of the rate: one σ per distinct rate (`1/√(mean 1/σ²)` over
 /// its points), in increasing rate.
-fn sigma_curve(rates_rad_s: &[f64], sigma_rad_s: &[f64]) -> Vec<(f64, f64)> {
+pub(crate) fn sigma_curve(rates_rad_s: &[f64], sigma_rad_s: &[f64]) -> Vec<(f64, f64)> {
     let mut points: Vec<(f64, f64)> = rates_rad_s
         .iter()
         .zip(sigma_rad_s)
@@ -188,7 +188,7 @@ fn sigma_curve(rates_rad_s: &[f64], sigma_rad_s: &[f64]) -> Vec<(f64, f64)> {
 }
 
 /// The σ at rate `w` on the curve, linear between its rates and constant beyond them.
-fn interpolate(curve: &[(f64, f64)], w: f64) -> f64 {
+pub(crate) fn interpolate(curve: &[(f64, f64)], w: f64) -> f64 {
     let i = curve.partition_point(|p| p.0 < w);
     match (i.checked_sub(1).map(|j| curve[j]), curve.get(i)) {
         (Some(a), Some(b)) if b.0 > a.0 => a.1 + (b.1 - a.1) * (w - a.0) / (b.0 - a.0),

@@ -102,8 +102,8 @@ pub use results::{
     WarningCode, model_name,
 };
 pub use results::{
-    MountingResults, ProbeComparison, SymmetricBudgets, SymmetricHeadline, SymmetricMonteCarlo,
-    SymmetricResults,
+    MountingResults, ProbeComparison, RateSpread, SymmetricBudgets, SymmetricHeadline,
+    SymmetricMonteCarlo, SymmetricResults,
 };
 pub use sections::calibration::CalibrationMeasurement;
 pub use sections::phases::Progress;

@@ -210,6 +210,18 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
         format::plain(s.g_m_s2.value),
         s.g_m_s2.u
     );
+    if let Some(r) = &s.u_inflation_by_rates {
+        let _ = writeln!(
+            out,
+            "The rates: u(k2) is {:.2} times and u(C) {:.2} times what the same number of rates \
+             per orientation, spread evenly from {} to {} deg/s in both, would give (warned above \
+             3).\n",
+            r.k2,
+            r.c,
+            format::plain(r.reference_low_deg_s),
+            format::plain(r.reference_top_deg_s),
+        );
+    }
     if let Some(p) = &s.probe {
         let _ = writeln!(out, "### Against the probe\n");
         let how = match p.chosen_by.as_str() {

@@ -11,13 +11,15 @@
 //! — or a wrong probe declaration.
 //!
 //! Read in this order: `terms` (the orientations, the coefficients, one design row), `error`,
-//! `fit` (the joint fit), `evaluate` (its uncertainty and warnings).
+//! `fit` (the joint fit), `spread` (what the rates cost k2 and C), `evaluate` (its
+//! uncertainty and warnings).
 
 mod error;
 mod evaluate;
 mod fit;
 #[cfg(test)]
 mod refit_tests;
+mod spread;
 mod terms;
 
 pub use error::SymmetricError;
@@ -26,6 +28,7 @@ pub use evaluate::{
     evaluate_symmetric, symmetric_input, symmetric_inputs,
 };
 pub use fit::{MountingFit, SymmetricFit, fit_symmetric};
+pub use spread::{MountingDesign, SymmetricSpread, symmetric_spread};
 pub use terms::{
     B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,
     MIN_RATES_PER_ORIENTATION, Orientation, OrientationData, SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS,

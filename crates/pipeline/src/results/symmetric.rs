@@ -142,6 +142,10 @@ pub struct SymmetricResults {
     /// Correlation ρ of the k2 and C estimates in the joint fit.
     #[serde(default)]
     pub k2_c_correlation: f64,
+    /// u(k2) and u(C) over those of the same number of points per mounting spread evenly
+    /// from 10 % of the top rate to the top rate: what the rates cost; warned on above 3.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub u_inflation_by_rates: Option<RateSpread>,
     /// Condition number of the column-scaled design.
     pub condition_number: f64,
     /// Uncertainty budgets (JCGM 100).
@@ -153,4 +157,17 @@ pub struct SymmetricResults {
     /// The comparison with the probe phase.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub probe: Option<ProbeComparison>,
+}
+
+/// What the rates of a two-orientation design cost k2 and C (`calibration::symmetric_spread`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RateSpread {
+    /// u(k2) over the spread reference design's.
+    pub k2: f64,
+    /// u(C) over the spread reference design's.
+    pub c: f64,
+    /// The reference design's lowest rate, deg/s.
+    pub reference_low_deg_s: f64,
+    /// The reference design's top rate (the top rate of both mountings), deg/s.
+    pub reference_top_deg_s: f64,
 }

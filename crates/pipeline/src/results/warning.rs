@@ -50,6 +50,9 @@ pub enum WarningCode {
     Omega4NotSeparable,
     /// The PIGA's total radius growth C and the probe's C_r disagree (|z| > 3).
     ProbeDisagrees,
+    /// The two-orientation design's rates make u(k2) or u(C) more than 3 times what the same
+    /// number of points per mounting, evenly spread, would give.
+    SymmetricRatesBunched,
 }
 
 impl WarningCode {
@@ -75,6 +78,7 @@ impl WarningCode {
             Self::ConeCr => "cone_c_r",
             Self::Omega4NotSeparable => "omega4_not_separable",
             Self::ProbeDisagrees => "probe_disagrees",
+            Self::SymmetricRatesBunched => "symmetric_rates_bunched",
         }
     }
 
@@ -100,6 +104,7 @@ impl WarningCode {
             Self::ConeCr => "cone C_r differs from the two-probe C_r",
             Self::Omega4NotSeparable => "ω⁴ term hard to separate in the two-orientation fit",
             Self::ProbeDisagrees => "the PIGA's radius growth and the probe's disagree",
+            Self::SymmetricRatesBunched => "two-orientation rates too bunched for k2 and C",
         }
     }
 }
@@ -319,6 +324,40 @@ impl Warning {
                  the ω⁴ term {vif:.1e}). Both are stated with uncertainties that carry this, but \
                  k2 from the PIGA alone is far less precise than the design could give: measure \
                  both orientations over the same wide band of rates, with comparable noise"
+            ),
+            location: "symmetric.orientations".into(),
+        }
+    }
+
+    /// `symmetric_rates_bunched`: u(k2) and u(C) are `k2` and `c` times the spread reference
+    /// design's (rates from `low_deg_s` to `top_deg_s` in both mountings); `limit` the limit.
+    #[must_use]
+    pub fn symmetric_rates_bunched(
+        k2: f64,
+        c: f64,
+        (low_deg_s, top_deg_s): (f64, f64),
+        limit: f64,
+    ) -> Self {
+        let times = |f: f64| {
+            if f < 10.0 {
+                format!("{f:.1}")
+            } else {
+                format!("{f:.0}")
+            }
+        };
+        Self {
+            code: WarningCode::SymmetricRatesBunched,
+            message: format!(
+                "the two orientations' rates cannot separate k2 and the radius growth C well: \
+                 u(k2) is {} times and u(C) {} times what the same number of rates per \
+                 orientation, spread evenly from {} to {} deg/s in both, would give (warned above \
+                 {limit}). Both are stated with uncertainties that carry this, but the design \
+                 wastes centrifuge time: spread each orientation's rates over 10–100 % of the top \
+                 rate (`centrifuge-cal plan` with `two_orientations` chooses them)",
+                times(k2),
+                times(c),
+                times(low_deg_s),
+                times(top_deg_s),
             ),
             location: "symmetric.orientations".into(),
         }

@@ -13,9 +13,15 @@ use test_support::MemoryFiles as Files;
 /// The symmetric section on the simulation's two mounting tables, compared with the probe
 /// phase (declared as `declared`); a small fixed Monte Carlo count.
 fn study(sim: &Simulation, declared: Declared) -> StudyResults {
-    let (text, mut files) = probe_study(sim, declared);
+    study_with_tables(sim, sim, declared)
+}
+
+/// The symmetric section on the mounting tables of `tables`, compared with the probe phase
+/// of `probe`.
+fn study_with_tables(probe: &Simulation, tables: &Simulation, declared: Declared) -> StudyResults {
+    let (text, mut files) = probe_study(probe, declared);
     let mut sets = String::new();
-    for m in &sim.mountings {
+    for m in &tables.mountings {
         let (name, file) = match m.orientation {
             Orientation::IaIn => ("ia_in", "piga_ia_in.csv"),
             Orientation::IaOut => ("ia_out", "piga_ia_out.csv"),
@@ -89,6 +95,10 @@ fn the_study_sees_the_arm_stretch_the_probe_misses() {
         s.k2_inflation_by_omega4
     );
     assert!(!warned(&r, WarningCode::Omega4NotSeparable));
+    // nor do its rates cost k2 or C much against the evenly spread design
+    let spread = s.u_inflation_by_rates.expect("the rates' price");
+    assert!(spread.k2 < 2.0 && spread.c < 2.0, "{spread:?}");
+    assert!(!warned(&r, WarningCode::SymmetricRatesBunched));
 
     let r0 = study(
         &simulate::simulate(&scenario(21, 0.0)).unwrap(),
@@ -173,5 +183,49 @@ fn a_bad_section_names_every_problem_at_once() {
     assert!(
         message.contains("symmetric.orientations: a two-orientation calibration needs one data set with the IA in and one with the IA out"),
         "{message}"
+    );
+}
+
+/// Both orientations measured at seven rates bunched at 150–180 deg/s, at the same radius:
+/// k2 and C are both poorly known but not correlated, so the correlation warning is silent;
+/// the rates' price against the evenly spread design (u(k2) about 95 times, u(C) 7000) gives the
+/// warning, with the figure, and the stated U carries it.
+#[test]
+fn bunched_rates_in_both_orientations_warn() {
+    let probe = simulate::simulate(&scenario(24, 0.0)).unwrap();
+    let mut bunched = scenario(24, 0.0);
+    bunched.scenario.rates_deg_s = (0..7).map(|i| 150.0 + 5.0 * f64::from(i)).collect();
+    bunched.scenario.mountings[1].radius_m = bunched.scenario.mountings[0].radius_m;
+    let bunched = bunched
+        .scenario
+        .clone()
+        .check(Path::new("campaign.ron"))
+        .unwrap();
+    let tables = simulate::simulate(&bunched).unwrap();
+    let r = study_with_tables(&probe, &tables, Declared::Right);
+    let s = r.symmetric.as_ref().unwrap();
+    let spread = s.u_inflation_by_rates.expect("the rates' price");
+    assert!(spread.k2 > 30.0 && spread.c > 1000.0, "{spread:?}");
+    assert!(
+        (spread.reference_top_deg_s - 180.0).abs() < 1e-9,
+        "{spread:?}"
+    );
+    assert!(
+        !warned(&r, WarningCode::Omega4NotSeparable),
+        "{:?}",
+        r.warnings
+    );
+    let w = r
+        .warnings
+        .iter()
+        .find(|w| w.code == WarningCode::SymmetricRatesBunched)
+        .expect("the bunched rates are warned");
+    assert!(w.message.contains("from 18 to 180 deg/s"), "{}", w.message);
+    // the stated U says how poorly k2 is known: far wider than the spread design's
+    let ordinary = study(&probe, Declared::Right);
+    assert!(
+        s.k2.u95 > 50.0 * ordinary.symmetric.as_ref().unwrap().k2.u95,
+        "{:?}",
+        s.k2
     );
 }

@@ -14,8 +14,8 @@ use crate::inputs::Core;
 use crate::piga_data::{self, PigaPoints};
 use crate::results::{
     BudgetLine, Coefficient, DegreesOfFreedom, Estimate, Headline, InfiniteDof, MonteCarloOutput,
-    MountingResults, PhaseResults, ProbeComparison, SymmetricBudgets, SymmetricHeadline,
-    SymmetricMonteCarlo, SymmetricResults, Warning,
+    MountingResults, PhaseResults, ProbeComparison, RateSpread, SymmetricBudgets,
+    SymmetricHeadline, SymmetricMonteCarlo, SymmetricResults, Warning,
 };
 
 /// Runs the section against the study's phase results (the probe phase's C_r).
@@ -79,6 +79,15 @@ pub(crate) fn run(
         })
         .collect();
     let fit = fit_symmetric(&data, core.g_m_s2, "symmetric.orientations").map_err(fail)?;
+    let spread = rate_spread(&data, core.g_m_s2);
+    if let Some(r) = spread.filter(|r| r.k2.max(r.c) > ::calibration::INFLATION_LIMIT) {
+        warnings.push(Warning::symmetric_rates_bunched(
+            r.k2,
+            r.c,
+            (r.reference_low_deg_s, r.reference_top_deg_s),
+            ::calibration::INFLATION_LIMIT,
+        ));
+    }
     let phase = &phases[s.phase];
     let c_r_u = phase.fit.c_r_sigma_m_s2.unwrap_or(0.0);
     let probe = ProbeCr {
@@ -219,6 +228,7 @@ pub(crate) fn run(
         omega4_vif: fit.gamma_vif,
         k2_inflation_by_omega4: fit.k2_inflation,
         k2_c_correlation: fit.k2_gamma_correlation,
+        u_inflation_by_rates: spread,
         condition_number: fit.fit.condition_number,
         budget: SymmetricBudgets {
             k2: budget(&e, "k2", &s.type_b_notes),
@@ -388,4 +398,30 @@ fn budget(e: &SymmetricEvaluation, name: &str, notes: &[(usize, String)]) -> Vec
         });
     }
     lines
+}
+
+/// What the rates cost k2 and C against the evenly spread design
+/// (`calibration::symmetric_spread`), in both mountings' order IA in, IA out; `None` when
+/// the reference design cannot be fitted (it then says nothing the fit has not said).
+fn rate_spread(data: &[OrientationData<'_>], g_m_s2: f64) -> Option<RateSpread> {
+    let design = |o: Orientation| {
+        data.iter()
+            .find(|d| d.orientation == Some(o))
+            .and_then(|d| {
+                Some(::calibration::MountingDesign {
+                    orientation: o,
+                    radius_m: d.radius_m?,
+                    rates_rad_s: d.rates_rad_s,
+                    sigma_rad_s: d.sigma_rad_s,
+                })
+            })
+    };
+    let designs = [design(Orientation::IaIn)?, design(Orientation::IaOut)?];
+    let s = ::calibration::symmetric_spread(&designs, g_m_s2).ok()?;
+    Some(RateSpread {
+        k2: s.k2,
+        c: s.c,
+        reference_low_deg_s: s.reference_rad_s.0.to_degrees(),
+        reference_top_deg_s: s.reference_rad_s.1.to_degrees(),
+    })
 }
