@@ -12,14 +12,16 @@ use std::fmt::Write as _;
 
 use pipeline::StudyResults;
 
+use crate::certificate_symmetric;
 use crate::certificate_tables::{
-    budget, compensation_block, conformity, data_used, files, gum_against_mc, results_table,
+    budget, compensation_block, conformity, data_used, files, gum_against_mc, input_unit,
+    results_table,
 };
 use crate::error::{ReportError, Result};
 use crate::format;
 use crate::format::esc;
 use crate::headline::headlines;
-use crate::html::{STYLE, inline_svg, page_style, row};
+use crate::html::{STYLE, inline_svg, page_style, row, symbols};
 use crate::provenance::{Provenance, Software};
 
 /// Renders the calibration certificate of a study with a `certificate` section (and so a
@@ -109,8 +111,10 @@ pub fn certificate_html(
     results_table(&mut out, c, &heads);
     compensation_block(&mut out, c, &heads[2]);
     if let Some(s) = &results.symmetric {
-        crate::symmetric::certificate_block(&mut out, s, &heads[2].stated);
+        certificate_symmetric::certificate_block(&mut out, s, &heads[2], c.coefficients.k1.value);
     }
+    // the statements of conformity, the statement of scope and the authorisation on one page
+    let _ = writeln!(out, "<div class=\"closing\">");
     conformity(&mut out, info);
     let _ = writeln!(
         out,
@@ -120,7 +124,7 @@ pub fn certificate_html(
     );
     let _ = writeln!(
         out,
-        "<div class=\"signature\"><div>Authorised by {}, {}<br>Date {}</div><div>Signature</div></div>",
+        "<div class=\"signature\"><div>Authorised by {}, {}<br>Date {}</div><div>Signature</div></div>\n</div>",
         esc(&info.authorisation.name),
         esc(&info.authorisation.role),
         esc(&info.dates.issued)
@@ -142,8 +146,19 @@ pub fn certificate_html(
          through QR with column scaling; the terms in ω and ω³ are nuisance terms of the set-up. \
          Uncertainties are evaluated by the GUM (JCGM 100) through the whole measurement model and \
          checked by the Monte Carlo method (JCGM 101).</p>",
-        format::significant(results.inputs.radius_m, 6)
+        format::plain(results.inputs.radius_m)
     );
+    if results.symmetric.is_some() {
+        let _ = writeln!(
+            out,
+            "<p>The check by the two-orientation method fits the mean outputs of both mountings \
+             (IA in and IA out) jointly (eq. 23): a bias k0, a scale factor k1 and an ω term per \
+             mounting; k2, k3, an ω³ term and the radius growth's term γ = k1·C/g shared, γ with \
+             the sign of the mounting. C − C<sub>r</sub> is compared with its standard uncertainty: \
+             |z| = |C − C<sub>r</sub>|/u(C − C<sub>r</sub>) above 3 is a disagreement. Its \
+             uncertainties are evaluated by the GUM and checked by the Monte Carlo method.</p>"
+        );
+    }
     if let Some(d) = &info.deviations {
         let _ = writeln!(out, "<p>Departures from the procedure: {}.</p>", esc(d));
     }
@@ -173,15 +188,17 @@ pub fn certificate_html(
     let _ = writeln!(out, "<h3>Traceability of the Type B inputs</h3>");
     let _ = writeln!(
         out,
-        "<table><thead><tr><th>input quantity</th><th class=\"num\">standard uncertainty</th><th>traceability</th></tr></thead><tbody>"
+        "<table><thead><tr><th>input quantity</th><th class=\"num\">standard uncertainty</th>\
+         <th class=\"unit\">unit</th><th>traceability</th></tr></thead><tbody>"
     );
     for t in &info.traceability {
         let u =
             t.u.map_or_else(|| "—".to_owned(), |u| format::significant(u, 2));
         let _ = writeln!(
             out,
-            "<tr><td>{}</td><td class=\"num\">{u}</td><td>{}</td></tr>",
-            esc(&t.input),
+            "<tr><td>{}</td><td class=\"num\">{u}</td><td class=\"unit\">{}</td><td>{}</td></tr>",
+            symbols(&t.input),
+            input_unit(&t.input).unwrap_or("—"),
             esc(&t.statement)
         );
     }

@@ -9,6 +9,7 @@ use pipeline::{CalibrationResults, CertificateResults, DecisionRule, StudyResult
 use crate::format;
 use crate::format::esc;
 use crate::headline::{Headline, MICRO_UNITS, NAMES, UNITS, headlines, micro_scale};
+use crate::html::symbols;
 use crate::provenance::{FileRecord, Provenance, Software};
 
 /// The headline interval of a coefficient in a unit: `value`, `U` (symmetric) or `+a / -b`.
@@ -35,7 +36,7 @@ fn cells(value: f64, below: f64, above: f64) -> (String, String) {
 }
 
 /// k and ν_eff of a GUM interval; a dash for a Monte Carlo one.
-fn k_and_dof(h: &Headline) -> (String, String) {
+pub(crate) fn k_and_dof(h: &Headline) -> (String, String) {
     if h.is_gum() {
         (format::coverage_factor(h.gum.k), format::dof(h.gum.dof))
     } else {
@@ -86,7 +87,7 @@ pub(crate) fn results_table(out: &mut String, c: &CalibrationResults, heads: &[H
          symmetric 95 % interval of the Monte Carlo method is stated instead, as +/− widths about \
          the estimate. The values relative to k1 use k1 = {} rad/(s·g) and g = {} m/s² (1 g).</p>",
         format::significant(k1, 7),
-        format::significant(c.g_m_s2, 6),
+        format::plain(c.g_m_s2),
     );
 }
 
@@ -161,28 +162,64 @@ pub(crate) fn conformity(out: &mut String, info: &CertificateResults) {
     let _ = writeln!(out, "</tbody></table>");
 }
 
+/// The unit of a budget's input quantity, by the name the budget gives it (`None` for a name
+/// this table does not know: a test checks that every input of the fixtures has one).
+pub(crate) fn input_unit(quantity: &str) -> Option<&'static str> {
+    Some(match quantity {
+        "R (working radius)" => "m",
+        "g (gravity)" => "m/s²",
+        "rate scale (common to every rate)" | "probe gain" => "1 (relative)",
+        "pivot-to-probe height" | "probe-to-PIGA height" => "mm",
+        "C_r of the compensating phase" => "m·s²",
+        "k1 (given)" => "rad/(s·g)",
+        // the fit's coefficients as one correlated group: its contribution, sensitivity 1
+        q if q.starts_with("PIGA mean outputs") => "rad/(s·g²)",
+        _ => return None,
+    })
+}
+
+/// A nominal value as a person writes it: six significant digits at most, trailing zeros
+/// dropped (`2.5`, `700`, `1`, `1.60009 × 10⁻⁶`).
+fn nominal(x: f64) -> String {
+    let text = format::significant(x, 6);
+    let (mantissa, scale) = text
+        .split_once(' ')
+        .map_or((text.as_str(), ""), |(m, rest)| (m, rest));
+    let mantissa = if mantissa.contains('.') {
+        mantissa.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        mantissa
+    };
+    if scale.is_empty() {
+        mantissa.to_owned()
+    } else {
+        format!("{mantissa} {scale}")
+    }
+}
+
 pub(crate) fn budget(out: &mut String, c: &CalibrationResults) {
     let _ = writeln!(out, "<h3>Uncertainty budget of k2 (JCGM 100)</h3>");
     let _ = writeln!(
         out,
-        "<table><thead><tr><th>input quantity</th><th>type</th><th class=\"num\">value</th>\
-         <th class=\"num\">standard uncertainty</th><th class=\"num\">sensitivity</th>\
-         <th class=\"num\">contribution (rad/(s·g²))</th><th class=\"num\">share of u²</th><th class=\"num\">ν</th></tr></thead><tbody>"
+        "<table class=\"budget\"><thead><tr><th>input quantity</th><th>type</th><th class=\"num\">value</th>\
+         <th class=\"num\">standard uncertainty u</th><th class=\"unit\">unit</th>\
+         <th class=\"num\">sensitivity c<br>(rad/(s·g²) per unit)</th>\
+         <th class=\"num\">contribution |c|·u<br>(rad/(s·g²))</th><th class=\"num\">share of u²</th><th class=\"num\">ν</th></tr></thead><tbody>"
     );
     for l in &c.budget.k2 {
         let _ = writeln!(
             out,
-            "<tr><td>{}{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
-             <td class=\"num\">{}</td><td class=\"num\">{} %</td><td class=\"num\">{}</td></tr>",
-            esc(&l.quantity),
+            "<tr><td>{}{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"unit\">{}</td>\
+             <td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{} %</td><td class=\"num\">{}</td></tr>",
+            symbols(&l.quantity),
             l.note.as_ref().map_or_else(String::new, |n| format!(
                 "<br><span class=\"note\">{}</span>",
-                esc(n)
+                symbols(n)
             )),
             esc(&l.evaluation),
-            l.value
-                .map_or_else(|| "—".to_owned(), |v| format::significant(v, 6)),
+            l.value.map_or_else(|| "—".to_owned(), nominal),
             format::significant(l.u, 2),
+            input_unit(&l.quantity).unwrap_or("—"),
             format::significant(l.sensitivity, 3),
             format::significant(l.contribution, 2),
             format::percent(l.percent),
@@ -192,7 +229,7 @@ pub(crate) fn budget(out: &mut String, c: &CalibrationResults) {
     let k2 = &c.coefficients.k2;
     let _ = writeln!(
         out,
-        "<tr><th colspan=\"5\">combined standard uncertainty u(k2), effective degrees of freedom</th>\
+        "<tr><th colspan=\"6\">combined standard uncertainty u(k2), effective degrees of freedom</th>\
          <td class=\"num\">{}</td><td class=\"num\">100 %</td><td class=\"num\">{}</td></tr></tbody></table>",
         format::significant(k2.u, 2),
         format::dof(k2.dof)
@@ -224,23 +261,66 @@ pub(crate) fn gum_against_mc(out: &mut String, c: &CalibrationResults) {
     .into_iter()
     .enumerate()
     {
-        let digits = 7;
+        let ends = EndsWriter::new(g.value, m.tolerance);
         let verdict = heads[n].verdict_words();
         let _ = writeln!(
             out,
-            "<tr><td>{}</td><td class=\"num\">[{}, {}]</td><td class=\"num\">[{}, {}]</td>\
-             <td class=\"num\">{}</td><td class=\"num\">{}</td><td>{verdict}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"nowrap\">{verdict}</td><td class=\"unit\">{}</td></tr>",
             NAMES[n],
-            format::significant(g.value - g.u95, digits),
-            format::significant(g.value + g.u95, digits),
-            format::significant(m.low95, digits),
-            format::significant(m.high95, digits),
+            ends.interval(g.value - g.u95, g.value + g.u95),
+            ends.interval(m.low95, m.high95),
             format::significant(m.d_low.max(m.d_high), 2),
             format::significant(m.tolerance, 2),
             UNITS[n],
         );
     }
     let _ = writeln!(out, "</tbody></table>");
+}
+
+/// Writes the ends of a coefficient's GUM and Monte Carlo intervals in one power of ten (the
+/// value's) and to the decimal place of the tolerance δ they are compared against, so that
+/// their difference can be read and no digit below it is printed.
+struct EndsWriter {
+    /// The power of ten (0: none).
+    exponent: i32,
+    /// Decimals after the point of the scaled ends.
+    decimals: usize,
+}
+
+impl EndsWriter {
+    fn new(value: f64, tolerance: f64) -> Self {
+        let exp_of = |x: f64| {
+            if x == 0.0 || !x.is_finite() {
+                0
+            } else {
+                // |x| < 1e308: the floor fits an i32
+                x.abs().log10().floor() as i32
+            }
+        };
+        let e = exp_of(value);
+        let exponent = if (-2..5).contains(&e) { 0 } else { e };
+        let place = if tolerance > 0.0 {
+            exp_of(tolerance)
+        } else {
+            exponent - 6
+        };
+        let decimals = usize::try_from((exponent - place).clamp(0, 12)).unwrap_or(0);
+        Self { exponent, decimals }
+    }
+
+    fn interval(&self, low: f64, high: f64) -> String {
+        let s = 10f64.powi(self.exponent);
+        let (a, b) = (
+            format::fixed(low / s, self.decimals),
+            format::fixed(high / s, self.decimals),
+        );
+        if self.exponent == 0 {
+            format!("[{a}, {b}]")
+        } else {
+            format!("[{a}, {b}] × {}", format::power_of_ten(self.exponent))
+        }
+    }
 }
 
 pub(crate) fn data_used(out: &mut String, results: &StudyResults, c: &CalibrationResults) {
@@ -255,7 +335,7 @@ pub(crate) fn data_used(out: &mut String, results: &StudyResults, c: &Calibratio
             .collect();
         let _ = writeln!(
             out,
-            "<p>Spindle (phase “{}”): {} rates, {} deg/s{}; C<sub>r</sub> from the fit {} with {} degrees of freedom.</p>",
+            "<p>Spindle (phase “{}”): {} rates, {} deg/s{}; C<sub>r</sub> from the fit of {} with {} degrees of freedom.</p>",
             esc(&p.name),
             p.points.len(),
             rates.join(", "),
@@ -264,14 +344,17 @@ pub(crate) fn data_used(out: &mut String, results: &StudyResults, c: &Calibratio
             } else {
                 String::new()
             },
-            esc(pipeline::model_name(p.fit.model)),
+            symbols(pipeline::model_name(p.fit.model)),
             p.fit.dof,
         );
     }
     let _ = writeln!(
         out,
-        "<p>PIGA: {} points at {} distinct rates, {} residual degrees of freedom; residual \
+        "<p>PIGA{}: {} points at {} distinct rates, {} residual degrees of freedom; residual \
          standard deviation {} rad/s; {}.</p>",
+        c.table
+            .as_ref()
+            .map_or_else(String::new, |t| format!(" (table {})", esc(t))),
         c.points,
         c.distinct_rates,
         c.dof,
@@ -304,23 +387,56 @@ pub(crate) fn data_used(out: &mut String, results: &StudyResults, c: &Calibratio
         }
         let _ = writeln!(out, "</tbody></table>");
     }
+    if let Some(s) = &results.symmetric {
+        let mountings: Vec<String> = s
+            .mountings
+            .iter()
+            .map(|m| {
+                format!(
+                    "{} at R = {} m, {} points at {} distinct rates",
+                    if m.orientation == "ia_in" {
+                        "IA in"
+                    } else {
+                        "IA out"
+                    },
+                    format::plain(m.radius_m),
+                    m.points,
+                    m.distinct_rates
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "<p>Check by the two-orientation method: {}; the joint fit has {} residual degrees \
+             of freedom and a residual standard deviation of {} rad/s.</p>",
+            mountings.join("; "),
+            s.dof,
+            format::significant(s.residual_sd_rad_s, 2)
+        );
+    }
     let warnings: Vec<String> = results
         .warnings
         .iter()
-        .map(|w| format!("{} ({})", w.message, w.location))
-        .chain(c.warnings.iter().cloned())
+        .map(|w| {
+            format!(
+                "{} <span class=\"note\">(study field {})</span>",
+                symbols(&w.message),
+                symbols(&format!("`{}`", w.location))
+            )
+        })
+        .chain(c.warnings.iter().map(|w| symbols(w)))
         .collect();
     if warnings.is_empty() {
         let _ = writeln!(out, "<p>No warnings were raised.</p>");
     } else {
         let _ = writeln!(out, "<p>Warnings raised by the evaluation:</p>");
         for w in warnings {
-            let _ = writeln!(out, "<p class=\"warning\">{}</p>", esc(&w));
+            let _ = writeln!(out, "<p class=\"warning\">{w}</p>");
         }
     }
 }
 
-pub(crate) fn files(out: &mut String, provenance: Option<&Provenance>, software: &Software) {
+pub(crate) fn files<'a>(out: &mut String, provenance: Option<&'a Provenance>, software: &Software) {
     let _ = writeln!(out, "<h3>Input files and software</h3>");
     let Some(provenance) = provenance else {
         let _ = writeln!(
@@ -336,7 +452,14 @@ pub(crate) fn files(out: &mut String, provenance: Option<&Provenance>, software:
         out,
         "<table><thead><tr><th>file</th><th class=\"num\">bytes</th><th>SHA-256</th></tr></thead><tbody>"
     );
-    let record = |out: &mut String, what: &str, f: &FileRecord| {
+    // a file read by two sections (the IA-in table by the calibration and the two-orientation
+    // fit) is listed once
+    let mut listed: Vec<(&str, &str)> = Vec::new();
+    let mut record = |out: &mut String, what: &str, f: &'a FileRecord| {
+        if listed.contains(&(f.path.as_str(), f.sha256.as_str())) {
+            return;
+        }
+        listed.push((f.path.as_str(), f.sha256.as_str()));
         let _ = writeln!(
             out,
             "<tr><td class=\"path\">{}{}</td><td class=\"num\">{}</td><td class=\"hash\">{}</td></tr>",

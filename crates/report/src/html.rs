@@ -87,6 +87,11 @@ svg.figure { width: 100%; height: auto; display: block; break-inside: avoid; }
 .signature { margin-top: 8mm; display: flex; gap: 12mm; }
 .signature div { flex: 1; border-top: 0.4pt solid #111; padding-top: 1mm; font-size: 8.5pt; }
 .details { break-before: page; }
+code { font-family: "DejaVu Sans Mono", "Liberation Mono", monospace; font-size: 0.92em; }
+section.check, .closing { break-inside: avoid; }
+td.unit, th.unit, td.nowrap { white-space: nowrap; }
+table.budget td:first-child { min-width: 38mm; }
+table.check td:first-child { min-width: 68mm; }
 .end { text-align: center; margin-top: 6mm; font-weight: 700; letter-spacing: 0.05em; }
 "#;
 
@@ -108,6 +113,36 @@ pub(crate) fn page_style(info: &CertificateResults) -> String {
     )
 }
 
+/// Escaped text with the symbols a person reads: `C_r` and `C_a` with their subscripts, and
+/// a configuration name between backticks (`` `lever.probe_direction` ``) set as code.
+pub(crate) fn symbols(text: &str) -> String {
+    let escaped = esc(text)
+        .replace("C_r", "C<sub>r</sub>")
+        .replace("C_a", "C<sub>a</sub>");
+    let mut out = String::with_capacity(escaped.len());
+    let mut parts = escaped.split('`');
+    if let Some(first) = parts.next() {
+        out.push_str(first);
+    }
+    let rest: Vec<&str> = parts.collect();
+    if rest.len().is_multiple_of(2) {
+        // an even number of backticks: every other part is a name
+        for (n, part) in rest.iter().enumerate() {
+            if n.is_multiple_of(2) {
+                let _ = write!(out, "<code>{part}</code>");
+            } else {
+                out.push_str(part);
+            }
+        }
+    } else {
+        for part in rest {
+            out.push('`');
+            out.push_str(part);
+        }
+    }
+    out
+}
+
 pub(crate) fn row(out: &mut String, th: &str, td: &str) {
     let _ = writeln!(out, "<tr><th>{}</th><td>{}</td></tr>", esc(th), td);
 }
@@ -120,6 +155,17 @@ mod tests {
     fn text_is_escaped() {
         assert_eq!(esc("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
         assert_eq!(css_string("Lab \"A\" \\ B"), "\"Lab \\\"A\\\" \\\\ B\"");
+    }
+
+    #[test]
+    fn symbols_are_set_for_a_reader() {
+        assert_eq!(
+            symbols("C_r of phase `spindle` & C_a"),
+            "C<sub>r</sub> of phase <code>spindle</code> &amp; C<sub>a</sub>"
+        );
+        // an unbalanced backtick is left as it is
+        assert_eq!(symbols("a ` b"), "a ` b");
+        assert_eq!(symbols("`a` and `b`"), "<code>a</code> and <code>b</code>");
     }
 
     #[test]

@@ -13,6 +13,7 @@
 mod balance;
 mod calibration;
 mod certificate;
+mod certificate_symmetric;
 mod certificate_tables;
 mod error;
 mod expected;

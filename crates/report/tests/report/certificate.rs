@@ -170,59 +170,72 @@ fn study_writes_the_certificate_beside_results_json() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The two-orientation fixture (`fixtures/studies/symmetric.ron`) with the campaign's
-/// uncertainty and certificate sections and a calibration of its IA-in table compensated
-/// with the probe phase: a study with both a `symmetric` and a `certificate` section.
-fn certified_two_orientation_study() -> pipeline::StudyResults {
-    let sym = std::fs::read_to_string("../../fixtures/studies/symmetric.ron").unwrap();
-    let camp = std::fs::read_to_string("../../fixtures/studies/campaign.ron").unwrap();
-    let block = |text: &str, start: &str| {
-        let i = text.find(start).unwrap();
-        let j = i + text[i..].find("\n    ),\n").unwrap() + "\n    ),\n".len();
-        (i, j)
-    };
-    let (ci, cj) = block(&camp, "    uncertainty: (");
-    let (ki, _) = block(&camp, "    certificate: (");
-    let certificate = &camp[ki..camp.rfind(')').unwrap()];
-    let (si, sj) = block(&sym, "    uncertainty: (");
-    let calibration = "    calibration: (\n        table: (file: \"../symmetric/piga_ia_in.csv\"),\n        \
-                       compensate_with: \"spindle\",\n        k1: fitted,\n        seed: 1,\n    ),\n";
-    let body = format!(
-        "{}{}{}{}",
-        &sym[..si],
-        &camp[ci..cj],
-        calibration,
-        &sym[sj..]
-    );
-    let end = body.rfind(')').unwrap();
-    let text = format!("{}{})\n", &body[..end], certificate);
-    let inputs = pipeline::parse_study(
-        &text,
-        Path::new("../../fixtures/studies/symmetric-certified.ron"),
-    )
-    .unwrap();
-    pipeline::run(&inputs).unwrap()
+/// The two-orientation fixture (`fixtures/studies/symmetric.ron`): a study with a
+/// calibration of its IA-in table compensated with the probe phase, a `symmetric` and a
+/// `certificate` section.
+fn certified_two_orientation_study() -> (pipeline::StudyResults, Provenance) {
+    let study = pipeline::load_study(Path::new("../../fixtures/studies/symmetric.ron")).unwrap();
+    let results = pipeline::run(&study).unwrap();
+    let provenance = Provenance::of_study(&study, None).unwrap();
+    (results, provenance)
 }
 
 #[test]
 fn the_certificate_states_the_two_orientation_check() {
-    let results = certified_two_orientation_study();
+    let (results, provenance) = certified_two_orientation_study();
     assert!(results.symmetric.is_some() && results.calibration.is_some());
-    let html = report::certificate_html(&results, None, &software()).unwrap();
+    let html = report::certificate_html(&results, Some(&provenance), &software()).unwrap();
     let start = html
-        .find("<h3>Check by the two-orientation method")
+        .find("<section class=\"check\">")
         .expect("the two-orientation statement");
-    let end = start + html[start..].find("</table>").unwrap() + "</table>".len();
+    let end = start + html[start..].find("</section>").unwrap() + "</section>".len();
     let part = &html[start..end];
-    // k2 both ways, C − C_r with its z: the fixture's arm stretch is seen (z ≈ +8)
+    // k2 both ways in both units, C − C_r with its z and the sign convention: the fixture's
+    // arm stretch is seen (z ≈ +8)
     for words in [
+        "<h3>Check by the two-orientation method</h3>",
         "k2, probe method (certified above)",
         "k2, two-orientation method",
-        "C − C_r",
-        "z = +",
-        "arm stretch",
+        "k2/k1, two-orientation method",
+        "µg/g²",
+        "C − C<sub>r</sub>, growth the probe misses",
+        "Sign convention",
+        "z = (C − C<sub>r</sub>)/u(C − C<sub>r</sub>) = +",
+        "The two methods disagree",
+        "arm stretching",
     ] {
         assert!(part.contains(words), "{words} not in\n{part}");
     }
     insta::assert_snapshot!("two_orientation_certificate_html", part);
+}
+
+#[test]
+fn the_two_orientation_certificate_has_units_and_no_code_names() {
+    let (results, provenance) = certified_two_orientation_study();
+    let html = report::certificate_html(&results, Some(&provenance), &software()).unwrap();
+    // every input of the budget and of the traceability table has its unit
+    assert!(html.contains("<table class=\"budget\">"));
+    assert!(
+        !html.contains("<td class=\"unit\">—</td>"),
+        "an input without its unit"
+    );
+    // symbols as a person writes them: C_r with its subscript, nothing of the code's names
+    for code in ["C_r", "ia_in", "ia_out", "Some(", "None", "k2_probe"] {
+        let found = html
+            .match_indices(code)
+            .map(|(i, _)| &html[i.saturating_sub(60)..(i + 60).min(html.len())])
+            // file names hold `ia_in`
+            .find(|context| !context.contains(".csv"));
+        assert!(found.is_none(), "`{code}` in {found:?}");
+    }
+    // a file read by two sections (the IA-in table) is listed once, with its digest
+    let ia_in = provenance
+        .inputs
+        .iter()
+        .find(|f| f.path.ends_with("piga_ia_in.csv"))
+        .expect("the IA-in table");
+    assert_eq!(html.matches(&ia_in.sha256).count(), 1);
+    for f in provenance.inputs.iter().chain([&provenance.config]) {
+        assert!(html.contains(&f.sha256), "{}", f.path);
+    }
 }
