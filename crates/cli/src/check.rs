@@ -238,6 +238,48 @@ fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
             cal["compensate_with"].as_str().unwrap_or("")
         );
     }
+    if let Some(sym) = v.get("symmetric").filter(|c| !c.is_null()) {
+        let sets: Vec<String> = sym["orientations"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|o| {
+                let which = match o["orientation"].as_str() {
+                    Some("ia_in") => "IA in",
+                    Some("ia_out") => "IA out",
+                    _ => "orientation not declared",
+                };
+                let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
+                    || "radius not declared".to_owned(),
+                    |r| format!("R = {} m", num(Some(r))),
+                );
+                let data = if o["table"].is_object() {
+                    format!(
+                        "the PIGA table {}",
+                        o["table"]["file"].as_str().unwrap_or("")
+                    )
+                } else if o["recordings"].is_object() {
+                    format!(
+                        "{} raw PIGA output recordings",
+                        o["recordings"]["files"].as_array().map_or(0, Vec::len)
+                    )
+                } else {
+                    "no data".to_owned()
+                };
+                format!("{which} at {radius} from {data}")
+            })
+            .collect();
+        let compare = match sym["compare_with"].as_str() {
+            Some(phase) => format!("phase {phase}'s C_r"),
+            None => "the compensating (or first) phase's C_r".to_owned(),
+        };
+        let _ = writeln!(
+            s,
+            "two orientations: eq. 23 fitted jointly to {}; k2 and the radius growth C from the \
+             PIGA alone, C compared with {compare}; GUM and Monte Carlo uncertainty",
+            sets.join(" and ")
+        );
+    }
     match v.get("uncertainty").filter(|u| !u.is_null()) {
         Some(u) => {
             let _ = writeln!(

@@ -144,6 +144,24 @@ fn recordings_study() {
     insta::assert_snapshot!("study_recordings_small", text);
 }
 
+/// `check` on the two-orientation study recorded raw: what the study will do, with the
+/// two-orientation section's data sets in words.
+#[test]
+fn check_two_orientations_recorded_raw() {
+    let tmp = Scratch::new("cli-human-check-symmetric");
+    let (text, ok) = run(
+        &["check", "fixtures/studies/symmetric-recordings.ron"],
+        &tmp.0,
+    );
+    assert!(ok, "{text}");
+    assert_words("check symmetric-recordings", &text);
+    assert!(
+        text.contains("IA in at R = 2.5 m from 12 raw PIGA output recordings"),
+        "{text}"
+    );
+    insta::assert_snapshot!("check_symmetric_recordings", text);
+}
+
 #[test]
 fn simulate_then_identify() {
     let tmp = Scratch::new("cli-human-simulate");
