@@ -218,8 +218,8 @@ pub(crate) fn section(out: &mut String, s: &SymmetricResults) {
              3).\n",
             r.k2,
             r.c,
-            format::plain(r.reference_low_deg_s),
-            format::plain(r.reference_top_deg_s),
+            format::plain(rounded(r.reference_low_deg_s)),
+            format::plain(rounded(r.reference_top_deg_s)),
         );
     }
     if let Some(p) = &s.probe {
@@ -319,4 +319,10 @@ fn probe_k(p: &pipeline::ProbeComparison) -> String {
     } else {
         "—".to_owned()
     }
+}
+
+/// A rate to a micro-degree per second, as a person reads it (`20`, not the
+/// `20.000000000000004` of 10 % of 200 deg/s through radians).
+fn rounded(deg_s: f64) -> f64 {
+    (deg_s * 1e6).round() / 1e6
 }
