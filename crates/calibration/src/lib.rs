@@ -18,7 +18,12 @@
 //! - [`fit_symmetric`] and [`evaluate_symmetric`]: the two-orientation (IA in / IA out)
 //!   calibration of issue 20 (`docs/theory.md` section 11, eq. 23): one joint fit of both
 //!   mountings giving k2 and the total radius growth C = C_r + C_a from the PIGA alone, its
-//!   [`SymmetricModel`] evaluated by the GUM and Monte Carlo, and `C − C_r` against a probe.
+//!   [`SymmetricModel`] evaluated by the GUM and Monte Carlo with the same Type B inputs as
+//!   [`CalibrationModel`] ([`TypeB`]: u(R) of each mounting, the two independent, g, the rate
+//!   scale; with a probe its lever heights and gain), and `C − C_r` against a probe. The
+//!   model is the refit of eq. 23 at the true radii, g and rates: exact column scalings, the
+//!   mountings' ω⁴ coefficients for k2 and γ, and the projection of the ω⁶ term the k3 column
+//!   leaves when the radii err apart ([`SymmetricFit::omega6_response`]).
 //!
 //! Nothing here reads files, knows the study's configuration or writes results.
 //!
