@@ -276,7 +276,6 @@ fn bad_recording_sets_are_named_by_field_at_once() {
         "(rate_deg_s: 0.0, file: \"piga_ia_in_",
         1,
     );
-    let mut files = files;
     let emptied = Path::new(DIR).join("piga_ia_out_065.0000deg_s.csv");
     assert!(files.insert(emptied, Vec::new()).is_some());
     files.insert(
