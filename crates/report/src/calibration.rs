@@ -32,15 +32,15 @@ fn row(out: &mut String, name: &str, unit: &str, c: &Coefficient) {
     );
 }
 
-/// A GUM budget table of the report, one row per input quantity: its name (`quantity`), the
-/// cells every budget shows (type, value, standard uncertainty, sensitivity, contribution),
-/// then the cells of `last` (headings and contents, `|`-separated). The calibration section
-/// and the two-orientation section (`symmetric`) both write their budgets with it.
+/// A GUM budget table of the report, one row per input quantity: its name (with the study's
+/// note on it, if any), the cells every budget shows (type, value, standard uncertainty,
+/// sensitivity, contribution), then the cells of `last` (headings and contents,
+/// `|`-separated). The calibration section and the two-orientation section (`symmetric`) both
+/// write their budgets with it.
 pub(crate) fn budget_table(
     out: &mut String,
     lines: &[BudgetLine],
     [quantity_head, sensitivity_head]: [&str; 2],
-    quantity: impl Fn(&BudgetLine) -> String,
     (last_head, last): (&str, impl Fn(&BudgetLine) -> String),
 ) {
     let head = format!(
@@ -53,7 +53,10 @@ pub(crate) fn budget_table(
         let _ = writeln!(
             out,
             "| {} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {} |",
-            quantity(l),
+            match &l.note {
+                Some(note) => format!("{} ({note})", l.quantity),
+                None => l.quantity.clone(),
+            },
             l.evaluation,
             l.value
                 .map_or_else(|| "—".to_owned(), |v| format!("{v:.6e}")),
@@ -147,10 +150,6 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         out,
         &c.budget.k2,
         ["input quantity", "sensitivity ∂k2/∂x"],
-        |l| match &l.note {
-            Some(n) => format!("{} ({n})", l.quantity),
-            None => l.quantity.clone(),
-        },
         ("% of u² | dof", |l| {
             format!("{:.2} | {}", l.percent, dof(l.dof))
         }),

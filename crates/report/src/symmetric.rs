@@ -125,11 +125,7 @@ fn budget_table(out: &mut String, output: &str, lines: &[BudgetLine]) {
     let quantity_head = format!("input quantity ({output})");
     let last = ("% of u²", |l: &BudgetLine| format::percent(l.percent));
     let heads = [quantity_head.as_str(), "sensitivity"];
-    let quantity = |l: &BudgetLine| match &l.note {
-        Some(note) => format!("{} ({note})", l.quantity),
-        None => l.quantity.clone(),
-    };
-    crate::calibration::budget_table(out, lines, heads, quantity, last);
+    crate::calibration::budget_table(out, lines, heads, last);
 }
 
 /// Appends the report's two-orientation section.
