@@ -8,6 +8,7 @@
 
 use std::ops::Range;
 
+use crate::error::{PlanningError, Result};
 use crate::exchange::{self, Allocated, Budget, FINAL_ITERATIONS, Grid, Space};
 use crate::inputs::{K2, Problem, UNKNOWNS};
 
@@ -63,6 +64,34 @@ pub(crate) fn search(p: &Problem) -> Option<Allocated> {
 pub(crate) fn whole_revolutions(p: &Problem, a: &Allocated) -> Vec<u32> {
     let min_revs = vec![p.inputs.schedule.min_revolutions; a.design.len()];
     exchange::whole_revolutions(p, a, &min_revs)
+}
+
+/// The budget check needs the search space's free time (`Space::free_time`), so it lives
+/// beside the space, not with the inputs (which the exchange search reads).
+impl Problem {
+    /// Checks that the cheapest design fits the budget.
+    pub(crate) fn check_budget(&self) -> Result<()> {
+        let s = &self.inputs.schedule;
+        let n = self.rates_rad_s.len();
+        // The cheapest points are the fastest: the last candidates (with repeats, the last one).
+        let cheapest: Vec<usize> = if s.allow_repeats {
+            vec![n - 1; s.points]
+        } else {
+            (n - s.points..n).collect()
+        };
+        let free = self.free_time(&cheapest);
+        if free < 0.0 {
+            let settling_s = s.settling_s * s.points as f64;
+            return Err(PlanningError::BudgetTooShort {
+                budget_s: s.budget_s,
+                needed_s: s.budget_s - free,
+                settling_s,
+                minimum_s: s.budget_s - free - settling_s,
+                points: s.points,
+            });
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -20,7 +20,8 @@ use nalgebra::{Cholesky, Const, SMatrix, SVector};
 use rand::{SeedableRng, rngs::StdRng};
 use rayon::prelude::*;
 
-use crate::inputs::{Criterion, NoiseSpec, Search};
+pub(crate) use crate::grid::Grid;
+use crate::inputs::{Criterion, Search};
 
 /// Multiplicative iterations per trial exchange (warm-started from the current allocation).
 const SEARCH_ITERATIONS: usize = 30;
@@ -58,54 +59,6 @@ impl Budget {
         recording_s.iter().sum::<f64>()
             + self.settling_s * recording_s.len() as f64
             + self.remount_s
-    }
-}
-
-/// The candidates of a search: their design rows, each column divided by its largest
-/// magnitude over the candidates, with `N` coefficients, their seconds per revolution and
-/// their weight per second of recording.
-#[derive(Debug, Clone)]
-pub(crate) struct Grid<const N: usize> {
-    /// Scaled design rows: the row is `x·scale`.
-    pub(crate) x: Vec<SVector<f64, N>>,
-    /// Column scales (a column of zeros: 1).
-    pub(crate) scale: [f64; N],
-    /// Seconds per revolution of each candidate.
-    pub(crate) tau_s: Vec<f64>,
-    /// Weight (1/variance of the mean output) per second of recording of each candidate,
-    /// 1/(rad/s)².
-    pub(crate) info_per_s: Vec<f64>,
-}
-
-impl<const N: usize> Grid<N> {
-    /// The candidates at `rates_rad_s` with design rows `rows` and the PIGA's `noise`.
-    pub(crate) fn new(rates_rad_s: &[f64], rows: &[[f64; N]], noise: NoiseSpec) -> Self {
-        let mut scale = [0.0_f64; N];
-        for r in rows {
-            for (s, v) in scale.iter_mut().zip(r) {
-                *s = s.max(v.abs());
-            }
-        }
-        for s in &mut scale {
-            if *s == 0.0 {
-                *s = 1.0;
-            }
-        }
-        let x = rows
-            .iter()
-            .map(|r| SVector::from_fn(|j, _| r[j] / scale[j]))
-            .collect();
-        let tau_s: Vec<f64> = rates_rad_s
-            .iter()
-            .map(|w| std::f64::consts::TAU / w)
-            .collect();
-        let info_per_s = tau_s.iter().map(|&t| noise.info_per_s(t)).collect();
-        Grid {
-            x,
-            scale,
-            tau_s,
-            info_per_s,
-        }
     }
 }
 

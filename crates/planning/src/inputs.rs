@@ -1,7 +1,7 @@
 //! What a plan is made from, and its validation into a [`Problem`].
 
 use crate::error::{PlanningError, Result};
-use crate::exchange::{Grid, Space as _};
+use crate::grid::Grid;
 
 /// Everything a plan needs: the centrifuge, the PIGA, the probe, the expected imbalance, the
 /// Type B uncertainties, the schedule's limits, the target and the search's settings.
@@ -453,7 +453,7 @@ impl Problem {
             .iter()
             .map(|&w| regressors(w, c.radius_m, c.g_m_s2))
             .collect();
-        let grid = Grid::new(&rates_rad_s, &raw, p.noise);
+        let grid = Grid::new(&rates_rad_s, &raw, |tau| p.noise.info_per_s(tau));
         let fastest = grid.tau_s.iter().copied().fold(f64::INFINITY, f64::min);
         field(
             "schedule.budget_s",
@@ -467,29 +467,5 @@ impl Problem {
             grid,
             max_rate_deg_s: max_rate,
         })
-    }
-
-    /// Checks that the cheapest design fits the budget.
-    pub(crate) fn check_budget(&self) -> Result<()> {
-        let s = &self.inputs.schedule;
-        let n = self.rates_rad_s.len();
-        // The cheapest points are the fastest: the last candidates (with repeats, the last one).
-        let cheapest: Vec<usize> = if s.allow_repeats {
-            vec![n - 1; s.points]
-        } else {
-            (n - s.points..n).collect()
-        };
-        let free = self.free_time(&cheapest);
-        if free < 0.0 {
-            let settling_s = s.settling_s * s.points as f64;
-            return Err(PlanningError::BudgetTooShort {
-                budget_s: s.budget_s,
-                needed_s: s.budget_s - free,
-                settling_s,
-                minimum_s: s.budget_s - free - settling_s,
-                points: s.points,
-            });
-        }
-        Ok(())
     }
 }

@@ -67,7 +67,7 @@ impl JointProblem {
             }
             ranges[k] = start..rates_rad_s.len();
         }
-        let grid = Grid::new(&rates_rad_s, &raw, limits.noise);
+        let grid = Grid::new(&rates_rad_s, &raw, |tau| limits.noise.info_per_s(tau));
         Self {
             rates_rad_s,
             rates_deg_s: rates_deg,

@@ -79,6 +79,7 @@ mod check;
 mod design;
 mod error;
 mod exchange;
+mod grid;
 mod inputs;
 mod joint;
 mod plan;
