@@ -67,16 +67,16 @@ DECLARED = {
     "piga_order": 2,  # symmetric.orientations[*].recordings.order (default 2)
     "max_gap_intervals": 3.0,
 }
-# Type B standard uncertainties (the study's `uncertainty:`; not stated = 0), as the budget
+# Type B standard uncertainties (the study's `uncertainty:`), as the budget
 # in results.json names them.
 TYPE_B = {
     "g (gravity)": 1.0e-5,
-    "rate scale (common to every rate)": 0.0,
-    "R of the IA-in mounting (independent of the IA-out one)": 0.0,
-    "R of the IA-out mounting (independent of the IA-in one)": 0.0,
-    "pivot-to-probe height": 0.0,
-    "probe-to-PIGA height": 0.0,
-    "probe gain": 0.0,
+    "rate scale (common to every rate)": 1.0e-6,
+    "R of the IA-in mounting (independent of the IA-out one)": 5.0e-6,
+    "R of the IA-out mounting (independent of the IA-in one)": 5.0e-6,
+    "pivot-to-probe height": 0.5,
+    "probe-to-PIGA height": 0.5,
+    "probe gain": 2.0e-3,
 }
 
 # Agreement with the Rust results.json. Deterministic quantities (the fits, the GUM) in

@@ -62,6 +62,7 @@ mod piga_data;
 mod results;
 mod sections;
 mod study;
+mod type_b;
 
 pub use ::calibration::CalibrationModel;
 pub use config::{

@@ -55,7 +55,7 @@ impl Inputs {
             .map(|m| mechanism::validate(&check, m, config.k1_rad_s_g, &names))
             .transpose()?;
         let type_b = match config.calibration {
-            Some(_) => calibration::type_b(
+            Some(_) => crate::type_b::type_b(
                 &check,
                 config.uncertainty.as_ref(),
                 config.stated_probe_gain(),

@@ -131,33 +131,54 @@ fn the_budget_carries_every_type_b_input_in_words() {
     assert!(k1.u >= relative * k1.value, "{k1:?}");
 }
 
-/// An input the `uncertainty` section does not state is 0, and the budget says so beside it;
-/// a negative one is refused by its field.
+/// The `uncertainty` section is read as the calibration section reads it: an input it does
+/// not state is refused by its field (every one at once), a negative one too; without the
+/// section every input is 0 and the budget says so beside each.
 #[test]
-fn an_unstated_input_is_zero_and_said_so() {
+fn an_unstated_input_is_refused_and_no_section_is_said_so() {
     let sim = simulate::simulate(&scenario(21, 0.3 * C_R)).unwrap();
-    let r = study(&sim, "uncertainty: (g_u_m_s2: 1.0e-5),").unwrap();
-    let s = r.symmetric.as_ref().unwrap();
-    let radius = line(&s.budget.k2, "R of the IA-in mounting").unwrap();
-    assert_eq!(radius.u, 0.0);
+    let e = study(
+        &sim,
+        "uncertainty: (g_u_m_s2: 1.0e-5, radius_u_m: -1.0e-3),",
+    )
+    .unwrap_err();
+    let PipelineError::Several { errors } = &e else {
+        panic!("{e}")
+    };
+    let fields: Vec<String> = errors
+        .iter()
+        .map(|e| match e {
+            PipelineError::InvalidField { field, .. }
+            | PipelineError::MissingField { field, .. } => field.clone(),
+            other => panic!("{other}"),
+        })
+        .collect();
     assert_eq!(
-        radius.note.as_deref(),
-        Some("not stated (`uncertainty.radius_u_m`): taken as 0")
+        fields,
+        [
+            "uncertainty.radius_u_m",
+            "uncertainty.rate_u_relative",
+            "uncertainty.pivot_to_probe_u_mm",
+            "uncertainty.probe_to_piga_u_mm",
+            "uncertainty.probe_gain_u_relative",
+        ],
+        "{e}"
     );
-    assert!(line(&s.budget.k2, "g (gravity)").unwrap().note.is_none());
+    assert!(
+        matches!(&errors[0], PipelineError::InvalidField { .. }),
+        "{e}"
+    );
     // no uncertainty section at all
     let r = study(&sim, "").unwrap();
     let s = r.symmetric.as_ref().unwrap();
+    for line_name in ["R of the IA-in mounting", "g (gravity)"] {
+        let l = line(&s.budget.k2, line_name);
+        assert!(l.is_none_or(|l| l.u == 0.0), "{l:?}");
+    }
     let gain = line(s.budget.difference.as_ref().unwrap(), "probe gain").unwrap();
     assert_eq!(
         gain.note.as_deref(),
-        Some("not stated (`uncertainty.probe_gain_u_relative`): taken as 0")
-    );
-    // a negative u
-    let e = study(&sim, "uncertainty: (radius_u_m: -1.0e-3),").unwrap_err();
-    assert!(
-        matches!(&e, PipelineError::InvalidField { field, .. } if field == "uncertainty.radius_u_m"),
-        "{e}"
+        Some("not stated (the study has no `uncertainty` section): taken as 0")
     );
 }
 

@@ -16,4 +16,4 @@ mod validate;
 
 pub use run::CalibrationMeasurement;
 pub(crate) use run::{measurement, run};
-pub(crate) use validate::{CalibrationInputs, load, type_b, validate};
+pub(crate) use validate::{CalibrationInputs, load, validate};

@@ -37,11 +37,13 @@ pub(crate) struct SymmetricInputs {
     pub(crate) seed: u64,
     /// `None`: adaptive.
     pub(crate) trials: Option<u64>,
-    /// The Type B standard uncertainties (the `uncertainty` section's; an input it does not
-    /// state is 0): u(R) applies to each mounting's radius, the two independent.
+    /// The Type B standard uncertainties (the `uncertainty` section's, every input stated;
+    /// all 0 without the section): u(R) applies to each mounting's radius, the two
+    /// independent.
     pub(crate) type_b: ::calibration::TypeB,
-    /// What the budget says beside an input (by its index in `calibration::input`): that it
-    /// is not stated, the reason for a zero, or where the probe gain's uncertainty comes from.
+    /// What the budget says beside an input (by its index in `calibration::input`): that the
+    /// study states no Type B input, the reason for a zero, or where the probe gain's
+    /// uncertainty comes from.
     pub(crate) type_b_notes: Vec<(usize, String)>,
 }
 
@@ -230,10 +232,11 @@ pub(crate) fn validate(
     })
 }
 
-/// The Type B inputs of the two-orientation budget from the `uncertainty` section (each
-/// finite and ≥ 0; one it does not state, or no section, is 0 and the budget says so), with
-/// the probe gain stated by the compared phase's recordings in volts instead when they state
-/// it (stating it in both places is refused, as in the calibration section). Problems go to
+/// The Type B inputs of the two-orientation budget: the `uncertainty` section read as the
+/// calibration section reads it (`crate::type_b`: every input stated, or 0 with its reason;
+/// each finite and ≥ 0), with the probe gain stated by the compared phase's recordings in
+/// volts instead when they state it (stating it in both places is refused). Without an
+/// `uncertainty` section every input is 0 and the budget says so beside each. Problems go to
 /// `errors`.
 fn type_b(
     check: &Check<'_>,
@@ -242,7 +245,6 @@ fn type_b(
     errors: &mut Vec<PipelineError>,
 ) -> (::calibration::TypeB, Vec<(usize, String)>) {
     use ::calibration::input;
-    let u = study.uncertainty.as_ref();
     let stated_gain = study.phases.get(phase).and_then(|p| {
         let crate::config::Points::Recordings(set) = &p.points else {
             return None;
@@ -253,83 +255,41 @@ fn type_b(
             format!("phases[{phase}].points.format.gap.unit (u_sensitivity)"),
         ))
     });
-    let fields = [
-        ("radius_u_m", u.and_then(|u| u.radius_u_m), input::RADIUS),
-        ("g_u_m_s2", u.and_then(|u| u.g_u_m_s2), input::G),
-        (
-            "rate_u_relative",
-            u.and_then(|u| u.rate_u_relative),
+    let unstated = |notes: &mut Vec<(usize, String)>| {
+        for index in [
+            input::RADIUS,
+            input::G,
             input::RATE_SCALE,
-        ),
-        (
-            "pivot_to_probe_u_mm",
-            u.and_then(|u| u.pivot_to_probe_u_mm),
             input::PIVOT_TO_PROBE,
-        ),
-        (
-            "probe_to_piga_u_mm",
-            u.and_then(|u| u.probe_to_piga_u_mm),
             input::PROBE_TO_PIGA,
-        ),
-        (
-            "probe_gain_u_relative",
-            u.and_then(|u| u.probe_gain_u_relative),
             input::PROBE_GAIN,
-        ),
-    ];
-    let mut values = [0.0; 6];
-    let mut notes = Vec::new();
-    for (slot, (name, value, index)) in fields.into_iter().enumerate() {
-        let field = format!("uncertainty.{name}");
-        if index == input::PROBE_GAIN
-            && let Some((gain, stated)) = &stated_gain
-        {
-            if value.is_some() {
-                errors.push(PipelineError::StatedTwice {
-                    path: check.path.to_owned(),
-                    field,
-                    other: stated.clone(),
-                    what: "the probe gain's uncertainty",
-                });
+        ] {
+            if !notes.iter().any(|(i, _)| *i == index) {
+                notes.push((
+                    index,
+                    "not stated (the study has no `uncertainty` section): taken as 0".to_owned(),
+                ));
             }
-            values[slot] = *gain;
-            notes.push((
-                index,
-                format!("from the probe's stated sensitivity ({stated})"),
-            ));
-            continue;
         }
-        let Some(v) = value else {
-            notes.push((index, format!("not stated (`{field}`): taken as 0")));
-            continue;
-        };
-        if let Err(e) = check.non_negative(&field, v) {
+    };
+    match crate::type_b::type_b(check, study.uncertainty.as_ref(), stated_gain) {
+        Ok(Some(t)) => {
+            let mut notes = t.notes;
+            if !t.from_section {
+                unstated(&mut notes);
+            }
+            (t.values, notes)
+        }
+        Ok(None) => {
+            let mut notes = Vec::new();
+            unstated(&mut notes);
+            (::calibration::TypeB::default(), notes)
+        }
+        Err(e) => {
             errors.push(e);
-            continue;
-        }
-        values[slot] = v;
-        if v == 0.0 {
-            let reason = u
-                .and_then(|u| u.zero_reasons.get(name))
-                .filter(|r| !r.trim().is_empty());
-            notes.push((
-                index,
-                reason.map_or_else(
-                    || "taken as 0, no reason given (`uncertainty.zero_reasons`)".to_owned(),
-                    |r| format!("taken as 0: {r}"),
-                ),
-            ));
+            (::calibration::TypeB::default(), Vec::new())
         }
     }
-    let type_b = ::calibration::TypeB {
-        radius_u_m: values[0],
-        g_u_m_s2: values[1],
-        rate_u_relative: values[2],
-        pivot_to_probe_u_mm: values[3],
-        probe_to_piga_u_mm: values[4],
-        probe_gain_u_relative: values[5],
-    };
-    (type_b, notes)
 }
 
 const fn orientation(n: OrientationName) -> Orientation {

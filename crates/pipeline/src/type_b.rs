@@ -1,0 +1,145 @@
+//! The `uncertainty` section's Type B inputs, validated once for every section that carries
+//! them (the calibration and the two-orientation calibration): every input stated — its
+//! standard uncertainty, or 0 with the reason in `zero_reasons` — each finite and ≥ 0, the
+//! probe gain stated once (here or by the compared phase's recordings in volts). Core: used by
+//! sections, importing none.
+
+use crate::config::UncertaintyConfig;
+use crate::error::{PipelineError, Result};
+use crate::inputs::Check;
+
+/// Type B standard uncertainties, validated (all finite and ≥ 0), and where g comes from.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct TypeB {
+    pub(crate) values: ::calibration::TypeB,
+    pub(crate) g_source: String,
+    /// What the budget says beside an input (by its index in `calibration::input`): the
+    /// reason for a zero, or where the probe gain's uncertainty comes from.
+    pub(crate) notes: Vec<(usize, String)>,
+    /// Whether the study has an `uncertainty` section (else only the recordings' stated
+    /// probe gain).
+    pub(crate) from_section: bool,
+}
+
+/// The Type B uncertainties of the `uncertainty` section `u` (absent: none given) and the
+/// probe gain stated by the compensating phase's recordings in volts (`stated_gain`: its
+/// relative u and the field stating it): every input stated, each finite and ≥ 0, a zero
+/// with its reason, the probe gain stated once. `None` when neither states anything. Every
+/// problem at once.
+pub(crate) fn type_b(
+    check: &Check<'_>,
+    u: Option<&UncertaintyConfig>,
+    stated_gain: Option<(f64, String)>,
+) -> Result<Option<TypeB>> {
+    use ::calibration::input;
+    let Some(u) = u else {
+        // Only the recordings state something: the probe gain.
+        return Ok(stated_gain.map(|(gain, field)| TypeB {
+            values: ::calibration::TypeB {
+                probe_gain_u_relative: gain,
+                ..::calibration::TypeB::default()
+            },
+            g_source: String::new(),
+            notes: vec![(
+                input::PROBE_GAIN,
+                format!("from the probe's stated sensitivity ({field})"),
+            )],
+            from_section: false,
+        }));
+    };
+    let mut errors = Vec::new();
+    let mut notes = Vec::new();
+    let mut values = [0.0; 6];
+    let fields = [
+        ("radius_u_m", u.radius_u_m, input::RADIUS),
+        ("g_u_m_s2", u.g_u_m_s2, input::G),
+        ("rate_u_relative", u.rate_u_relative, input::RATE_SCALE),
+        (
+            "pivot_to_probe_u_mm",
+            u.pivot_to_probe_u_mm,
+            input::PIVOT_TO_PROBE,
+        ),
+        (
+            "probe_to_piga_u_mm",
+            u.probe_to_piga_u_mm,
+            input::PROBE_TO_PIGA,
+        ),
+        (
+            "probe_gain_u_relative",
+            u.probe_gain_u_relative,
+            input::PROBE_GAIN,
+        ),
+    ];
+    for (slot, (name, value, index)) in fields.into_iter().enumerate() {
+        let field = format!("uncertainty.{name}");
+        if index == input::PROBE_GAIN
+            && let Some((gain, stated)) = &stated_gain
+        {
+            if value.is_some() {
+                errors.push(PipelineError::StatedTwice {
+                    path: check.path.to_owned(),
+                    field: field.clone(),
+                    other: stated.clone(),
+                    what: "the probe gain's uncertainty",
+                });
+            }
+            values[slot] = *gain;
+            notes.push((
+                index,
+                format!("from the probe's stated sensitivity ({stated})"),
+            ));
+            continue;
+        }
+        let Some(v) = value else {
+            errors.push(PipelineError::MissingField {
+                path: check.path.to_owned(),
+                field,
+                hint: "every Type B input of the budget is stated: its standard uncertainty, or 0 \
+                       with the reason in `zero_reasons`"
+                    .to_owned(),
+            });
+            continue;
+        };
+        if let Err(e) = check.non_negative(&field, v) {
+            errors.push(e);
+            continue;
+        }
+        values[slot] = v;
+        if v == 0.0 {
+            match u.zero_reasons.get(name).filter(|r| !r.trim().is_empty()) {
+                Some(reason) => notes.push((index, format!("taken as 0: {reason}"))),
+                None => errors.push(PipelineError::MissingField {
+                    path: check.path.to_owned(),
+                    field: format!("uncertainty.zero_reasons.{name}"),
+                    hint: format!(
+                        "`{field}` is 0: say why it is negligible (`zero_reasons: {{\"{name}\": \"…\"}}`)"
+                    ),
+                }),
+            }
+        }
+    }
+    for key in u.zero_reasons.keys() {
+        if !fields.iter().any(|(name, ..)| name == key) {
+            errors.push(PipelineError::UnknownKey {
+                path: check.path.to_owned(),
+                field: "uncertainty.zero_reasons".to_owned(),
+                key: key.clone(),
+                known: fields.iter().map(|(n, ..)| (*n).to_owned()).collect(),
+            });
+        }
+    }
+    PipelineError::from_list(errors)?;
+    Ok(Some(TypeB {
+        values: ::calibration::TypeB {
+            radius_u_m: values[0],
+            g_u_m_s2: values[1],
+            rate_u_relative: values[2],
+            pivot_to_probe_u_mm: values[3],
+            probe_to_piga_u_mm: values[4],
+            probe_gain_u_relative: values[5],
+        },
+        g_source: u.g_source.clone(),
+        notes,
+        from_section: true,
+    }))
+}
