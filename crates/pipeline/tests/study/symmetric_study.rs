@@ -19,6 +19,18 @@ fn study(sim: &Simulation, declared: Declared) -> StudyResults {
 /// The symmetric section on the mounting tables of `tables`, compared with the probe phase
 /// of `probe`.
 fn study_with_tables(probe: &Simulation, tables: &Simulation, declared: Declared) -> StudyResults {
+    tables_study(probe, tables, declared, "").unwrap()
+}
+
+/// The probe phase of `probe` (declared as `declared`), then `sections` (RON fields of the
+/// study), then the symmetric section on the two mounting tables of `tables` with a small
+/// fixed Monte Carlo count; run.
+pub(crate) fn tables_study(
+    probe: &Simulation,
+    tables: &Simulation,
+    declared: Declared,
+    sections: &str,
+) -> Result<StudyResults, PipelineError> {
     let (text, mut files) = probe_study(probe, declared);
     let mut sets = String::new();
     for m in &tables.mountings {
@@ -36,15 +48,16 @@ fn study_with_tables(probe: &Simulation, tables: &Simulation, declared: Declared
             m.radius_m
         ));
     }
+    // the campaign study's text up to its calibration section: `sections` adds the rest
     let end = text.rfind(')').unwrap();
     let text = format!(
-        "{}    symmetric: (orientations: [{sets}], compare_with: \"spindle\", trials: fixed(2000)),\n)\n",
+        "{}    {sections}\n    symmetric: (orientations: [{sets}], compare_with: \"spindle\", trials: fixed(2000)),\n)\n",
         &text[..end]
     );
     let source = Path::new(DIR).join("study.ron");
-    let config = StudyConfig::from_ron(&text, &source).unwrap();
-    let inputs = Inputs::new(config, &source, &Files(files)).unwrap();
-    pipeline::run(&inputs).unwrap()
+    let config = StudyConfig::from_ron(&text, &source)?;
+    let inputs = Inputs::new(config, &source, &Files(files))?;
+    pipeline::run(&inputs)
 }
 
 fn warned(r: &StudyResults, code: WarningCode) -> bool {

@@ -4,18 +4,15 @@
 //! campaigns whose true radii, g and rates differ from the declared ones by draws from the
 //! declared u.
 
-use std::path::Path;
-
 use calibration::{OrientationData, TypeB, evaluate_symmetric, fit_symmetric};
-use pipeline::{Inputs, PipelineError, StudyConfig, StudyResults, WarningCode};
+use pipeline::{PipelineError, StudyResults, WarningCode};
 use rand::SeedableRng;
 use rand::rngs::StdRng;
 use rand_distr::{Distribution, Normal};
 use rayon::prelude::*;
-use simulate::{Mount, Orientation, OutputNoise, Simulation};
+use simulate::{Mount, OutputNoise, Simulation};
 
-use super::symmetric::{C_R, DIR, Declared, K2, probe_study, scenario};
-use test_support::MemoryFiles as Files;
+use super::symmetric::{C_R, Declared, K2, scenario};
 
 const G: f64 = 9.8;
 
@@ -27,33 +24,7 @@ const CAMPAIGN_UNCERTAINTY: &str = "uncertainty: (radius_u_m: 5.0e-6, g_u_m_s2: 
 /// The probe phase on the simulation, then `sections` (RON fields of the study), then the
 /// symmetric section on the two mounting tables; run.
 fn study(sim: &Simulation, sections: &str) -> Result<StudyResults, PipelineError> {
-    let (text, mut files) = probe_study(sim, Declared::Right);
-    let mut sets = String::new();
-    for m in &sim.mountings {
-        let (name, file) = match m.orientation {
-            Orientation::IaIn => ("ia_in", "piga_ia_in.csv"),
-            Orientation::IaOut => ("ia_out", "piga_ia_out.csv"),
-        };
-        let mut csv = String::from("rate_deg_s,output_rad_s\n");
-        for r in &m.piga {
-            csv.push_str(&format!("{:?},{:?}\n", r.rate_deg_s, r.output_rad_s));
-        }
-        files.insert(Path::new(DIR).join(file), csv.into_bytes());
-        sets.push_str(&format!(
-            "(orientation: {name}, radius_m: {:?}, table: (file: \"{file}\")),",
-            m.radius_m
-        ));
-    }
-    // the campaign study's text up to its calibration section: `sections` adds the rest
-    let end = text.rfind(')').unwrap();
-    let head = &text[..end];
-    let text = format!(
-        "{head}    {sections}\n    symmetric: (orientations: [{sets}], compare_with: \"spindle\", trials: fixed(2000)),\n)\n"
-    );
-    let source = Path::new(DIR).join("study.ron");
-    let config = StudyConfig::from_ron(&text, &source)?;
-    let inputs = Inputs::new(config, &source, &Files(files))?;
-    pipeline::run(&inputs)
+    super::symmetric_study::tables_study(sim, sim, Declared::Right, sections)
 }
 
 /// The budget's line for `quantity` (its first words).
