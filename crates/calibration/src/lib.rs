@@ -15,15 +15,15 @@
 //!   [`label_offset_limit`].
 //! - [`measurement_inputs`]: the model's input quantities for a fit (the Type B inputs and
 //!   the fit's coefficients as one correlated Type A group).
-//! - [`fit_symmetric`] and [`evaluate_symmetric`]: the two-orientation (IA in / IA out)
+//! - [`fit_two_orientation`] and [`evaluate_two_orientation`]: the two-orientation (IA in / IA out)
 //!   calibration of issue 20 (`docs/theory.md` section 11, eq. 23): one joint fit of both
 //!   mountings giving k2 and the total radius growth C = C_r + C_a from the PIGA alone, its
-//!   [`SymmetricModel`] evaluated by the GUM and Monte Carlo with the same Type B inputs as
+//!   [`TwoOrientationModel`] evaluated by the GUM and Monte Carlo with the same Type B inputs as
 //!   [`CalibrationModel`] ([`TypeB`]: u(R) of each mounting, the two independent, g, the rate
 //!   scale; with a probe its lever heights and gain), and `C − C_r` against a probe. The
 //!   model is the refit of eq. 23 at the true radii, g and rates: exact column scalings, the
 //!   mountings' ω⁴ coefficients for k2 and γ, and the projection of the ω⁶ term the k3 column
-//!   leaves when the radii err apart ([`SymmetricFit::omega6_response`]).
+//!   leaves when the radii err apart ([`TwoOrientationFit::omega6_response`]).
 //!
 //! Nothing here reads files, knows the study's configuration or writes results.
 //!
@@ -36,21 +36,22 @@ mod fit;
 mod limits;
 mod model;
 mod quantities;
-mod symmetric;
+mod two_orientation;
 mod vif;
 
 pub use fit::{Fitted, Weighting, compensation, fit};
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
 pub use quantities::{CrInput, K1Input, TypeB, measurement_inputs};
-pub use symmetric::{
+pub use two_orientation::{
     B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,
     MIN_RATES_PER_ORIENTATION, MountingFit, Orientation, OrientationData, ProbeCr,
-    SYMMETRIC_OUTPUTS, SYMMETRIC_TERM_NAMES, SYMMETRIC_TERMS, SymmetricError, SymmetricEvaluation,
-    SymmetricFit, SymmetricModel, SymmetricWarning, Z_LIMIT, evaluate_symmetric, fit_symmetric,
-    symmetric_input, symmetric_inputs, symmetric_row,
+    TWO_ORIENTATION_OUTPUTS, TWO_ORIENTATION_TERM_NAMES, TWO_ORIENTATION_TERMS,
+    TwoOrientationError, TwoOrientationEvaluation, TwoOrientationFit, TwoOrientationModel,
+    TwoOrientationWarning, Z_LIMIT, evaluate_two_orientation, fit_two_orientation,
+    two_orientation_input, two_orientation_inputs, two_orientation_row,
 };
-pub use symmetric::{MountingDesign, SymmetricSpread, symmetric_spread};
+pub use two_orientation::{MountingDesign, TwoOrientationSpread, two_orientation_spread};
 pub use vif::{
     CoefficientInflation, INFLATION_LIMIT, NUISANCE_TERMS, REFERENCE_LOW_FRACTION, REPORTED_TERMS,
     VIF_LIMIT, coefficient_inflation, variance_inflation,

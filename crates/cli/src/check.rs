@@ -238,7 +238,7 @@ fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
             cal["compensate_with"].as_str().unwrap_or("")
         );
     }
-    if let Some(sym) = v.get("symmetric").filter(|c| !c.is_null()) {
+    if let Some(sym) = v.get("two_orientation").filter(|c| !c.is_null()) {
         let sets: Vec<String> = sym["orientations"]
             .as_array()
             .into_iter()

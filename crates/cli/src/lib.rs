@@ -16,7 +16,7 @@ mod identify;
 mod init;
 mod paths;
 mod plan;
-mod plan_two;
+mod plan_two_orientation;
 mod problems;
 mod progress;
 mod regress;

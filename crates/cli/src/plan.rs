@@ -48,7 +48,7 @@ const LATITUDE_DEG: f64 = 45.0;
 impl PlanCmd {
     pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
         let inputs = load(&self.config)?;
-        if inputs.two_orientations.is_some() {
+        if inputs.two_orientation.is_some() {
             return self.run_two(&inputs, places);
         }
         let context = || format!("planning {}", self.config.display());
@@ -131,11 +131,11 @@ impl PlanCmd {
 }
 
 impl PlanCmd {
-    /// A plan file with `two_orientations`: the two-orientation plan beside the probe
+    /// A plan file with `two_orientation`: the two-orientation plan beside the probe
     /// method's in the same budget (`--compare-rates` evaluates rates for the probe method).
     fn run_two(&self, inputs: &PlanInputs, places: &Places) -> anyhow::Result<()> {
         let context = || format!("planning {}", self.config.display());
-        let plan = planning::plan_two_orientations(inputs).with_context(context)?;
+        let plan = planning::plan_two_orientation(inputs).with_context(context)?;
         let mut comparison = Vec::new();
         if !self.compare_rates.is_empty() {
             let e = planning::evaluate_rates(inputs, &self.compare_rates, Allocation::Optimal)
@@ -154,8 +154,13 @@ impl PlanCmd {
                 let spinner = crate::progress::spinner(format!(
                     "simulating the two-orientation plan {n} times"
                 ));
-                let check =
-                    crate::plan_two::simulate_check(inputs, &plan, n, self.seed, LATITUDE_DEG);
+                let check = crate::plan_two_orientation::simulate_check(
+                    inputs,
+                    &plan,
+                    n,
+                    self.seed,
+                    LATITUDE_DEG,
+                );
                 spinner.finish_and_clear();
                 Some(check?)
             }
@@ -163,7 +168,7 @@ impl PlanCmd {
         };
         let mut value = serde_json::json!({
             "config": self.config.display().to_string(),
-            "two_orientations": plan,
+            "two_orientation": plan,
         });
         if !comparison.is_empty() {
             value["comparison"] = serde_json::Value::Array(comparison.clone());
@@ -177,11 +182,11 @@ impl PlanCmd {
         set.write("plan.json", json.as_bytes())?;
         set.write(
             "run_sheet.csv",
-            crate::plan_two::run_sheet_csv(&plan).as_bytes(),
+            crate::plan_two_orientation::run_sheet_csv(&plan).as_bytes(),
         )?;
         set.write(
             "run_sheet.md",
-            crate::plan_two::run_sheet_md(&plan).as_bytes(),
+            crate::plan_two_orientation::run_sheet_md(&plan).as_bytes(),
         )?;
         set.commit()
             .with_context(|| format!("writing the plan into {}", out.display()))?;
@@ -190,7 +195,7 @@ impl PlanCmd {
             writeln!(console, "{json}")?;
             return Ok(());
         }
-        let mut text = crate::plan_two::summary(&plan);
+        let mut text = crate::plan_two_orientation::summary(&plan);
         for c in &comparison {
             let _ = writeln!(
                 text,

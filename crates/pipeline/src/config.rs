@@ -13,11 +13,11 @@ use serde::{Deserialize, Serialize};
 use crate::error::{PipelineError, Result};
 
 mod certificate;
-mod symmetric;
 mod table;
+mod two_orientation;
 pub use certificate::*;
-pub use symmetric::*;
 pub use table::*;
+pub use two_orientation::*;
 
 /// A whole study: one centrifuge, one PIGA, and any number of named probe phases (before
 /// balancing, with a trial weight, after balancing, ...).
@@ -64,9 +64,13 @@ pub struct StudyConfig {
     pub certificate: Option<CertificateConfig>,
     /// The two-orientation (IA in / IA out) calibration: k2 and the total radius growth C
     /// from the PIGA alone, compared with a probe phase's C_r (absent: not run;
-    /// `docs/SYMMETRIC.md`).
+    /// `docs/TWO_ORIENTATION.md`).
     #[serde(default)]
-    pub symmetric: Option<SymmetricConfig>,
+    pub two_orientation: Option<TwoOrientationConfig>,
+    /// The former name of `two_orientation` (`symmetric: (...)`), read as it with a
+    /// `deprecated_key` warning naming the new key; both at once is an error.
+    #[serde(default, rename = "symmetric", skip_serializing_if = "Option::is_none")]
+    pub symmetric_deprecated: Option<TwoOrientationConfig>,
 }
 
 /// The counterweight section (`counterweight: (...)`): what a `radius_change` phase, one
@@ -267,6 +271,31 @@ pub struct UncertaintyConfig {
 }
 
 impl StudyConfig {
+    /// Moves a section written under a former name to its current one, returning the
+    /// former names read (`symmetric` for `two_orientation`), for the study's warnings.
+    ///
+    /// # Errors
+    /// [`PipelineError::StatedTwice`] when a section is written under both names.
+    pub fn take_deprecated_keys(&mut self, path: &Path) -> Result<Vec<DeprecatedKey>> {
+        let mut read = Vec::new();
+        if let Some(section) = self.symmetric_deprecated.take() {
+            if self.two_orientation.is_some() {
+                return Err(PipelineError::StatedTwice {
+                    path: path.to_owned(),
+                    field: "two_orientation".into(),
+                    other: "symmetric".into(),
+                    what: "the two-orientation calibration",
+                });
+            }
+            self.two_orientation = Some(section);
+            read.push(DeprecatedKey {
+                old: "symmetric",
+                new: "two_orientation",
+            });
+        }
+        Ok(read)
+    }
+
     /// The probe gain's relative standard uncertainty stated by the compensating phase's
     /// recordings (a gap in volts with its sensitivity's uncertainty), with the field that
     /// states it; `None` when the calibration's phase is not recorded in volts (or its
@@ -505,6 +534,15 @@ impl StudyConfig {
     }
 }
 
+/// A section of the study file written under a former name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DeprecatedKey {
+    /// The name written.
+    pub old: &'static str,
+    /// The name it now has.
+    pub new: &'static str,
+}
+
 /// The configuration key a data-transfer type of the study file stands for, as a person
 /// writes it (`calibration.table`); `None` for the top level.
 fn config_key(type_name: &str) -> Option<&'static str> {
@@ -521,15 +559,17 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "RecordingSet" => "phases[…].points (recordings)",
         "RecordingPoint" => {
             "phases[…].points.files[…] (or calibration.recordings.files[…], \
-             symmetric.orientations[…].recordings.files[…])"
+             two_orientation.orientations[…].recordings.files[…])"
         }
         "FitSettings" => "phases[…].points.fit",
         "MechanismConfig" => "mechanism",
         "CalibrationConfig" => "calibration",
-        "PigaTableConfig" => "calibration.table (or symmetric.orientations[…].table)",
-        "PigaRecordingSet" => "calibration.recordings (or symmetric.orientations[…].recordings)",
+        "PigaTableConfig" => "calibration.table (or two_orientation.orientations[…].table)",
+        "PigaRecordingSet" => {
+            "calibration.recordings (or two_orientation.orientations[…].recordings)"
+        }
         "K1Config" => "calibration.k1",
-        "TrialsConfig" => "calibration.trials (or symmetric.trials)",
+        "TrialsConfig" => "calibration.trials (or two_orientation.trials)",
         "UncertaintyConfig" => "uncertainty",
         "BalanceConfig" => "balance",
         "TrialMassConfig" => "balance.trial_mass (or balance.two_plane.trial_mass)",
@@ -552,9 +592,9 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "LimitUnitName" => "certificate.limits[…].unit",
         "DecisionRuleName" => "certificate.decision_rule",
         "AuthorisationConfig" => "certificate.authorisation",
-        "SymmetricConfig" => "symmetric",
-        "OrientationConfig" => "symmetric.orientations[…]",
-        "OrientationName" => "symmetric.orientations[…].orientation",
+        "TwoOrientationConfig" => "two_orientation",
+        "OrientationConfig" => "two_orientation.orientations[…]",
+        "OrientationName" => "two_orientation.orientations[…].orientation",
         _ => "this section",
     })
 }
@@ -647,7 +687,7 @@ mod tests {
         );
         assert!(
             m.contains(
-                "missing field `file` in `calibration.table (or symmetric.orientations[…].table)`"
+                "missing field `file` in `calibration.table (or two_orientation.orientations[…].table)`"
             ),
             "{m}"
         );

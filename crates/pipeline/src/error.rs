@@ -264,13 +264,13 @@ pub enum PipelineError {
     #[error(transparent)]
     File(#[from] edge_io::EdgeIoError),
     /// The two-orientation calibration refuses its data sets or its fit (the source names the
-    /// field, `symmetric.orientations[1].radius_m`).
+    /// field, `two_orientation.orientations[1].radius_m`).
     #[error("{}", path.display())]
-    Symmetric {
+    TwoOrientation {
         /// The configuration file.
         path: PathBuf,
         /// What is wrong.
-        source: Box<calibration::SymmetricError>,
+        source: Box<calibration::TwoOrientationError>,
     },
     /// Several errors, each complete, in the configuration's order.
     #[error("{} errors:{}", errors.len(), list(errors))]

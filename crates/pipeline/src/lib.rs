@@ -79,7 +79,7 @@ pub use config::{
     RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TableLayoutError, TrialsConfig,
     UncertaintyConfig, Weighting,
 };
-pub use config::{OrientationConfig, OrientationName, SymmetricConfig};
+pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
 pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
@@ -103,8 +103,8 @@ pub use results::{
     WarningCode, model_name,
 };
 pub use results::{
-    MountingResults, ProbeComparison, RateSpread, SymmetricBudgets, SymmetricHeadline,
-    SymmetricMonteCarlo, SymmetricResults,
+    MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,
+    TwoOrientationMonteCarlo, TwoOrientationResults,
 };
 pub use sections::calibration::CalibrationMeasurement;
 pub use sections::phases::Progress;

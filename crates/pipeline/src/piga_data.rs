@@ -1,8 +1,8 @@
 //! The PIGA's data of a calibration (the `calibration` section, or one orientation of the
-//! `symmetric` one): a PIGA table read as it is, or raw PIGA output recordings each reduced to
+//! `two_orientation` one): a PIGA table read as it is, or raw PIGA output recordings each reduced to
 //! its mean output over whole spindle revolutions; both become points. Every error and
 //! warning names the configuration field the data set comes from (`calibration.table`,
-//! `symmetric.orientations[1].recordings.files[3]`).
+//! `two_orientation.orientations[1].recordings.files[3]`).
 
 use std::path::{Path, PathBuf};
 

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use crate::config::StudyConfig;
+use crate::config::{DeprecatedKey, StudyConfig};
 use crate::error::{PipelineError, Result};
 use recording::FileDigest;
 
@@ -17,7 +17,7 @@ use crate::sections::calibration::{self, CalibrationInputs, CalibrationMeasureme
 use crate::sections::certificate::{self, Certificate};
 use crate::sections::mechanism::{self, Mechanism};
 use crate::sections::phases::{self, Phases, Progress};
-use crate::sections::symmetric::{self, SymmetricInputs};
+use crate::sections::two_orientation::{self, TwoOrientationInputs};
 
 /// The validated inputs of a study.
 #[derive(Debug, Clone)]
@@ -31,7 +31,9 @@ pub struct Inputs {
     certificate: Option<Certificate>,
     /// The configuration file's size and SHA-256 as the edge read it.
     config_digest: Option<FileDigest>,
-    symmetric: Option<SymmetricInputs>,
+    two_orientation: Option<TwoOrientationInputs>,
+    /// Sections written under a former name (each a `deprecated_key` warning).
+    deprecated: Vec<DeprecatedKey>,
 }
 
 impl Inputs {
@@ -43,7 +45,8 @@ impl Inputs {
     /// The first invalid field in the file's order; for data files, every file that could
     /// not be loaded, in the configuration's order ([`PipelineError::Several`] when more than
     /// one).
-    pub fn new(config: StudyConfig, source: &Path, load: &dyn DataSource) -> Result<Self> {
+    pub fn new(mut config: StudyConfig, source: &Path, load: &dyn DataSource) -> Result<Self> {
+        let deprecated = config.take_deprecated_keys(source)?;
         let core = Core::new(&config, source)?;
         let check = core.check();
         let checked = phases::check(&check, &config)?;
@@ -90,10 +93,10 @@ impl Inputs {
             .as_ref()
             .map(|c| certificate::validate(&check, c, &config))
             .transpose()?;
-        let symmetric = config
-            .symmetric
+        let two_orientation = config
+            .two_orientation
             .as_ref()
-            .map(|s| symmetric::validate(&check, s, &config, &names, core.base(), load))
+            .map(|s| two_orientation::validate(&check, s, &config, &names, core.base(), load))
             .transpose()?;
         let base = core.base().to_owned();
         let phases = checked.load(&config.phases, &base, source, load)?;
@@ -110,7 +113,8 @@ impl Inputs {
             counterweight,
             certificate,
             config_digest: None,
-            symmetric,
+            two_orientation,
+            deprecated,
         })
     }
 
@@ -138,7 +142,7 @@ impl Inputs {
         if let Some(c) = &self.calibration {
             files.extend(c.input_files());
         }
-        if let Some(s) = &self.symmetric {
+        if let Some(s) = &self.two_orientation {
             files.extend(s.input_files());
         }
         files
@@ -190,7 +194,11 @@ pub fn run_with_progress(
     if total > 0 {
         progress(Progress::Recordings { total });
     }
-    let mut warnings = Vec::new();
+    let mut warnings: Vec<Warning> = inputs
+        .deprecated
+        .iter()
+        .map(|d| Warning::deprecated_key(d.old, d.new))
+        .collect();
     let mut phases = Vec::with_capacity(inputs.phases.list.len());
     // Phases holding a second probe's data are fitted like the others, through the first
     // probe's lever and direction: their C_r is not the PIGA plane's, and they say so.
@@ -237,9 +245,9 @@ pub fn run_with_progress(
         (Some(cert), Some(c)) => Some(certificate::run(cert, c)),
         _ => None,
     };
-    let symmetric = match inputs.symmetric.as_ref() {
+    let two_orientation = match inputs.two_orientation.as_ref() {
         Some(s) => {
-            let (results, more) = symmetric::run(core, s, &phases)?;
+            let (results, more) = two_orientation::run(core, s, &phases)?;
             warnings.extend(more);
             Some(results)
         }
@@ -260,7 +268,7 @@ pub fn run_with_progress(
         balance,
         counterweight,
         certificate,
-        symmetric,
+        two_orientation,
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {

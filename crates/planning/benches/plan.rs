@@ -25,7 +25,7 @@ fn bench(c: &mut Criterion) {
     });
     let mut two = paper::inputs(10);
     two.schedule.budget_s = 7200.0;
-    two.two_orientations = Some(planning::TwoOrientations {
+    two.two_orientation = Some(planning::TwoOrientationPlanInputs {
         ia_in: planning::MountingPlan {
             radius_m: 2.5,
             bias_shift_rad_s: 0.0,
@@ -39,10 +39,10 @@ fn bench(c: &mut Criterion) {
         reserve: planning::LackOfFitReserve::default(),
         arm_stretch_m_s2: 0.0,
     });
-    group.bench_function("plan_two_orientations", |b| {
-        b.iter(|| planning::plan_two_orientations(black_box(&two)).unwrap())
+    group.bench_function("plan_two_orientation", |b| {
+        b.iter(|| planning::plan_two_orientation(black_box(&two)).unwrap())
     });
-    let plan = planning::plan_two_orientations(&two).unwrap();
+    let plan = planning::plan_two_orientation(&two).unwrap();
     let y = planning::expected_two_orientation_outputs(&two, &plan).unwrap();
     group.bench_function("simulate_two_orientations_10000_campaigns", |b| {
         b.iter(|| {

@@ -145,7 +145,7 @@ mod tests {
                 bias_fraction: 0.1,
             },
             search: Search::default(),
-            two_orientations: None,
+            two_orientation: None,
         })
         .unwrap()
     }

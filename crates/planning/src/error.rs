@@ -85,7 +85,7 @@ pub enum PlanningError {
     /// time budget.
     #[error(
         "schedule.budget_s = {budget_s} s is shorter than the {needed_s:.1} s that turning the \
-         PIGA round (two_orientations.remount_s = {remount_s} s), settling ({settling_s:.1} s) \
+         PIGA round (two_orientation.remount_s = {remount_s} s), settling ({settling_s:.1} s) \
          and the minimum revolutions ({minimum_s:.1} s) of {points} points in two mountings \
          need, by {:.1} s",
         needed_s - budget_s
@@ -157,15 +157,15 @@ pub enum PlanningError {
         /// The result's field.
         field: &'static str,
     },
-    /// A two-orientation plan was asked for a plan file without `two_orientations`.
+    /// A two-orientation plan was asked for a plan file without `two_orientation`.
     #[error(
-        "the plan file has no `two_orientations` section: add one with the radius of each \
+        "the plan file has no `two_orientation` section: add one with the radius of each \
          mounting (`ia_in: (radius_m: …), ia_out: (radius_m: …)`) to plan both orientations"
     )]
     MissingTwoOrientations,
     /// The two-orientation joint fit failed.
     #[error("the two-orientation fit")]
-    Symmetric(#[source] calibration::SymmetricError),
+    TwoOrientation(#[source] calibration::TwoOrientationError),
     /// The least-squares solver failed.
     #[error("least squares")]
     Identify(#[source] identify::IdentifyError),

@@ -28,9 +28,9 @@ pub struct PlanInputs {
     #[cfg_attr(feature = "serde", serde(default))]
     pub search: Search,
     /// Both orientations (IA in and IA out) for the probe-free calibration of issue 20
-    /// ([`plan_two_orientations`](crate::plan_two_orientations)); absent: the probe method only.
-    #[cfg_attr(feature = "serde", serde(default))]
-    pub two_orientations: Option<crate::TwoOrientations>,
+    /// ([`plan_two_orientation`](crate::plan_two_orientation)); absent: the probe method only.
+    #[cfg_attr(feature = "serde", serde(default, alias = "two_orientations"))]
+    pub two_orientation: Option<crate::TwoOrientationPlanInputs>,
 }
 
 /// The centrifuge.

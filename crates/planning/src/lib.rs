@@ -14,9 +14,9 @@
 //!   campaigns.
 //! * [`evaluate_rates`]: the fit part of u(k2) of given rates (e.g. the paper's six), and
 //!   [`exhaustive_k2`]: the exhaustive optimum on a small grid.
-//! * [`plan_two_orientations`] (issue 20): with [`TwoOrientations`] in the inputs, the rates
+//! * [`plan_two_orientation`] (issue 20): with [`TwoOrientationPlanInputs`] in the inputs, the rates
 //!   and revolutions in both mountings (IA in and IA out) for the smallest u(k2) of the joint
-//!   fit of eq. 23 (`calibration::fit_symmetric`, rows `calibration::symmetric_row`), the time
+//!   fit of eq. 23 (`calibration::fit_two_orientation`, rows `calibration::two_orientation_row`), the time
 //!   split between them, on a round rate grid ([`RateGrid`]) with a lack-of-fit reserve
 //!   ([`LackOfFitReserve`]) and their costs in u(k2), beside the probe method's plan in the
 //!   same budget; [`simulate_two_orientation_plan`] checks it against simulated campaigns
@@ -48,7 +48,7 @@
 //!         u95_k2_rad_s_g2: 1e-6, tolerance_k2_rad_s_g2: 5e-6, bias_fraction: 0.1,
 //!     },
 //!     search: Search::default(),
-//!     two_orientations: None,
+//!     two_orientation: None,
 //! };
 //! let p = plan(&inputs)?;
 //! assert_eq!(p.points.len(), 8);
@@ -81,11 +81,11 @@ mod error;
 mod exchange;
 mod grid;
 mod inputs;
-mod joint;
 mod plan;
-mod two_check;
-mod two_inputs;
-mod two_plan;
+mod two_orientation_check;
+mod two_orientation_inputs;
+mod two_orientation_plan;
+mod two_orientation_space;
 
 pub use check::{MIN_CAMPAIGNS, SimulationCheck, expected_outputs, simulate_plan};
 pub use error::{PlanningError, Result};
@@ -97,11 +97,11 @@ pub use plan::{
     Allocation, BudgetLine, ExhaustiveComparison, Expanded, Plan, PlanPoint, RateEvaluation,
     evaluate_rates, exhaustive_k2, plan,
 };
-pub use two_check::simulate_two_orientation_plan;
-pub use two_inputs::{
-    DEFAULT_STEP_DEG_S, LackOfFitReserve, MountingPlan, RateGrid, TwoOrientations,
+pub use two_orientation_check::simulate_two_orientation_plan;
+pub use two_orientation_inputs::{
+    DEFAULT_STEP_DEG_S, LackOfFitReserve, MountingPlan, RateGrid, TwoOrientationPlanInputs,
 };
-pub use two_plan::{
+pub use two_orientation_plan::{
     MountingSchedule, OrientationPoint, ReserveCost, RoundingCost, TwoOrientationPlan,
-    expected_two_orientation_outputs, plan_two_orientations,
+    expected_two_orientation_outputs, plan_two_orientation,
 };

@@ -129,7 +129,7 @@ impl PyErrLater {
 
 /// Plans a campaign from a plan file (RON, as `cargo xtask plan --config FILE`) or JSON
 /// dict of the same shape; returns the plan as JSON text (`plan.json`'s `plan`, or
-/// `{"two_orientations": …}` for a plan file with that section).
+/// `{"two_orientation": …}` for a plan file with that section).
 #[pyfunction]
 #[pyo3(signature = (ron_path=None, dict=None))]
 pub(crate) fn plan(
@@ -172,10 +172,10 @@ pub(crate) fn plan(
         }
     };
     py.detach(|| -> Result<String, PyErrLater> {
-        // A plan file with `two_orientations` plans both mountings, as the command does.
-        if inputs.two_orientations.is_some() {
-            let plan = planning::plan_two_orientations(&inputs)?;
-            return edge_io::to_json_pretty(&serde_json::json!({ "two_orientations": plan }))
+        // A plan file with `two_orientation` plans both mountings, as the command does.
+        if inputs.two_orientation.is_some() {
+            let plan = planning::plan_two_orientation(&inputs)?;
+            return edge_io::to_json_pretty(&serde_json::json!({ "two_orientation": plan }))
                 .map_err(|e| PyErrLater::Config(format!("plan: {e}"), Located::default()));
         }
         let plan = planning::plan(&inputs)?;

@@ -239,16 +239,16 @@ def test_plan_equals_the_command_line(tmp_path: Path) -> None:
 
 
 def test_two_orientation_plan_equals_the_command_line(tmp_path: Path) -> None:
-    # A plan file with `two_orientations` is planned for both mountings, not silently as
+    # A plan file with `two_orientation` is planned for both mountings, not silently as
     # a single-orientation plan.
-    config = ROOT / "fixtures" / "plans" / "two-orientations.ron"
+    config = ROOT / "fixtures" / "plans" / "two_orientation.ron"
     cli = xtask("plan", "--config", str(config), "--json", "--out", str(tmp_path / "plan"))
     assert cli.status == 0, cli.stderr
-    expected = json.loads(cli.stdout)["two_orientations"]
+    expected = json.loads(cli.stdout)["two_orientation"]
     p = cc.plan(config)
     from test_studies import assert_close
 
-    assert_close(p.to_dict()["two_orientations"], expected)
+    assert_close(p.to_dict()["two_orientation"], expected)
     assert p.u95_k2_rad_s_g2 == expected["u95_k2_rad_s_g2"]
     assert set(p.orientations) == {"ia_in", "ia_out"}
     assert len(p.orientations) == len(p.rates_deg_s) == len(p.revolutions)

@@ -35,7 +35,7 @@ fn row(out: &mut String, name: &str, unit: &str, c: &Coefficient) {
 /// A GUM budget table of the report, one row per input quantity: its name (with the study's
 /// note on it, if any), the cells every budget shows (type, value, standard uncertainty,
 /// sensitivity, contribution), then the cells of `last` (headings and contents,
-/// `|`-separated). The calibration section and the two-orientation section (`symmetric`) both
+/// `|`-separated). The calibration section and the two-orientation section (`two_orientation`) both
 /// write their budgets with it.
 pub(crate) fn budget_table(
     out: &mut String,

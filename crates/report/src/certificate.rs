@@ -12,11 +12,11 @@ use std::fmt::Write as _;
 
 use pipeline::StudyResults;
 
-use crate::certificate_symmetric;
 use crate::certificate_tables::{
     budget, compensation_block, conformity, data_used, files, gum_against_mc, input_unit,
     results_table,
 };
+use crate::certificate_two_orientation;
 use crate::error::{ReportError, Result};
 use crate::format;
 use crate::format::esc;
@@ -110,8 +110,13 @@ pub fn certificate_html(
     );
     results_table(&mut out, c, &heads);
     compensation_block(&mut out, c, &heads[2]);
-    if let Some(s) = &results.symmetric {
-        certificate_symmetric::certificate_block(&mut out, s, &heads[2], c.coefficients.k1.value);
+    if let Some(s) = &results.two_orientation {
+        certificate_two_orientation::certificate_block(
+            &mut out,
+            s,
+            &heads[2],
+            c.coefficients.k1.value,
+        );
     }
     // the statements of conformity, the statement of scope and the authorisation on one page
     let _ = writeln!(out, "<div class=\"closing\">");
@@ -148,7 +153,7 @@ pub fn certificate_html(
          checked by the Monte Carlo method (JCGM 101).</p>",
         format::plain(results.inputs.radius_m)
     );
-    if results.symmetric.is_some() {
+    if results.two_orientation.is_some() {
         let _ = writeln!(
             out,
             "<p>The check by the two-orientation method fits the mean outputs of both mountings \

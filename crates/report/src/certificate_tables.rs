@@ -387,7 +387,7 @@ pub(crate) fn data_used(out: &mut String, results: &StudyResults, c: &Calibratio
         }
         let _ = writeln!(out, "</tbody></table>");
     }
-    if let Some(s) = &results.symmetric {
+    if let Some(s) = &results.two_orientation {
         let mountings: Vec<String> = s
             .mountings
             .iter()

@@ -13,8 +13,8 @@
 mod balance;
 mod calibration;
 mod certificate;
-mod certificate_symmetric;
 mod certificate_tables;
+mod certificate_two_orientation;
 mod error;
 mod expected;
 mod format;
@@ -26,7 +26,7 @@ mod plot;
 mod provenance;
 mod summary;
 mod svgplot;
-mod symmetric;
+mod two_orientation;
 
 pub use balance::balance_polar_svg;
 pub use certificate::certificate_html;

@@ -80,8 +80,8 @@ pub fn render(
     if let Some(c) = &results.calibration {
         crate::calibration::section(&mut out, c);
     }
-    if let Some(s) = &results.symmetric {
-        crate::symmetric::section(&mut out, s);
+    if let Some(s) = &results.two_orientation {
+        crate::two_orientation::section(&mut out, s);
     }
     if let Some(b) = &results.balance {
         crate::balance::section(&mut out, b);

@@ -95,7 +95,7 @@ fn warnings(results: &StudyResults) -> Vec<String> {
 /// interval; C_r and Δk2; every warning. `None` for a study without a calibration.
 pub fn summary_text(results: &StudyResults) -> Option<String> {
     let Some(c) = results.calibration.as_ref() else {
-        return crate::symmetric::summary_alone(results);
+        return crate::two_orientation::summary_alone(results);
     };
     let mut out = String::new();
     let _ = writeln!(
@@ -137,7 +137,7 @@ pub fn summary_text(results: &StudyResults) -> Option<String> {
     }
     let (cr, dk2) = compensation(c);
     let _ = writeln!(out, "  {cr}").and_then(|()| writeln!(out, "  {dk2}"));
-    crate::symmetric::summary_lines(&mut out, results);
+    crate::two_orientation::summary_lines(&mut out, results);
     let all = warnings(results);
     if all.is_empty() {
         let _ = writeln!(out, "no warnings");

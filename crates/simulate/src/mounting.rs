@@ -1,6 +1,6 @@
 //! The PIGA mounted with its input axis towards the spindle (IA in) or away from it (IA out),
 //! at its own radius, on an arm that stretches under centrifugal load (issue 20,
-//! `docs/SYMMETRIC.md`).
+//! `docs/TWO_ORIENTATION.md`).
 //!
 //! The exact chain of eq. 5 and 10 with two changes to the mount `T₃²`:
 //!

@@ -148,18 +148,18 @@ fn recordings_study() {
 /// two-orientation section's data sets in words.
 #[test]
 fn check_two_orientations_recorded_raw() {
-    let tmp = Scratch::new("cli-human-check-symmetric");
+    let tmp = Scratch::new("cli-human-check-two_orientation");
     let (text, ok) = run(
-        &["check", "fixtures/studies/symmetric-recordings.ron"],
+        &["check", "fixtures/studies/two_orientation_recordings.ron"],
         &tmp.0,
     );
     assert!(ok, "{text}");
-    assert_words("check symmetric-recordings", &text);
+    assert_words("check two_orientation_recordings", &text);
     assert!(
         text.contains("IA in at R = 2.5 m from 12 raw PIGA output recordings"),
         "{text}"
     );
-    insta::assert_snapshot!("check_symmetric_recordings", text);
+    insta::assert_snapshot!("check_two_orientation_recordings", text);
 }
 
 #[test]

@@ -90,7 +90,7 @@ fn two_orientation_plan_in_words() {
         .args([
             "plan",
             "--config",
-            "fixtures/plans/two-orientations.ron",
+            "fixtures/plans/two_orientation.ron",
             "--simulate",
             "1000",
             "--out",
@@ -117,7 +117,7 @@ fn two_orientation_plan_in_words() {
     assert_eq!(csv.lines().count(), 17, "a header and sixteen points");
     assert_eq!(csv.lines().filter(|l| l.contains(",ia_out,")).count(), 8);
     assert!(md.contains("turn the PIGA round"), "{md}");
-    let two = &value["two_orientations"];
+    let two = &value["two_orientation"];
     assert!(
         two["probe_method"]["compensated"]["u_rad_s_g2"]
             .as_f64()

@@ -11,7 +11,7 @@ mod certificate;
 mod common;
 mod mechanism;
 mod phases;
-mod symmetric;
+mod two_orientation;
 mod warning;
 
 pub use balance::*;
@@ -20,7 +20,7 @@ pub use certificate::*;
 pub use common::{DegreesOfFreedom, Estimate, InfiniteDof};
 pub use mechanism::*;
 pub use phases::*;
-pub use symmetric::*;
+pub use two_orientation::*;
 pub use warning::{Warning, WarningCode};
 
 /// All results of a study.
@@ -51,7 +51,7 @@ pub struct StudyResults {
     pub certificate: Option<CertificateResults>,
     /// The two-orientation (IA in / IA out) calibration (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
-    pub symmetric: Option<SymmetricResults>,
+    pub two_orientation: Option<TwoOrientationResults>,
 }
 
 /// Scalar inputs of the study.

@@ -52,7 +52,9 @@ pub enum WarningCode {
     ProbeDisagrees,
     /// The two-orientation design's rates make u(k2) or u(C) more than 3 times what the same
     /// number of points per mounting, evenly spread, would give.
-    SymmetricRatesBunched,
+    TwoOrientationRatesBunched,
+    /// A section of the study file written under a former name, read as the new one.
+    DeprecatedKey,
 }
 
 impl WarningCode {
@@ -78,7 +80,8 @@ impl WarningCode {
             Self::ConeCr => "cone_c_r",
             Self::Omega4NotSeparable => "omega4_not_separable",
             Self::ProbeDisagrees => "probe_disagrees",
-            Self::SymmetricRatesBunched => "symmetric_rates_bunched",
+            Self::DeprecatedKey => "deprecated_key",
+            Self::TwoOrientationRatesBunched => "two_orientation_rates_bunched",
         }
     }
 
@@ -104,7 +107,8 @@ impl WarningCode {
             Self::ConeCr => "cone C_r differs from the two-probe C_r",
             Self::Omega4NotSeparable => "ω⁴ term hard to separate in the two-orientation fit",
             Self::ProbeDisagrees => "the PIGA's radius growth and the probe's disagree",
-            Self::SymmetricRatesBunched => "two-orientation rates too bunched for k2 and C",
+            Self::DeprecatedKey => "a section under a former name",
+            Self::TwoOrientationRatesBunched => "two-orientation rates too bunched for k2 and C",
         }
     }
 }
@@ -213,7 +217,7 @@ impl Warning {
     /// recordings, or a table's σ column) and the other's do not, so the joint fit is
     /// unweighted and the given σ are not used.
     #[must_use]
-    pub fn symmetric_unweighted(with_sigma: &str, without_sigma: &str) -> Self {
+    pub fn two_orientation_unweighted(with_sigma: &str, without_sigma: &str) -> Self {
         Self {
             code: WarningCode::CalibrationUnweighted,
             message: format!(
@@ -325,14 +329,14 @@ impl Warning {
                  k2 from the PIGA alone is far less precise than the design could give: measure \
                  both orientations over the same wide band of rates, with comparable noise"
             ),
-            location: "symmetric.orientations".into(),
+            location: "two_orientation.orientations".into(),
         }
     }
 
-    /// `symmetric_rates_bunched`: u(k2) and u(C) are `k2` and `c` times the spread reference
+    /// `two_orientation_rates_bunched`: u(k2) and u(C) are `k2` and `c` times the spread reference
     /// design's (rates from `low_deg_s` to `top_deg_s` in both mountings); `limit` the limit.
     #[must_use]
-    pub fn symmetric_rates_bunched(
+    pub fn two_orientation_rates_bunched(
         k2: f64,
         c: f64,
         (low_deg_s, top_deg_s): (f64, f64),
@@ -346,20 +350,33 @@ impl Warning {
             }
         };
         Self {
-            code: WarningCode::SymmetricRatesBunched,
+            code: WarningCode::TwoOrientationRatesBunched,
             message: format!(
                 "the two orientations' rates cannot separate k2 and the radius growth C well: \
                  u(k2) is {} times and u(C) {} times what the same number of rates per \
                  orientation, spread evenly from {} to {} deg/s in both, would give (warned above \
                  {limit}). Both are stated with uncertainties that carry this, but the design \
                  wastes centrifuge time: spread each orientation's rates over 10–100 % of the top \
-                 rate (`centrifuge-cal plan` with `two_orientations` chooses them)",
+                 rate (`centrifuge-cal plan` with `two_orientation` chooses them)",
                 times(k2),
                 times(c),
                 times(low_deg_s),
                 times(top_deg_s),
             ),
-            location: "symmetric.orientations".into(),
+            location: "two_orientation.orientations".into(),
+        }
+    }
+
+    /// `deprecated_key`: the section `old` of the study file now has the name `new`.
+    #[must_use]
+    pub fn deprecated_key(old: &str, new: &str) -> Self {
+        Self {
+            code: WarningCode::DeprecatedKey,
+            message: format!(
+                "the section `{old}` is now called `{new}`: it was read as `{new}`; rename it \
+                 in the study file (the old name will be refused in a later version)"
+            ),
+            location: old.into(),
         }
     }
 
@@ -377,9 +394,9 @@ impl Warning {
                  with the probe keeps that part of the error; or the probe's declaration is \
                  wrong: its measuring direction (`lever.probe_direction`), the unit of its gap \
                  column (`format`), or the lever heights. Check the declaration first; if it \
-                 is right, state the symmetric k2"
+                 is right, state the two-orientation k2"
             ),
-            location: "symmetric.compare_with".into(),
+            location: "two_orientation.compare_with".into(),
         }
     }
 }

@@ -8,11 +8,11 @@
 //! - [`calibration`]: the PIGA's calibration on measured data and its uncertainty;
 //! - [`balance`]: the balance advisor and the counterweight;
 //! - [`certificate`]: the calibration certificate's statements and conformity;
-//! - [`symmetric`]: the two-orientation (IA in / IA out) calibration.
+//! - [`two_orientation`]: the two-orientation (IA in / IA out) calibration.
 
 pub(crate) mod balance;
 pub(crate) mod calibration;
 pub(crate) mod certificate;
 pub(crate) mod mechanism;
 pub(crate) mod phases;
-pub(crate) mod symmetric;
+pub(crate) mod two_orientation;

@@ -14,10 +14,10 @@ mod mechanism;
 mod paper;
 mod provenance;
 mod recordings;
-mod symmetric;
-mod symmetric_recordings;
-mod symmetric_study;
-mod symmetric_type_b;
+mod two_orientation;
+mod two_orientation_recordings;
+mod two_orientation_study;
+mod two_orientation_type_b;
 mod type_b;
 
 use std::path::{Path, PathBuf};

@@ -6,4 +6,4 @@ mod infeasible;
 mod paper;
 mod raw;
 mod simulation;
-mod two_orientations;
+mod two_orientation;

@@ -63,6 +63,6 @@ pub(crate) fn inputs(points: usize) -> PlanInputs {
             bias_fraction: 0.1,
         },
         search: Search::default(),
-        two_orientations: None,
+        two_orientation: None,
     }
 }

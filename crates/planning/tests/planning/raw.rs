@@ -2,13 +2,13 @@
 //! campaigns whose every point is a raw recording (`simulate::mounted_piga_recording`,
 //! through the exact chain) written as CSV text, read by `recording::parse_piga_recording`,
 //! reduced by `recording::reduce_piga_recording` — the study's reduction of a raw PIGA
-//! recording — and fitted with the reduced σ by `calibration::fit_symmetric`.
+//! recording — and fitted with the reduced σ by `calibration::fit_two_orientation`.
 
 use std::path::Path;
 
 use rayon::prelude::*;
 
-use super::two_orientations::{centrifuge_and_piga, inputs, plan};
+use super::two_orientation::{centrifuge_and_piga, inputs, plan};
 use planning::TwoOrientationPlan;
 
 /// Samples per second of the raw recordings (36 per revolution at 200 deg/s).
@@ -26,7 +26,7 @@ fn reduce(
     seed: u64,
 ) -> (f64, f64, f64) {
     let (centrifuge, piga) = centrifuge_and_piga(inputs);
-    let spec = inputs.two_orientations.as_ref().unwrap();
+    let spec = inputs.two_orientation.as_ref().unwrap();
     let m = &plan.mountings[side];
     let q = &m.points[point];
     let mount = simulate::Mount {
@@ -101,7 +101,8 @@ fn raw_recordings_through_the_studys_reduction_agree_with_the_table_level_check(
                 output_rad_s: &outputs[k],
                 sigma_rad_s: Some(&sigma[k]),
             });
-            let fit = calibration::fit_symmetric(&data, plan.g_m_s2, "two_orientations").unwrap();
+            let fit =
+                calibration::fit_two_orientation(&data, plan.g_m_s2, "two_orientation").unwrap();
             let u =
                 fit.fit.unscaled_covariance[(calibration::K2_TERM, calibration::K2_TERM)].sqrt();
             let s: Vec<f64> = sigma.concat();

@@ -443,7 +443,7 @@ class Plan(_Result):
     revolutions: tuple[int, ...]
     u95_k2_rad_s_g2: float | None
     data: dict[str, Any]
-    #: For a two-orientation plan (a ``two_orientations`` section): the mounting of each
+    #: For a two-orientation plan (a ``two_orientation`` section): the mounting of each
     #: point (``"ia_in"`` or ``"ia_out"``), aligned with ``rates_deg_s``; empty otherwise.
     orientations: tuple[str, ...] = ()
 
@@ -459,7 +459,7 @@ def plan(config: PathLike | dict[str, Any]) -> Plan:
     else:
         text = _native.plan(os.fspath(config), None)
     data = json.loads(text)
-    two = data.get("two_orientations")
+    two = data.get("two_orientation")
     if two is not None:
         mounted = [(m["orientation"], p) for m in two["mountings"] for p in m["points"]]
         return Plan(

@@ -170,11 +170,12 @@ fn study_writes_the_certificate_beside_results_json() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The two-orientation fixture (`fixtures/studies/symmetric.ron`): a study with a
-/// calibration of its IA-in table compensated with the probe phase, a `symmetric` and a
+/// The two-orientation fixture (`fixtures/studies/two_orientation.ron`): a study with a
+/// calibration of its IA-in table compensated with the probe phase, a `two_orientation` and a
 /// `certificate` section.
 fn certified_two_orientation_study() -> (pipeline::StudyResults, Provenance) {
-    let study = pipeline::load_study(Path::new("../../fixtures/studies/symmetric.ron")).unwrap();
+    let study =
+        pipeline::load_study(Path::new("../../fixtures/studies/two_orientation.ron")).unwrap();
     let results = pipeline::run(&study).unwrap();
     let provenance = Provenance::of_study(&study, None).unwrap();
     (results, provenance)
@@ -183,7 +184,7 @@ fn certified_two_orientation_study() -> (pipeline::StudyResults, Provenance) {
 #[test]
 fn the_certificate_states_the_two_orientation_check() {
     let (results, provenance) = certified_two_orientation_study();
-    assert!(results.symmetric.is_some() && results.calibration.is_some());
+    assert!(results.two_orientation.is_some() && results.calibration.is_some());
     let html = report::certificate_html(&results, Some(&provenance), &software()).unwrap();
     let start = html
         .find("<section class=\"check\">")

@@ -5,7 +5,7 @@
 mod certificate;
 mod expected;
 mod outputs;
-mod symmetric;
+mod two_orientation;
 
 use std::path::{Path, PathBuf};
 

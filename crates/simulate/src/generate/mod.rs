@@ -233,10 +233,10 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             source,
         })?
         .delta_k2_rad_s_g2;
-    let symmetric = s.arm_stretch_m_s2 != 0.0 || !s.mountings.is_empty();
+    let two_orientation = s.arm_stretch_m_s2 != 0.0 || !s.mountings.is_empty();
     let c_total = c_r + s.arm_stretch_m_s2;
     let dk2_total = |radius_m: f64| k.k1_rad_s_g * c_total * g / (radius_m * radius_m);
-    let radius_growth = symmetric.then(|| RadiusGrowthTruth {
+    let radius_growth = two_orientation.then(|| RadiusGrowthTruth {
         c_r_m_s2: c_r,
         c_a_m_s2: s.arm_stretch_m_s2,
         c_m_s2: c_total,

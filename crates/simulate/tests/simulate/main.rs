@@ -4,4 +4,4 @@ use test_support::scenarios as common;
 mod files;
 mod probe_model;
 mod scenario_errors;
-mod symmetric;
+mod two_orientation;

@@ -1,0 +1,336 @@
+//! The two-orientation section's validation: every missing or contradictory field of its
+//! data sets at once, in the configuration's keys, the probe phase it compares with, the
+//! Type B inputs it carries, and the reading of its data (a PIGA table or raw PIGA output
+//! recordings per orientation, through the calibration section's readers in `piga_data`).
+
+use std::path::Path;
+
+use ::calibration::{MIN_RATES_PER_ORIENTATION, Orientation, TwoOrientationError};
+
+use crate::config::{OrientationName, StudyConfig, TrialsConfig, TwoOrientationConfig};
+use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
+use crate::inputs::{Check, DataSource, InputFile, PhaseNames};
+use crate::piga_data::{self, PigaData};
+
+/// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2).
+const MIN_TRIALS: u64 = 2000;
+
+/// One orientation's data set, validated and read.
+#[derive(Debug, Clone)]
+pub(crate) struct OrientationSet {
+    /// `two_orientation.orientations[i]`.
+    pub(crate) field: String,
+    pub(crate) orientation: Orientation,
+    pub(crate) radius_m: f64,
+    /// Its PIGA table, or its raw output recordings (reduced to points by the run).
+    pub(crate) data: PigaData,
+}
+
+/// The validated two-orientation section.
+#[derive(Debug, Clone)]
+pub(crate) struct TwoOrientationInputs {
+    /// The two data sets, in the configuration's order.
+    pub(crate) sets: Vec<OrientationSet>,
+    /// The probe phase compared with, and how it was chosen.
+    pub(crate) phase: usize,
+    pub(crate) chosen_by: &'static str,
+    pub(crate) seed: u64,
+    /// `None`: adaptive.
+    pub(crate) trials: Option<u64>,
+    /// The Type B standard uncertainties (the `uncertainty` section's, every input stated;
+    /// all 0 without the section): u(R) applies to each mounting's radius, the two
+    /// independent.
+    pub(crate) type_b: ::calibration::TypeB,
+    /// What the budget says beside an input (by its index in `calibration::input`): that the
+    /// study states no Type B input, the reason for a zero, or where the probe gain's
+    /// uncertainty comes from.
+    pub(crate) type_b_notes: Vec<(usize, String)>,
+}
+
+impl TwoOrientationInputs {
+    /// Every data file the section read, with its digest, in the configuration's order.
+    pub(crate) fn input_files(&self) -> impl Iterator<Item = InputFile<'_>> {
+        self.sets.iter().flat_map(|s| s.data.input_files())
+    }
+}
+
+fn two_orientation_error(check: &Check<'_>, source: TwoOrientationError) -> PipelineError {
+    PipelineError::TwoOrientation {
+        path: check.path.to_owned(),
+        source: Box::new(source),
+    }
+}
+
+/// Validates the section and reads its tables. Every problem that can be found is reported
+/// at once, in the configuration's order: a missing orientation or radius, both data sets
+/// with the same orientation, one orientation only, a table that cannot be read, fewer
+/// distinct rates than the joint model needs.
+pub(crate) fn validate(
+    check: &Check<'_>,
+    config: &TwoOrientationConfig,
+    study: &StudyConfig,
+    names: &PhaseNames<'_>,
+    base: &Path,
+    load: &dyn DataSource,
+) -> Result<TwoOrientationInputs> {
+    let mut errors = Vec::new();
+    let field = |i: usize| format!("two_orientation.orientations[{i}]");
+    // the fields of each data set
+    for (i, o) in config.orientations.iter().enumerate() {
+        if o.orientation.is_none() {
+            errors.push(two_orientation_error(
+                check,
+                TwoOrientationError::MissingOrientation {
+                    field: format!("{}.orientation", field(i)),
+                },
+            ));
+        }
+        match o.radius_m {
+            None => errors.push(two_orientation_error(
+                check,
+                TwoOrientationError::MissingRadius {
+                    field: format!("{}.radius_m", field(i)),
+                },
+            )),
+            Some(r) if !(r.is_finite() && r > 0.0) => errors.push(check.invalid(
+                format!("{}.radius_m", field(i)),
+                r,
+                InvalidReason::NotPositive,
+            )),
+            Some(_) => {}
+        }
+    }
+    // one data set per orientation
+    let declared: Vec<(usize, Orientation)> = config
+        .orientations
+        .iter()
+        .enumerate()
+        .filter_map(|(i, o)| o.orientation.map(|n| (i, orientation(n))))
+        .collect();
+    let mut same = false;
+    for (k, &(i, o)) in declared.iter().enumerate() {
+        if let Some(&(j, _)) = declared[..k].iter().find(|(_, p)| *p == o) {
+            same = true;
+            errors.push(two_orientation_error(
+                check,
+                TwoOrientationError::SameOrientation {
+                    field: format!("{}.orientation", field(i)),
+                    first: format!("{}.orientation", field(j)),
+                    orientation: o.label(),
+                },
+            ));
+        }
+    }
+    let has = |o: Orientation| declared.iter().any(|(_, p)| *p == o);
+    let undeclared = declared.len() < config.orientations.len();
+    // an undeclared orientation is reported as missing, not as a second one absent
+    let both = undeclared || same || (has(Orientation::IaIn) && has(Orientation::IaOut));
+    if config.orientations.len() > 2 || !both {
+        let words: Vec<&str> = config
+            .orientations
+            .iter()
+            .map(|o| {
+                o.orientation
+                    .map_or("undeclared", |n| orientation(n).label())
+            })
+            .collect();
+        errors.push(two_orientation_error(
+            check,
+            TwoOrientationError::OneOrientationOnly {
+                field: "two_orientation.orientations".to_owned(),
+                got: if words.is_empty() {
+                    "no data set".to_owned()
+                } else {
+                    format!("{} data set(s): {}", words.len(), words.join(", "))
+                },
+            },
+        ));
+    }
+    // the probe phase and the Monte Carlo settings
+    let (phase, chosen_by) = match (&config.compare_with, &study.calibration) {
+        (Some(name), _) => (
+            names.index(check, "two_orientation.compare_with", name),
+            "compare_with",
+        ),
+        (None, Some(c)) => (
+            names.index(check, "calibration.compensate_with", &c.compensate_with),
+            "calibration.compensate_with",
+        ),
+        (None, None) => (Ok(0), "first phase"),
+    };
+    let phase = match phase {
+        Ok(p) if names.second_probe.contains(&p) => {
+            errors.push(PipelineError::Unsupported {
+                path: check.path.to_owned(),
+                field: "two_orientation.compare_with".to_owned(),
+                reason: UnsupportedReason::SecondProbeData,
+            });
+            p
+        }
+        Ok(p) => p,
+        Err(e) => {
+            errors.push(e);
+            0
+        }
+    };
+    let trials = match config.trials {
+        TrialsConfig::Adaptive => None,
+        TrialsConfig::Fixed(n) => {
+            if n < MIN_TRIALS {
+                errors.push(check.invalid(
+                    "two_orientation.trials".to_owned(),
+                    n as f64,
+                    InvalidReason::TooFewTrials,
+                ));
+            }
+            Some(n)
+        }
+    };
+    let (type_b, type_b_notes) = type_b(check, study, phase, &mut errors);
+    // the data sets (a table or raw recordings), then their rates
+    let mut sets = Vec::with_capacity(config.orientations.len());
+    for (i, o) in config.orientations.iter().enumerate() {
+        match read_data(o, &field(i), base, check.path, load) {
+            Ok(data) => {
+                let distinct = distinct(&data.declared_rates_deg_s());
+                let o_label = o
+                    .orientation
+                    .map_or("undeclared", |n| orientation(n).label());
+                if distinct < MIN_RATES_PER_ORIENTATION {
+                    let (named, file) = data.named();
+                    errors.push(two_orientation_error(
+                        check,
+                        TwoOrientationError::TooFewRates {
+                            field: format!("{named} ({})", file.display()),
+                            orientation: o_label,
+                            distinct,
+                            need: MIN_RATES_PER_ORIENTATION,
+                        },
+                    ));
+                }
+                if let (Some(n), Some(r)) = (o.orientation, o.radius_m) {
+                    sets.push(OrientationSet {
+                        field: field(i),
+                        orientation: orientation(n),
+                        radius_m: r,
+                        data,
+                    });
+                }
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    Ok(TwoOrientationInputs {
+        sets,
+        phase,
+        chosen_by,
+        seed: config.seed,
+        trials,
+        type_b,
+        type_b_notes,
+    })
+}
+
+/// The Type B inputs of the two-orientation budget: the `uncertainty` section read as the
+/// calibration section reads it (`crate::type_b`: every input stated, or 0 with its reason;
+/// each finite and ≥ 0), with the probe gain stated by the compared phase's recordings in
+/// volts instead when they state it (stating it in both places is refused). Without an
+/// `uncertainty` section every input is 0 and the budget says so beside each. Problems go to
+/// `errors`.
+fn type_b(
+    check: &Check<'_>,
+    study: &StudyConfig,
+    phase: usize,
+    errors: &mut Vec<PipelineError>,
+) -> (::calibration::TypeB, Vec<(usize, String)>) {
+    use ::calibration::input;
+    let stated_gain = study.phases.get(phase).and_then(|p| {
+        let crate::config::Points::Recordings(set) = &p.points else {
+            return None;
+        };
+        let sensitivity = set.format.gap.unit.sensitivity().ok()??;
+        Some((
+            sensitivity.relative_u(),
+            format!("phases[{phase}].points.format.gap.unit (u_sensitivity)"),
+        ))
+    });
+    let unstated = |notes: &mut Vec<(usize, String)>| {
+        for index in [
+            input::RADIUS,
+            input::G,
+            input::RATE_SCALE,
+            input::PIVOT_TO_PROBE,
+            input::PROBE_TO_PIGA,
+            input::PROBE_GAIN,
+        ] {
+            if !notes.iter().any(|(i, _)| *i == index) {
+                notes.push((
+                    index,
+                    "not stated (the study has no `uncertainty` section): taken as 0".to_owned(),
+                ));
+            }
+        }
+    };
+    match crate::type_b::type_b(check, study.uncertainty.as_ref(), stated_gain) {
+        Ok(Some(t)) => {
+            let mut notes = t.notes;
+            if !t.from_section {
+                unstated(&mut notes);
+            }
+            (t.values, notes)
+        }
+        Ok(None) => {
+            let mut notes = Vec::new();
+            unstated(&mut notes);
+            (::calibration::TypeB::default(), notes)
+        }
+        Err(e) => {
+            errors.push(e);
+            (::calibration::TypeB::default(), Vec::new())
+        }
+    }
+}
+
+const fn orientation(n: OrientationName) -> Orientation {
+    match n {
+        OrientationName::IaIn => Orientation::IaIn,
+        OrientationName::IaOut => Orientation::IaOut,
+    }
+}
+
+fn distinct(rates: &[f64]) -> usize {
+    let mut v: Vec<u64> = rates.iter().map(|r| r.to_bits()).collect();
+    v.sort_unstable();
+    v.dedup();
+    v.len()
+}
+
+/// Reads one data set: its PIGA table or its raw recordings (exactly one), with the
+/// calibration section's readers, errors naming `two_orientation.orientations[i].table` or
+/// `….recordings.files[j]`.
+fn read_data(
+    o: &crate::config::OrientationConfig,
+    field: &str,
+    base: &Path,
+    source: &Path,
+    load: &dyn DataSource,
+) -> Result<PigaData> {
+    match (&o.table, &o.recordings) {
+        (Some(table), None) => Ok(PigaData::Table(piga_data::load_piga_table(
+            table,
+            &format!("{field}.table"),
+            base,
+            source,
+            load,
+        )?)),
+        (None, Some(set)) => {
+            piga_data::load_piga_recordings(set, &format!("{field}.recordings"), base, source, load)
+        }
+        _ => Err(PipelineError::Unsupported {
+            path: source.to_owned(),
+            field: field.to_owned(),
+            reason: UnsupportedReason::CalibrationNeedsOneSource,
+        }),
+    }
+}
