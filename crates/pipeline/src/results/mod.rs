@@ -17,7 +17,7 @@ mod warning;
 pub use balance::*;
 pub use calibration::*;
 pub use certificate::*;
-pub use common::{DegreesOfFreedom, Estimate, InfiniteDof};
+pub use common::{DegreesOfFreedom, Estimate, InfiniteDof, OutputCovariance};
 pub use mechanism::*;
 pub use phases::*;
 pub use two_orientation::*;
