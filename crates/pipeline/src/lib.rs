@@ -68,7 +68,7 @@ pub use ::calibration::CalibrationModel;
 pub use config::{
     AuthorisationConfig, CertificateConfig, CoefficientName, ConditionConfig, DatesConfig,
     DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig, LimitUnitName,
-    PartyConfig, TraceabilityConfig, TypeBInputName,
+    PartyConfig, PreviousCertificateConfig, TraceabilityConfig, TypeBInputName,
 };
 pub use config::{
     BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
@@ -87,8 +87,8 @@ pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
 pub use recording::FileDigest;
 pub use results::{
     Authorisation, CertificateResults, Condition, Conformity, ConformityStatement, Dates,
-    DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party, ProbeSign,
-    Traceability, Verdict,
+    DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party,
+    PreviousCertificate, ProbeSign, Traceability, Verdict,
 };
 pub use results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,

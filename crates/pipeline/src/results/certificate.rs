@@ -23,6 +23,9 @@ pub struct Laboratory {
     /// Accreditation body and number, if accredited.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accreditation: Option<String>,
+    /// The laboratory's country (ISO 3166-1 alpha-2), if stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub country: Option<String>,
 }
 
 /// The item calibrated.
@@ -93,6 +96,16 @@ pub struct Authorisation {
     pub name: String,
     /// Role.
     pub role: String,
+}
+
+/// The certificate a certificate follows.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PreviousCertificate {
+    /// Its unique identification.
+    pub id: String,
+    /// SHA-256 of its file, 64 lowercase hexadecimal digits, when stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sha256: Option<String>,
 }
 
 /// The decision rule of the statements of conformity (ILAC-G8:09/2019 §4.2).
@@ -230,4 +243,7 @@ pub struct CertificateResults {
     pub conformity: Option<Conformity>,
     /// Who authorises the certificate.
     pub authorisation: Authorisation,
+    /// The certificate this one follows (absent: none stated).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub previous_certificate: Option<PreviousCertificate>,
 }

@@ -88,6 +88,7 @@ pub(crate) fn run(cert: &Certificate, c: &CalibrationResults) -> CertificateResu
         traceability,
         conformity,
         authorisation: cert.authorisation.clone(),
+        previous_certificate: cert.previous_certificate.clone(),
     }
 }
 

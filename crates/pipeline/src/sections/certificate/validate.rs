@@ -7,6 +7,7 @@ use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::Check;
 use crate::results::{
     Authorisation, Condition, Dates, DecisionRule, Equipment, Item, Laboratory, Party,
+    PreviousCertificate,
 };
 
 /// A specification limit, validated.
@@ -39,6 +40,7 @@ pub(crate) struct Certificate {
     pub(crate) limits: Vec<Limit>,
     pub(crate) rule: Option<DecisionRule>,
     pub(crate) authorisation: Authorisation,
+    pub(crate) previous_certificate: Option<PreviousCertificate>,
 }
 
 /// The input of the calibration model a traceability statement is about.
@@ -160,6 +162,7 @@ pub(crate) fn validate(
             "the laboratory's address",
         ),
         accreditation: c.laboratory.accreditation.clone(),
+        country: c.laboratory.country.clone(),
     };
     let location = need(
         "location",
@@ -316,6 +319,37 @@ pub(crate) fn validate(
             "the role of who authorises it",
         ),
     };
+    let previous_certificate = c
+        .previous_certificate
+        .as_ref()
+        .map(|p| PreviousCertificate {
+            id: need(
+                "previous_certificate.id",
+                &p.id,
+                "the identification of the certificate this one follows",
+            ),
+            sha256: p.sha256.as_ref().map(|h| h.to_ascii_lowercase()),
+        });
+    if c.previous_certificate
+        .as_ref()
+        .and_then(|p| p.sha256.as_ref())
+        .is_some_and(|h| !(h.len() == 64 && h.bytes().all(|b| b.is_ascii_hexdigit())))
+    {
+        errors.push(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "certificate.previous_certificate.sha256".to_owned(),
+            reason: UnsupportedReason::NotSha256,
+        });
+    }
+    if let Some(country) = &c.laboratory.country
+        && !(country.len() == 2 && country.bytes().all(|b| b.is_ascii_uppercase()))
+    {
+        errors.push(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "certificate.laboratory.country".to_owned(),
+            reason: UnsupportedReason::NotCountryCode,
+        });
+    }
     PipelineError::from_list(errors)?;
     for (i, l) in limits.iter().enumerate() {
         for (end, v) in [("lower", l.lower), ("upper", l.upper)] {
@@ -340,6 +374,7 @@ pub(crate) fn validate(
         limits,
         rule,
         authorisation,
+        previous_certificate,
     })
 }
 
