@@ -1,20 +1,12 @@
-//! What the certificate certifies, in one place: the method, the coefficients with their
-//! stated intervals, their covariance and where they hold. Everything the DCC states of the
-//! results is read here and nowhere else.
-//!
-//! Until `pipeline` records `results.certificate.certified`, the coefficients are the
-//! calibration section's (the probe method: eq. 18 on one mounting, k2 compensated with the
-//! probe's C_r), their intervals the §8 headline (`results.calibration.headline`), and no
-//! covariance or range of validity is stated.
+//! What the certificate certifies, in one place: `results.certificate.certified` (the
+//! method, why, the check by the other method, the coefficients with their stated intervals,
+//! their covariance and where they hold), read into the values the DCC writes.
 
-use pipeline::{CalibrationResults, Coefficient, DegreesOfFreedom, Headline, HeadlineMethod};
+use pipeline::{
+    CertifiedMethod, DegreesOfFreedom, HeadlineMethod, MethodCheck, StudyResults, ValidityRange,
+};
 
-/// The method whose coefficients are certified.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Method {
-    /// Eq. 18 on one mounting, k2 compensated with the probe's C_r (Liu et al. 2025).
-    Probe,
-}
+use crate::error::{DccError, Result};
 
 /// Where a coefficient's stated interval comes from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,7 +37,8 @@ pub(crate) struct Stated {
 pub(crate) struct CertifiedCoefficient {
     /// 0 for k0 … 3 for k3.
     pub(crate) power: usize,
-    /// The mounting it belongs to (`ia_in`, `ia_out`), when the certificate has two.
+    /// The mounting it belongs to (`ia_in`, `ia_out`); none for a coefficient the
+    /// mountings share.
     pub(crate) mounting: Option<String>,
     /// In its native unit (rad/s per g^power).
     pub(crate) native: Stated,
@@ -58,85 +51,89 @@ pub(crate) struct CertifiedCoefficient {
 
 /// What the certificate certifies.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Certified {
-    pub(crate) method: Method,
+pub(crate) struct Certified<'a> {
+    pub(crate) method: CertifiedMethod,
+    /// Why this method, in a customer's words.
+    pub(crate) reason: &'a str,
+    /// The other method's k2, when both were run.
+    pub(crate) check: Option<&'a MethodCheck>,
+    /// The laboratory's reason for certifying a value the study's own check refutes.
+    pub(crate) despite_check: Option<&'a str>,
+    /// Whether the certified value is one the study's own check refutes.
+    pub(crate) refuted_by_check: bool,
     /// k0 and k1 of each mounting, then k2 and k3.
     pub(crate) coefficients: Vec<CertifiedCoefficient>,
-    /// Covariance of the coefficients' values (native units), in their order, when known.
-    pub(crate) covariance: Option<Vec<Vec<f64>>>,
+    /// Covariance of the coefficients' values (native units), in their order.
+    pub(crate) covariance: Option<&'a [Vec<f64>]>,
+    /// Where the coefficients hold, per mounting.
+    pub(crate) validity: &'a [ValidityRange],
     /// `g` of the model's specific force, m/s² (1 g).
     pub(crate) g_m_s2: f64,
 }
 
-/// What the certificate of a study with calibration `c` certifies.
-pub(crate) fn certified(c: &CalibrationResults) -> Certified {
-    let gum = [
-        &c.coefficients.k0,
-        &c.coefficients.k1,
-        &c.coefficients.k2,
-        &c.coefficients.k3,
-    ];
-    let heads = [
-        &c.headline.k0,
-        &c.headline.k1,
-        &c.headline.k2,
-        &c.headline.k3,
-    ];
-    let mc = [
-        &c.monte_carlo.k0,
-        &c.monte_carlo.k1,
-        &c.monte_carlo.k2,
-        &c.monte_carlo.k3,
-    ];
-    // as the printed certificate states them relative to k1: the interval scaled by 1e6/k1
-    let micro = 1e6 / c.coefficients.k1.value;
-    let coefficients = (0..4)
-        .map(|power| {
-            let (g, h) = (gum[power], heads[power]);
-            let (interval, u) = match h.method {
-                HeadlineMethod::Gum => (Interval::Gum { k: g.k }, g.u),
-                HeadlineMethod::MonteCarlo => (Interval::MonteCarlo, mc[power].u),
-            };
-            let native = stated(h, u, g, 1.0);
-            CertifiedCoefficient {
-                power,
-                mounting: None,
-                native,
-                relative: (power != 1).then(|| stated(h, u, g, micro)),
-                interval,
-                dof: match g.dof {
-                    DegreesOfFreedom::Finite(n) => Some(n),
-                    DegreesOfFreedom::Infinite(_) => None,
-                },
-            }
-        })
-        .collect();
-    Certified {
-        method: Method::Probe,
-        coefficients,
-        covariance: None,
-        g_m_s2: c.g_m_s2,
-    }
-}
+const NAMES: [&str; 4] = ["k0", "k1", "k2", "k3"];
 
-/// The headline `h` with standard uncertainty `u`, scaled by `scale` (the interval's ends
-/// scaled as they are, so that a scale of 1 keeps them exactly).
-fn stated(h: &Headline, u: f64, gum: &Coefficient, scale: f64) -> Stated {
-    let value = h.value * scale;
-    // a negative scale turns the interval round
-    let (low95, high95) = if scale < 0.0 {
-        (h.high95 * scale, h.low95 * scale)
-    } else {
-        (h.low95 * scale, h.high95 * scale)
-    };
-    Stated {
-        value,
-        u: u * scale.abs(),
-        low95,
-        high95,
-        expanded: match h.method {
-            HeadlineMethod::Gum => gum.u95 * scale.abs(),
-            HeadlineMethod::MonteCarlo => (value - low95).max(high95 - value),
-        },
-    }
+/// What the certificate of `results` certifies.
+pub(crate) fn certified(results: &StudyResults) -> Result<Certified<'_>> {
+    let cert = results
+        .certificate
+        .as_ref()
+        .ok_or(DccError::NoCertificate)?;
+    let c = &cert.certified;
+    let g_m_s2 = results
+        .calibration
+        .as_ref()
+        .map(|cal| cal.g_m_s2)
+        .ok_or(DccError::NoCalibration)?;
+    let coefficients =
+        c.coefficients
+            .iter()
+            .map(|k| {
+                let power = NAMES.iter().position(|n| *n == k.name).ok_or_else(|| {
+                    DccError::OutOfDomain {
+                        quantity: "a certified coefficient's name".to_owned(),
+                        value: k.name.clone(),
+                        requirement: "must be k0, k1, k2 or k3",
+                    }
+                })?;
+                let interval = match (k.interval_method, k.k) {
+                    (HeadlineMethod::Gum, Some(k)) => Interval::Gum { k },
+                    _ => Interval::MonteCarlo,
+                };
+                Ok(CertifiedCoefficient {
+                    power,
+                    mounting: k.mounting.clone(),
+                    native: Stated {
+                        value: k.value,
+                        u: k.u,
+                        low95: k.low95,
+                        high95: k.high95,
+                        expanded: k.expanded,
+                    },
+                    relative: k.relative.as_ref().map(|r| Stated {
+                        value: r.value,
+                        u: r.u,
+                        low95: r.low95,
+                        high95: r.high95,
+                        expanded: r.expanded,
+                    }),
+                    interval,
+                    dof: match k.dof {
+                        DegreesOfFreedom::Finite(n) => Some(n),
+                        DegreesOfFreedom::Infinite(_) => None,
+                    },
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+    Ok(Certified {
+        method: c.method,
+        reason: &c.reason,
+        check: c.check.as_ref(),
+        despite_check: c.despite_check_reason.as_deref(),
+        refuted_by_check: c.refuted_by_check,
+        coefficients,
+        covariance: (!c.covariance.is_empty()).then_some(c.covariance.as_slice()),
+        validity: &c.validity,
+        g_m_s2,
+    })
 }

@@ -12,13 +12,16 @@
 //!   laboratory; the operator and the authorising person; the customer; the place, the
 //!   accreditation, the procedure and its departures, and the traceability of each Type B
 //!   input, as statements;
-//! - **measurement results**: the methods (the paper's eq. 18–19, IEEE Std 836, JCGM
-//!   100/101/102, ILAC-G8) with the g of the model, the software, the equipment, the
-//!   environmental conditions; k0…k3 as `si:real` with their stated 95 % intervals (the GUM's
-//!   `expandedMU` with k, or the Monte Carlo method's `coverageIntervalMU`) and relative to k1;
-//!   the coefficients together as `si:realListXMLList` with their standard uncertainties and,
-//!   when the study records it, their covariance matrix and 95 % coverage region; the
-//!   statements of conformity; every input file's SHA-256.
+//! - **measurement results**: the certified method (the probe method of the paper's
+//!   eq. 18–19, or the two-orientation method of eq. 23) with IEEE Std 836, JCGM 100/101/102
+//!   and ILAC-G8, and the g of the model; the software, the equipment, the environmental
+//!   conditions; the certified k0…k3 (k0 and k1 per mounting for two mountings) as `si:real`
+//!   with their stated 95 % intervals (the GUM's `expandedMU` with k, or the Monte Carlo
+//!   method's `coverageIntervalMU`) and relative to k1; the coefficients together as
+//!   `si:realListXMLList` with their standard uncertainties, covariance matrix and 95 %
+//!   coverage region; what is certified and why, the check by the other method, each
+//!   mounting's range of validity (rates, specific force), the statements of conformity and
+//!   every input file's SHA-256.
 //!
 //! The units: see `si` (the g-normalised coefficients in rad/s, relative values in ppm).
 //!
@@ -32,7 +35,8 @@
 //! # References
 //! PTB, *Digital Calibration Certificate*, XML schema v3.3.0; PTB, *D-SI*, v2.2.1;
 //! JCGM 100:2008, JCGM 101:2008, JCGM 102:2011; ILAC-G8:09/2019; IEEE Std 836-2009;
-//! Liu Y. et al. (2025), eq. 18–19 (the certified coefficients).
+//! Liu Y. et al. (2025), eq. 18–19, and eq. 23 of the two-orientation method (the certified
+//! coefficients, as `pipeline` records them in `results.certificate.certified`).
 
 mod admin;
 mod certified;
@@ -73,11 +77,7 @@ pub fn write_dcc(input: &DccInput<'_>) -> Result<String> {
         .certificate
         .as_ref()
         .ok_or(DccError::NoCertificate)?;
-    let calibration = results
-        .calibration
-        .as_ref()
-        .ok_or(DccError::NoCalibration)?;
-    let certified = certified::certified(calibration);
+    let certified = certified::certified(results)?;
     let mut x = xml::Xml::new()?;
     x.el_with(
         "dcc:digitalCalibrationCertificate",

@@ -1,12 +1,13 @@
 //! The DCC's measurement results: the methods, the software, the equipment and the
 //! conditions of the calibration; the certified coefficients k0…k3 and their values
 //! relative to k1 as `si:real` with their stated 95 % intervals; the coefficients together
-//! with their covariance as `si:realListXMLList`; the statements of conformity and the
-//! files the results were computed from, with their SHA-256.
+//! with their covariance as `si:realListXMLList`; what is certified and why, the check by
+//! the other method, each mounting's range of validity, the statements of conformity and
+//! the files the results were computed from, with their SHA-256.
 
-use pipeline::{CertificateResults, DecisionRule, Verdict};
+use pipeline::{CertificateResults, CertifiedMethod, DecisionRule, ValidityRange, Verdict};
 
-use crate::certified::{Certified, CertifiedCoefficient, Interval, Method, Stated};
+use crate::certified::{Certified, CertifiedCoefficient, Interval, Stated};
 use crate::error::Result;
 use crate::input::{InputFile, Software};
 use crate::number::{self, COVERAGE_PROBABILITY_P};
@@ -26,6 +27,10 @@ const WHAT: [&str; 4] = [
 const NATIVE_UNITS: [&str; 4] = ["rad/s", "rad/(s·g)", "rad/(s·g²)", "rad/(s·g³)"];
 /// The units of the values relative to k1.
 const MICRO_UNITS: [&str; 4] = ["µg", "", "µg/g²", "µg/g³"];
+/// The paper.
+const LIU: &str = "Liu Y. et al., The mechanism of PIGA's pseudo-second-order term generated \
+                   by spindle dynamic imbalance of centrifuge, Navigation Positioning and \
+                   Timing, 2025(1)";
 /// The term each multiplies.
 const TERMS: [&str; 4] = ["the constant term", "a/g", "(a/g)²", "(a/g)³"];
 
@@ -34,7 +39,7 @@ const TERMS: [&str; 4] = ["the constant term", "a/g", "(a/g)²", "(a/g)³"];
 pub(crate) fn measurement_results(
     x: &mut Xml,
     cert: &CertificateResults,
-    certified: &Certified,
+    certified: &Certified<'_>,
     software: &Software,
     files: Option<&[InputFile]>,
 ) -> Result<()> {
@@ -62,11 +67,15 @@ pub(crate) fn measurement_results(
             conditions(x, cert)?;
             x.el("dcc:results", |x| {
                 for c in &certified.coefficients {
-                    coefficient(x, c)?;
+                    coefficient(x, c, certified)?;
                 }
                 covariance(x, certified)
             })?;
             x.el("dcc:measurementMetaData", |x| {
+                what_is_certified(x, certified)?;
+                for v in certified.validity {
+                    validity(x, v)?;
+                }
                 conformity(x, cert)?;
                 input_files(x, files)
             })
@@ -74,22 +83,33 @@ pub(crate) fn measurement_results(
     })
 }
 
-/// The label of a coefficient: its name, with its mounting when the certificate has two.
-fn label(c: &CertifiedCoefficient) -> Result<Text> {
+/// The label of a coefficient: its name, with its mounting (`k0_ia_in`) when the certificate
+/// states two.
+fn label(c: &CertifiedCoefficient, certified: &Certified<'_>) -> Result<Text> {
+    let mountings = certified.validity.len();
     match &c.mounting {
-        Some(m) => Text::identification(
-            "certified coefficient's mounting",
+        Some(m) if mountings > 1 => Text::identification(
+            "a certified coefficient's mounting",
             &format!("{}_{m}", NAMES[c.power]),
         ),
-        None => Ok(Text::own(NAMES[c.power])),
+        _ => Ok(Text::own(NAMES[c.power])),
     }
 }
 
-fn used_methods(x: &mut Xml, cert: &CertificateResults, certified: &Certified) -> Result<()> {
+/// A mounting in words, as the study states it.
+fn mounting_words<'a>(certified: &'a Certified<'_>, mounting: &'a str) -> &'a str {
+    certified
+        .validity
+        .iter()
+        .find(|v| v.mounting == mounting)
+        .map_or(mounting, |v| v.mounting_words.as_str())
+}
+
+fn used_methods(x: &mut Xml, cert: &CertificateResults, certified: &Certified<'_>) -> Result<()> {
     x.el("dcc:usedMethods", |x| {
         x.el_with("dcc:usedMethod", &[("id", "method-calibration")], |x| {
             match certified.method {
-                Method::Probe => {
+                CertifiedMethod::Probe => {
                     x.own_content(
                         "dcc:name",
                         "Calibration on a precision centrifuge, compensated for the spindle's \
@@ -103,15 +123,30 @@ fn used_methods(x: &mut Xml, cert: &CertificateResults, certified: &Certified) -
                          displacement probe, adds k1·C_r·g/R² to the fitted second-order \
                          coefficient (eq. 19), which is removed from it.",
                     )?;
+                    x.own("dcc:norm", "IEEE Std 836-2009")?;
+                    x.own("dcc:reference", LIU)?;
+                }
+                CertifiedMethod::TwoOrientation => {
+                    x.own_content(
+                        "dcc:name",
+                        "Calibration on a precision centrifuge in two mountings, the input axis \
+                         pointing towards and away from the spindle axis (two-orientation method)",
+                    )?;
+                    x.own_content(
+                        "dcc:description",
+                        "The PIGA's mean output rates in both mountings are fitted together \
+                         (eq. 23): the terms linear in the specific force change sign with the \
+                         mounting while k2·(a/g)² does not, so k2 and k3 come from the PIGA's own \
+                         outputs whatever the arm's radius growth; k0 and k1 are each mounting's.",
+                    )?;
+                    x.own("dcc:norm", "IEEE Std 836-2009")?;
+                    x.own(
+                        "dcc:reference",
+                        "Sun, Ren, Cao and Huo, Measurement, 2022 (the two mountings)",
+                    )?;
+                    x.own("dcc:reference", LIU)?;
                 }
             }
-            x.own("dcc:norm", "IEEE Std 836-2009")?;
-            x.own(
-                "dcc:reference",
-                "Liu Y. et al., The mechanism of PIGA's pseudo-second-order term generated by \
-                 spindle dynamic imbalance of centrifuge, Navigation Positioning and Timing, \
-                 2025(1)",
-            )?;
             x.el("dcc:usedMethodQuantities", |x| {
                 x.el("dcc:usedMethodQuantity", |x| {
                     x.own_content(
@@ -261,8 +296,8 @@ fn uncertainty_of(s: &Stated, interval: Interval) -> Uncertainty {
 }
 
 /// One `dcc:result` per coefficient: its value in its unit and, but for k1, relative to k1.
-fn coefficient(x: &mut Xml, c: &CertifiedCoefficient) -> Result<()> {
-    let label = label(c)?;
+fn coefficient(x: &mut Xml, c: &CertifiedCoefficient, certified: &Certified<'_>) -> Result<()> {
+    let label = label(c, certified)?;
     let name = NAMES[c.power];
     let interval_words = match c.interval {
         Interval::Gum { k } => format!(
@@ -275,11 +310,12 @@ fn coefficient(x: &mut Xml, c: &CertifiedCoefficient) -> Result<()> {
                                  (§8); it may be asymmetric about the value"
             .to_owned(),
     };
-    let mounting_words = c
-        .mounting
-        .as_ref()
-        .map(|m| format!(" (mounting {m})"))
-        .unwrap_or_default();
+    let mounting_words = match &c.mounting {
+        Some(m) if certified.validity.len() > 1 => {
+            format!(" ({})", mounting_words(certified, m))
+        }
+        _ => String::new(),
+    };
     x.el_with("dcc:result", &[("id", label.as_str())], |x| {
         x.content(
             "dcc:name",
@@ -343,11 +379,11 @@ fn coefficient(x: &mut Xml, c: &CertifiedCoefficient) -> Result<()> {
 
 /// The certified coefficients as one list with their standard uncertainties and, when the
 /// study gives it, their covariance and its 95 % coverage region.
-fn covariance(x: &mut Xml, certified: &Certified) -> Result<()> {
+fn covariance(x: &mut Xml, certified: &Certified<'_>) -> Result<()> {
     let labels = certified
         .coefficients
         .iter()
-        .map(|c| label(c).map(|l| l.as_str().to_owned()))
+        .map(|c| label(c, certified).map(|l| l.as_str().to_owned()))
         .collect::<Result<Vec<_>>>()?;
     let values: Vec<f64> = certified
         .coefficients
@@ -391,6 +427,167 @@ fn covariance(x: &mut Xml, certified: &Certified) -> Result<()> {
                     },
                 )
             })
+        })
+    })
+}
+
+/// What is certified and why; with the other method run, its k2 as a check.
+fn what_is_certified(x: &mut Xml, certified: &Certified<'_>) -> Result<()> {
+    let method = certified.method.words();
+    x.el_with("dcc:metaData", &[("id", "certified-method")], |x| {
+        x.own_content("dcc:name", "What is certified")?;
+        x.own_content(
+            "dcc:description",
+            &format!("The coefficients of {method} are certified."),
+        )?;
+        x.content(
+            "dcc:declaration",
+            &Text::free("the certificate's reason", certified.reason)?,
+        )
+    })?;
+    if let Some(despite) = certified
+        .despite_check
+        .filter(|_| certified.refuted_by_check)
+    {
+        x.el_with("dcc:metaData", &[("id", "certified-despite-check")], |x| {
+            x.own_content(
+                "dcc:name",
+                "Certified although the study's own check refutes it",
+            )?;
+            x.content(
+                "dcc:declaration",
+                &Text::free("certificate.certify_despite_check", despite)?,
+            )
+        })?;
+    }
+    let Some(check) = certified.check else {
+        return Ok(());
+    };
+    let other = check.method.words();
+    x.el_with("dcc:metaData", &[("id", "check")], |x| {
+        x.content("dcc:name", &Text::own(format!("Check of k2 by {other}")))?;
+        x.own_content(
+            "dcc:description",
+            &format!(
+                "k2 by {other} (in rad/(s·g²), written as rad/s), with its standard and \
+                 expanded (95 %) uncertainty, and z, the difference of the two methods' radius \
+                 growths over its standard uncertainty: the methods {} (|z| {} 3).",
+                if check.agrees { "agree" } else { "disagree" },
+                if check.agrees { "≤" } else { ">" },
+            ),
+        )?;
+        x.el("dcc:data", |x| {
+            let label = Text::own("k2");
+            x.el("dcc:quantity", |x| {
+                x.own_content(
+                    "dcc:name",
+                    "k2 by the other method, with its standard uncertainty",
+                )?;
+                x.el("si:real", |x| {
+                    x.leaf("si:label", &label)?;
+                    x.leaf("si:value", &number::decimal("k2 of the check", check.k2)?)?;
+                    x.own("si:unit", unit::RAD_PER_S)?;
+                    x.el("si:measurementUncertaintyUnivariate", |x| {
+                        x.el("si:standardMU", |x| {
+                            x.leaf(
+                                "si:valueStandardMU",
+                                &number::uncertainty("u of k2 of the check", check.u)?,
+                            )
+                        })
+                    })
+                })
+            })?;
+            x.el("dcc:quantity", |x| {
+                x.own_content("dcc:name", "its expanded uncertainty U (95 %)")?;
+                si::real(
+                    x,
+                    &Text::own("U(k2)"),
+                    "U of k2 of the check",
+                    check.expanded,
+                    unit::RAD_PER_S,
+                    Uncertainty::None,
+                )
+            })?;
+            x.el("dcc:quantity", |x| {
+                x.own_content(
+                    "dcc:name",
+                    "z of the difference of the two methods' radius growths",
+                )?;
+                si::real(
+                    x,
+                    &Text::own("z"),
+                    "z of the check",
+                    check.z,
+                    unit::ONE,
+                    Uncertainty::None,
+                )
+            })
+        })
+    })
+}
+
+/// Where the coefficients hold, for one mounting: its radius, the rates fitted and the
+/// specific force along the input axis they give.
+fn validity(x: &mut Xml, v: &ValidityRange) -> Result<()> {
+    let mounting = Text::identification("a range of validity's mounting", &v.mounting)?;
+    let id = format!("validity-{}", mounting.as_str());
+    x.el_with("dcc:metaData", &[("id", &id)], |x| {
+        x.content(
+            "dcc:name",
+            &Text::free(
+                "a range of validity's mounting",
+                &format!("Range of validity, {}", v.mounting_words),
+            )?,
+        )?;
+        x.own_content(
+            "dcc:description",
+            &format!(
+                "The coefficients hold over the rates fitted in this mounting ({} points) and \
+                 the specific force along the input axis they give, R·ω²/g in units of g \
+                 (negative with the input axis pointing away from the spindle axis).",
+                v.points
+            ),
+        )?;
+        x.el("dcc:data", |x| {
+            let quantities: [(&str, &str, f64, &str); 5] = [
+                (
+                    "radius",
+                    "the mounting's static radius R",
+                    v.radius_m,
+                    unit::METRE,
+                ),
+                (
+                    "rate_low",
+                    "the lowest rate",
+                    v.rate_low_deg_s,
+                    unit::DEGREE_PER_S,
+                ),
+                (
+                    "rate_high",
+                    "the highest rate",
+                    v.rate_high_deg_s,
+                    unit::DEGREE_PER_S,
+                ),
+                (
+                    "specific_force_low",
+                    "the specific force at the lowest rate (g)",
+                    v.specific_force_low_g,
+                    unit::ONE,
+                ),
+                (
+                    "specific_force_high",
+                    "the specific force at the highest rate (g)",
+                    v.specific_force_high_g,
+                    unit::ONE,
+                ),
+            ];
+            for (label, name, value, unit) in quantities {
+                x.el("dcc:quantity", |x| {
+                    x.own_content("dcc:name", name)?;
+                    si::real(x, &Text::own(label), name, value, unit, Uncertainty::None)
+                })?;
+            }
+            Ok(())
         })
     })
 }

@@ -27,6 +27,12 @@ pub(crate) mod unit {
     pub(crate) const PPM: &str = r"\ppm";
     /// m/s²: g.
     pub(crate) const METRE_PER_S2: &str = r"\metre\second\tothe{-2}";
+    /// deg/s: the rates.
+    pub(crate) const DEGREE_PER_S: &str = r"\degree\second\tothe{-1}";
+    /// A number: the specific force in units of g, a count.
+    pub(crate) const ONE: &str = r"\one";
+    /// m: a radius.
+    pub(crate) const METRE: &str = r"\metre";
 }
 
 /// A value's univariate uncertainty as stated.

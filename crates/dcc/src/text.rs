@@ -75,10 +75,10 @@ fn trim(text: &str) -> &str {
     text.trim()
 }
 
-/// Whether `c` hides, reorders or acts instead of showing: a C0 or C1 control character,
-/// DEL, or a bidirectional override or isolate.
+/// Whether `c` hides, reorders or acts instead of showing (the workspace's one definition:
+/// C0 and C1 controls, DEL, bidirectional overrides and isolates).
 const fn is_hidden(c: char) -> bool {
-    matches!(c, '\u{0}'..='\u{1f}' | '\u{7f}'..='\u{9f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+    edge_io::is_hidden(c)
 }
 
 /// Whether XML 1.0 cannot hold `c` at all (its `Char` production): C0 controls but tab, LF
@@ -87,20 +87,25 @@ const fn is_xml_forbidden(c: char) -> bool {
     matches!(c, '\u{0}'..='\u{8}' | '\u{b}' | '\u{c}' | '\u{e}'..='\u{1f}' | '\u{fffe}' | '\u{ffff}')
 }
 
-/// `text` with every hidden or XML-forbidden character written visibly: `\u{1b}` for a
-/// control character, `<U+202E>` for a bidirectional override or isolate or a non-character.
+/// `text` with every hidden or XML-forbidden character written visibly, as the workspace
+/// writes them (`edge_io::visible`: `\u{1b}` for a control character, `<U+202E>` for a
+/// bidirectional override or isolate), and the non-characters U+FFFE and U+FFFF, which only
+/// XML refuses, as `<U+FFFE>`.
 fn visible(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        if !(is_hidden(c) || is_xml_forbidden(c)) {
-            out.push(c);
-        } else if c <= '\u{9f}' {
-            out.push_str(&format!("\\u{{{:x}}}", u32::from(c)));
-        } else {
-            out.push_str(&format!("<U+{:04X}>", u32::from(c)));
-        }
+    let shown = edge_io::visible(text);
+    if !shown.chars().any(is_xml_forbidden) {
+        return shown.into_owned();
     }
-    out
+    shown
+        .chars()
+        .map(|c| {
+            if is_xml_forbidden(c) {
+                format!("<U+{:04X}>", u32::from(c))
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

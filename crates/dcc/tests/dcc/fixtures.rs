@@ -1,7 +1,8 @@
 //! The certificates of both fixture studies (the simulated campaign and the two-orientation
 //! study): valid against PTB's DCC schema v3.3.0 (xmllint, offline, through the catalog of
 //! `../shared/reference/dcc/`), and every number, identification and digest read back equal
-//! to the study's results (results.json's values) and provenance.
+//! to the study's results (results.json's values: `certificate.certified`, the conformity
+//! statements, g) and provenance, exactly.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -149,18 +150,10 @@ fn the_validation_can_fail() {
     }
 }
 
-/// `got` equals `want` exactly, or to 1e-15 relative when `relative` (a number the writer
-/// scaled).
+/// `got` equals `want` to the bit: the text written reads back to the same double.
 #[track_caller]
-fn same(what: &str, got: f64, want: f64, relative: bool) {
-    if relative {
-        assert!(
-            (got - want).abs() <= 1e-15 * want.abs(),
-            "{what}: {got} ≠ {want}"
-        );
-    } else {
-        assert_eq!(got.to_bits(), want.to_bits(), "{what}: {got} ≠ {want}");
-    }
+fn same(what: &str, got: f64, want: f64) {
+    assert_eq!(got.to_bits(), want.to_bits(), "{what}: {got} ≠ {want}");
 }
 
 fn f(v: &Value) -> f64 {
@@ -217,112 +210,94 @@ fn reads_back_equal(w: &Written) {
 
     // g of the model
     let g = doc.by_id("method-calibration").find("si:real");
-    same("g", g.number("si:value"), f(&cal["g_m_s2"]), false);
+    same("g", g.number("si:value"), f(&cal["g_m_s2"]));
 
-    // the coefficients: value and stated interval, exact; relative to k1 to 1e-15
-    let k1 = f(&cal["coefficients"]["k1"]["value"]);
-    let conventional = [
-        Some("k0_ug"),
-        None,
-        Some("k2_ug_per_g2"),
-        Some("k3_ug_per_g3"),
-    ];
-    let mut list_values = Vec::new();
-    let mut list_u = Vec::new();
-    for (n, name) in ["k0", "k1", "k2", "k3"].into_iter().enumerate() {
-        let head = &cal["headline"][name];
-        let gum = &cal["coefficients"][name];
-        let real = doc.by_id(&format!("{name}-value")).find("si:real");
-        assert_eq!(real.find("si:unit").text, r"\radian\second\tothe{-1}");
-        same(name, real.number("si:value"), f(&head["value"]), false);
-        list_values.push(f(&head["value"]));
-        let gum_interval = head["method"] == "gum";
-        let u = if gum_interval {
-            let mu = real.find("si:expandedMU");
-            same(
-                &format!("U of {name}"),
-                mu.number("si:valueExpandedMU"),
-                f(&gum["U95"]),
-                false,
-            );
-            same(
-                &format!("k of {name}"),
-                mu.number("si:coverageFactor"),
-                f(&gum["k"]),
-                false,
-            );
-            assert_eq!(mu.find("si:coverageProbability").text, "0.95");
-            assert!(real.try_find("si:coverageIntervalMU").is_none());
-            f(&gum["u"])
-        } else {
-            let mu = real.find("si:coverageIntervalMU");
-            same(
-                &format!("low95 of {name}"),
-                mu.number("si:intervalMin"),
-                f(&head["low95"]),
-                false,
-            );
-            same(
-                &format!("high95 of {name}"),
-                mu.number("si:intervalMax"),
-                f(&head["high95"]),
-                false,
-            );
-            assert_eq!(mu.find("si:coverageProbability").text, "0.95");
-            let u = f(&cal["monte_carlo"][name]["u"]);
-            same(
-                &format!("u of {name}"),
-                mu.number("si:valueStandardMU"),
-                u,
-                false,
-            );
-            assert!(real.try_find("si:expandedMU").is_none());
-            u
+    // what is certified, and why
+    let certified = &cert["certified"];
+    assert_eq!(
+        doc.by_id("certified-method")
+            .find("dcc:declaration/dcc:content")
+            .text,
+        certified["reason"].as_str().unwrap()
+    );
+
+    // the certified coefficients: value and stated interval, relative to k1 too, exact
+    let coefficients = certified["coefficients"].as_array().unwrap();
+    let validity = certified["validity"].as_array().unwrap();
+    let mut labels = Vec::new();
+    for c in coefficients {
+        let name = c["name"].as_str().unwrap();
+        let label = match c["mounting"].as_str() {
+            Some(m) if validity.len() > 1 => format!("{name}_{m}"),
+            _ => name.to_owned(),
         };
-        list_u.push(u);
-        if let Some(key) = conventional[n] {
-            let rel = doc.by_id(&format!("{name}-relative")).find("si:real");
-            assert_eq!(rel.find("si:unit").text, r"\ppm");
-            let scale = 1e6 / k1;
-            same(
-                &format!("{name}/k1"),
-                rel.number("si:value"),
-                f(&cal["conventional"][key]["value"]),
-                true,
-            );
-            if gum_interval {
+        let real = doc.by_id(&format!("{label}-value")).find("si:real");
+        assert_eq!(real.find("si:unit").text, r"\radian\second\tothe{-1}");
+        assert_eq!(real.find("si:label").text, label);
+        same(&label, real.number("si:value"), f(&c["value"]));
+        let gum = c["interval_method"] == "gum";
+        // the stated interval of `real` against `stated` (the coefficient or its relative value)
+        let interval = |what: &str, real: &Node, stated: &Value| {
+            if gum {
+                let mu = real.find("si:expandedMU");
                 same(
-                    &format!("U of {name}/k1"),
-                    rel.number("si:valueExpandedMU"),
-                    f(&gum["U95"]) * scale.abs(),
-                    true,
+                    &format!("U of {what}"),
+                    mu.number("si:valueExpandedMU"),
+                    f(&stated["expanded"]),
                 );
+                same(
+                    &format!("k of {what}"),
+                    mu.number("si:coverageFactor"),
+                    f(&c["k"]),
+                );
+                assert_eq!(mu.find("si:coverageProbability").text, "0.95");
+                assert!(real.try_find("si:coverageIntervalMU").is_none());
             } else {
+                let mu = real.find("si:coverageIntervalMU");
                 same(
-                    &format!("low95 of {name}/k1"),
-                    rel.number("si:intervalMin"),
-                    f(&head["low95"]) * scale,
-                    true,
+                    &format!("u of {what}"),
+                    mu.number("si:valueStandardMU"),
+                    f(&stated["u"]),
                 );
                 same(
-                    &format!("high95 of {name}/k1"),
-                    rel.number("si:intervalMax"),
-                    f(&head["high95"]) * scale,
-                    true,
+                    &format!("low95 of {what}"),
+                    mu.number("si:intervalMin"),
+                    f(&stated["low95"]),
                 );
+                same(
+                    &format!("high95 of {what}"),
+                    mu.number("si:intervalMax"),
+                    f(&stated["high95"]),
+                );
+                assert_eq!(mu.find("si:coverageProbability").text, "0.95");
+                assert!(real.try_find("si:expandedMU").is_none());
             }
-        } else {
-            assert!(
-                doc.descendants()
-                    .iter()
-                    .all(|n| n.attribute("id") != Some("k1-relative"))
-            );
+        };
+        interval(&label, real, c);
+        let relative = doc
+            .descendants()
+            .into_iter()
+            .find(|n| n.attribute("id") == Some(&format!("{label}-relative")));
+        match (&c["relative"], relative) {
+            (Value::Null, None) => {}
+            (r, Some(node)) if !r.is_null() => {
+                let rel = node.find("si:real");
+                assert_eq!(rel.find("si:unit").text, r"\ppm");
+                same(
+                    &format!("{label}/k1"),
+                    rel.number("si:value"),
+                    f(&r["value"]),
+                );
+                interval(&format!("{label}/k1"), rel, r);
+            }
+            (r, node) => panic!("{label}: relative {r} against {node:?}"),
         }
+        labels.push(label);
     }
 
-    // the coefficients together
+    // the coefficients together, with their covariance and its 95 % region
     let list = doc.by_id("coefficients").find("si:realListXMLList");
-    assert_eq!(list.find("si:labelXMLList").text, "k0 k1 k2 k3");
+    assert_eq!(list.find("si:labelXMLList").text, labels.join(" "));
     let numbers = |path: &str| -> Vec<f64> {
         list.find(path)
             .text
@@ -330,8 +305,86 @@ fn reads_back_equal(w: &Written) {
             .map(|t| t.parse().unwrap())
             .collect()
     };
-    assert_eq!(numbers("si:valueXMLList"), list_values);
-    assert_eq!(numbers("si:valueStandardMUXMLList"), list_u);
+    let want = |key: &str| -> Vec<f64> { coefficients.iter().map(|c| f(&c[key])).collect() };
+    assert_eq!(numbers("si:valueXMLList"), want("value"));
+    assert_eq!(numbers("si:valueStandardMUXMLList"), want("u"));
+    let covariance = certified["covariance"].as_array().unwrap();
+    let n = coefficients.len();
+    assert_eq!(covariance.len(), n);
+    let columns = list.all("si:columnXMLList");
+    assert_eq!(columns.len(), n);
+    for (j, column) in columns.iter().enumerate() {
+        let cells = column.all("si:covarianceXMLList");
+        assert_eq!(cells.len(), n);
+        for (i, cell) in cells.iter().enumerate() {
+            same(
+                &format!("covariance[{i}][{j}]"),
+                cell.number("si:valueXMLList"),
+                f(&covariance[i][j]),
+            );
+            assert_eq!(
+                cell.find("si:unitXMLList").text,
+                r"\radian\tothe{2}\second\tothe{-2}"
+            );
+        }
+    }
+    // k² is the 95 % quantile of χ² with n degrees of freedom: P(χ²_n ≤ k²) for even n is
+    // 1 − e^{−k²/2} Σ_{j<n/2} (k²/2)^j / j!
+    let k = list.number("si:coverageFactorXMLList");
+    let h = k * k / 2.0;
+    assert_eq!(n % 2, 0);
+    let (mut sum, mut term) = (0.0, 1.0);
+    for j in 0..n / 2 {
+        if j > 0 {
+            term *= h / j as f64;
+        }
+        sum += term;
+    }
+    assert!((1.0 - (-h).exp() * sum - 0.95).abs() < 1e-12, "k = {k}");
+
+    // the check by the other method
+    match &certified["check"] {
+        Value::Null => assert!(
+            doc.descendants()
+                .iter()
+                .all(|n| n.attribute("id") != Some("check"))
+        ),
+        check => {
+            let node = doc.by_id("check");
+            let values: Vec<f64> = node
+                .all("si:value")
+                .iter()
+                .map(|v| v.text.parse().unwrap())
+                .collect();
+            assert_eq!(
+                values,
+                [f(&check["k2"]), f(&check["expanded"]), f(&check["z"])]
+            );
+            same(
+                "u of the check",
+                node.number("si:valueStandardMU"),
+                f(&check["u"]),
+            );
+        }
+    }
+
+    // each mounting's range of validity
+    for v in validity {
+        let node = doc.by_id(&format!("validity-{}", v["mounting"].as_str().unwrap()));
+        let values: Vec<f64> = node
+            .all("si:value")
+            .iter()
+            .map(|v| v.text.parse().unwrap())
+            .collect();
+        let keys = [
+            "radius_m",
+            "rate_low_deg_s",
+            "rate_high_deg_s",
+            "specific_force_low_g",
+            "specific_force_high_g",
+        ];
+        assert_eq!(values, keys.map(|k| f(&v[k])));
+    }
 
     // the statements of conformity
     let statements = cert["conformity"]["statements"].as_array().unwrap();
