@@ -423,7 +423,7 @@ fn covariance(x: &mut Xml, certified: &Certified<'_>) -> Result<()> {
                         values: &values,
                         units: &units,
                         u: &u,
-                        covariance: certified.covariance.as_deref().map(|m| (m, k)),
+                        covariance: certified.covariance.map(|m| (m, k)),
                     },
                 )
             })
