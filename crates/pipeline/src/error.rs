@@ -438,6 +438,14 @@ pub enum UnsupportedReason {
     /// A certificate states a calibration's results.
     #[error("a certificate needs a `calibration` section: it states the calibration's results")]
     CertificateNeedsCalibration,
+    /// A previous certificate's digest that is not a SHA-256.
+    #[error(
+        "must be the SHA-256 of the previous certificate's file: 64 hexadecimal digits (as `sha256sum` prints them)"
+    )]
+    NotSha256,
+    /// A country that is not an ISO 3166-1 alpha-2 code.
+    #[error("must be a country code of ISO 3166-1: two capital letters (`DE`, `GB`, `US`)")]
+    NotCountryCode,
     /// The counterweight section reads one published change of radius error.
     #[error("the counterweight section needs a phase given as radius_change")]
     CounterweightNeedsRadiusChange,

@@ -69,7 +69,7 @@ pub use ::calibration::CalibrationModel;
 pub use config::{
     AuthorisationConfig, CertificateConfig, CertifyName, CoefficientName, ConditionConfig,
     DatesConfig, DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig,
-    LimitUnitName, PartyConfig, TraceabilityConfig, TypeBInputName,
+    LimitUnitName, PartyConfig, PreviousCertificateConfig, TraceabilityConfig, TypeBInputName,
 };
 pub use config::{
     BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
@@ -89,8 +89,8 @@ pub use recording::FileDigest;
 pub use results::{
     Authorisation, CertificateResults, Certified, CertifiedCoefficient, CertifiedMethod,
     CertifyPolicy, Condition, Conformity, ConformityStatement, Dates, DecisionRule, Equipment,
-    Headline, HeadlineMethod, Item, Laboratory, MethodCheck, OutputCovariance, Party, ProbeSign,
-    RelativeValue, Traceability, ValidityRange, Verdict,
+    Headline, HeadlineMethod, Item, Laboratory, MethodCheck, OutputCovariance, Party,
+    PreviousCertificate, ProbeSign, RelativeValue, Traceability, ValidityRange, Verdict,
 };
 pub use results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,

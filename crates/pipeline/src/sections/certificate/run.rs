@@ -112,6 +112,7 @@ pub(crate) fn run(
         conformity,
         authorisation: cert.authorisation.clone(),
         certified,
+        previous_certificate: cert.previous_certificate.clone(),
     })
 }
 
