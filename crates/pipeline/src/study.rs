@@ -99,7 +99,7 @@ impl Inputs {
             .map(|s| two_orientation::validate(&check, s, &config, &names, core.base(), load))
             .transpose()?;
         let base = core.base().to_owned();
-        let phases = checked.load(&config.phases, &base, source, load)?;
+        let phases = checked.load(&config.phases, &base, source, load, &core.angle_zero)?;
         let calibration = match (config.calibration.as_ref(), calibration_refs) {
             (Some(c), Some(refs)) => Some(calibration::load(c, refs, type_b, &base, source, load)?),
             _ => None,
@@ -260,6 +260,8 @@ pub fn run_with_progress(
             g_m_s2: core.g_m_s2,
             k1_rad_s_g: core.k1_rad_s_g,
             lever_ratio: core.lever_ratio,
+            probe_direction: crate::inputs::probe_sign(core.lever.probe_direction),
+            angle_zero: core.angle_zero,
         },
         phases,
         mechanism,

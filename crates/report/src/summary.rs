@@ -136,7 +136,9 @@ pub fn summary_text(results: &StudyResults) -> Option<String> {
         );
     }
     let (cr, dk2) = compensation(c);
-    let _ = writeln!(out, "  {cr}").and_then(|()| writeln!(out, "  {dk2}"));
+    let _ = writeln!(out, "  {cr}");
+    let _ = writeln!(out, "  angle zero: {}", results.inputs.angle_zero.words());
+    let _ = writeln!(out, "  {dk2}");
     crate::two_orientation::summary_lines(&mut out, results);
     let all = warnings(results);
     if all.is_empty() {
