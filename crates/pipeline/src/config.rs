@@ -745,4 +745,34 @@ mod tests {
         assert!(m.contains("`four_term` in `radius_model`"), "{m}");
         assert!(!m.contains("RadiusModelName"), "{m}");
     }
+
+    /// A probe direction the file misnames is answered with both names of each choice and
+    /// the words a person checks at the machine; the self-describing names are read.
+    #[test]
+    fn a_bad_probe_direction_is_answered_in_words() {
+        let study = |direction: &str| {
+            format!(
+                "(name: \"x\", radius_m: 1.0, g_m_s2: 9.8, k1_rad_s_g: 1.0, lever: \
+                 (pivot_to_probe_mm: 1.0, probe_to_piga_mm: 1.0, probe_direction: {direction}), \
+                 phases: [])"
+            )
+        };
+        let m = message(&study("towards_the_probe"));
+        assert_eq!(
+            m,
+            "unknown choice `towards_the_probe` in `lever.probe_direction (or \
+             balance.second_probe.probe_direction)`; expected `against_o1_x1` (also written \
+             `reading_falls_towards_piga`: the probe's gap closes (its reading falls) when the \
+             spindle moves towards the PIGA (probe measuring against O1X1, the paper's set-up)) \
+             or `along_o1_x1` (also written `reading_rises_towards_piga`: the probe's reading \
+             rises when the spindle moves towards the PIGA (probe measuring along O1X1))"
+        );
+        for (name, direction) in [
+            ("reading_falls_towards_piga", ProbeDirectionName::AgainstO1X1),
+            ("reading_rises_towards_piga", ProbeDirectionName::AlongO1X1),
+        ] {
+            let config = StudyConfig::from_ron(&study(name), Path::new("s.ron")).unwrap();
+            assert_eq!(config.lever.probe_direction, direction);
+        }
+    }
 }
