@@ -171,6 +171,14 @@ fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
     let angle_zero = pipeline::AngleZero {
         angle_zero_deg: config.lever.angle_zero_deg.unwrap_or(0.0),
         stated: config.lever.angle_zero_deg.is_some(),
+        // a recordings phase whose format names an encoder or an index pulse (the default
+        // format's encoder column counts: most files have it)
+        measured_angles: config.phases.iter().any(|p| match &p.points {
+            pipeline::Points::Recordings(set) => {
+                !matches!(set.format.angle, recording::AngleSource::Rate { .. })
+            }
+            _ => false,
+        }),
     };
     let _ = writeln!(s, "  angle zero: {}", angle_zero.words());
     for phase in v["phases"].as_array().into_iter().flatten() {

@@ -768,7 +768,10 @@ mod tests {
              rises when the spindle moves towards the PIGA (probe measuring along O1X1))"
         );
         for (name, direction) in [
-            ("reading_falls_towards_piga", ProbeDirectionName::AgainstO1X1),
+            (
+                "reading_falls_towards_piga",
+                ProbeDirectionName::AgainstO1X1,
+            ),
             ("reading_rises_towards_piga", ProbeDirectionName::AlongO1X1),
         ] {
             let config = StudyConfig::from_ron(&study(name), Path::new("s.ron")).unwrap();

@@ -192,6 +192,8 @@ impl Core {
                 AngleZero {
                     angle_zero_deg: deg,
                     stated: true,
+                    // known once the recordings are read
+                    measured_angles: false,
                 }
             }
             None => AngleZero::default(),

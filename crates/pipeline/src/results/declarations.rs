@@ -54,6 +54,10 @@ pub struct AngleZero {
     pub angle_zero_deg: f64,
     /// Whether the study states it; when not, 0 is taken and every output says so.
     pub stated: bool,
+    /// Whether a probe recording of the study measures its angle (an encoder or an index
+    /// pulse): when none does, the angle zero moves nothing.
+    #[serde(default)]
+    pub measured_angles: bool,
 }
 
 impl AngleZero {
@@ -61,6 +65,19 @@ impl AngleZero {
     #[must_use]
     pub fn words(&self) -> String {
         let at = "when the arm's PIGA end points at the probe (the arm along O1X1)";
+        let deg = units::Compact(self.angle_zero_deg);
+        if !self.measured_angles {
+            let stated = if self.stated {
+                format!("`lever.angle_zero_deg` = {deg}°")
+            } else {
+                "not stated".to_owned()
+            };
+            return format!(
+                "{stated}; no probe recording of this study measures its angle, so it moves \
+                 nothing (given first harmonics are taken as fitted from the angle zero, the \
+                 arm's PIGA end pointing at the probe)"
+            );
+        }
         if !self.stated {
             return format!(
                 "not stated: the encoder is taken to read 0° (an index pulse to rise) {at}; an \
@@ -68,14 +85,13 @@ impl AngleZero {
                  with no other sign (state it as `lever.angle_zero_deg`)"
             );
         }
-        let deg = units::Compact(self.angle_zero_deg);
         if self.angle_zero_deg == 0.0 {
-            format!("the encoder reads 0° (an index pulse rises) {at} (`lever.angle_zero_deg`: 0)")
+            format!("`lever.angle_zero_deg` = 0°: the encoder reads 0° (an index pulse rises) {at}")
         } else {
             format!(
-                "the encoder reads {deg}° (an index pulse: the spindle has turned {deg}° past \
-                 its rising edge) {at} (`lever.angle_zero_deg`): measured angles are taken less \
-                 {deg}°"
+                "`lever.angle_zero_deg` = {deg}°: the encoder reads {deg}° (an index pulse: the \
+                 spindle has turned {deg}° past its rising edge) {at}; measured angles are taken \
+                 less {deg}°"
             )
         }
     }
@@ -87,15 +103,26 @@ mod tests {
 
     #[test]
     fn the_angle_zero_says_whether_it_was_stated() {
-        let none = AngleZero::default().words();
-        assert!(none.starts_with("not stated"), "{none}");
-        assert!(none.contains("`lever.angle_zero_deg`"), "{none}");
-        let thirty = AngleZero {
-            angle_zero_deg: 30.0,
-            stated: true,
+        let none = AngleZero {
+            measured_angles: true,
+            ..AngleZero::default()
         }
         .words();
-        assert!(thirty.contains("reads 30°"), "{thirty}");
-        assert!(thirty.contains("less 30°"), "{thirty}");
+        assert!(none.starts_with("not stated"), "{none}");
+        assert!(none.contains("`lever.angle_zero_deg`"), "{none}");
+        let mut thirty = AngleZero {
+            angle_zero_deg: 30.0,
+            stated: true,
+            measured_angles: true,
+        };
+        let words = thirty.words();
+        assert!(words.contains("reads 30°"), "{words}");
+        assert!(words.contains("less 30°"), "{words}");
+        thirty.measured_angles = false;
+        let words = thirty.words();
+        assert!(
+            words.starts_with("`lever.angle_zero_deg` = 30°;") && words.contains("moves nothing"),
+            "{words}"
+        );
     }
 }

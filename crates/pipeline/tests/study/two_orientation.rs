@@ -165,11 +165,16 @@ pub(crate) fn probe_study(
             "probe_direction: along_o1_x1",
         );
     }
-    if declared == Declared::EncoderZeroOff30Declared {
-        text = text.replace(
-            "probe_direction: against_o1_x1",
-            &format!("probe_direction: against_o1_x1, angle_zero_deg: {ENCODER_ZERO_DEG:?}"),
-        );
+    // the campaign study states its encoder's angle zero (0°)
+    match declared {
+        Declared::EncoderZeroOff30Declared => {
+            text = text.replace(
+                "angle_zero_deg: 0.0",
+                &format!("angle_zero_deg: {ENCODER_ZERO_DEG:?}"),
+            );
+        }
+        Declared::EncoderZeroOff30 => text = text.replace(", angle_zero_deg: 0.0", ""),
+        _ => {}
     }
     (text, files)
 }

@@ -196,9 +196,10 @@ fn an_encoder_zero_off_the_arm_is_exact_declared_and_named_undeclared() {
     assert!(declared.inputs.angle_zero.stated);
     assert_eq!(declared.inputs.angle_zero.angle_zero_deg, ENCODER_ZERO_DEG);
     assert!(!warned(&declared, WarningCode::ProbeDisagrees));
-    assert!(!right.inputs.angle_zero.stated);
+    assert!(right.inputs.angle_zero.stated && right.inputs.angle_zero.angle_zero_deg == 0.0);
 
     let undeclared = study(&sim, Declared::EncoderZeroOff30);
+    assert!(!undeclared.inputs.angle_zero.stated);
     let c_r_undeclared = undeclared.phases[0].fit.c_r_m_s2;
     assert!(
         ((c_r_undeclared - c_r) / c_r).abs() > 0.05,

@@ -160,6 +160,15 @@ impl Phases {
         })
     }
 
+    /// Whether a recording of the phases measures its angle (an encoder or an index pulse),
+    /// which the angle zero then moves.
+    pub(crate) fn measure_angles(&self) -> bool {
+        self.list.iter().any(|phase| match &phase.data {
+            PhaseData::Recordings(set) => set.files.iter().any(|f| f.recording.angle_rad.is_some()),
+            _ => false,
+        })
+    }
+
     /// Number of recordings to analyse.
     pub(crate) fn recordings(&self) -> usize {
         self.list
