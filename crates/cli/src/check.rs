@@ -71,12 +71,13 @@ impl Check {
                 )
             })
             .collect();
+        let direction_unfilled = found.iter().any(|p| p.contains("probe_direction"));
         let filled = stand_ins(text);
         let mut console = Console::stdout();
         match pipeline::StudyConfig::from_ron(&filled, path) {
             Err(e) => found.extend(problems::each(&e)),
             Ok(config) => {
-                let plan = describe(&config, path);
+                let plan = describe(&config, path, direction_unfilled);
                 console.write_str(&plan)?;
                 let files = count_files(&config);
                 let bar = crate::progress::spinner(format!("reading and checking {files} files"));
@@ -139,8 +140,9 @@ fn num(v: Option<&Value>) -> String {
         .map_or_else(|| "—".to_owned(), |x| format!("{x}"))
 }
 
-/// What the study will do, in words, from the configuration's own field names.
-fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
+/// What the study will do, in words, from the configuration's own field names
+/// (`direction_unfilled`: the probe direction is still a placeholder).
+fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: bool) -> String {
     let v = serde_json::to_value(config).unwrap_or(Value::Null);
     let mut s = String::new();
     let _ = writeln!(
@@ -163,11 +165,16 @@ fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
         num(lever.get("pivot_to_probe_mm")),
         num(lever.get("probe_to_piga_mm"))
     );
-    let _ = writeln!(
-        s,
-        "  direction (`lever.probe_direction`): {}",
-        config.lever.probe_direction.words()
-    );
+    let direction = if direction_unfilled {
+        format!(
+            "not filled in: `against_o1_x1` if {}; `along_o1_x1` if {}",
+            pipeline::ProbeDirectionName::AgainstO1X1.words(),
+            pipeline::ProbeDirectionName::AlongO1X1.words()
+        )
+    } else {
+        config.lever.probe_direction.words().to_owned()
+    };
+    let _ = writeln!(s, "  direction (`lever.probe_direction`): {direction}");
     let angle_zero = pipeline::AngleZero {
         angle_zero_deg: config.lever.angle_zero_deg.unwrap_or(0.0),
         stated: config.lever.angle_zero_deg.is_some(),
