@@ -105,7 +105,7 @@ pub(crate) enum Declared {
     /// past the arm's reference), and the study does not say so.
     EncoderZeroOff30,
     /// The same encoder, declared: `lever.angle_zero_deg: 330.0`.
-    EncoderZeroOff30Declared,
+    EncoderZeroOff30Stated,
 }
 
 /// The encoder's reading at the angle zero in [`Declared::EncoderZeroOff30`], deg: its zero
@@ -127,7 +127,7 @@ pub(crate) fn probe_study(
         }
         if matches!(
             declared,
-            Declared::EncoderZeroOff30 | Declared::EncoderZeroOff30Declared
+            Declared::EncoderZeroOff30 | Declared::EncoderZeroOff30Stated
         ) {
             // the same samples, read by an encoder whose zero lies 30° past the arm's
             // reference: it reads 330° more (30° less), wrapping at 360°
@@ -167,7 +167,7 @@ pub(crate) fn probe_study(
     }
     // the campaign study states its encoder's angle zero (0°)
     match declared {
-        Declared::EncoderZeroOff30Declared => {
+        Declared::EncoderZeroOff30Stated => {
             text = text.replace(
                 "angle_zero_deg: 0.0",
                 &format!("angle_zero_deg: {ENCODER_ZERO_DEG:?}"),

@@ -186,7 +186,7 @@ fn a_wrong_probe_declaration_warns_through_the_study() {
 fn an_encoder_zero_off_the_arm_is_exact_declared_and_named_undeclared() {
     let sim = simulate::simulate(&scenario(22, 0.0)).unwrap();
     let right = study(&sim, Declared::Right);
-    let declared = study(&sim, Declared::EncoderZeroOff30Declared);
+    let declared = study(&sim, Declared::EncoderZeroOff30Stated);
     let c_r = right.phases[0].fit.c_r_m_s2;
     let c_r_declared = declared.phases[0].fit.c_r_m_s2;
     assert!(
