@@ -76,9 +76,9 @@ pub use config::{
 };
 pub use config::{
     CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
-    PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName,
-    RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TableLayoutError, TrialsConfig,
-    UncertaintyConfig, Weighting,
+    OutputSigma, PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName,
+    RadiusModelName, RadiusPoint, RecordingPoint, RecordingSet, SIGMA_RATE_TOLERANCE, StudyConfig,
+    TableLayoutError, TrialsConfig, UncertaintyConfig, Weighting,
 };
 pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
 pub use error::{DegenerateInterval, InvalidReason, PipelineError, Result, UnsupportedReason};
@@ -86,6 +86,7 @@ pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
 /// The size and SHA-256 of a file as a study read it (provenance).
 pub use recording::FileDigest;
+pub use results::{AngleZero, ProbeDeclared};
 pub use results::{
     Authorisation, CertificateResults, Certified, CertifiedCoefficient, CertifiedMethod,
     CertifyPolicy, Condition, Conformity, ConformityStatement, Dates, DecisionRule, Equipment,

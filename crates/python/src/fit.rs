@@ -266,6 +266,7 @@ pub(crate) fn fit_harmonics<'py>(
         if a.is_none() {
             diagnostics.push(Diagnostic::AngleFromRate {
                 unread_columns: Vec::new(),
+                start_angle_deg: start_angle_rad.to_degrees(),
             });
         }
         if let Some(m) = measured_rate_rad_s

@@ -277,6 +277,7 @@ fn finish(
     if recording.angle_source == AngleSourceKind::DeclaredRate {
         diagnostics.push(Diagnostic::AngleFromRate {
             unread_columns: recording.unread_columns.clone(),
+            start_angle_deg: recording.start_angle_rad.to_degrees(),
         });
     }
     if let Some(m) = measured_rate_rad_s
