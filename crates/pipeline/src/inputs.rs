@@ -167,6 +167,13 @@ impl Core {
     /// Validates the study's scalars and lever.
     pub(crate) fn new(config: &StudyConfig, source: &Path) -> Result<Self> {
         let check = Check { path: source };
+        if let Some(hidden) = edge_io::hidden_char(&config.name) {
+            return Err(PipelineError::HiddenCharacter {
+                path: source.to_owned(),
+                field: "name".to_owned(),
+                hidden,
+            });
+        }
         check.positive("radius_m", config.radius_m)?;
         check.positive("g_m_s2", config.g_m_s2)?;
         check.positive("k1_rad_s_g", config.k1_rad_s_g)?;
