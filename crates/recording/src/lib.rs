@@ -88,6 +88,7 @@ mod binary;
 mod digest;
 mod error;
 mod lab;
+mod open;
 mod read;
 #[cfg(feature = "synthetic")]
 mod synth;
