@@ -14,8 +14,7 @@ use crate::fault;
 pub const OUTPUT_RECORD: &str = ".centrifuge-cal-written";
 
 /// The first line of [`OUTPUT_RECORD`].
-const RECORD_HEADER: &str =
-    "# centrifuge-cal wrote these files (bytes, name); it replaces a folder only if it holds just these";
+const RECORD_HEADER: &str = "# centrifuge-cal wrote these files (bytes, name); it replaces a folder only if it holds just these";
 
 /// Largest record read, bytes: a record is a line per file written.
 const RECORD_MAX_BYTES: u64 = 16 << 20;

@@ -197,7 +197,10 @@ mod tests {
             ),
             "{e:?}"
         );
-        assert!(e.to_string().contains("/dev/zero is a character device"), "{e}");
+        assert!(
+            e.to_string().contains("/dev/zero is a character device"),
+            "{e}"
+        );
         // A FIFO no one writes to: a blocking open would wait forever.
         let dir = TempDir::new("fifo");
         let fifo = dir.0.join("study.ron");

@@ -95,7 +95,8 @@ mod synth;
 mod text;
 
 pub use analysis::diagnostic::{
-    Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
+    Diagnostic, MIN_PLAUSIBLE_GAP_UM, OutlierRevolution, PROBE_RESOLUTION_UM,
+    RATE_WARNING_TOLERANCE, SampleAt, SpreadCause,
 };
 pub use analysis::piga::{PigaOutputRate, reduce_piga_recording};
 pub use analysis::probe::{
@@ -112,7 +113,7 @@ pub use error::{
 /// above which [`Diagnostic::RevolutionSpread`] is raised (`harmonics`' limit).
 pub use harmonics::SPREAD_WARNING_RATIO;
 pub use lab::format::{
-    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples,
+    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples, OnOutlier,
     RecordingFormat, TimeUnit,
 };
 pub use lab::piga_recording::{

@@ -52,7 +52,12 @@ pub fn load_recording_digested(
 /// chooses the reader as for [`load_recording`].
 pub fn parse_recording(text: &[u8], path: &Path, format: &RecordingFormat) -> Result<Recording> {
     if let Some(kind) = crate::binary::format_of(path) {
-        return crate::binary::read_with_format(path, &crate::binary::Source::Bytes(text), kind, format);
+        return crate::binary::read_with_format(
+            path,
+            &crate::binary::Source::Bytes(text),
+            kind,
+            format,
+        );
     }
     text_only(path, format)?;
     let table = parse_table(text, path, &format.table_format()?)?;

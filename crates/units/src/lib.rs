@@ -11,7 +11,7 @@ mod compact;
 mod requirement;
 mod seed;
 
-pub use compact::{Compact, CompactList};
+pub use compact::{Compact, CompactList, CompactSeries};
 pub use requirement::{Requirement, Unmet, finite, non_negative, positive, require};
 pub use seed::stream_seed;
 

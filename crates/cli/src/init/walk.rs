@@ -361,11 +361,15 @@ pub(crate) fn check_output(out: &Path, inputs: &[PathBuf], force: bool) -> anyho
         std::fs::metadata(p).is_ok_and(|m| identity(p, &m) == identity(out, &metadata))
     };
     if let Some(input) = inputs.iter().find(|p| same(p)) {
+        let also = if input == out {
+            String::new()
+        } else {
+            format!(" ({})", input.display())
+        };
         bail!(
-            "{} is {}, one of the files init reads: nothing written (--out names the \
+            "{} is one of the files init reads{also}: nothing written (--out names the \
              configuration to write; name a new file)",
-            out.display(),
-            input.display()
+            out.display()
         );
     }
     if !metadata.is_file() {

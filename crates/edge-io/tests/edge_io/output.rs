@@ -156,7 +156,10 @@ fn a_directory_with_foreign_entries_is_refused_and_left_alone() {
             assert_eq!(t, target);
             // notes.txt and photos by their names; results.json with no record of writing it
             assert_eq!(count, 3);
-            assert_eq!((example.as_str(), why), ("notes.txt", "not a name this tool writes"));
+            assert_eq!(
+                (example.as_str(), why),
+                ("notes.txt", "not a name this tool writes")
+            );
         }
         other => panic!("expected ForeignEntries, got {other:?}"),
     }
@@ -293,7 +296,10 @@ fn a_folder_of_files_with_owned_names_but_no_record_is_refused_and_left_alone() 
     let e = write_set(&target, &[("results.json", "new")]).unwrap_err();
     match &e {
         EdgeIoError::ForeignEntries {
-            count, example, why, ..
+            count,
+            example,
+            why,
+            ..
         } => {
             assert_eq!(*count, 2);
             assert_eq!(

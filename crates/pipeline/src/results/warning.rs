@@ -24,6 +24,10 @@ pub enum WarningCode {
     /// A probe signal implausible for its gap column's declared unit (a mean gap below a
     /// micrometre, a first harmonic below a probe's own noise): C_r wrong by the unit's factor.
     ImplausibleGapUnit,
+    /// Revolutions of a recording fit far worse than the others (a glitch or dropout).
+    ResidualOutlier,
+    /// A recording's residuals alternate in sign from sample to sample.
+    AlternatingResiduals,
     /// Another diagnostic of a recording (one this version does not name).
     Recording,
     /// The radius-error residuals exceed their white-noise σ.
@@ -69,6 +73,8 @@ impl WarningCode {
             Self::DroppedRevolutions => "dropped_revolutions",
             Self::OutputSpread => "output_spread",
             Self::ImplausibleGapUnit => "implausible_gap_unit",
+            Self::ResidualOutlier => "residual_outlier",
+            Self::AlternatingResiduals => "alternating_residuals",
             Self::Recording => "recording",
             Self::LackOfFit => "lack_of_fit",
             Self::SecondProbePhase => "second_probe_phase",
@@ -96,6 +102,8 @@ impl WarningCode {
             Self::DroppedRevolutions => "revolutions dropped",
             Self::OutputSpread => "PIGA output varies between revolutions",
             Self::ImplausibleGapUnit => "probe signal implausible for its declared unit",
+            Self::ResidualOutlier => "revolutions that fit far worse than the others",
+            Self::AlternatingResiduals => "residuals alternate from sample to sample",
             Self::Recording => "recording diagnostic",
             Self::LackOfFit => "radius-error fit worse than the noise",
             Self::SecondProbePhase => "phase read with the first probe's lever",
@@ -159,6 +167,8 @@ impl Warning {
             D::DroppedRevolutions { .. } => WarningCode::DroppedRevolutions,
             D::OutputSpread { .. } => WarningCode::OutputSpread,
             D::ImplausibleGap { .. } => WarningCode::ImplausibleGapUnit,
+            D::ResidualOutlier { .. } => WarningCode::ResidualOutlier,
+            D::AlternatingResiduals { .. } => WarningCode::AlternatingResiduals,
             _ => WarningCode::Recording,
         };
         Self {

@@ -8,10 +8,11 @@ use harmonics::{
 };
 
 use super::diagnostic::{
-    Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
+    Diagnostic, MIN_PLAUSIBLE_GAP_UM, OutlierRevolution, PROBE_RESOLUTION_UM,
+    RATE_WARNING_TOLERANCE, SampleAt, SpreadCause,
 };
 use crate::error::{Hint, RecordingError, Result};
-use crate::lab::format::OnBadSamples;
+use crate::lab::format::{OnBadSamples, OnOutlier};
 use crate::lab::probe::{AngleSourceKind, Recording, sample_index};
 
 /// A recording's harmonic analysis with what it rests on.
@@ -62,6 +63,11 @@ impl RecordingAnalysis {
 /// With `on_gap` or `on_non_finite` set to `drop_revolution`, the recording is cut at
 /// each gap and around each non-finite sample, the pieces are fitted apart, and the
 /// revolutions they hold are pooled; the others are counted as dropped.
+///
+/// Revolutions whose residual RMS is more than `harmonics::OUTLIER_RMS_RATIO` times the
+/// median are [`Diagnostic::ResidualOutlier`] and, with `on_outlier: drop_revolution` (the
+/// default), left out of the mean; residuals that alternate in sign from sample to sample
+/// are [`Diagnostic::AlternatingResiduals`].
 pub fn analyze_recording(
     recording: &Recording,
     declared_rate_rad_s: f64,
@@ -266,6 +272,7 @@ fn finish(
     config: &FitConfig,
 ) -> RecordingAnalysis {
     let signal = recording.signal(declared_rate_rad_s);
+    let (analysis, outliers) = outliers(recording, &signal, analysis);
     let statistics = revolution_statistics(
         &signal,
         &analysis,
@@ -287,6 +294,7 @@ fn finish(
             measured_rad_s: m,
         });
     }
+    diagnostics.extend(outliers);
     diagnostics.extend(statistics.diagnostics);
     if let Some(d) = implausible_gap(recording, &analysis) {
         diagnostics.push(d);
@@ -308,6 +316,58 @@ fn finish(
         mean_noise_sigma: statistics.mean_noise_sigma,
         diagnostics,
     }
+}
+
+/// The revolutions that fit far worse than the others, dropped when the recording's policy
+/// says so, and residuals that alternate in sign: the analysis to use and the diagnostics.
+fn outliers(
+    recording: &Recording,
+    signal: &ProbeSignal<'_>,
+    analysis: HarmonicAnalysis,
+) -> (HarmonicAnalysis, Vec<Diagnostic>) {
+    let unit = recording.gap_unit;
+    let binary = recording.len() > 0 && recording.line_of_sample(0) == 0;
+    let at = |sample: usize| {
+        if binary {
+            SampleAt::Sample(sample)
+        } else {
+            SampleAt::Line(recording.line_of_sample(sample))
+        }
+    };
+    let mut diagnostics = Vec::new();
+    let mut analysis = analysis;
+    if let Some(found) = harmonics::residual_outliers(signal, &analysis) {
+        let dropped = recording.on_outlier == OnOutlier::DropRevolution;
+        let revolutions = found
+            .revolutions
+            .iter()
+            .map(|o| OutlierRevolution {
+                revolution: o.revolution,
+                first_line: recording.line_of_sample(o.first_sample),
+                residual_rms: o.residual_rms,
+                largest_residual: o.largest_residual,
+                largest_at: at(o.largest_at_sample),
+            })
+            .collect();
+        if dropped {
+            let drop: Vec<usize> = found.revolutions.iter().map(|o| o.revolution).collect();
+            analysis = harmonics::without_revolutions(&analysis, &drop);
+        }
+        diagnostics.push(Diagnostic::ResidualOutlier {
+            revolutions,
+            median_rms: found.median_rms,
+            unit,
+            dropped,
+        });
+    }
+    if let Some(a) = harmonics::alternating_residuals(signal, &analysis) {
+        diagnostics.push(Diagnostic::AlternatingResiduals {
+            lag1: a.lag1,
+            residual_rms: a.residual_rms,
+            unit,
+        });
+    }
+    (analysis, diagnostics)
 }
 
 /// [`Diagnostic::ImplausibleGap`] when the mean gap is below a micrometre or the first

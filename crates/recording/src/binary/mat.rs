@@ -49,7 +49,11 @@ pub fn parse_mat(bytes: &[u8], path: &Path, variables: &BinaryChannels) -> Resul
 }
 
 /// The variables of a probe recording from a MAT file read from `source`.
-pub(crate) fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<Recording> {
+pub(crate) fn read(
+    source: &Source<'_>,
+    path: &Path,
+    variables: &BinaryChannels,
+) -> Result<Recording> {
     let place = Place {
         path,
         format: BinaryFormat::Mat,

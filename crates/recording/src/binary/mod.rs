@@ -100,6 +100,7 @@ pub(crate) fn read_with_format(
         BinaryFormat::Mat => mat::read(source, path, channels),
     };
     let mut rec = read(&channels)?;
+    rec.on_outlier = format.on_outlier;
     // Times in another unit than seconds (a MAT time variable in ms, say).
     let scale = format.time.unit.s_per_unit();
     if !format.waveform_time && scale != 1.0 {

@@ -141,7 +141,11 @@ pub fn tdms_channel(
 }
 
 /// The channels of a probe recording from a TDMS file read from `source`.
-pub(crate) fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<Recording> {
+pub(crate) fn read(
+    source: &Source<'_>,
+    path: &Path,
+    channels: &BinaryChannels,
+) -> Result<Recording> {
     let place = Place {
         path,
         format: BinaryFormat::Tdms,
