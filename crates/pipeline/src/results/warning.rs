@@ -277,15 +277,17 @@ impl Warning {
         Self {
             code: WarningCode::RateOutsidePhase,
             message: format!(
-                "{} calibration rate(s) ({}) lie outside {low}–{high} deg/s, the rates at which \
+                "{} calibration rate(s) ({}) lie outside {}–{} deg/s, the rates at which \
                  phase `{phase}` measured C_r: there the compensation extrapolates C_r·ω², which \
                  no probe measurement checks",
                 outside.len(),
-                outside
-                    .iter()
-                    .map(|r| format!("{r}"))
-                    .collect::<Vec<_>>()
-                    .join(", "),
+                // A long list is summarised (issue 32: 1e5 rates made one 257 kB line).
+                units::CompactSeries(outside)
+                    .to_string()
+                    .trim_start_matches('[')
+                    .replacen(']', "", 1),
+                units::Compact(low),
+                units::Compact(high),
             ),
             location: "calibration".into(),
         }
@@ -442,5 +444,29 @@ mod tests {
             assert_eq!(format!("\"{c}\""), serde_json::to_string(&c).unwrap());
             assert!(!c.title().is_empty());
         }
+    }
+
+    #[test]
+    fn a_long_list_of_rates_is_summarised() {
+        // Issue 32: 1e5 calibration rates made one 257 kB warning line.
+        let rates: Vec<f64> = (0..100_000).map(|i| 250.0 + f64::from(i) * 0.5).collect();
+        let w = Warning::rate_outside_phase(&rates, 10.0, 200.1234, "spindle");
+        assert!(w.message.len() < 400, "{} bytes", w.message.len());
+        assert!(
+            w.message.starts_with(
+                "100000 calibration rate(s) (250, 250.5, 251, 251.5, 252, 252.5, …, 50249.5 \
+                 (100000 values)) lie outside 10–200.1234 deg/s"
+            ),
+            "{}",
+            w.message
+        );
+        // A short list is written whole.
+        let w = Warning::rate_outside_phase(&[210.0, 220.5], 10.0, 200.0, "spindle");
+        assert!(
+            w.message
+                .starts_with("2 calibration rate(s) (210, 220.5) lie"),
+            "{}",
+            w.message
+        );
     }
 }

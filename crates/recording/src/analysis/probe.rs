@@ -87,28 +87,7 @@ pub fn analyze_recording(
         }
     };
     let signal = recording.signal(declared_rate_rad_s);
-    // With every sample finite, harmonics checks the rate itself (one vectorised pass);
-    // with non-finite ones kept, the rate is measured around them.
-    let measured_rate_rad_s = match recording.on_non_finite {
-        OnBadSamples::Error => None,
-        OnBadSamples::DropRevolution => recording.measured_rate_rad_s(),
-    };
-    if recording.angle_rad.is_some() {
-        let angle_ok = measured_rate_rad_s.is_some_and(f64::is_finite);
-        // A recording whose samples are all good is checked by harmonics itself.
-        if angle_ok || recording.on_non_finite == OnBadSamples::Error {
-            let check = match measured_rate_rad_s {
-                Some(m) if angle_ok && recording.on_non_finite != OnBadSamples::Error => {
-                    check_rate(m, declared_rate_rad_s)
-                }
-                _ => harmonics::check_encoder_rate(
-                    &signal,
-                    harmonics::DeclaredRate::new(declared_rate_rad_s),
-                ),
-            };
-            check.map_err(located)?;
-        }
-    }
+    let measured_rate_rad_s = declared_rate_check(recording, declared_rate_rad_s)?;
     let drop = DropBadSamples {
         gaps: recording.on_gap == OnBadSamples::DropRevolution,
         non_finite: recording.on_non_finite == OnBadSamples::DropRevolution,
@@ -141,6 +120,58 @@ pub fn analyze_recording(
         dropped,
         &config,
     ))
+}
+
+/// Checks a recording's measured angle against the rate it is declared at, as
+/// [`analyze_recording`] does first: with an encoder or index pulse, its mean rate must be
+/// within [`harmonics::ENCODER_RATE_TOLERANCE`] (2 %) of the declared one, else
+/// [`HarmonicsError::RateMismatch`] located in the file (one recording listed at two rates,
+/// a file attached to the wrong rate point). A recording whose angle comes from the declared
+/// rate passes. What a study's `check` runs on each recording without fitting it.
+///
+/// # Errors
+/// [`RecordingError::Samples`] holding [`HarmonicsError::RateMismatch`] or the angle's own
+/// error (not increasing, not finite), with the line and hint.
+pub fn check_declared_rate(recording: &Recording, declared_rate_rad_s: f64) -> Result<()> {
+    declared_rate_check(recording, declared_rate_rad_s).map(|_| ())
+}
+
+/// [`check_declared_rate`], returning the rate measured around non-finite samples when the
+/// recording keeps them (`None` otherwise).
+fn declared_rate_check(recording: &Recording, declared_rate_rad_s: f64) -> Result<Option<f64>> {
+    let located = |source: HarmonicsError| {
+        let hint = hint_of(recording, &source);
+        RecordingError::Samples {
+            path: recording.path.clone(),
+            line: sample_index(&source).map(|row| recording.line_of_sample(row)),
+            hint,
+            source,
+        }
+    };
+    let signal = recording.signal(declared_rate_rad_s);
+    // With every sample finite, harmonics checks the rate itself (one vectorised pass);
+    // with non-finite ones kept, the rate is measured around them.
+    let measured_rate_rad_s = match recording.on_non_finite {
+        OnBadSamples::Error => None,
+        OnBadSamples::DropRevolution => recording.measured_rate_rad_s(),
+    };
+    if recording.angle_rad.is_some() {
+        let angle_ok = measured_rate_rad_s.is_some_and(f64::is_finite);
+        // A recording whose samples are all good is checked by harmonics itself.
+        if angle_ok || recording.on_non_finite == OnBadSamples::Error {
+            let check = match measured_rate_rad_s {
+                Some(m) if angle_ok && recording.on_non_finite != OnBadSamples::Error => {
+                    check_rate(m, declared_rate_rad_s)
+                }
+                _ => harmonics::check_encoder_rate(
+                    &signal,
+                    harmonics::DeclaredRate::new(declared_rate_rad_s),
+                ),
+            };
+            check.map_err(located)?;
+        }
+    }
+    Ok(measured_rate_rad_s)
 }
 
 /// The mean rate within 2 % of the declared one.
