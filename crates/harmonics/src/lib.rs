@@ -97,8 +97,8 @@ pub use noise::{
     pooled_residual_variance, revolution_spread, slope_variance_factor,
 };
 pub use outliers::{
-    ALTERNATING_LAG1_LIMIT, AlternatingResiduals, MIN_REVOLUTIONS_FOR_OUTLIERS, OUTLIER_RMS_RATIO,
-    ResidualOutlier, ResidualOutliers, alternating_residuals, residual_outliers,
+    ALTERNATING_EXCESS_LIMIT, AlternatingResiduals, MIN_REVOLUTIONS_FOR_OUTLIERS,
+    OUTLIER_RMS_RATIO, ResidualOutlier, ResidualOutliers, alternating_residuals, residual_outliers,
     without_revolutions,
 };
 pub use pieces::{DropBadSamples, PooledAnalysis, analyze_around_bad_samples};

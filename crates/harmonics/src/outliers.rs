@@ -17,9 +17,20 @@ pub const OUTLIER_RMS_RATIO: f64 = 5.0;
 /// Fewest revolutions for the outlier test: with two, neither is "the others".
 pub const MIN_REVOLUTIONS_FOR_OUTLIERS: usize = 3;
 
-/// The residuals' lag-one autocorrelation below which they alternate in sign (white noise
-/// gives about 0 ± 1/√n over `n` samples; every other sample zeroed gives about −1).
-pub const ALTERNATING_LAG1_LIMIT: f64 = -0.5;
+/// How far the residuals' lag-one autocorrelation must lie below what white noise gives
+/// after the same fit, as a fraction of the way from there to −1 (perfect alternation), for
+/// them to alternate in sign. White noise left by a fit of order `K` (and drift) on `n`
+/// samples per revolution is itself anticorrelated: its residuals hold only the harmonics
+/// above `K`, whose lag-one autocorrelation is about
+/// `−(1 + 2 Σₖ cos(k Δθ)) / (n − 2K − 1)` (−0.64 for 18 samples per revolution at order 4,
+/// about 0 for hundreds). With many samples per revolution the limit is a lag-one
+/// autocorrelation of −0.5; every other sample zeroed gives about −1.
+pub const ALTERNATING_EXCESS_LIMIT: f64 = 0.5;
+
+/// Below this distance between white noise's lag-one autocorrelation after the fit and −1
+/// (too few samples per revolution for the order fitted) an alternation cannot be told from
+/// noise and none is reported.
+const ALTERNATION_MIN_ROOM: f64 = 0.1;
 
 /// Residuals below this fraction of the gap's scale (`|l0|` plus the first harmonic's
 /// amplitude) are rounding, not signal: they make neither an outlier nor an alternation.
@@ -59,6 +70,9 @@ pub struct ResidualOutliers {
 pub struct AlternatingResiduals {
     /// The residuals' lag-one autocorrelation (within revolutions).
     pub lag1: f64,
+    /// What white noise would give after the same fit (the same samples per revolution,
+    /// order and drift): the reference `lag1` is compared with.
+    pub white_noise_lag1: f64,
     /// The residual RMS of the revolutions examined, gap unit.
     pub residual_rms: f64,
     /// How many revolutions were examined.
@@ -158,9 +172,32 @@ pub fn without_revolutions(analysis: &HarmonicAnalysis, drop: &[usize]) -> Harmo
 }
 
 /// Whether the residuals alternate in sign from sample to sample: their lag-one
-/// autocorrelation within up to eight revolutions spread over the recording is below
-/// [`ALTERNATING_LAG1_LIMIT`] and they are above the rounding floor. `signal` is the one
-/// `analysis` was fitted to.
+/// autocorrelation within up to eight revolutions spread over the recording lies further
+/// below what white noise gives after the same fit than [`ALTERNATING_EXCESS_LIMIT`] of the
+/// way to −1, and they are above the rounding floor. `signal` is the one `analysis` was
+/// fitted to.
+///
+/// ```
+/// use harmonics::{alternating_residuals, analyze, FitConfig, ProbeSignal, SpindleAngle};
+/// let rate = 36f64.to_radians();
+/// // 18 samples per revolution: white noise after an order-4 fit is itself anticorrelated.
+/// let time_s: Vec<f64> = (0..18 * 6).map(|i| i as f64 * 10.0 / 18.0).collect();
+/// let noise = |i: usize| 0.01 * ((i * 7919 % 101) as f64 / 50.0 - 1.0);
+/// let clean: Vec<f64> = time_s.iter().enumerate()
+///     .map(|(i, t)| 50.0 + 3.0 * (rate * t).cos() + noise(i)).collect();
+/// let angle = SpindleAngle::Rate { rate_rad_s: rate, start_angle_rad: 0.0 };
+/// let signal = ProbeSignal { time_s: &time_s, gap: &clean, angle };
+/// let fit = analyze(&signal, &FitConfig::default())?;
+/// assert_eq!(alternating_residuals(&signal, &fit), None);
+/// // Every other sample zeroed: the first harmonic halved, and warned.
+/// let zeroed: Vec<f64> = clean.iter().enumerate()
+///     .map(|(i, g)| if i % 2 == 1 { 0.0 } else { *g }).collect();
+/// let signal = ProbeSignal { time_s: &time_s, gap: &zeroed, angle };
+/// let fit = analyze(&signal, &FitConfig::default())?;
+/// let found = alternating_residuals(&signal, &fit).unwrap();
+/// assert!(found.lag1 < -0.9 && found.white_noise_lag1 < -0.5, "{found:?}");
+/// # Ok::<(), harmonics::HarmonicsError>(())
+/// ```
 pub fn alternating_residuals(
     signal: &ProbeSignal<'_>,
     analysis: &HarmonicAnalysis,
@@ -168,9 +205,14 @@ pub fn alternating_residuals(
     let fits = &analysis.revolutions;
     let step = fits.len().div_ceil(ALTERNATION_REVOLUTIONS).max(1);
     let (mut lagged, mut squares, mut count) = (0.0_f64, 0.0_f64, 0_usize);
+    // What white noise of unit variance would leave: E[Σ r_i r_{i+1}] and E[Σ r_i²].
+    let (mut noise_lagged, mut noise_squares) = (0.0_f64, 0.0_f64);
     let mut examined = 0;
     for fit in fits.iter().step_by(step) {
         examined += 1;
+        let (l, q) = white_noise_residual_moments(signal, fit, analysis.order, analysis.drift);
+        noise_lagged += l;
+        noise_squares += q;
         let mut previous: Option<f64> = None;
         for (_, r) in residuals(signal, fit) {
             if let Some(p) = previous {
@@ -186,13 +228,62 @@ pub fn alternating_residuals(
     }
     let residual_rms = (squares / count as f64).sqrt();
     let lag1 = lagged / squares;
-    (residual_rms > ROUNDING_FLOOR * scale(analysis) && lag1 < ALTERNATING_LAG1_LIMIT).then_some(
-        AlternatingResiduals {
+    if noise_squares <= 0.0 {
+        return None;
+    }
+    let white_noise_lag1 = (noise_lagged / noise_squares).clamp(-1.0, 1.0);
+    let room = 1.0 + white_noise_lag1;
+    let excess = (white_noise_lag1 - lag1) / room;
+    (room >= ALTERNATION_MIN_ROOM
+        && residual_rms > ROUNDING_FLOOR * scale(analysis)
+        && excess > ALTERNATING_EXCESS_LIMIT)
+        .then_some(AlternatingResiduals {
             lag1,
+            white_noise_lag1,
             residual_rms,
             revolutions: examined,
-        },
-    )
+        })
+}
+
+/// For white noise of unit variance fitted as `fit` was (order `order`, drift or not), the
+/// expected lag-one sum `E[Σ r_i r_{i+1}] = −Σ H_{i,i+1}` and sum of squares
+/// `E[Σ r_i²] = n − p` of its residuals, `H` the fit's hat matrix. The Fourier part of `H`
+/// is taken as on a whole revolution sampled evenly in angle,
+/// `H_ij ≈ (1 + 2 Σₖ cos k(θ_j − θ_i)) / n`, with each step's own angle; the drift part
+/// exactly, `d_i d_j / Σ d²` (`d` the time from the revolution's middle).
+fn white_noise_residual_moments(
+    signal: &ProbeSignal<'_>,
+    fit: &RevolutionFit,
+    order: usize,
+    drift: bool,
+) -> (f64, f64) {
+    let n = fit.samples;
+    let parameters = 2 * order + 1 + usize::from(drift);
+    if n <= parameters + 1 {
+        return (0.0, 0.0);
+    }
+    let range = fit.first_sample..fit.first_sample + n;
+    let t = &signal.time_s[range.clone()];
+    let angle = |i: usize| match signal.angle {
+        SpindleAngle::Encoder(a) => a[i],
+        SpindleAngle::Rate { rate_rad_s, .. } => rate_rad_s * signal.time_s[i],
+    };
+    let n_f = n as f64;
+    let mut hat_lag = 0.0;
+    for i in range.start..range.end - 1 {
+        let step = angle(i + 1) - angle(i);
+        let fourier: f64 = (1..=order).map(|k| (k as f64 * step).cos()).sum();
+        hat_lag += (1.0 + 2.0 * fourier) / n_f;
+    }
+    if drift {
+        let t_mid = 0.5 * (t[0] + t[n - 1]);
+        let d: Vec<f64> = t.iter().map(|x| x - t_mid).collect();
+        let dd: f64 = d.iter().map(|x| x * x).sum();
+        if dd > 0.0 {
+            hat_lag += d.windows(2).map(|w| w[0] * w[1]).sum::<f64>() / dd;
+        }
+    }
+    (-hat_lag, n_f - parameters as f64)
 }
 
 /// The residuals of one revolution's fit, `(sample, gap − fit)`.

@@ -158,6 +158,9 @@ pub enum Diagnostic {
     AlternatingResiduals {
         /// The residuals' lag-one autocorrelation.
         lag1: f64,
+        /// What white noise gives after the same fit (anticorrelated itself with few
+        /// samples per revolution).
+        white_noise_lag1: f64,
         /// Their RMS, gap unit.
         residual_rms: f64,
         /// The gap unit.
@@ -336,15 +339,18 @@ impl fmt::Display for Diagnostic {
             }
             Self::AlternatingResiduals {
                 lag1,
+                white_noise_lag1,
                 residual_rms,
                 unit,
             } => write!(
                 f,
                 "the fit's residuals alternate in sign from one sample to the next \
-                 (lag-one autocorrelation {}, residual RMS {} {}): every other sample zeroed \
-                 or held, or two interleaved channels that disagree; the first harmonic is \
-                 then wrong (halved when every other sample is zero): check the recording",
+                 (lag-one autocorrelation {}, where noise alone would give {}; residual RMS \
+                 {} {}): every other sample zeroed or held, or two interleaved channels that \
+                 disagree; the first harmonic is then wrong (halved when every other sample \
+                 is zero): check the recording",
                 units::Compact(round_to(*lag1, 3)),
+                units::Compact(round_to(*white_noise_lag1, 2)),
                 units::Compact(round_to(*residual_rms, 3)),
                 unit.symbol()
             ),

@@ -394,6 +394,7 @@ fn outliers(
     if let Some(a) = harmonics::alternating_residuals(signal, &analysis) {
         diagnostics.push(Diagnostic::AlternatingResiduals {
             lag1: a.lag1,
+            white_noise_lag1: a.white_noise_lag1,
             residual_rms: a.residual_rms,
             unit,
         });

@@ -253,7 +253,9 @@ fn one_glitch_sample_is_warned_and_its_revolution_dropped_by_default() {
                 assert_eq!(revolutions[0].revolution, 3);
                 assert_eq!(revolutions[0].largest_at, SampleAt::Line(glitch + 3));
                 assert!(revolutions[0].residual_rms > 100.0 * median_rms);
-                assert!((revolutions[0].largest_residual - 937.0).abs() < 5.0);
+                // The glitch less the part the revolution's own fit absorbs (its leverage).
+                let r = revolutions[0].largest_residual;
+                assert!((900.0..937.0).contains(&r), "{r}");
             }
             other => panic!("{other:?}"),
         }
@@ -286,7 +288,15 @@ fn every_other_sample_zeroed_is_warned() {
         .find(|d| d.code() == "alternating_residuals")
         .unwrap_or_else(|| panic!("{:?}", a.diagnostics));
     match d {
-        Diagnostic::AlternatingResiduals { lag1, .. } => assert!(*lag1 < -0.9, "{lag1}"),
+        Diagnostic::AlternatingResiduals {
+            lag1,
+            white_noise_lag1,
+            ..
+        } => {
+            assert!(*lag1 < -0.9, "{lag1}");
+            // Many samples per revolution: noise alone leaves residuals about uncorrelated.
+            assert!(white_noise_lag1.abs() < 0.1, "{white_noise_lag1}");
+        }
         other => panic!("{other:?}"),
     }
     assert!(d.to_string().contains("alternate in sign"), "{d}");
