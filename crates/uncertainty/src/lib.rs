@@ -71,6 +71,7 @@ mod input;
 mod kind;
 mod model;
 mod monte_carlo;
+mod stop;
 mod student;
 mod tolerance;
 mod validate;
@@ -84,6 +85,7 @@ pub use monte_carlo::{
     MAX_TRIALS, MC_BYTES_PER_TRIAL_AND_OUTPUT, McOptions, McOutput, McResult, Stability, Trials,
     check_trials, monte_carlo,
 };
+pub use stop::stoppable;
 pub use student::{coverage_factor, student_t_quantile};
 pub use tolerance::numerical_tolerance;
 pub use validate::{OutputValidation, Validation, validate};

@@ -2,6 +2,7 @@
 
 mod harmonics;
 mod hostile;
+mod hostile_text;
 mod human;
 mod identify;
 mod init;

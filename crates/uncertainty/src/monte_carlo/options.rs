@@ -31,7 +31,7 @@ pub struct McOptions {
     /// Significant decimal digits `n_dig` of the standard uncertainty for the numerical
     /// tolerance (§7.9.2; default 2).
     pub n_dig: u32,
-    /// Adaptive (default, capped at 10⁷ trials) or fixed.
+    /// Adaptive (default, capped at 10⁷ trials) or fixed (at most [`MAX_TRIALS`]).
     pub trials: Trials,
     /// Largest fraction of trials allowed to fail (the model returns an error or a non-finite
     /// output); default 10⁻³, at most ½. Failed trials are left out of every statistic.
@@ -45,7 +45,7 @@ impl Default for McOptions {
             coverage_probability: 0.95,
             n_dig: 2,
             trials: Trials::Adaptive {
-                max_trials: 10_000_000,
+                max_trials: MAX_TRIALS,
             },
             max_failed_fraction: 1e-3,
         }
@@ -135,10 +135,14 @@ pub(super) fn check_options(options: &McOptions, batch_size: u64, outputs: usize
             // two batches of max(100/(1 - p), 10^4) trials
             Requirement::AtLeast((2 * batch_size) as f64),
         ),
+        // (beyond MAX_TRIALS, refused above with the memory and time it would take)
         Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 => invalid(
             "trials",
             n as f64,
-            Requirement::AtLeast((100.0 / (1.0 - p)).ceil()),
+            Requirement::InRange {
+                min: (100.0 / (1.0 - p)).ceil(),
+                max: MAX_TRIALS as f64,
+            },
         ),
         _ => Ok(()),
     }

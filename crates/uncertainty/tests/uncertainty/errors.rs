@@ -323,6 +323,8 @@ fn invalid_options() {
             },
             "trials",
         ),
+        // beyond the cap: TooManyTrials, with its memory and time
+        // (too_many_trials_are_refused_before_any_is_drawn)
     ] {
         assert!(
             matches!(monte_carlo(&model, &inputs, &options), Err(UncertaintyError::InvalidOption { name: n, .. }) if n == name),
@@ -361,6 +363,7 @@ fn too_many_trials_are_refused_before_any_is_drawn() {
     });
     for trials in [
         Trials::Fixed(1_000_000_000),
+        Trials::Fixed(uncertainty::MAX_TRIALS + 1),
         Trials::Adaptive {
             max_trials: u64::MAX,
         },
@@ -373,7 +376,7 @@ fn too_many_trials_are_refused_before_any_is_drawn() {
         match &e {
             UncertaintyError::TooManyTrials { max, bytes, .. } => {
                 assert_eq!(*max, uncertainty::MAX_TRIALS);
-                assert!(*bytes >= 16_000_000_000, "{bytes}");
+                assert!(*bytes > 2 * 8 * uncertainty::MAX_TRIALS, "{bytes}");
             }
             other => panic!("{other:?}"),
         }
