@@ -61,11 +61,11 @@ pub fn read_bytes_capped(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
         size_bytes,
     };
     let (file, metadata) = crate::open::open_regular(path)?;
-    let known_size = Some(metadata.len());
-    if let Some(size) = known_size.filter(|&size| size > max_bytes) {
-        return Err(too_large(Some(size)));
+    let known_size = metadata.len();
+    if known_size > max_bytes {
+        return Err(too_large(Some(known_size)));
     }
-    let capacity = known_size.unwrap_or(0).min(max_bytes).saturating_add(1);
+    let capacity = known_size.min(max_bytes).saturating_add(1);
     let mut bytes = Vec::with_capacity(usize::try_from(capacity).unwrap_or(0));
     file.take(max_bytes.saturating_add(1))
         .read_to_end(&mut bytes)
