@@ -357,28 +357,52 @@ fn outliers(
     signal: &ProbeSignal<'_>,
     analysis: HarmonicAnalysis,
 ) -> (HarmonicAnalysis, Vec<Diagnostic>) {
-    let unit = recording.gap_unit;
-    let binary = recording.len() > 0 && recording.line_of_sample(0) == 0;
-    let at = |sample: usize| {
+    let binary = !recording.is_empty() && recording.line_of_sample(0) == 0;
+    let place = |sample: usize| {
         if binary {
             SampleAt::Sample(sample)
         } else {
             SampleAt::Line(recording.line_of_sample(sample))
         }
     };
+    outlier_check(
+        signal,
+        analysis,
+        recording.on_outlier,
+        recording.gap_unit,
+        place,
+    )
+}
+
+/// The outlier checks of [`analyze_recording`] on any fit of `signal` (a recording's, or
+/// arrays handed over, as the Python package does): revolutions whose residual RMS is more
+/// than `harmonics::OUTLIER_RMS_RATIO` times the median are [`Diagnostic::ResidualOutlier`]
+/// and, with [`OnOutlier::DropRevolution`], left out of the returned analysis; residuals
+/// that alternate in sign are [`Diagnostic::AlternatingResiduals`]. `unit` is the gap's;
+/// `place` names a sample (its file line, or its index).
+pub fn outlier_check(
+    signal: &ProbeSignal<'_>,
+    analysis: HarmonicAnalysis,
+    on_outlier: OnOutlier,
+    unit: LengthUnit,
+    place: impl Fn(usize) -> SampleAt,
+) -> (HarmonicAnalysis, Vec<Diagnostic>) {
     let mut diagnostics = Vec::new();
     let mut analysis = analysis;
     if let Some(found) = harmonics::residual_outliers(signal, &analysis) {
-        let dropped = recording.on_outlier == OnOutlier::DropRevolution;
+        let dropped = on_outlier == OnOutlier::DropRevolution;
         let revolutions = found
             .revolutions
             .iter()
             .map(|o| OutlierRevolution {
                 revolution: o.revolution,
-                first_line: recording.line_of_sample(o.first_sample),
+                first_line: match place(o.first_sample) {
+                    SampleAt::Line(line) => line,
+                    SampleAt::Sample(_) => 0,
+                },
                 residual_rms: o.residual_rms,
                 largest_residual: o.largest_residual,
-                largest_at: at(o.largest_at_sample),
+                largest_at: place(o.largest_at_sample),
             })
             .collect();
         if dropped {
