@@ -134,10 +134,14 @@ fn count(v: &Value, n: &mut usize) {
     }
 }
 
+/// Most rates of a phase `check` lists one by one.
+const CHECK_RATES_SHOWN: usize = 40;
+
 /// A number as written, or `—`.
 fn num(v: Option<&Value>) -> String {
+    // Short in every range: `1e300`, not 301 digits (docs/RELIABILITY.md).
     v.and_then(Value::as_f64)
-        .map_or_else(|| "—".to_owned(), |x| format!("{x}"))
+        .map_or_else(|| "—".to_owned(), |x| units::Compact(x).to_string())
 }
 
 /// What the study will do, in words, from the configuration's own field names
@@ -198,16 +202,36 @@ fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: boo
         let line = match kind {
             "recordings" => {
                 let files = body["files"].as_array().map_or(0, Vec::len);
-                let rates: Vec<String> = body["files"]
+                let rates: Vec<f64> = body["files"]
                     .as_array()
                     .into_iter()
                     .flatten()
-                    .map(|f| num(f.get("rate_deg_s")))
+                    .map(|f| {
+                        f.get("rate_deg_s")
+                            .and_then(Value::as_f64)
+                            .unwrap_or(f64::NAN)
+                    })
                     .collect();
+                // Every rate of a phase a lab measures (a few dozen at most); a longer list
+                // (issue 32: 10⁵ rates made one 257 kB line) summarised as the first few, the
+                // last and the count.
+                let rates = if rates.len() <= CHECK_RATES_SHOWN {
+                    rates
+                        .iter()
+                        .map(|r| units::Compact(*r).to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                } else {
+                    let series = units::CompactSeries(&rates).to_string();
+                    series
+                        .strip_prefix('[')
+                        .unwrap_or(&series)
+                        .replacen(']', "", 1)
+                };
                 format!(
                     "{files} probe recordings at {} deg/s, read as {}; fitted per revolution \
                      (order {}, drift {})",
-                    rates.join(", "),
+                    rates,
                     format_words(&body["format"]),
                     num(body["fit"].get("order")),
                     if body["fit"]["drift"].as_bool().unwrap_or(true) {

@@ -45,6 +45,27 @@ pub enum PipelineError {
         /// The repeated rate.
         rate_deg_s: f64,
     },
+    /// One recording listed twice in a phase (the same file, or the same bytes under two
+    /// names): one recording cannot be two rate points.
+    #[error(
+        "{}: field `{field}`: {} is the same recording as `{first}` ({}): one recording \
+         cannot be two rate points; name the recording of each rate",
+        path.display(),
+        file.display(),
+        if *same_bytes { "the same bytes" } else { "the same file" }
+    )]
+    SameRecording {
+        /// The file concerned (the configuration).
+        path: PathBuf,
+        /// Path of the second occurrence.
+        field: String,
+        /// Path of the first occurrence.
+        first: String,
+        /// The recording.
+        file: PathBuf,
+        /// Whether they are two files with the same bytes (else one file named twice).
+        same_bytes: bool,
+    },
     /// A phase has too few rate points for its radius-error model: a fit needs one more point
     /// than the model has unknowns, to have a standard error.
     #[error("{}: field `{field}`: {got} rate point(s), the {model} model needs at least {need} (one more than its unknowns)", path.display())]
@@ -365,6 +386,14 @@ pub enum InvalidReason {
     /// A rate must be finite and positive.
     #[error("a rate must be finite and > 0")]
     RateNotPositive,
+    /// A local gravity off the Earth's surface.
+    #[error(
+        "must lie within {}…{} m/s² (the Earth's surface gravity: 9.780 at the equator to \
+         9.832 at the poles, less with altitude); a value in g or another unit is an error",
+        units::Compact(*units::GRAVITY_RANGE_M_S2.start()),
+        units::Compact(*units::GRAVITY_RANGE_M_S2.end())
+    )]
+    GravityImplausible,
     /// Too few Monte Carlo trials for a 95 % interval.
     #[error("must be at least 2000 (JCGM 101 §7.2: 100/(1 − p) for p = 95 %)")]
     TooFewTrials,

@@ -180,6 +180,15 @@ impl Core {
         }
         check.positive("radius_m", config.radius_m)?;
         check.positive("g_m_s2", config.g_m_s2)?;
+        // Plausibility (issue 32): a g off the Earth's surface is a typing or unit error, and
+        // one of 1e300 made every bound that scales with it absurd (`[1e198, inf]`).
+        if !units::GRAVITY_RANGE_M_S2.contains(&config.g_m_s2) {
+            return Err(check.invalid(
+                "g_m_s2".to_owned(),
+                config.g_m_s2,
+                InvalidReason::GravityImplausible,
+            ));
+        }
         check.positive("k1_rad_s_g", config.k1_rad_s_g)?;
         let lever = LeverGeometry {
             pivot_to_probe_mm: config.lever.pivot_to_probe_mm,

@@ -13,6 +13,7 @@ mod rate;
 mod setting;
 mod sniff;
 mod table;
+mod walk;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -49,7 +50,8 @@ pub(crate) struct Init {
 
 impl Init {
     pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let (paths, skipped) = collect(&self.inputs)?;
+        let walked = walk::collect(&self.inputs, &DATA_EXTENSIONS)?;
+        let (paths, skipped) = (&walked.files, &walked.other_names);
         let base = match &self.inputs[..] {
             [one] if one.is_dir() => one.clone(),
             _ => self.inputs[0]
@@ -66,31 +68,37 @@ impl Init {
                     .collect::<Vec<_>>()
                     .join(", "),
                 DATA_EXTENSIONS.map(|e| format!(".{e}")).join(" "),
-                if skipped.is_empty() {
+                if skipped.is_empty() && walked.not_read.is_empty() {
                     "nothing".to_owned()
                 } else {
-                    skipped.join(", ")
+                    skipped
+                        .iter()
+                        .cloned()
+                        .chain(
+                            walked
+                                .not_read
+                                .iter()
+                                .map(|s| format!("{} ({})", s.path.display(), s.why)),
+                        )
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 }
             );
         }
-        let findings: Vec<Finding> = paths
-            .iter()
-            .map(|path| match std::fs::read(path) {
-                Ok(bytes) => understand(path, &bytes, &|layout, name| {
-                    read_column(&bytes, path, layout, name)
-                }),
-                Err(e) => {
-                    let mut f = understand(path, b"", &|_, _| Err(String::new()));
-                    f.problems = vec![format!("cannot be read: {e}")];
-                    f
-                }
-            })
-            .collect();
+        let findings: Vec<Finding> = paths.iter().map(|path| read_and_understand(path)).collect();
         let mut console = Console::stdout();
         let shown = |p: &Path| -> String {
             p.strip_prefix(&base)
                 .map_or_else(|_| p.display().to_string(), |r| r.display().to_string())
         };
+        if !walked.not_read.is_empty() {
+            let mut text = String::from("not read:\n");
+            for s in &walked.not_read {
+                let _ = writeln!(text, "  {}: {}", shown(&s.path), s.why);
+            }
+            text.push('\n');
+            console.write_str(&text)?;
+        }
         console.write_str(&table(&findings, &shown))?;
         let mut problems: BTreeMap<String, Vec<String>> = BTreeMap::new();
         for f in &findings {
@@ -115,12 +123,8 @@ impl Init {
                 if problems.len() == 1 { "" } else { "s" }
             );
         }
-        if out.exists() && !self.force {
-            bail!(
-                "{} exists: nothing written (--force overwrites it, or --out names another file)",
-                out.display()
-            );
-        }
+        let read: Vec<PathBuf> = paths.iter().chain(&self.inputs).cloned().collect();
+        walk::check_output(&out, &read, self.force)?;
         let folder = out
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
@@ -151,48 +155,36 @@ impl Init {
     }
 }
 
-/// The files named, folders expanded (recursively, hidden entries left out), sorted; and
-/// the names of files skipped for their extension.
-fn collect(inputs: &[PathBuf]) -> anyhow::Result<(Vec<PathBuf>, Vec<String>)> {
-    let mut files = Vec::new();
-    let mut skipped = Vec::new();
-    let mut stack: Vec<PathBuf> = Vec::new();
-    for input in inputs {
-        if input.is_dir() {
-            stack.push(input.clone());
-        } else if input.is_file() {
-            files.push(input.clone());
-        } else {
-            bail!("{}: no such file or folder", input.display());
+/// One file read within `init`'s caps ([`walk::read_bounded`]) and understood; a text file
+/// longer than the cap is understood from its first whole lines, and its rate's evidence
+/// says so.
+fn read_and_understand(path: &Path) -> Finding {
+    let bounded = match walk::read_bounded(path) {
+        Ok(b) => b,
+        Err(problem) => {
+            let mut f = Finding::new(path);
+            f.problems = vec![problem];
+            return f;
         }
+    };
+    if let Some(problem) = bounded.problem {
+        let mut f = Finding::new(path);
+        f.problems = vec![problem];
+        return f;
     }
-    while let Some(dir) = stack.pop() {
-        let entries = std::fs::read_dir(&dir)
-            .with_context(|| format!("reading the folder {}", dir.display()))?;
-        for entry in entries {
-            let path = entry
-                .with_context(|| format!("reading the folder {}", dir.display()))?
-                .path();
-            let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-            if name.as_deref().is_some_and(|n| n.starts_with('.')) {
-                continue;
-            }
-            if path.is_dir() {
-                stack.push(path);
-            } else if path
-                .extension()
-                .map(|e| e.to_string_lossy().to_ascii_lowercase())
-                .is_some_and(|e| DATA_EXTENSIONS.contains(&e.as_str()))
-            {
-                files.push(path);
-            } else if let Some(n) = name {
-                skipped.push(n);
-            }
-        }
+    let bytes = bounded.bytes;
+    let mut f = understand(path, &bytes, &|layout, name| {
+        read_column(&bytes, path, layout, name)
+    });
+    if let (Some(size), Some(rate)) = (bounded.prefix_of, f.rate.as_mut()) {
+        let _ = write!(
+            rate.evidence,
+            " (from the file's first {} MiB of {} MiB)",
+            bytes.len() >> 20,
+            size >> 20
+        );
     }
-    files.sort();
-    skipped.sort();
-    Ok((files, skipped))
+    f
 }
 
 /// A whole column of a text file, read by the recording crate's table reader with the

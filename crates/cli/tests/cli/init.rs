@@ -446,23 +446,32 @@ fn no_overwrite_without_force() {
         &|_, t, g, a| format!("{t:.9},{g:.9},{a:.9}"),
     );
     assert!(cli(&["init", tmp.0.to_str().unwrap()]).status.success());
-    std::fs::write(tmp.0.join("study.ron"), "my edits").unwrap();
+    let study = tmp.0.join("study.ron");
+    let written = std::fs::read_to_string(&study).unwrap();
+    // The configuration init wrote, edited below its first line.
+    let first_line = written.lines().next().unwrap();
+    let edited = format!("{first_line}\nmy edits\n");
+    std::fs::write(&study, &edited).unwrap();
     let again = cli(&["init", tmp.0.to_str().unwrap()]);
     assert_eq!(again.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
-    assert_eq!(
-        std::fs::read_to_string(tmp.0.join("study.ron")).unwrap(),
-        "my edits"
-    );
+    assert_eq!(std::fs::read_to_string(&study).unwrap(), edited);
     assert!(
         cli(&["init", tmp.0.to_str().unwrap(), "--force"])
             .status
             .success()
     );
-    assert_ne!(
-        std::fs::read_to_string(tmp.0.join("study.ron")).unwrap(),
-        "my edits"
+    assert_eq!(std::fs::read_to_string(&study).unwrap(), written);
+    // A file init did not write is left alone even with --force (issue 32).
+    std::fs::write(&study, "my edits").unwrap();
+    let forced = cli(&["init", tmp.0.to_str().unwrap(), "--force"]);
+    assert_eq!(forced.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&forced.stderr).contains("was not written by init"),
+        "{}",
+        String::from_utf8_lossy(&forced.stderr)
     );
+    assert_eq!(std::fs::read_to_string(&study).unwrap(), "my edits");
 }
 
 /// The simulated campaign's C_r (fixtures/campaign/truth.json), whose probe recordings

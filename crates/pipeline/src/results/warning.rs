@@ -26,6 +26,10 @@ pub enum WarningCode {
     /// A probe signal implausible for its gap column's declared unit (a mean gap below a
     /// micrometre, a first harmonic below a probe's own noise): C_r wrong by the unit's factor.
     ImplausibleGapUnit,
+    /// Revolutions of a recording fit far worse than the others (a glitch or dropout).
+    ResidualOutlier,
+    /// A recording's residuals alternate in sign from sample to sample.
+    AlternatingResiduals,
     /// Another diagnostic of a recording (one this version does not name).
     Recording,
     /// The radius-error residuals exceed their white-noise σ.
@@ -71,6 +75,8 @@ impl WarningCode {
             Self::DroppedRevolutions => "dropped_revolutions",
             Self::OutputSpread => "output_spread",
             Self::ImplausibleGapUnit => "implausible_gap_unit",
+            Self::ResidualOutlier => "residual_outlier",
+            Self::AlternatingResiduals => "alternating_residuals",
             Self::Recording => "recording",
             Self::LackOfFit => "lack_of_fit",
             Self::SecondProbePhase => "second_probe_phase",
@@ -98,6 +104,8 @@ impl WarningCode {
             Self::DroppedRevolutions => "revolutions dropped",
             Self::OutputSpread => "PIGA output varies between revolutions",
             Self::ImplausibleGapUnit => "probe signal implausible for its declared unit",
+            Self::ResidualOutlier => "revolutions that fit far worse than the others",
+            Self::AlternatingResiduals => "residuals alternate from sample to sample",
             Self::Recording => "recording diagnostic",
             Self::LackOfFit => "radius-error fit worse than the noise",
             Self::SecondProbePhase => "phase read with the first probe's lever",
@@ -161,6 +169,8 @@ impl Warning {
             D::DroppedRevolutions { .. } => WarningCode::DroppedRevolutions,
             D::OutputSpread { .. } => WarningCode::OutputSpread,
             D::ImplausibleGap { .. } => WarningCode::ImplausibleGapUnit,
+            D::ResidualOutlier { .. } => WarningCode::ResidualOutlier,
+            D::AlternatingResiduals { .. } => WarningCode::AlternatingResiduals,
             _ => WarningCode::Recording,
         };
         Self {
@@ -270,15 +280,17 @@ impl Warning {
         Self {
             code: WarningCode::RateOutsidePhase,
             message: format!(
-                "{} calibration rate(s) ({}) lie outside {low}–{high} deg/s, the rates at which \
+                "{} calibration rate(s) ({}) lie outside {}–{} deg/s, the rates at which \
                  phase `{phase}` measured C_r: there the compensation extrapolates C_r·ω², which \
                  no probe measurement checks",
                 outside.len(),
-                outside
-                    .iter()
-                    .map(|r| format!("{r}"))
-                    .collect::<Vec<_>>()
-                    .join(", "),
+                // A long list is summarised (issue 32: 1e5 rates made one 257 kB line).
+                units::CompactSeries(outside)
+                    .to_string()
+                    .trim_start_matches('[')
+                    .replacen(']', "", 1),
+                units::Compact(low),
+                units::Compact(high),
             ),
             location: "calibration".into(),
         }
@@ -508,5 +520,29 @@ mod tests {
             assert_eq!(format!("\"{c}\""), serde_json::to_string(&c).unwrap());
             assert!(!c.title().is_empty());
         }
+    }
+
+    #[test]
+    fn a_long_list_of_rates_is_summarised() {
+        // Issue 32: 1e5 calibration rates made one 257 kB warning line.
+        let rates: Vec<f64> = (0..100_000).map(|i| 250.0 + f64::from(i) * 0.5).collect();
+        let w = Warning::rate_outside_phase(&rates, 10.0, 200.1234, "spindle");
+        assert!(w.message.len() < 400, "{} bytes", w.message.len());
+        assert!(
+            w.message.starts_with(
+                "100000 calibration rate(s) (250, 250.5, 251, 251.5, 252, 252.5, …, 50249.5 \
+                 (100000 values)) lie outside 10–200.1234 deg/s"
+            ),
+            "{}",
+            w.message
+        );
+        // A short list is written whole.
+        let w = Warning::rate_outside_phase(&[210.0, 220.5], 10.0, 200.0, "spindle");
+        assert!(
+            w.message
+                .starts_with("2 calibration rate(s) (210, 220.5) lie"),
+            "{}",
+            w.message
+        );
     }
 }
