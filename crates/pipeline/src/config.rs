@@ -5,7 +5,7 @@
 //! library types (`harmonics::LeverGeometry`, `harmonics::FitConfig`, `identify::RadiusModel`)
 //! are built there, so renaming a library field cannot change the file format.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use recording::RecordingFormat;
 use serde::{Deserialize, Serialize};
@@ -13,9 +13,11 @@ use serde::{Deserialize, Serialize};
 use crate::error::{PipelineError, Result};
 
 mod certificate;
+mod profile;
 mod table;
 mod two_orientation;
 pub use certificate::*;
+pub use profile::*;
 pub use table::*;
 pub use two_orientation::*;
 
@@ -26,13 +28,30 @@ pub use two_orientation::*;
 pub struct StudyConfig {
     /// A short name for the study, used in reports.
     pub name: String,
-    /// Static working radius `R` (PIGA centre of mass to spindle axis), m.
-    pub radius_m: f64,
-    /// Gravity used to express specific force in g, m/s².
-    pub g_m_s2: f64,
+    /// The lab profile (`lab.ron`, `docs/PROFILE.md`), relative to the study file's folder:
+    /// what it states (the centrifuge's radius and probe geometry, g, the Type B inputs, the
+    /// certificate's laboratory, equipment, traceability, signatory) the study need not
+    /// repeat; a value the study states overrides it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<PathBuf>,
+    /// The centrifuge used, by its name in the profile (required with a profile).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub centrifuge: Option<String>,
+    /// The probe used, by its name in the profile (default: the one the centrifuge names).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub probe: Option<String>,
+    /// Static working radius `R` (PIGA centre of mass to spindle axis), m (from the profile's
+    /// centrifuge when left out).
+    #[serde(default)]
+    pub radius_m: Option<f64>,
+    /// Gravity used to express specific force in g, m/s² (from the profile when left out).
+    #[serde(default)]
+    pub g_m_s2: Option<f64>,
     /// PIGA scale factor `k1`, rad/(s·g).
     pub k1_rad_s_g: f64,
-    /// Heights that carry the probe's first harmonic to the PIGA plane, and the probe direction.
+    /// Heights that carry the probe's first harmonic to the PIGA plane, and the probe
+    /// direction (each from the profile's centrifuge when left out).
+    #[serde(default)]
     pub lever: LeverConfig,
     /// Model of the radius error against rate (default: the paper's `a + C_r·ω²`).
     #[serde(default)]
@@ -318,17 +337,18 @@ impl StudyConfig {
     }
 }
 
-/// The probe's lever geometry (eq. 22): heights in mm and the measuring direction.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The probe's lever geometry (eq. 22): heights in mm and the measuring direction. Each is
+/// required unless the study's lab profile gives it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct LeverConfig {
     /// Height from the tilt pivot to the probe plane, mm.
-    pub pivot_to_probe_mm: f64,
+    pub pivot_to_probe_mm: Option<f64>,
     /// Height from the probe plane to the PIGA centre-of-mass plane, mm.
-    pub probe_to_piga_mm: f64,
-    /// The probe's measuring direction (default: against O1X1, the paper's set-up).
-    #[serde(default)]
-    pub probe_direction: ProbeDirectionName,
+    pub probe_to_piga_mm: Option<f64>,
+    /// The probe's measuring direction (default: against O1X1, the paper's set-up, when
+    /// neither the study nor its profile states it).
+    pub probe_direction: Option<ProbeDirectionName>,
 }
 
 /// Direction in which the displacement probe measures, relative to the sleeve axis O1X1.
@@ -525,12 +545,17 @@ impl StudyConfig {
     pub fn from_ron(text: &str, path: &Path) -> Result<Self> {
         edge_io::ron_options()
             .from_str(text)
-            .map_err(|e| PipelineError::Parse {
-                path: path.to_owned(),
-                line: e.span.start.line,
-                column: e.span.start.col,
-                message: parse_message(&e.code),
-            })
+            .map_err(|e| parse_error(&e, path))
+    }
+}
+
+/// A RON parser's error as the configuration's own words, located in `path`.
+pub(crate) fn parse_error(e: &ron::error::SpannedError, path: &Path) -> PipelineError {
+    PipelineError::Parse {
+        path: path.to_owned(),
+        line: e.span.start.line,
+        column: e.span.start.col,
+        message: parse_message(&e.code),
     }
 }
 
@@ -593,6 +618,16 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "DecisionRuleName" => "certificate.decision_rule",
         "AuthorisationConfig" => "certificate.authorisation",
         "TwoOrientationConfig" => "two_orientation",
+        // the lab profile (lab.ron)
+        "ProfileConfig" => return None,
+        "ProfileLaboratory" => "laboratory",
+        "PersonConfig" => "signatories[…]",
+        "InstrumentConfig" => "daqs[…]",
+        "CentrifugeConfig" => "centrifuges[…]",
+        "ProfileLever" => "centrifuges[…].lever",
+        "CentrifugeTraceability" => "centrifuges[…].traceability",
+        "ProbeConfig" => "probes[…]",
+        "GravityConfig" => "gravity",
         "OrientationConfig" => "two_orientation.orientations[…]",
         "OrientationName" => "two_orientation.orientations[…].orientation",
         _ => "this section",

@@ -260,6 +260,27 @@ pub enum PipelineError {
         /// The keys it may have.
         known: Vec<String>,
     },
+    /// A date that is not written `YYYY-MM-DD` (ISO 8601), or a day that does not exist.
+    #[error("{}: field `{field}` = {value:?}: not a date written YYYY-MM-DD (hint: {hint})", path.display())]
+    InvalidDate {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the field.
+        field: String,
+        /// The text given.
+        value: String,
+        /// The same date written as asked, when it can be told.
+        hint: String,
+    },
+    /// A study names a lab profile that was not read with it (built from values without its
+    /// profile: [`crate::Inputs::with_profile`] takes it).
+    #[error("{}: field `profile` names {}, which was not read with the study (read the study with `load_study` or `parse_study`, or pass the profile to `Inputs::with_profile`)", path.display(), profile.display())]
+    ProfileNotRead {
+        /// The study file.
+        path: PathBuf,
+        /// The profile it names.
+        profile: PathBuf,
+    },
     /// A study file could not be read: missing, too large, or not UTF-8 text.
     #[error(transparent)]
     File(#[from] edge_io::EdgeIoError),

@@ -4,6 +4,7 @@ mod harmonics;
 mod human;
 mod identify;
 mod init;
+mod lab_folder;
 mod outputs;
 mod plan;
 mod progress;

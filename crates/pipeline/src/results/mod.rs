@@ -11,6 +11,7 @@ mod certificate;
 mod common;
 mod mechanism;
 mod phases;
+mod profile;
 mod two_orientation;
 mod warning;
 
@@ -20,6 +21,7 @@ pub use certificate::*;
 pub use common::{DegreesOfFreedom, Estimate, InfiniteDof};
 pub use mechanism::*;
 pub use phases::*;
+pub use profile::{ProfileResults, ValueOrigin, ValueSource};
 pub use two_orientation::*;
 pub use warning::{Warning, WarningCode};
 
@@ -52,6 +54,9 @@ pub struct StudyResults {
     /// The two-orientation (IA in / IA out) calibration (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub two_orientation: Option<TwoOrientationResults>,
+    /// The lab profile the study named, and which values came from it (absent: none).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub profile: Option<ProfileResults>,
 }
 
 /// Scalar inputs of the study.

@@ -38,6 +38,7 @@ pub(crate) fn run(cert: &Certificate, c: &CalibrationResults) -> CertificateResu
     let micro = 1e6 / c.coefficients.k1.value;
     let conformity = cert.rule.map(|rule| Conformity {
         rule,
+        limits_source: cert.limits_source.clone(),
         statements: cert
             .limits
             .iter()
