@@ -83,8 +83,11 @@ impl Check {
             .iter()
             .filter_map(|l| l.ask.as_ref().map(|(field, _)| format!("`{field}`")))
             .collect();
-        let about_placeholder =
-            |problem: &String| placeholder_fields.iter().any(|f| problem.contains(f.as_str()));
+        let about_placeholder = |problem: &String| {
+            placeholder_fields
+                .iter()
+                .any(|f| problem.contains(f.as_str()))
+        };
         let filled = stand_ins(text);
         let mut console = Console::stdout();
         let mut warnings = Vec::new();
@@ -101,7 +104,7 @@ impl Check {
                 let mut shown = config.clone();
                 let used = profile
                     .as_ref()
-                    .and_then(|p| p.apply(&mut shown, path).ok());
+                    .and_then(|p| p.apply_partly(&mut shown, path));
                 let plan = describe(&shown, path, used.as_ref());
                 console.write_str(&plan)?;
                 if profile.is_some() || config.profile.is_none() {
@@ -223,7 +226,11 @@ fn describe(
         );
         let own = from(pipeline::ValueSource::Study);
         if !own.is_empty() {
-            let _ = writeln!(s, "stated by the study over the profile: {}", own.join(", "));
+            let _ = writeln!(
+                s,
+                "stated by the study over the profile: {}",
+                own.join(", ")
+            );
         }
     }
     let _ = writeln!(

@@ -178,9 +178,7 @@ impl Core {
             })
         };
         let mut errors = Vec::new();
-        let mut take = |r: Result<f64>| {
-            r.map_err(|e| errors.push(e)).unwrap_or(f64::NAN)
-        };
+        let mut take = |r: Result<f64>| r.map_err(|e| errors.push(e)).unwrap_or(f64::NAN);
         let radius_m = take(required(
             "radius_m",
             config.radius_m,

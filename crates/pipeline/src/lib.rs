@@ -81,15 +81,15 @@ pub use config::{
     RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TableLayoutError, TrialsConfig,
     UncertaintyConfig, Weighting,
 };
-pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
 pub use config::{
     CentrifugeConfig, CentrifugeTraceability, GravityConfig, InstrumentConfig, PersonConfig,
     ProbeConfig, ProfileConfig, ProfileLaboratory, ProfileLever,
 };
-pub use profile::Profile;
+pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
 pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_profile, load_study, parse_study};
+pub use profile::Profile;
 /// The size and SHA-256 of a file as a study read it (provenance).
 pub use recording::FileDigest;
 pub use results::{
@@ -107,8 +107,7 @@ pub use results::{
     Estimate, FitWeighting, InfiniteDof, LabelSummary, MechanismPhase, MechanismResults, ModelFit,
     MonteCarlo, MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult,
     PigaResult, PointResult, ProbeTrace, ProfileResults, RadiusModel, StudyInputs, StudyResults,
-    ValueOrigin, ValueSource, Warning,
-    WarningCode, model_name,
+    ValueOrigin, ValueSource, Warning, WarningCode, model_name,
 };
 pub use results::{
     MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,

@@ -85,7 +85,17 @@ impl Profile {
     /// have, or a study without `centrifuge`.
     pub fn apply(&self, config: &mut StudyConfig, study: &Path) -> Result<ProfileResults> {
         self.validate()?;
-        resolve(config, self, study)
+        let (used, errors) = resolve(config, self, study)?;
+        PipelineError::from_list(errors)?;
+        Ok(used)
+    }
+
+    /// [`Profile::apply`] for showing the study as far as it can be resolved: what the
+    /// profile gives is filled in and listed even when some reference of the study (the
+    /// signatory it names) is refused; `None` when the profile or the centrifuge is.
+    pub fn apply_partly(&self, config: &mut StudyConfig, study: &Path) -> Option<ProfileResults> {
+        self.validate().ok()?;
+        resolve(config, self, study).ok().map(|(used, _)| used)
     }
 
     /// Validates the profile: every problem at once, each naming the profile's file and
@@ -102,7 +112,11 @@ impl Profile {
             errors: Vec::new(),
         };
         let p = &self.config;
-        v.text("laboratory.name", &p.laboratory.name, "the laboratory's name");
+        v.text(
+            "laboratory.name",
+            &p.laboratory.name,
+            "the laboratory's name",
+        );
         v.text(
             "laboratory.address",
             &p.laboratory.address,
@@ -161,7 +175,11 @@ impl Profile {
             v.unique("daqs", i, &d.name, &mut names);
         }
         let g = &p.gravity;
-        v.positive("gravity.g_m_s2", g.g_m_s2, "local gravity at the centrifuges, m/s²");
+        v.positive(
+            "gravity.g_m_s2",
+            g.g_m_s2,
+            "local gravity at the centrifuges, m/s²",
+        );
         v.non_negative(
             "gravity.u_m_s2",
             g.u_m_s2,
@@ -275,12 +293,12 @@ impl Validation<'_> {
     }
 
     fn instrument(&mut self, at: &str, d: &InstrumentConfig) {
+        self.text(&format!("{at}.name"), &d.name, "the name studies give it");
         self.text(
-            &format!("{at}.name"),
-            &d.name,
-            "the name studies give it",
+            &format!("{at}.description"),
+            &d.description,
+            "make and model",
         );
-        self.text(&format!("{at}.description"), &d.description, "make and model");
         self.text(
             &format!("{at}.identity"),
             &d.identity,
@@ -292,7 +310,11 @@ impl Validation<'_> {
     fn probe(&mut self, i: usize, p: &ProbeConfig) {
         let at = format!("probes[{i}]");
         self.text(&format!("{at}.name"), &p.name, "the name studies give it");
-        self.text(&format!("{at}.description"), &p.description, "make and model");
+        self.text(
+            &format!("{at}.description"),
+            &p.description,
+            "make and model",
+        );
         self.text(
             &format!("{at}.identity"),
             &p.identity,
@@ -314,7 +336,11 @@ impl Validation<'_> {
     fn centrifuge(&mut self, i: usize, c: &CentrifugeConfig, p: &ProfileConfig) {
         let at = format!("centrifuges[{i}]");
         let f = |field: &str| format!("{at}.{field}");
-        self.text(&f("name"), &c.name, "the name studies give it (`centrifuge: \"CF-1\"`)");
+        self.text(
+            &f("name"),
+            &c.name,
+            "the name studies give it (`centrifuge: \"CF-1\"`)",
+        );
         self.text(&f("description"), &c.description, "make and model");
         self.text(&f("identity"), &c.identity, "serial or asset number");
         self.date(&f("calibration_due"), &c.calibration_due);
@@ -396,8 +422,16 @@ impl Validation<'_> {
         for (key, value, what) in [
             ("radius", &t.radius, "the radius"),
             ("rate_scale", &t.rate_scale, "the rate scale"),
-            ("pivot_to_probe", &t.pivot_to_probe, "the pivot-to-probe height"),
-            ("probe_to_piga", &t.probe_to_piga, "the probe-to-PIGA height"),
+            (
+                "pivot_to_probe",
+                &t.pivot_to_probe,
+                "the pivot-to-probe height",
+            ),
+            (
+                "probe_to_piga",
+                &t.probe_to_piga,
+                "the probe-to-PIGA height",
+            ),
         ] {
             self.text(
                 &f(&format!("traceability.{key}")),
@@ -417,7 +451,7 @@ fn resolve(
     config: &mut StudyConfig,
     profile: &Profile,
     study: &Path,
-) -> Result<ProfileResults> {
+) -> Result<(ProfileResults, Vec<PipelineError>)> {
     let p = &profile.config;
     let file = profile.source.display().to_string();
     let mut errors = Vec::new();
@@ -470,7 +504,12 @@ fn resolve(
         file: &file,
     };
     let at = |field: &str| format!("centrifuges[{ci}].{field}");
-    values.fill(&mut config.radius_m, centrifuge.radius_m, "radius_m", &at("radius_m"));
+    values.fill(
+        &mut config.radius_m,
+        centrifuge.radius_m,
+        "radius_m",
+        &at("radius_m"),
+    );
     values.fill(
         &mut config.g_m_s2,
         p.gravity.g_m_s2,
@@ -499,18 +538,16 @@ fn resolve(
     // The Type B inputs: each with its standing statement, the traceability of a non-zero
     // uncertainty and the reason for a zero.
     let stated_gain = config.stated_probe_gain();
-    let u = config
-        .uncertainty
-        .get_or_insert_with(|| UncertaintyConfig {
-            radius_u_m: None,
-            g_u_m_s2: None,
-            g_source: String::new(),
-            rate_u_relative: None,
-            pivot_to_probe_u_mm: None,
-            probe_to_piga_u_mm: None,
-            probe_gain_u_relative: None,
-            zero_reasons: BTreeMap::new(),
-        });
+    let u = config.uncertainty.get_or_insert_with(|| UncertaintyConfig {
+        radius_u_m: None,
+        g_u_m_s2: None,
+        g_source: String::new(),
+        rate_u_relative: None,
+        pivot_to_probe_u_mm: None,
+        probe_to_piga_u_mm: None,
+        probe_gain_u_relative: None,
+        zero_reasons: BTreeMap::new(),
+    });
     let t = &centrifuge.traceability;
     let mut statements: Vec<(TypeBInputName, String, &'static str)> = Vec::new();
     let mut type_b = |values: &mut Values<'_>,
@@ -592,7 +629,11 @@ fn resolve(
     }
     if u.g_source.trim().is_empty() {
         u.g_source.clone_from(&p.gravity.source);
-        values.push("uncertainty.g_source", ValueSource::Profile, "gravity.source");
+        values.push(
+            "uncertainty.g_source",
+            ValueSource::Profile,
+            "gravity.source",
+        );
     } else {
         values.push("uncertainty.g_source", ValueSource::Study, "gravity.source");
     }
@@ -620,9 +661,7 @@ fn resolve(
         for (i, o) in two.orientations.iter_mut().enumerate() {
             let (stated, field) = match o.orientation {
                 Some(OrientationName::IaIn) => (centrifuge.radius_m, at("radius_m")),
-                Some(OrientationName::IaOut) => {
-                    (centrifuge.radius_ia_out_m, at("radius_ia_out_m"))
-                }
+                Some(OrientationName::IaOut) => (centrifuge.radius_ia_out_m, at("radius_ia_out_m")),
                 None => continue,
             };
             values.fill(
@@ -634,14 +673,15 @@ fn resolve(
         }
     }
     if let Some(cert) = config.certificate.as_mut() {
-        let text = |values: &mut Values<'_>, slot: &mut String, stated: &str, field: &str, from: &str| {
-            if slot.trim().is_empty() {
-                stated.clone_into(slot);
-                values.push(field, ValueSource::Profile, from);
-            } else {
-                values.push(field, ValueSource::Study, from);
-            }
-        };
+        let text =
+            |values: &mut Values<'_>, slot: &mut String, stated: &str, field: &str, from: &str| {
+                if slot.trim().is_empty() {
+                    stated.clone_into(slot);
+                    values.push(field, ValueSource::Profile, from);
+                } else {
+                    values.push(field, ValueSource::Study, from);
+                }
+            };
         if cert.laboratory.name.trim().is_empty() && cert.laboratory.address.trim().is_empty() {
             cert.laboratory.name.clone_from(&p.laboratory.name);
             cert.laboratory.address.clone_from(&p.laboratory.address);
@@ -712,7 +752,11 @@ fn resolve(
                 from.push(format!("daqs[{di}]"));
             }
             from.push("gravity".to_owned());
-            values.push("certificate.equipment", ValueSource::Profile, &from.join(", "));
+            values.push(
+                "certificate.equipment",
+                ValueSource::Profile,
+                &from.join(", "),
+            );
         } else {
             values.push(
                 "certificate.equipment",
@@ -720,16 +764,22 @@ fn resolve(
                 &format!("centrifuges[{ci}]"),
             );
         }
-        for (input, statement, name) in &statements {
+        for (input, statement, _) in &statements {
             if !cert.traceability.iter().any(|t| t.input == *input) {
                 cert.traceability.push(TraceabilityConfig {
                     input: *input,
                     statement: statement.clone(),
                 });
+                let from = match input {
+                    TypeBInputName::G => "gravity.source".to_owned(),
+                    TypeBInputName::ProbeGain => probe
+                        .map_or_else(String::new, |(pi, _)| format!("probes[{pi}].traceability")),
+                    other => at(&format!("traceability.{}", input_key(*other))),
+                };
                 values.push(
-                    &format!("certificate.traceability ({name})"),
+                    &format!("certificate.traceability ({})", input_key(*input)),
                     ValueSource::Profile,
-                    &format!("the statement of {name}"),
+                    &from,
                 );
             }
         }
@@ -741,7 +791,10 @@ fn resolve(
                 "decision_rule",
             );
         }
-        if cert.limits_source.as_deref().is_none_or(|s| s.trim().is_empty())
+        if cert
+            .limits_source
+            .as_deref()
+            .is_none_or(|s| s.trim().is_empty())
             && !p.limits_source.trim().is_empty()
         {
             cert.limits_source = Some(p.limits_source.clone());
@@ -775,14 +828,15 @@ fn resolve(
         } else {
             match p.signatories.iter().position(|s| s.name == a.name) {
                 Some(si) => {
-                    if a.role.trim().is_empty() {
+                    // The study names who signs; the role is the profile's unless it states
+                    // one too.
+                    let (field, from) = if a.role.trim().is_empty() {
                         a.role.clone_from(&p.signatories[si].role);
-                    }
-                    values.push(
-                        "certificate.authorisation",
-                        ValueSource::Study,
-                        &format!("signatories[{si}]"),
-                    );
+                        ("certificate.authorisation.role", ValueSource::Profile)
+                    } else {
+                        ("certificate.authorisation", ValueSource::Study)
+                    };
+                    values.push(field, from, &format!("signatories[{si}]"));
                 }
                 None => errors.push(PipelineError::UnknownKey {
                     path: study.to_owned(),
@@ -793,15 +847,30 @@ fn resolve(
             }
         }
     }
-    PipelineError::from_list(errors)?;
     let values = values.list;
-    Ok(ProfileResults {
-        file,
-        centrifuge: centrifuge.name.clone(),
-        probe: probe.map(|(_, x)| x.name.clone()),
-        daq: daq.map(|(_, d)| d.name.clone()),
-        values,
-    })
+    Ok((
+        ProfileResults {
+            file,
+            centrifuge: centrifuge.name.clone(),
+            probe: probe.map(|(_, x)| x.name.clone()),
+            daq: daq.map(|(_, d)| d.name.clone()),
+            values,
+        },
+        errors,
+    ))
+}
+
+/// A Type B input as the certificate's traceability names it (`input: radius`).
+const fn input_key(input: TypeBInputName) -> &'static str {
+    match input {
+        TypeBInputName::Radius => "radius",
+        TypeBInputName::G => "g",
+        TypeBInputName::RateScale => "rate_scale",
+        TypeBInputName::PivotToProbe => "pivot_to_probe",
+        TypeBInputName::ProbeToPiga => "probe_to_piga",
+        TypeBInputName::ProbeGain => "probe_gain",
+        TypeBInputName::K1 => "k1",
+    }
 }
 
 /// An instrument as the certificate lists it.

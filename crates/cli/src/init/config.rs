@@ -71,23 +71,22 @@ fn placeholder(s: &mut String, indent: &str, key: &str, value: &str, field: &str
 pub(crate) fn render(plan: &Plan<'_>, relative: &RelativePath<'_>) -> String {
     let mut s = String::new();
     let p = PLACEHOLDER;
-    let _ = writeln!(
-        s,
-        "// Study configuration written by `centrifuge-cal init` from {}{}.\n\
-         // Each value {} could not tell is {p}, with the question that fills it beside it\n\
-         // (`// {ASK} field: question`): answer each before running `centrifuge-cal check` (which\n\
-         // lists what is left) and `centrifuge-cal study`, which both refuse a {p}. Each guess\n\
-         // is commented with its evidence: check them. Field by field: docs/CONFIGURATION.md{};\n\
-         // the lab formats: docs/YOUR-DATA.md.",
-        comment_text(&plan.source),
+    let header = format!(
+        "Study configuration written by `centrifuge-cal init` from {}{}. Each value {} is \
+         {p}, with the question that fills it beside it (`// {ASK} field: question`): answer \
+         each before running `centrifuge-cal check` (which lists what is left) and \
+         `centrifuge-cal study`, which both refuse a {p}. Each guess is commented with its \
+         evidence: check them. Field by field: docs/CONFIGURATION.md{}; the lab formats: \
+         docs/YOUR-DATA.md.",
+        plan.source,
         plan.profile.as_ref().map_or_else(String::new, |pr| format!(
             " and the lab profile {}",
-            comment_text(&relative(&pr.file))
+            relative(&pr.file)
         )),
         if plan.profile.is_some() {
-            "neither the files nor the profile"
+            "that neither the files nor the profile tell"
         } else {
-            "the files"
+            "that the files cannot tell"
         },
         if plan.profile.is_some() {
             "; the profile: docs/PROFILE.md"
@@ -95,6 +94,9 @@ pub(crate) fn render(plan: &Plan<'_>, relative: &RelativePath<'_>) -> String {
             ""
         },
     );
+    for line in wrap(&comment_text(&header), 88) {
+        let _ = writeln!(s, "// {line}");
+    }
     s.push_str("(\n");
     let _ = writeln!(s, "    name: {},", ron_string(&plan.name));
     match &plan.profile {
@@ -363,7 +365,11 @@ fn two_orientation(
         .enumerate()
     {
         let at = format!("two_orientation.orientations[{i}]");
-        let _ = writeln!(s, "            (\n                orientation: {},", o.ron());
+        let _ = writeln!(
+            s,
+            "            (\n                orientation: {},",
+            o.ron()
+        );
         let stated = match (o, centrifuge) {
             (Orientation::In, Some(c)) => c.radius_m.map(|r| (r, "radius_m")),
             (Orientation::Out, Some(c)) => c.radius_ia_out_m.map(|r| (r, "radius_ia_out_m")),
@@ -500,13 +506,23 @@ fn certificate(s: &mut String, profile: &ProfilePlan) {
     for (key, question) in [
         ("manufacturer", "Who made the PIGA (its manufacturer)?"),
         ("model", "What is the PIGA's model, as on its label?"),
-        ("serial", "What is the PIGA's serial number, as on its label?"),
+        (
+            "serial",
+            "What is the PIGA's serial number, as on its label?",
+        ),
         (
             "condition",
             "In what condition was the PIGA received (damage, seals, cleanliness)?",
         ),
     ] {
-        placeholder(s, i12, key, &q, &format!("certificate.item.{key}"), question);
+        placeholder(
+            s,
+            i12,
+            key,
+            &q,
+            &format!("certificate.item.{key}"),
+            question,
+        );
     }
     let _ = writeln!(s, "{i8}),\n{i8}dates: (");
     for (key, question) in [
@@ -515,9 +531,19 @@ fn certificate(s: &mut String, profile: &ProfilePlan) {
             "measured",
             "On what day was it measured, YYYY-MM-DD (or YYYY-MM-DD to YYYY-MM-DD)?",
         ),
-        ("issued", "On what day is the certificate issued, YYYY-MM-DD?"),
+        (
+            "issued",
+            "On what day is the certificate issued, YYYY-MM-DD?",
+        ),
     ] {
-        placeholder(s, i12, key, &q, &format!("certificate.dates.{key}"), question);
+        placeholder(
+            s,
+            i12,
+            key,
+            &q,
+            &format!("certificate.dates.{key}"),
+            question,
+        );
     }
     let _ = writeln!(s, "{i8}),");
     match pc.operators.as_slice() {
@@ -555,8 +581,12 @@ fn certificate(s: &mut String, profile: &ProfilePlan) {
             ask(
                 &format!("certificate.conditions[{i}].value"),
                 &format!(
-                    "What was the {quantity} during the measurement, with unit and range \
-                     (e.g. 20.4 °C to 20.9 °C)?"
+                    "What was the {quantity} during the measurement, with unit and range{}?",
+                    match quantity.to_lowercase() {
+                        q if q.contains("temperature") => " (e.g. 20.4 °C to 20.9 °C)",
+                        q if q.contains("humidity") => " (e.g. 41 % to 45 %)",
+                        _ => "",
+                    }
                 )
             )
         );
@@ -605,7 +635,12 @@ fn format_block(s: &mut String, f: &Finding, indent: &str, at: &str) {
                 } else {
                     format!("{at}.{key}.{field}")
                 };
-                let _ = writeln!(s, "{indent}    {},  // {}", setting.ron, ask(&field, question));
+                let _ = writeln!(
+                    s,
+                    "{indent}    {},  // {}",
+                    setting.ron,
+                    ask(&field, question)
+                );
             }
             None => {
                 let _ = writeln!(s, "{indent}    {},", setting.ron);
@@ -619,13 +654,7 @@ fn format_block(s: &mut String, f: &Finding, indent: &str, at: &str) {
 }
 
 /// The `files: [...]` entries, each with its rate's evidence; `at` is the list's field.
-fn files(
-    s: &mut String,
-    files: &[&Finding],
-    relative: &RelativePath<'_>,
-    indent: &str,
-    at: &str,
-) {
+fn files(s: &mut String, files: &[&Finding], relative: &RelativePath<'_>, indent: &str, at: &str) {
     for (i, f) in files.iter().enumerate() {
         let file = relative(&f.path);
         match &f.rate {

@@ -485,10 +485,12 @@ fn plan<'a>(
                 // The calibration (probe method) reads the IA-in data too.
                 let calibration = match &i {
                     config::PigaData::Table(t) => config::PigaData::Table(t),
-                    config::PigaData::Recordings(g) => config::PigaData::Recordings(config::Group {
-                        name: g.name.clone(),
-                        files: g.files.clone(),
-                    }),
+                    config::PigaData::Recordings(g) => {
+                        config::PigaData::Recordings(config::Group {
+                            name: g.name.clone(),
+                            files: g.files.clone(),
+                        })
+                    }
                 };
                 (Some(calibration), Some((i, o)))
             }

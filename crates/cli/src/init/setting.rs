@@ -160,7 +160,10 @@ mod tests {
             "",
         ] {
             let written = ron_string(text);
-            assert!(!written.contains('\n') && !written.contains('\u{202e}'), "{written}");
+            assert!(
+                !written.contains('\n') && !written.contains('\u{202e}'),
+                "{written}"
+            );
             let read: String = edge_io::ron_options().from_str(&written).unwrap();
             assert_eq!(read, text, "{written}");
         }

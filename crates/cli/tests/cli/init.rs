@@ -402,7 +402,9 @@ fn a_header_without_units_leaves_placeholders_the_study_refuses() {
     let err = String::from_utf8_lossy(&study.stderr);
     assert!(err.contains("not filled in"), "{err}");
     assert!(
-        err.contains("`phases[0].points.format.gap.unit`: In which unit is the gap column: nm, um, mm or m?"),
+        err.contains(
+            "`phases[0].points.format.gap.unit`: In which unit is the gap column: nm, um, mm or m?"
+        ),
         "{err}"
     );
     assert!(!tmp.0.join("out").exists());
@@ -557,11 +559,14 @@ fn a_probe_in_volts_in_tdms_or_mat_asks_for_its_sensitivity() {
         );
         assert!(config.contains(unit), "{config}");
         assert!(config.contains("probe's sensitivity"), "{config}");
-        // `check` names the line left to fill in.
+        // `check` names the field left to fill in and asks for it.
         let check = cli(&["check", out.to_str().unwrap()]);
         assert_eq!(check.status.code(), Some(1));
         assert!(
-            String::from_utf8_lossy(&check.stdout).contains("sensitivity: FILL_IN"),
+            String::from_utf8_lossy(&check.stdout).contains(
+                "`phases[0].points.format.gap.unit` is not filled in (FILL_IN): What are the \
+                 probe's sensitivity and its standard uncertainty"
+            ),
             "{}",
             String::from_utf8_lossy(&check.stdout)
         );
@@ -722,9 +727,18 @@ fn file_names_are_written_exactly_and_read_back_to_the_same_files() {
     assert!((c - c_r_true()).abs() < 3.0 * s, "C_r = {c:e} ± {s:e}");
     let config = tmp.0.join("study.ron");
     let text = std::fs::read_to_string(&config).unwrap();
-    assert!(text.contains(r#"file: "probe\\020.1234deg_s.csv""#), "{text}");
-    assert!(text.contains(r#"file: "\"probe\"_040.1234deg_s.csv""#), "{text}");
-    assert!(text.contains(r#"file: "µprobe_080.1234deg_s.csv""#), "{text}");
+    assert!(
+        text.contains(r#"file: "probe\\020.1234deg_s.csv""#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"file: "\"probe\"_040.1234deg_s.csv""#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"file: "µprobe_080.1234deg_s.csv""#),
+        "{text}"
+    );
     // Read back by the study's own reader: the same names, each an existing file.
     let parsed = pipeline::StudyConfig::from_ron(&text, &config).unwrap();
     let pipeline::Points::Recordings(set) = &parsed.phases[0].points else {
@@ -740,10 +754,9 @@ fn file_names_are_written_exactly_and_read_back_to_the_same_files() {
     written.sort();
     assert_eq!(read, written);
     // The study read those files: their SHA-256 in its provenance.
-    let json: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(tmp.0.join("out/results.json")).unwrap(),
-    )
-    .unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp.0.join("out/results.json")).unwrap())
+            .unwrap();
     for record in json["provenance"]["inputs"].as_array().unwrap() {
         let path = Path::new(record["path"].as_str().unwrap());
         let bytes = std::fs::read(path).unwrap();

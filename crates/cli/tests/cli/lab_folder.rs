@@ -68,7 +68,10 @@ fn answered(text: &str) -> (String, usize) {
         .lines()
         .map(|line| {
             let Some(at) = line.find("// ASK ") else {
-                assert!(!line.contains("FILL_IN") || line.trim_start().starts_with("//"), "a FILL_IN without its question: {line}");
+                assert!(
+                    !line.contains("FILL_IN") || line.trim_start().starts_with("//"),
+                    "a FILL_IN without its question: {line}"
+                );
                 return line.to_owned();
             };
             let (code, comment) = line.split_at(at);
@@ -76,7 +79,8 @@ fn answered(text: &str) -> (String, usize) {
                 return line.to_owned();
             }
             let field = comment["// ASK ".len()..].split(": ").next().unwrap();
-            let value = answer(field).unwrap_or_else(|| panic!("a question the test cannot answer: {line}"));
+            let value = answer(field)
+                .unwrap_or_else(|| panic!("a question the test cannot answer: {line}"));
             edits += 1;
             let code = if code.contains("\"FILL_IN\"") {
                 code.replacen("\"FILL_IN\"", value, 1)
@@ -91,7 +95,10 @@ fn answered(text: &str) -> (String, usize) {
 
 /// `init DIR --profile lab.ron`, the answers, `check`, `study`: the results, the certificate
 /// written, init's output and the number of answers.
-fn clone_to_certificate(scratch: &Scratch, job: &str) -> (serde_json::Value, PathBuf, String, usize) {
+fn clone_to_certificate(
+    scratch: &Scratch,
+    job: &str,
+) -> (serde_json::Value, PathBuf, String, usize) {
     let dir = scratch.0.join(job);
     let profile = scratch.0.join("lab.ron");
     let init = cli(&[
@@ -118,7 +125,13 @@ fn clone_to_certificate(scratch: &Scratch, job: &str) -> (serde_json::Value, Pat
         said.contains("`certificate.item.serial` is not filled in (FILL_IN): What is the PIGA's serial number, as on its label?"),
         "{said}"
     );
-    let study = cli(&["study", "--config", config.to_str().unwrap(), "--out", dir.join("out").to_str().unwrap()]);
+    let study = cli(&[
+        "study",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
     let refused = String::from_utf8_lossy(&study.stderr);
     assert!(!study.status.success());
     assert!(
@@ -134,8 +147,24 @@ fn clone_to_certificate(scratch: &Scratch, job: &str) -> (serde_json::Value, Pat
         String::from_utf8_lossy(&check.stdout),
         String::from_utf8_lossy(&check.stderr)
     );
+    // What a person reads: init's findings and questions, check's plan with what came from
+    // the profile; snapshots, free of Rust identifiers.
+    let tidy = |s: &str| s.replace(&scratch.0.display().to_string(), "<tmp>");
+    let checked = tidy(&String::from_utf8_lossy(&check.stdout));
+    let initialised = tidy(&printed);
+    for text in [&checked, &initialised] {
+        assert!(crate::human::rust_identifiers(text).is_empty(), "{text}");
+    }
+    insta::assert_snapshot!(format!("lab_folder_init_{job}"), initialised);
+    insta::assert_snapshot!(format!("lab_folder_check_{job}"), checked);
     let out = dir.join("out");
-    let study = cli(&["study", "--config", config.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let study = cli(&[
+        "study",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert!(
         study.status.success(),
         "study:\n{}\n{}",
@@ -171,8 +200,14 @@ fn a_german_export_and_a_profile_give_the_certificate_with_only_the_questions_an
     );
     let study = std::fs::read_to_string(scratch.0.join("job-1/study.ron")).unwrap();
     assert!(study.contains(r#"profile: "../lab.ron","#), "{study}");
-    assert!(study.contains(r#"rate: (column: "Drehrate [°/s]", unit: deg_s)"#), "{study}");
-    assert!(study.contains(r#"gap: (column: "Spalt [mm]", unit: mm)"#), "{study}");
+    assert!(
+        study.contains(r#"rate: (column: "Drehrate [°/s]", unit: deg_s)"#),
+        "{study}"
+    );
+    assert!(
+        study.contains(r#"gap: (column: "Spalt [mm]", unit: mm)"#),
+        "{study}"
+    );
     assert!(!study.contains("two_orientation:"), "{study}");
     // The hand edits from clone to certificate: the answers, and nothing else.
     assert_eq!(edits, 15, "{study}");
@@ -180,20 +215,53 @@ fn a_german_export_and_a_profile_give_the_certificate_with_only_the_questions_an
     // The numbers: the spindle's C_r and the PIGA's k2 as the simulation made them.
     let t = truth();
     let c_r = &json["phases"][0];
-    let truth_c_r = t["scenario"]["error_motion"]["Coefficients"]["c_r_m_s2"].as_f64().unwrap();
-    let (value, sigma) = (c_r["c_r_m_s2"].as_f64().unwrap(), c_r["c_r_sigma_m_s2"].as_f64().unwrap());
-    assert!((value - truth_c_r).abs() < 3.0 * sigma, "C_r {value:e} ± {sigma:e}, truth {truth_c_r:e}");
+    let truth_c_r = t["scenario"]["error_motion"]["Coefficients"]["c_r_m_s2"]
+        .as_f64()
+        .unwrap();
+    let (value, sigma) = (
+        c_r["c_r_m_s2"].as_f64().unwrap(),
+        c_r["c_r_sigma_m_s2"].as_f64().unwrap(),
+    );
+    assert!(
+        (value - truth_c_r).abs() < 3.0 * sigma,
+        "C_r {value:e} ± {sigma:e}, truth {truth_c_r:e}"
+    );
     // Everything the profile states, taken from it; the certificate's statements with it.
     let values = json["profile"]["values"].as_array().unwrap();
-    for field in ["radius_m", "g_m_s2", "lever.probe_direction", "uncertainty.radius_u_m", "certificate.equipment"] {
+    for field in [
+        "radius_m",
+        "g_m_s2",
+        "lever.probe_direction",
+        "uncertainty.radius_u_m",
+        "certificate.equipment",
+    ] {
         let v = values.iter().find(|v| v["field"] == field).unwrap();
         assert_eq!(v["from"], "profile", "{field}");
     }
-    assert_eq!(json["certificate"]["authorisation"]["role"], "head of the inertial laboratory");
+    assert_eq!(
+        json["certificate"]["authorisation"]["role"],
+        "head of the inertial laboratory"
+    );
     assert_eq!(json["certificate"]["equipment"][1]["identity"], "CP-7731");
     assert_eq!(json["inputs"]["radius_m"], 2.5);
-    assert!(json["provenance"]["profile"]["sha256"].as_str().unwrap().len() == 64);
-    assert!(json["warnings"].as_array().unwrap().is_empty(), "{}", json["warnings"]);
+    assert!(
+        json["provenance"]["profile"]["sha256"]
+            .as_str()
+            .unwrap()
+            .len()
+            == 64
+    );
+    // Every instrument within its calibration on the measurement date.
+    let codes: Vec<&str> = json["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["code"].as_str().unwrap())
+        .collect();
+    assert!(
+        !codes.iter().any(|c| c.starts_with("calibration_")),
+        "{codes:?}"
+    );
 }
 
 #[test]
@@ -205,25 +273,37 @@ fn an_ia_in_and_ia_out_folder_gives_a_study_with_both_orientations() {
         "{printed}"
     );
     assert!(
-        printed.contains("IA in and IA out: PIGA_IA-in.csv (`ia in`) and PIGA_IA-out.csv (`ia out`)"),
+        printed
+            .contains("IA in and IA out: PIGA_IA-in.csv (`ia in`) and PIGA_IA-out.csv (`ia out`)"),
         "{printed}"
     );
     assert_eq!(edits, 15);
     assert!(certificate.exists());
     let study = std::fs::read_to_string(scratch.0.join("job-2/study.ron")).unwrap();
-    assert!(study.contains("orientation: ia_in,") && study.contains("orientation: ia_out,"), "{study}");
+    assert!(
+        study.contains("orientation: ia_in,") && study.contains("orientation: ia_out,"),
+        "{study}"
+    );
     let two = &json["two_orientation"];
     assert!(two.is_object(), "{json}");
     let mountings = two["mountings"].as_array().unwrap();
     assert_eq!(mountings.len(), 2);
-    let radii: Vec<f64> = mountings.iter().map(|m| m["radius_m"].as_f64().unwrap()).collect();
+    let radii: Vec<f64> = mountings
+        .iter()
+        .map(|m| m["radius_m"].as_f64().unwrap())
+        .collect();
     assert_eq!(radii, [2.5, 2.54]);
     // k2 from the PIGA alone, as the simulation made it.
     let t = truth();
-    let k2_true = t["scenario"]["piga"]["coefficients"]["k2_rad_s_g2"].as_f64().unwrap();
+    let k2_true = t["scenario"]["piga"]["coefficients"]["k2_rad_s_g2"]
+        .as_f64()
+        .unwrap();
     let k2 = &two["k2"];
     let (value, u) = (k2["value"].as_f64().unwrap(), k2["u"].as_f64().unwrap());
-    assert!((value - k2_true).abs() < 3.0 * u, "k2 {value:e} ± {u:e}, truth {k2_true:e}");
+    assert!(
+        (value - k2_true).abs() < 3.0 * u,
+        "k2 {value:e} ± {u:e}, truth {k2_true:e}"
+    );
     // The calibration (probe method) reads the IA-in table.
     assert!(json["calibration"].is_object());
     let values = json["profile"]["values"].as_array().unwrap();

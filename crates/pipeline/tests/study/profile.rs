@@ -25,7 +25,9 @@ fn two_orientation_with_profile(extra: &str, dates: &str) -> String {
     let reference =
         std::fs::read_to_string(root().join("fixtures/studies/two_orientation.ron")).unwrap();
     let phases = &reference[reference.find("    phases: [").unwrap()
-        ..reference.find("    // The probe method's calibration").unwrap()];
+        ..reference
+            .find("    // The probe method's calibration")
+            .unwrap()];
     format!(
         r#"(
     name: "two_orientation",
@@ -80,11 +82,12 @@ fn inputs(text: &str) -> Result<Inputs, PipelineError> {
 
 #[test]
 fn a_study_naming_its_profile_runs_to_the_numbers_of_the_study_stating_everything() {
-    let with_profile = pipeline::run(&inputs(&two_orientation_with_profile("", DATES)).unwrap())
-        .unwrap();
-    let reference =
-        pipeline::run(&pipeline::load_study(&root().join("fixtures/studies/two_orientation.ron")).unwrap())
-            .unwrap();
+    let with_profile =
+        pipeline::run(&inputs(&two_orientation_with_profile("", DATES)).unwrap()).unwrap();
+    let reference = pipeline::run(
+        &pipeline::load_study(&root().join("fixtures/studies/two_orientation.ron")).unwrap(),
+    )
+    .unwrap();
     assert_eq!(with_profile.inputs, reference.inputs);
     assert_eq!(with_profile.phases, reference.phases);
     // The same numbers; g's source is the profile's words.
@@ -93,7 +96,9 @@ fn a_study_naming_its_profile_runs_to_the_numbers_of_the_study_stating_everythin
         calibration.g_source,
         "nominal 9.8 m/s², the value the simulation used (a laboratory states its gravity survey)"
     );
-    calibration.g_source.clone_from(&reference.calibration.as_ref().unwrap().g_source);
+    calibration
+        .g_source
+        .clone_from(&reference.calibration.as_ref().unwrap().g_source);
     assert_eq!(Some(calibration), reference.calibration);
     assert_eq!(with_profile.two_orientation, reference.two_orientation);
     let cert = with_profile.certificate.as_ref().unwrap();
@@ -102,9 +107,14 @@ fn a_study_naming_its_profile_runs_to_the_numbers_of_the_study_stating_everythin
     assert_eq!(cert.location, reference_cert.location);
     assert_eq!(cert.procedure, reference_cert.procedure);
     assert_eq!(cert.authorisation, reference_cert.authorisation);
-    assert_eq!(cert.conformity.as_ref().map(|c| &c.statements), reference_cert.conformity.as_ref().map(|c| &c.statements));
     assert_eq!(
-        cert.conformity.as_ref().and_then(|c| c.limits_source.as_deref()),
+        cert.conformity.as_ref().map(|c| &c.statements),
+        reference_cert.conformity.as_ref().map(|c| &c.statements)
+    );
+    assert_eq!(
+        cert.conformity
+            .as_ref()
+            .and_then(|c| c.limits_source.as_deref()),
         Some("the customer's specification, as agreed at contract review")
     );
     // Every Type B input with its standing statement, at the budget's standard uncertainty.
@@ -151,8 +161,20 @@ fn a_study_naming_its_profile_runs_to_the_numbers_of_the_study_stating_everythin
     ] {
         assert_eq!(from(field).from, ValueSource::Profile, "{field}");
     }
-    assert!(from("radius_m").profile_field.ends_with("lab.ron: centrifuges[0].radius_m"));
-    assert_eq!(from("certificate.authorisation").from, ValueSource::Study);
+    assert!(
+        from("radius_m")
+            .profile_field
+            .ends_with("lab.ron: centrifuges[0].radius_m")
+    );
+    // The study names who signs; the profile gives the role.
+    assert_eq!(
+        from("certificate.authorisation.role").from,
+        ValueSource::Profile
+    );
+    assert_eq!(
+        from("certificate.traceability (probe_gain)").from,
+        ValueSource::Profile
+    );
     // The same warnings (the arm stretch the probe does not see), and no due date passed.
     assert_eq!(with_profile.warnings, reference.warnings);
 }
@@ -212,7 +234,8 @@ fn equipment_past_its_calibration_due_date_is_warned() {
         warnings[0].message
     );
     // A measurement date that cannot be compared says so.
-    let vague = r#"(received: "2026-12-01", measured: "early December 2026", issued: "2026-12-08")"#;
+    let vague =
+        r#"(received: "2026-12-01", measured: "early December 2026", issued: "2026-12-08")"#;
     let warnings = inputs(&two_orientation_with_profile("", vague))
         .unwrap()
         .warnings();
@@ -237,7 +260,10 @@ fn broken(replacements: &[(&str, &str)]) -> PipelineError {
 fn a_bad_profile_is_refused_with_every_problem_naming_lab_ron_and_the_field() {
     let e = broken(&[
         ("radius_m: 2.5,", "radius_m: -2.5,"),
-        ("calibration_due: \"2027-01-15\"", "calibration_due: \"15.01.2027\""),
+        (
+            "calibration_due: \"2027-01-15\"",
+            "calibration_due: \"15.01.2027\"",
+        ),
         ("probe: \"CP-7731\",", "probe: \"CP-9999\","),
         (
             "        (name: \"C. Deputy\", role: \"deputy head of the inertial laboratory\"),",
@@ -283,12 +309,19 @@ fn a_study_is_refused_a_centrifuge_or_signatory_the_profile_does_not_have() {
     let text = two_orientation_with_profile("", DATES)
         .replace("centrifuge: \"ZF-2\"", "centrifuge: \"ZF-9\"");
     let e = chain(&inputs(&text).unwrap_err());
-    assert!(e.contains("field `centrifuge`: `ZF-9` is not one of ZF-2"), "{e}");
-    let text = two_orientation_with_profile("", DATES)
-        .replace("authorisation: (name: \"B. Manager\")", "authorisation: (name: \"Z. Nobody\")");
+    assert!(
+        e.contains("field `centrifuge`: `ZF-9` is not one of ZF-2"),
+        "{e}"
+    );
+    let text = two_orientation_with_profile("", DATES).replace(
+        "authorisation: (name: \"B. Manager\")",
+        "authorisation: (name: \"Z. Nobody\")",
+    );
     let e = chain(&inputs(&text).unwrap_err());
     assert!(
-        e.contains("`certificate.authorisation.name`: `Z. Nobody` is not one of B. Manager, C. Deputy"),
+        e.contains(
+            "`certificate.authorisation.name`: `Z. Nobody` is not one of B. Manager, C. Deputy"
+        ),
         "{e}"
     );
     // Two signatories and none named: the study must say who signs.
@@ -296,7 +329,9 @@ fn a_study_is_refused_a_centrifuge_or_signatory_the_profile_does_not_have() {
         .replace("        authorisation: (name: \"B. Manager\"),\n", "");
     let e = chain(&inputs(&text).unwrap_err());
     assert!(
-        e.contains("`certificate.authorisation.name` is required: who authorises the certificate: one of"),
+        e.contains(
+            "`certificate.authorisation.name` is required: who authorises the certificate: one of"
+        ),
         "{e}"
     );
     // A study naming a profile, built without it, says how to read it.
@@ -305,8 +340,10 @@ fn a_study_is_refused_a_centrifuge_or_signatory_the_profile_does_not_have() {
     let e = Inputs::new(config, &path, &pipeline::Files).unwrap_err();
     assert!(matches!(e, PipelineError::ProfileNotRead { .. }), "{e}");
     // Without a profile, the radius is required, and the error says where else it can come from.
-    let text = two_orientation_with_profile("", DATES)
-        .replace("    profile: \"../lab-folder/lab.ron\",\n    centrifuge: \"ZF-2\",\n", "");
+    let text = two_orientation_with_profile("", DATES).replace(
+        "    profile: \"../lab-folder/lab.ron\",\n    centrifuge: \"ZF-2\",\n",
+        "",
+    );
     let config = StudyConfig::from_ron(&text, &path).unwrap();
     let e = chain(&Inputs::new(config, &path, &pipeline::Files).unwrap_err());
     assert!(

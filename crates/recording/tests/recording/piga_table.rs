@@ -219,7 +219,8 @@ fn hints_name_only_keys_of_the_piga_table_format() {
     )
     .unwrap_err();
     assert!(
-        err.to_string().contains("the header looks separated by ';'"),
+        err.to_string()
+            .contains("the header looks separated by ';'"),
         "{err}"
     );
     // A NaN in a table: a recording's hint would be `on_non_finite`, which a table does not

@@ -3,9 +3,9 @@
 use crate::config::{
     CertificateConfig, DecisionRuleName, K1Config, LimitUnitName, StudyConfig, TypeBInputName,
 };
+use crate::date::Date;
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::Check;
-use crate::date::Date;
 use crate::results::{
     Authorisation, Condition, Dates, DecisionRule, Equipment, Item, Laboratory, Party, Warning,
 };
@@ -382,10 +382,7 @@ pub(crate) fn validate(
         traceability,
         limits,
         rule,
-        limits_source: c
-            .limits_source
-            .clone()
-            .filter(|s| !s.trim().is_empty()),
+        limits_source: c.limits_source.clone().filter(|s| !s.trim().is_empty()),
         authorisation,
     })
 }
