@@ -136,9 +136,11 @@ fn assert_hint_is_a_key(err: &RecordingError) {
     };
     if let Some(h) = hint {
         let probe = format!("({}: ())", h.key());
+        // `()` is a value of some keys (`delimiter: ()` reads as whitespace): a key it reads.
         let e = ron::from_str::<PigaTableFormat>(&probe)
-            .unwrap_err()
-            .to_string();
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
         assert!(
             !e.contains("Unexpected field"),
             "hint {h} names `{}`, which the PIGA table's format refuses: {e}",
