@@ -783,7 +783,10 @@ fn resolve(
                 );
             }
         }
-        if cert.decision_rule.is_none() && p.decision_rule.is_some() {
+        // The decision rule and the limits' source apply to limits: without any, a
+        // certificate states no conformity.
+        let limited = !cert.limits.is_empty();
+        if limited && cert.decision_rule.is_none() && p.decision_rule.is_some() {
             cert.decision_rule = p.decision_rule;
             values.push(
                 "certificate.decision_rule",
@@ -791,10 +794,11 @@ fn resolve(
                 "decision_rule",
             );
         }
-        if cert
-            .limits_source
-            .as_deref()
-            .is_none_or(|s| s.trim().is_empty())
+        if limited
+            && cert
+                .limits_source
+                .as_deref()
+                .is_none_or(|s| s.trim().is_empty())
             && !p.limits_source.trim().is_empty()
         {
             cert.limits_source = Some(p.limits_source.clone());
