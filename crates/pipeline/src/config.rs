@@ -616,6 +616,7 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "CoefficientName" => "certificate.limits[…].coefficient",
         "LimitUnitName" => "certificate.limits[…].unit",
         "DecisionRuleName" => "certificate.decision_rule",
+        "CertifyName" => "certificate.certify",
         "AuthorisationConfig" => "certificate.authorisation",
         "TwoOrientationConfig" => "two_orientation",
         // the lab profile (lab.ron)

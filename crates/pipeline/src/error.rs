@@ -281,6 +281,51 @@ pub enum PipelineError {
         /// The profile it names.
         profile: PathBuf,
     },
+    /// A text field holds a character that hides, reorders or acts instead of showing (a
+    /// control character or a bidirectional override).
+    #[error("{}: field `{field}` holds the character {hidden}: text that a report or certificate shows must show what it says (control characters and bidirectional overrides can hide, reorder or act on it); write it on one line without them", path.display())]
+    HiddenCharacter {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field.
+        field: String,
+        /// The character and where it is.
+        hidden: edge_io::HiddenChar,
+    },
+    /// A stated standard uncertainty as large as the quantity it is the uncertainty of.
+    #[error("{}: field `{field}` = {u_c}: a standard uncertainty as large as the quantity itself (`{quantity_field}` = {quantity_c} {unit}) cannot be meant; check its unit ({unit})", path.display(), u_c = units::Compact(*u), quantity_c = units::Compact(*quantity))]
+    ImplausibleUncertainty {
+        /// The file concerned.
+        path: PathBuf,
+        /// The uncertainty's field.
+        field: String,
+        /// The uncertainty given.
+        u: f64,
+        /// The quantity's field (or what it is).
+        quantity_field: String,
+        /// The quantity's value.
+        quantity: f64,
+        /// The unit both are in.
+        unit: &'static str,
+    },
+    /// A certificate would certify a value that the study's own check refutes.
+    #[error("{}: field `certificate.certify`: {message}", path.display())]
+    CertifiesRefutedValue {
+        /// The configuration file.
+        path: PathBuf,
+        /// What would be certified and what refutes it, with the way out.
+        message: String,
+    },
+    /// A stated 95 % coverage interval that cannot be stated: it does not contain its
+    /// estimate, has zero width while the standard uncertainty is not zero, or is not
+    /// finite.
+    #[error("{}: {}", path.display(), interval)]
+    DegenerateInterval {
+        /// The configuration file.
+        path: PathBuf,
+        /// The quantity, its interval and what is wrong with it.
+        interval: Box<DegenerateInterval>,
+    },
     /// A study file could not be read: missing, too large, or not UTF-8 text.
     #[error(transparent)]
     File(#[from] edge_io::EdgeIoError),
@@ -457,3 +502,24 @@ fn list(errors: &[PipelineError]) -> String {
 
 /// Result alias of this crate.
 pub type Result<T> = std::result::Result<T, PipelineError>;
+
+/// A 95 % coverage interval that cannot be stated ([`PipelineError::DegenerateInterval`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{quantity}: its 95 % coverage interval [{low_c}, {high_c}] {problem} (estimate {value_c}, u = {u_c}); the largest contribution to its uncertainty is {dominant}: check that input's stated uncertainty", low_c = units::Compact(*low), high_c = units::Compact(*high), value_c = units::Compact(*value), u_c = units::Compact(*u))]
+pub struct DegenerateInterval {
+    /// The quantity (`k1 of the calibration`).
+    pub quantity: String,
+    /// The estimate.
+    pub value: f64,
+    /// Its standard uncertainty.
+    pub u: f64,
+    /// Lower end.
+    pub low: f64,
+    /// Upper end.
+    pub high: f64,
+    /// What is wrong with it, in words.
+    pub problem: &'static str,
+    /// The input whose uncertainty contributes most, with the field that states it where
+    /// known.
+    pub dominant: String,
+}

@@ -167,6 +167,13 @@ impl Core {
     /// Validates the study's scalars and lever.
     pub(crate) fn new(config: &StudyConfig, source: &Path) -> Result<Self> {
         let check = Check { path: source };
+        if let Some(hidden) = edge_io::hidden_char(&config.name) {
+            return Err(PipelineError::HiddenCharacter {
+                path: source.to_owned(),
+                field: "name".to_owned(),
+                hidden,
+            });
+        }
         let required = |field: &str, value: Option<f64>, what: &str| -> Result<f64> {
             value.ok_or_else(|| PipelineError::MissingField {
                 path: source.to_owned(),

@@ -58,6 +58,7 @@ mod config;
 mod date;
 mod error;
 mod inputs;
+mod intervals;
 mod load;
 mod piga_data;
 mod profile;
@@ -68,9 +69,9 @@ mod type_b;
 
 pub use ::calibration::CalibrationModel;
 pub use config::{
-    AuthorisationConfig, CertificateConfig, CoefficientName, ConditionConfig, DatesConfig,
-    DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig, LimitUnitName,
-    PartyConfig, TraceabilityConfig, TypeBInputName,
+    AuthorisationConfig, CertificateConfig, CertifyName, CoefficientName, ConditionConfig,
+    DatesConfig, DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig,
+    LimitUnitName, PartyConfig, TraceabilityConfig, TypeBInputName,
 };
 pub use config::{
     BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
@@ -86,16 +87,17 @@ pub use config::{
     ProbeConfig, ProfileConfig, ProfileLaboratory, ProfileLever,
 };
 pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
-pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
+pub use error::{DegenerateInterval, InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_profile, load_study, parse_study};
 pub use profile::Profile;
 /// The size and SHA-256 of a file as a study read it (provenance).
 pub use recording::FileDigest;
 pub use results::{
-    Authorisation, CertificateResults, Condition, Conformity, ConformityStatement, Dates,
-    DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party, ProbeSign,
-    Traceability, Verdict,
+    Authorisation, CertificateResults, Certified, CertifiedCoefficient, CertifiedMethod,
+    CertifyPolicy, Condition, Conformity, ConformityStatement, Dates, DecisionRule, Equipment,
+    Headline, HeadlineMethod, Item, Laboratory, MethodCheck, OutputCovariance, Party, ProbeSign,
+    RelativeValue, Traceability, ValidityRange, Verdict,
 };
 pub use results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,

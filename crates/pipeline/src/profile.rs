@@ -185,6 +185,7 @@ impl Profile {
             g.u_m_s2,
             "the standard uncertainty of g, m/s²",
         );
+        v.plausible("gravity.u_m_s2", g.u_m_s2, "gravity.g_m_s2", g.g_m_s2, "m/s²");
         v.text(
             "gravity.source",
             &g.source,
@@ -222,9 +223,17 @@ impl Validation<'_> {
         });
     }
 
+    /// A required text: not blank, and showing what it says (no control character or
+    /// bidirectional override: it reaches the certificate).
     fn text(&mut self, field: &str, value: &str, hint: &str) {
         if value.trim().is_empty() {
             self.missing(field, hint);
+        } else if let Some(hidden) = edge_io::hidden_char(value) {
+            self.errors.push(PipelineError::HiddenCharacter {
+                path: self.path.to_owned(),
+                field: field.to_owned(),
+                hidden,
+            });
         }
     }
 
@@ -245,6 +254,32 @@ impl Validation<'_> {
                     });
                 }
             }
+        }
+    }
+
+    /// A standard uncertainty as large as its quantity: a unit slip, never a statement.
+    fn plausible(
+        &mut self,
+        field: &str,
+        u: Option<f64>,
+        quantity_field: &str,
+        quantity: Option<f64>,
+        unit: &'static str,
+    ) {
+        if let (Some(u), Some(q)) = (u, quantity)
+            && u.is_finite()
+            && q.is_finite()
+            && q > 0.0
+            && u >= q
+        {
+            self.errors.push(PipelineError::ImplausibleUncertainty {
+                path: self.path.to_owned(),
+                field: field.to_owned(),
+                u,
+                quantity_field: quantity_field.to_owned(),
+                quantity: q,
+                unit,
+            });
         }
     }
 
@@ -326,6 +361,13 @@ impl Validation<'_> {
             p.gain_u_relative,
             "the relative standard uncertainty of the probe's gain, from its calibration certificate",
         );
+        self.plausible(
+            &format!("{at}.gain_u_relative"),
+            p.gain_u_relative,
+            "the gain itself",
+            Some(1.0),
+            "relative",
+        );
         self.text(
             &format!("{at}.traceability"),
             &p.traceability,
@@ -387,6 +429,21 @@ impl Validation<'_> {
             &f("lever.probe_to_piga_u_mm"),
             l.probe_to_piga_u_mm,
             "its standard uncertainty, mm",
+        );
+        self.plausible(&f("radius_u_m"), c.radius_u_m, &f("radius_m"), c.radius_m, "m");
+        self.plausible(
+            &f("rate_u_relative"),
+            c.rate_u_relative,
+            "the rate itself",
+            Some(1.0),
+            "relative",
+        );
+        self.plausible(
+            &f("lever.pivot_to_probe_u_mm"),
+            l.pivot_to_probe_u_mm,
+            &f("lever.pivot_to_probe_mm"),
+            l.pivot_to_probe_mm,
+            "mm",
         );
         if l.probe_direction.is_none() {
             self.missing(

@@ -120,6 +120,7 @@ impl Inputs {
             .as_ref()
             .map(|m| mechanism::validate(&check, m, config.k1_rad_s_g, &names))
             .transpose()?;
+        PipelineError::from_list(crate::type_b::implausible(&check, &config))?;
         let type_b = match config.calibration {
             Some(_) => crate::type_b::type_b(
                 &check,
@@ -312,6 +313,7 @@ pub fn run_with_progress(
     let calibration = match inputs.calibration.as_ref() {
         Some(c) => {
             let (results, more) = calibration::run(core, c, &phases[c.phase])?;
+            crate::intervals::check_calibration(&core.source, &results)?;
             warnings.extend(more);
             Some(results)
         }
@@ -330,17 +332,25 @@ pub fn run_with_progress(
         .as_ref()
         .map(|c| counterweight::run(core, c, &phases[c.phase].name))
         .transpose()?;
-    let certificate = match (inputs.certificate.as_ref(), calibration.as_ref()) {
-        (Some(cert), Some(c)) => Some(certificate::run(cert, c)),
-        _ => None,
-    };
     let two_orientation = match inputs.two_orientation.as_ref() {
         Some(s) => {
             let (results, more) = two_orientation::run(core, s, &phases)?;
+            crate::intervals::check_two_orientation(&core.source, &results)?;
             warnings.extend(more);
             Some(results)
         }
         None => None,
+    };
+    // after the two-orientation section: the certificate may certify its coefficients
+    let certificate = match (inputs.certificate.as_ref(), calibration.as_ref()) {
+        (Some(cert), Some(c)) => Some(certificate::run(
+            &core.source,
+            cert,
+            c,
+            two_orientation.as_ref(),
+            core.radius_m,
+        )?),
+        _ => None,
     };
     let results = StudyResults {
         study: core.name.clone(),

@@ -302,7 +302,7 @@ pub(crate) fn section(out: &mut String, s: &TwoOrientationResults) {
 /// A mounting's data in words: its table, or its raw recordings reduced to points.
 fn mounting_data(m: &pipeline::MountingResults) -> String {
     match &m.table {
-        Some(t) => format!("table `{t}`"),
+        Some(t) => format!("table {}", crate::format::md_text(t)),
         None => format!(
             "{} raw output recordings, each reduced to its mean over whole revolutions",
             m.recordings.len()

@@ -44,6 +44,28 @@ pub struct CertificateConfig {
     pub limits_source: Option<String>,
     /// Who authorises the certificate.
     pub authorisation: AuthorisationConfig,
+    /// Which method's coefficients the certificate certifies: `auto` (default: the
+    /// two-orientation method when both mountings were measured, else the probe method),
+    /// `probe` or `two_orientation`.
+    pub certify: CertifyName,
+    /// The laboratory's reason for certifying a value that the study's own check refutes
+    /// (|z| > 3 between the two methods); without it such a certificate is refused. The
+    /// certificate prints the reason.
+    pub certify_despite_check: Option<String>,
+}
+
+/// Which method's coefficients a certificate certifies (`certificate.certify`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CertifyName {
+    /// The two-orientation method when the study has both mountings, else the probe method.
+    #[default]
+    Auto,
+    /// The probe method: eq. 18 on the calibration section's data, k2 compensated with the
+    /// probe's C_r.
+    Probe,
+    /// The two-orientation method: eq. 23 on both mountings, k2 from the PIGA alone.
+    TwoOrientation,
 }
 
 /// The laboratory (`certificate.laboratory`).

@@ -244,6 +244,9 @@ pub struct CalibrationResults {
     pub labels: Vec<LabelSummary>,
     /// Correlation matrix of the six fitted coefficients, in the order of `terms`.
     pub correlation: Vec<Vec<f64>>,
+    /// The GUM covariance matrix of k0, k1, k2, k3 (every input: the fit, C_r and the Type B
+    /// inputs), in their own units.
+    pub covariance: super::certificate::OutputCovariance,
     /// The design's terms: `1, ω, ω², ω³, a², a³`.
     pub terms: Vec<String>,
     /// Variance inflation factor of each non-constant term (a diagnostic: every polynomial

@@ -7,6 +7,7 @@ mod balancing;
 mod baseline;
 mod calibration;
 mod certificate;
+mod certify;
 mod exported_table;
 mod in_memory;
 mod lab_variants;

@@ -271,6 +271,11 @@ fn a_bad_profile_is_refused_with_every_problem_naming_lab_ron_and_the_field() {
         ),
         ("                probe_direction: against_o1_x1,\n", ""),
         ("rate_scale: \"spindle encoder", "rate_scale: \" \", // \""),
+        ("u_m_s2: 1.0e-5,", "u_m_s2: 9.8,"),
+        (
+            "identity: \"asset 1021\"",
+            "identity: \"asset \u{202e}1201\"",
+        ),
     ]);
     let text = chain(&e);
     let PipelineError::Several { errors } = &e else {
@@ -287,10 +292,12 @@ fn a_bad_profile_is_refused_with_every_problem_naming_lab_ron_and_the_field() {
         "`signatories[1].name`: the name `B. Manager` is already used at `signatories[0].name`",
         "`centrifuges[0].lever.probe_direction` is required: which way the probe measures",
         "`centrifuges[0].traceability.rate_scale` is required",
+        "`centrifuges[0].identity` holds the character U+202E",
+        "`gravity.u_m_s2` = 9.8: a standard uncertainty as large as the quantity itself (`gravity.g_m_s2` = 9.8 m/s²)",
     ] {
         assert!(text.contains(expected), "{expected}\nin\n{text}");
     }
-    assert_eq!(errors.len(), 7, "{text}");
+    assert_eq!(errors.len(), 9, "{text}");
 }
 
 #[test]

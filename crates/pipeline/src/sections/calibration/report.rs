@@ -260,6 +260,12 @@ pub(crate) fn results(
         residuals,
         labels,
         correlation,
+        covariance: crate::results::OutputCovariance {
+            outputs: output::NAMES[..4].iter().map(|n| (*n).to_owned()).collect(),
+            matrix: (0..4)
+                .map(|i| (0..4).map(|j| cov(i, j)).collect())
+                .collect(),
+        },
         terms: TERM_NAMES.iter().map(|t| (*t).to_owned()).collect(),
         variance_inflation: e.vif.to_vec(),
         u_inflation: e.inflation.as_ref().map(u_inflation),

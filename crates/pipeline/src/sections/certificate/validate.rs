@@ -1,13 +1,15 @@
 //! The certificate section's validation: every required field, all missing ones at once.
 
 use crate::config::{
-    CertificateConfig, DecisionRuleName, K1Config, LimitUnitName, StudyConfig, TypeBInputName,
+    CertificateConfig, CertifyName, DecisionRuleName, K1Config, LimitUnitName, StudyConfig,
+    TypeBInputName,
 };
 use crate::date::Date;
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::Check;
 use crate::results::{
-    Authorisation, Condition, Dates, DecisionRule, Equipment, Item, Laboratory, Party, Warning,
+    Authorisation, CertifyPolicy, Condition, Dates, DecisionRule, Equipment, Item, Laboratory,
+    Party, Warning,
 };
 
 /// A specification limit, validated.
@@ -41,6 +43,10 @@ pub(crate) struct Certificate {
     pub(crate) rule: Option<DecisionRule>,
     pub(crate) limits_source: Option<String>,
     pub(crate) authorisation: Authorisation,
+    /// Which method's coefficients to certify.
+    pub(crate) certify: CertifyPolicy,
+    /// The laboratory's reason for certifying a value the study's check refutes.
+    pub(crate) despite_check: Option<String>,
 }
 
 impl Certificate {
@@ -177,6 +183,40 @@ pub(crate) fn validate(
             field: "uncertainty".to_owned(),
             hint: "a certificate states every Type B input of the budget: give the \
                    `uncertainty` section"
+                .to_owned(),
+        });
+    }
+    // Every text of the section shows what it says: no control character or bidirectional
+    // override (a serial number that reorders itself on the page, an escape sequence on a
+    // terminal).
+    for (field, text) in texts(c) {
+        if let Some(hidden) = edge_io::hidden_char(text) {
+            errors.push(PipelineError::HiddenCharacter {
+                path: check.path.to_owned(),
+                field: format!("certificate.{field}"),
+                hidden,
+            });
+        }
+    }
+    if c.certify == CertifyName::TwoOrientation && config.two_orientation.is_none() {
+        errors.push(PipelineError::MissingField {
+            path: check.path.to_owned(),
+            field: "two_orientation".to_owned(),
+            hint: "`certificate.certify: two_orientation` certifies the two-orientation \
+                   method's coefficients: the study needs its `two_orientation` section (IA in \
+                   and IA out)"
+                .to_owned(),
+        });
+    }
+    if c.certify_despite_check
+        .as_ref()
+        .is_some_and(|r| r.trim().is_empty())
+    {
+        errors.push(PipelineError::MissingField {
+            path: check.path.to_owned(),
+            field: "certificate.certify_despite_check".to_owned(),
+            hint: "the laboratory's reason for certifying a value the study's own check \
+                   refutes, in words the certificate prints"
                 .to_owned(),
         });
     }
@@ -384,7 +424,63 @@ pub(crate) fn validate(
         rule,
         limits_source: c.limits_source.clone().filter(|s| !s.trim().is_empty()),
         authorisation,
+        certify: match c.certify {
+            CertifyName::Auto => CertifyPolicy::Auto,
+            CertifyName::Probe => CertifyPolicy::Probe,
+            CertifyName::TwoOrientation => CertifyPolicy::TwoOrientation,
+        },
+        despite_check: c.certify_despite_check.clone(),
     })
+}
+
+/// Every text of the certificate section with its field (under `certificate.`).
+fn texts(c: &CertificateConfig) -> Vec<(String, &str)> {
+    let mut list: Vec<(String, &str)> = vec![
+        ("id".into(), &c.id),
+        ("laboratory.name".into(), &c.laboratory.name),
+        ("laboratory.address".into(), &c.laboratory.address),
+        ("location".into(), &c.location),
+        ("customer.name".into(), &c.customer.name),
+        ("customer.address".into(), &c.customer.address),
+        ("item.description".into(), &c.item.description),
+        ("item.manufacturer".into(), &c.item.manufacturer),
+        ("item.model".into(), &c.item.model),
+        ("item.serial".into(), &c.item.serial),
+        ("item.condition".into(), &c.item.condition),
+        ("dates.received".into(), &c.dates.received),
+        ("dates.measured".into(), &c.dates.measured),
+        ("dates.issued".into(), &c.dates.issued),
+        ("operator".into(), &c.operator),
+        ("procedure".into(), &c.procedure),
+        ("authorisation.name".into(), &c.authorisation.name),
+        ("authorisation.role".into(), &c.authorisation.role),
+    ];
+    if let Some(a) = &c.laboratory.accreditation {
+        list.push(("laboratory.accreditation".into(), a));
+    }
+    if let Some(d) = &c.deviations {
+        list.push(("deviations".into(), d));
+    }
+    if let Some(r) = &c.certify_despite_check {
+        list.push(("certify_despite_check".into(), r));
+    }
+    for (i, e) in c.equipment.iter().enumerate() {
+        list.push((format!("equipment[{i}].role"), &e.role));
+        list.push((format!("equipment[{i}].description"), &e.description));
+        list.push((format!("equipment[{i}].identity"), &e.identity));
+        list.push((
+            format!("equipment[{i}].calibration_due"),
+            &e.calibration_due,
+        ));
+    }
+    for (i, cnd) in c.conditions.iter().enumerate() {
+        list.push((format!("conditions[{i}].quantity"), &cnd.quantity));
+        list.push((format!("conditions[{i}].value"), &cnd.value));
+    }
+    for (i, t) in c.traceability.iter().enumerate() {
+        list.push((format!("traceability[{i}].statement"), &t.statement));
+    }
+    list
 }
 
 /// The name a traceability entry gives an input in the study file.
