@@ -88,6 +88,7 @@ impl Check {
                 .iter()
                 .any(|f| problem.contains(f.as_str()))
         };
+        let direction_unfilled = found.iter().any(|p| p.contains("probe_direction"));
         let filled = stand_ins(text);
         let mut console = Console::stdout();
         let mut warnings = Vec::new();
@@ -105,7 +106,7 @@ impl Check {
                 let used = profile
                     .as_ref()
                     .and_then(|p| p.apply_partly(&mut shown, path));
-                let plan = describe(&shown, path, used.as_ref());
+                let plan = describe(&shown, path, used.as_ref(), direction_unfilled);
                 console.write_str(&plan)?;
                 if profile.is_some() || config.profile.is_none() {
                     let files = count_files(&config);
@@ -192,11 +193,13 @@ fn num(v: Option<&Value>) -> String {
 }
 
 /// What the study will do, in words, from the configuration's own field names (with what
-/// its lab profile gives filled in, `used` saying which).
+/// its lab profile gives filled in, `used` saying which; `direction_unfilled`: the probe
+/// direction is still a placeholder).
 fn describe(
     config: &pipeline::StudyConfig,
     path: &Path,
     used: Option<&pipeline::ProfileResults>,
+    direction_unfilled: bool,
 ) -> String {
     let v = serde_json::to_value(config).unwrap_or(Value::Null);
     let mut s = String::new();
@@ -241,15 +244,61 @@ fn describe(
         num(v.get("k1_rad_s_g"))
     );
     let lever = &v["lever"];
-    let direction = match lever["probe_direction"].as_str() {
-        Some("along_o1_x1") => "along the sleeve axis O1X1",
-        _ => "against the sleeve axis O1X1 (the paper's set-up)",
+    let _ = writeln!(
+        s,
+        "probe: {} mm above the tilt pivot, {} mm below the PIGA's plane",
+        num(lever.get("pivot_to_probe_mm")),
+        num(lever.get("probe_to_piga_mm"))
+    );
+    let direction = if direction_unfilled {
+        format!(
+            "not filled in: `against_o1_x1` if {}; `along_o1_x1` if {}",
+            pipeline::ProbeDirectionName::AgainstO1X1.words(),
+            pipeline::ProbeDirectionName::AlongO1X1.words()
+        )
+    } else {
+        match config.lever.probe_direction {
+            Some(d) => d.words().to_owned(),
+            None => format!(
+                "not stated, so the paper's set-up is taken: {}",
+                pipeline::ProbeDirectionName::AgainstO1X1.words()
+            ),
+        }
+    };
+    // a declaration the lab profile made says so, with the profile's field
+    let from_profile = |field: &str| {
+        used.and_then(|u| u.values.iter().find(|o| o.field == field))
+            .filter(|o| o.from == pipeline::ValueSource::Profile)
+            .map_or_else(String::new, |o| {
+                let at = o
+                    .profile_field
+                    .rsplit_once(": ")
+                    .map_or(o.profile_field.as_str(), |(_, at)| at);
+                format!("; stated by the lab profile (`{at}`)")
+            })
     };
     let _ = writeln!(
         s,
-        "probe: {} mm above the tilt pivot, {} mm below the PIGA's plane, measuring {direction}",
-        num(lever.get("pivot_to_probe_mm")),
-        num(lever.get("probe_to_piga_mm"))
+        "  direction (`lever.probe_direction`): {direction}{}",
+        from_profile("lever.probe_direction")
+    );
+    let angle_zero = pipeline::AngleZero {
+        angle_zero_deg: config.lever.angle_zero_deg.unwrap_or(0.0),
+        stated: config.lever.angle_zero_deg.is_some(),
+        // a recordings phase whose format names an encoder or an index pulse (the default
+        // format's encoder column counts: most files have it)
+        measured_angles: config.phases.iter().any(|p| match &p.points {
+            pipeline::Points::Recordings(set) => {
+                !matches!(set.format.angle, recording::AngleSource::Rate { .. })
+            }
+            _ => false,
+        }),
+    };
+    let _ = writeln!(
+        s,
+        "  angle zero: {}{}",
+        angle_zero.words(),
+        from_profile("lever.angle_zero_deg")
     );
     for phase in v["phases"].as_array().into_iter().flatten() {
         let name = phase["name"].as_str().unwrap_or("");
@@ -280,8 +329,9 @@ fn describe(
                     }
                 )
             }
-            "harmonics" => format!(
-                "{} first-harmonic coefficients given",
+            "first_harmonic" => format!(
+                "{} first-harmonic coefficients given (taken as fitted against the angle zero: \
+                 `lever.angle_zero_deg` moves recorded angles only)",
                 body.as_array().map_or(0, Vec::len)
             ),
             "radius_error" => format!(
@@ -426,7 +476,7 @@ fn format_words(f: &Value) -> String {
     if let Some((kind, body)) = angle.as_object().and_then(|m| m.iter().next()) {
         parts.push(match kind.as_str() {
             "encoder" => format!(
-                "angle from the encoder `{}` in {}",
+                "angle from the encoder `{}` in {}{}",
                 body["column"].as_str().unwrap_or(""),
                 match &body["unit"] {
                     Value::String(u) => u.clone(),
@@ -435,6 +485,12 @@ fn format_words(f: &Value) -> String {
                         num(c.get("per_rev"))
                     )),
                     _ => String::new(),
+                },
+                if body["optional"].as_bool() == Some(true) {
+                    " when the file has it (else the declared rate, the first sample taken at 0° \
+                     from the angle zero)"
+                } else {
+                    ""
                 }
             ),
             "index_pulse" => format!(
@@ -442,7 +498,8 @@ fn format_words(f: &Value) -> String {
                 body["column"].as_str().unwrap_or("")
             ),
             "rate" => format!(
-                "angle from the declared rate, starting at {}° (nothing measures it)",
+                "angle from the declared rate, the first sample taken at {}° from the angle \
+                 zero (nothing measures it; `lever.angle_zero_deg` does not move it)",
                 num(body.get("start_angle_deg"))
             ),
             other => other.to_owned(),

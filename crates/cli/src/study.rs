@@ -119,6 +119,9 @@ impl Study {
         if let Some(html) = &files.certificate_html {
             writeln!(console, "wrote {}", html.display())?;
         }
+        if let Some(xml) = &files.certificate_dcc {
+            writeln!(console, "wrote {}", xml.display())?;
+        }
         Ok(())
     }
 }

@@ -178,6 +178,30 @@ pub enum PipelineError {
         /// What is wrong with it.
         reason: InvalidReason,
     },
+    /// A PIGA table row whose rate has no entry in `output_sigma_rad_s: per_rate(...)`.
+    #[error(
+        "{}: `{field}`: {}:{line}: rate {rate} deg/s has no standard uncertainty in `per_rate` \
+         (rates listed: {listed_text}) (hint: add `({rate}, σ)` to `per_rate`, or give one σ for \
+         every row with `constant(σ)`)",
+        path.display(),
+        file.display(),
+        rate = units::Compact(*rate_deg_s),
+        listed_text = listed.iter().map(|r| units::Compact(*r).to_string()).collect::<Vec<_>>().join(", ")
+    )]
+    RateWithoutSigma {
+        /// The configuration file.
+        path: PathBuf,
+        /// The field stating the output noise (`calibration.table.output_sigma_rad_s`).
+        field: String,
+        /// The table file.
+        file: PathBuf,
+        /// The row's line.
+        line: usize,
+        /// The row's rate, deg/s.
+        rate_deg_s: f64,
+        /// The rates `per_rate` lists, deg/s.
+        listed: Vec<f64>,
+    },
     /// A calibration table has too few distinct rates for the eq. 18 design.
     #[error("{}: `{field}`: {} has {distinct} distinct rate(s); the eq. 18 calibration needs at least {need} (six unknowns and one degree of freedom)", path.display(), file.display())]
     TooFewRates {
@@ -459,6 +483,14 @@ pub enum UnsupportedReason {
     /// A certificate states a calibration's results.
     #[error("a certificate needs a `calibration` section: it states the calibration's results")]
     CertificateNeedsCalibration,
+    /// A previous certificate's digest that is not a SHA-256.
+    #[error(
+        "must be the SHA-256 of the previous certificate's file: 64 hexadecimal digits (as `sha256sum` prints them)"
+    )]
+    NotSha256,
+    /// A country that is not an ISO 3166-1 alpha-2 code.
+    #[error("must be a country code of ISO 3166-1: two capital letters (`DE`, `GB`, `US`)")]
+    NotCountryCode,
     /// The counterweight section reads one published change of radius error.
     #[error("the counterweight section needs a phase given as radius_change")]
     CounterweightNeedsRadiusChange,

@@ -71,16 +71,16 @@ pub use ::calibration::CalibrationModel;
 pub use config::{
     AuthorisationConfig, CertificateConfig, CertifyName, CoefficientName, ConditionConfig,
     DatesConfig, DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig,
-    LimitUnitName, PartyConfig, TraceabilityConfig, TypeBInputName,
+    LimitUnitName, PartyConfig, PreviousCertificateConfig, TraceabilityConfig, TypeBInputName,
 };
 pub use config::{
     BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
 };
 pub use config::{
     CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
-    PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName,
-    RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TableLayoutError, TrialsConfig,
-    UncertaintyConfig, Weighting,
+    OutputSigma, PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName,
+    RadiusModelName, RadiusPoint, RecordingPoint, RecordingSet, SIGMA_RATE_TOLERANCE, StudyConfig,
+    TableLayoutError, TrialsConfig, UncertaintyConfig, Weighting,
 };
 pub use config::{
     CentrifugeConfig, CentrifugeTraceability, GravityConfig, InstrumentConfig, PersonConfig,
@@ -93,11 +93,12 @@ pub use load::{Files, MAX_STUDY_BYTES, load_profile, load_study, parse_study};
 pub use profile::Profile;
 /// The size and SHA-256 of a file as a study read it (provenance).
 pub use recording::FileDigest;
+pub use results::{AngleZero, ProbeDeclared};
 pub use results::{
     Authorisation, CertificateResults, Certified, CertifiedCoefficient, CertifiedMethod,
     CertifyPolicy, Condition, Conformity, ConformityStatement, Dates, DecisionRule, Equipment,
-    Headline, HeadlineMethod, Item, Laboratory, MethodCheck, OutputCovariance, Party, ProbeSign,
-    RelativeValue, Traceability, ValidityRange, Verdict,
+    Headline, HeadlineMethod, Item, Laboratory, MethodCheck, OutputCovariance, Party,
+    PreviousCertificate, ProbeSign, RelativeValue, Traceability, ValidityRange, Verdict,
 };
 pub use results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,

@@ -17,7 +17,7 @@ use crate::config::{
     ProfileConfig, StudyConfig, TraceabilityConfig, TypeBInputName, UncertaintyConfig,
 };
 use crate::date::Date;
-use crate::error::{InvalidReason, PipelineError, Result};
+use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 use crate::results::{ProfileResults, ValueOrigin, ValueSource};
 
 /// A lab profile as read, unvalidated, with the file it came from (named in every error) and
@@ -129,6 +129,15 @@ impl Profile {
                 "the accreditation body and number (or leave the field out)",
             );
         }
+        if let Some(country) = &p.laboratory.country
+            && !(country.len() == 2 && country.bytes().all(|b| b.is_ascii_uppercase()))
+        {
+            v.errors.push(PipelineError::Unsupported {
+                path: self.source.clone(),
+                field: "laboratory.country".to_owned(),
+                reason: UnsupportedReason::NotCountryCode,
+            });
+        }
         if p.signatories.is_empty() {
             v.missing(
                 "signatories",
@@ -185,7 +194,13 @@ impl Profile {
             g.u_m_s2,
             "the standard uncertainty of g, m/s²",
         );
-        v.plausible("gravity.u_m_s2", g.u_m_s2, "gravity.g_m_s2", g.g_m_s2, "m/s²");
+        v.plausible(
+            "gravity.u_m_s2",
+            g.u_m_s2,
+            "gravity.g_m_s2",
+            g.g_m_s2,
+            "m/s²",
+        );
         v.text(
             "gravity.source",
             &g.source,
@@ -243,6 +258,7 @@ impl Validation<'_> {
             Some(x) => {
                 let ok = match reason {
                     InvalidReason::NotPositive => x.is_finite() && x > 0.0,
+                    InvalidReason::NotFinite => x.is_finite(),
                     _ => x.is_finite() && x >= 0.0,
                 };
                 if !ok {
@@ -430,7 +446,13 @@ impl Validation<'_> {
             l.probe_to_piga_u_mm,
             "its standard uncertainty, mm",
         );
-        self.plausible(&f("radius_u_m"), c.radius_u_m, &f("radius_m"), c.radius_m, "m");
+        self.plausible(
+            &f("radius_u_m"),
+            c.radius_u_m,
+            &f("radius_m"),
+            c.radius_m,
+            "m",
+        );
         self.plausible(
             &f("rate_u_relative"),
             c.rate_u_relative,
@@ -445,6 +467,15 @@ impl Validation<'_> {
             l.pivot_to_probe_mm,
             "mm",
         );
+        if let Some(deg) = l.angle_zero_deg {
+            // optional: a study states it when the centrifuge's encoder zero is not fixed
+            self.number(
+                &f("lever.angle_zero_deg"),
+                Some(deg),
+                "",
+                InvalidReason::NotFinite,
+            );
+        }
         if l.probe_direction.is_none() {
             self.missing(
                 &f("lever.probe_direction"),
@@ -591,6 +622,12 @@ fn resolve(
         lever.probe_direction,
         "lever.probe_direction",
         &at("lever.probe_direction"),
+    );
+    values.fill(
+        &mut config.lever.angle_zero_deg,
+        lever.angle_zero_deg,
+        "lever.angle_zero_deg",
+        &at("lever.angle_zero_deg"),
     );
     // The Type B inputs: each with its standing statement, the traceability of a non-zero
     // uncertainty and the reason for a zero.
@@ -745,6 +782,7 @@ fn resolve(
             cert.laboratory
                 .accreditation
                 .clone_from(&p.laboratory.accreditation);
+            cert.laboratory.country.clone_from(&p.laboratory.country);
             values.push("certificate.laboratory", ValueSource::Profile, "laboratory");
         } else {
             values.push("certificate.laboratory", ValueSource::Study, "laboratory");

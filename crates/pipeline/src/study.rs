@@ -110,7 +110,7 @@ impl Inputs {
                 None
             }
         };
-        let core = Core::new(&config, source)?;
+        let mut core = Core::new(&config, source)?;
         let check = core.check();
         let checked = phases::check(&check, &config)?;
         let second_probe = balance::second_probe_phases(config.balance.as_ref(), &checked.names);
@@ -163,7 +163,8 @@ impl Inputs {
             .map(|s| two_orientation::validate(&check, s, &config, &names, core.base(), load))
             .transpose()?;
         let base = core.base().to_owned();
-        let phases = checked.load(&config.phases, &base, source, load)?;
+        let phases = checked.load(&config.phases, &base, source, load, &core.angle_zero)?;
+        core.angle_zero.measured_angles = phases.measure_angles();
         let calibration = match (config.calibration.as_ref(), calibration_refs) {
             (Some(c), Some(refs)) => Some(calibration::load(c, refs, type_b, &base, source, load)?),
             _ => None,
@@ -359,6 +360,8 @@ pub fn run_with_progress(
             g_m_s2: core.g_m_s2,
             k1_rad_s_g: core.k1_rad_s_g,
             lever_ratio: core.lever_ratio,
+            probe_direction: crate::inputs::probe_sign(core.lever.probe_direction),
+            angle_zero: core.angle_zero,
         },
         phases,
         mechanism,

@@ -109,7 +109,7 @@ pub fn certificate_html(
          with a the specific force along the input axis in g.</p>"
     );
     results_table(&mut out, c, &heads);
-    compensation_block(&mut out, c, &heads[2]);
+    compensation_block(&mut out, c, &results.inputs.angle_zero, &heads[2]);
     if let Some(s) = &results.two_orientation {
         certificate_two_orientation::certificate_block(
             &mut out,

@@ -4,7 +4,9 @@
 
 use std::fmt::Write as _;
 
-use pipeline::{CalibrationResults, CertificateResults, DecisionRule, StudyResults, Verdict};
+use pipeline::{
+    AngleZero, CalibrationResults, CertificateResults, DecisionRule, StudyResults, Verdict,
+};
 
 use crate::format;
 use crate::format::esc;
@@ -91,7 +93,12 @@ pub(crate) fn results_table(out: &mut String, c: &CalibrationResults, heads: &[H
     );
 }
 
-pub(crate) fn compensation_block(out: &mut String, c: &CalibrationResults, k2: &Headline) {
+pub(crate) fn compensation_block(
+    out: &mut String,
+    c: &CalibrationResults,
+    angle_zero: &AngleZero,
+    k2: &Headline,
+) {
     let k = k2.gum.k;
     let cr = format::pair(c.c_r_combined_m_s2.value, k * c.c_r_combined_m_s2.u);
     let dk2 = format::pair(c.delta_k2.value, k * c.delta_k2.u);
@@ -102,6 +109,7 @@ pub(crate) fn compensation_block(out: &mut String, c: &CalibrationResults, k2: &
         "<table class=\"ident\"><tbody>\
          <tr><th>C<sub>r</sub> of the spindle</th><td class=\"num\">{} m·s²</td><td>phase “{}”; U = k·u with k = {}, u from the fit, the probe gain, the lever heights and the rate scale (the inputs that carry C<sub>r</sub> into Δk2)</td></tr>\
          <tr><th>Probe sign convention</th><td colspan=\"2\">{}</td></tr>\
+         <tr><th>Angle zero of the probe analysis</th><td colspan=\"2\">{}</td></tr>\
          <tr><th>Δk2 = k1·C<sub>r</sub>·g/R²</th><td class=\"num\">{} rad/(s·g²) = {} µg/g²</td>\
          <td>removed from the fitted a² coefficient (eq. 19); U from the same inputs as k2 (C<sub>r</sub>, probe gain, lever, rate scale, R, g, k1), k = {}</td></tr>\
          </tbody></table>",
@@ -109,6 +117,7 @@ pub(crate) fn compensation_block(out: &mut String, c: &CalibrationResults, k2: &
         esc(&c.compensate_with),
         format::coverage_factor(k),
         esc(c.probe_direction.words()),
+        symbols(&angle_zero.words()),
         dk2.joined(),
         dk2_micro.joined(),
         format::coverage_factor(k),

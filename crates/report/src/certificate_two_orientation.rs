@@ -165,9 +165,11 @@ pub(crate) fn certificate_block(
             let _ = writeln!(
                 out,
                 "<p class=\"warning\"><strong>The two methods disagree</strong>: z = (C − C<sub>r</sub>)/u(C − C<sub>r</sub>) \
-                 = {z}, beyond ±3. Either the working radius grows in a way the probe does not see \
-                 (the arm stretching under centrifugal load, a mount that gives), or the probe's \
-                 declared sign convention, gap unit or lever heights are wrong. The certified k2 is \
+                 = {z}, beyond ±3. Either the probe is declared wrongly — the encoder's angle zero \
+                 relative to the arm, the probe's sign convention or its gap unit (each changes \
+                 C<sub>r</sub> with no other sign) — or, those right, the working radius grows in a \
+                 way the probe does not see (the arm stretching under centrifugal load, a mount \
+                 that gives) or the lever heights are wrong. The certified k2 is \
                  compensated with the probe's C<sub>r</sub> only and keeps k1·(C − C<sub>r</sub>)·g/R²: \
                  it lies {above} the two-orientation k2 by {excess_native} rad/(s·g²) \
                  ({excess_micro} µg/g²).</p>",

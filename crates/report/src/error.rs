@@ -88,6 +88,9 @@ pub enum ReportError {
         "a certificate needs a study with a `calibration` and a `certificate` section; this study lacks one"
     )]
     NoCertificate,
+    /// The digital calibration certificate (`certificate.dcc.xml`) cannot be written.
+    #[error("certificate.dcc.xml: {0}")]
+    Dcc(#[from] dcc::DccError),
     /// The results have no phase to draw.
     #[error("the results have no phase")]
     NoPhase,

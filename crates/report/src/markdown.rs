@@ -34,6 +34,12 @@ pub fn render(
         "Inputs: R = {} m, g = {} m/s², k1 = {} rad/(s·g), lever ratio (probe → PIGA plane) = {:.6}.\n",
         i.radius_m, i.g_m_s2, i.k1_rad_s_g, i.lever_ratio
     );
+    let _ = writeln!(
+        out,
+        "Probe declarations (`lever`): direction: {}; angle zero: {}.\n",
+        i.probe_direction.words(),
+        i.angle_zero.words()
+    );
     if let Some(e) = expected {
         let _ = writeln!(
             out,

@@ -21,6 +21,7 @@ const STUDY_FILES: &[&str] = &[
     "calibration_residuals.svg",
     "balance_polar.svg",
     "certificate.html",
+    dcc::FILE_NAME,
 ];
 
 /// The files a study wrote.
@@ -41,6 +42,9 @@ pub struct WrittenFiles {
     pub balance_polar_svg: Option<PathBuf>,
     /// `certificate.html`, when the study has a certificate section.
     pub certificate_html: Option<PathBuf>,
+    /// `certificate.dcc.xml`, the certificate as a DCC, when the study has a certificate
+    /// section.
+    pub certificate_dcc: Option<PathBuf>,
 }
 
 /// Serialises results as pretty JSON, without provenance.
@@ -77,7 +81,8 @@ pub fn results_json_with_provenance(
 
 /// Writes `results.json` (with `provenance` when given), `report.md`, `radius_error.svg`,
 /// for phases given as recordings `probe_signals_<phase>.svg`, and for a study with a
-/// certificate section `certificate.html` (its input files from `provenance`) into `dir`, atomically: every
+/// certificate section `certificate.html` and `certificate.dcc.xml` (the same certificate as
+/// a DCC; their input files from `provenance`) into `dir`, atomically: every
 /// file is rendered first, then written through an [`OutputSet`], so `dir` ends up holding
 /// exactly these files, or, on any error, what it held before, byte for byte. Files of an
 /// earlier study that this one does not write (a probe figure) are removed.
@@ -135,6 +140,12 @@ pub fn write_outputs(
         .map(|_| crate::certificate::certificate_html(results, provenance, &Software::this_build()))
         .transpose()?;
 
+    let certificate_dcc = results
+        .certificate
+        .as_ref()
+        .map(|_| certificate_dcc(results, provenance))
+        .transpose()?;
+
     let mut set = OutputSet::create(dir, STUDY_FILES)?;
     let results_json = set.write("results.json", json.as_bytes())?;
     let report_md = set.write("report.md", report.as_bytes())?;
@@ -157,6 +168,9 @@ pub fn write_outputs(
     let certificate_html = certificate
         .map(|html| set.write("certificate.html", html.as_bytes()))
         .transpose()?;
+    let certificate_dcc = certificate_dcc
+        .map(|xml| set.write(dcc::FILE_NAME, xml.as_bytes()))
+        .transpose()?;
     set.commit()?;
     Ok(WrittenFiles {
         results_json,
@@ -166,5 +180,34 @@ pub fn write_outputs(
         calibration_residuals_svg,
         balance_polar_svg,
         certificate_html,
+        certificate_dcc,
     })
+}
+
+/// The certificate as a DCC (`crates/dcc`): its software this build, its input files the
+/// configuration and every data file of `provenance` (none stated without one).
+fn certificate_dcc(results: &StudyResults, provenance: Option<&Provenance>) -> Result<String> {
+    let build = Software::this_build();
+    let software = dcc::Software {
+        name: crate::TOOL.to_owned(),
+        release: env!("CARGO_PKG_VERSION").to_owned(),
+        commit: build.commit,
+    };
+    let files: Option<Vec<dcc::InputFile>> = provenance.map(|p| {
+        let record = |f: &crate::provenance::FileRecord, role: &str| dcc::InputFile {
+            path: f.path.clone(),
+            bytes: f.bytes,
+            sha256: f.sha256.clone(),
+            role: f.role.clone().unwrap_or_else(|| role.to_owned()),
+            field: f.field.clone(),
+        };
+        std::iter::once(record(&p.config, "configuration"))
+            .chain(p.inputs.iter().map(|f| record(f, "data")))
+            .collect()
+    });
+    Ok(dcc::write_dcc(&dcc::DccInput {
+        results,
+        software: &software,
+        files: files.as_deref(),
+    })?)
 }

@@ -152,7 +152,9 @@ pub fn summary_text(results: &StudyResults) -> Option<String> {
         );
     }
     let (cr, dk2) = compensation(c);
-    let _ = writeln!(out, "  {cr}").and_then(|()| writeln!(out, "  {dk2}"));
+    let _ = writeln!(out, "  {cr}");
+    let _ = writeln!(out, "  angle zero: {}", results.inputs.angle_zero.words());
+    let _ = writeln!(out, "  {dk2}");
     crate::two_orientation::summary_lines(&mut out, results);
     if let Some((what, why)) = certified_lines(results) {
         let _ = writeln!(out, "{what}\n  {why}");

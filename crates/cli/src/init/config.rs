@@ -194,10 +194,14 @@ fn centrifuge_to_fill(s: &mut String) {
         "lever.probe_to_piga_mm",
         "What is the height from the probe plane to the PIGA's centre-of-mass plane, in mm?",
     );
-    s.push_str(
-        "        // Which way the probe measures, as seen at the machine: against_o1_x1 when its\n        \
-         // reading falls (the gap closes) as the spindle moves towards the PIGA (the paper's\n        \
-         // set-up, Fig. 3), along_o1_x1 when it rises. It sets the sign of the phase β.\n",
+    let _ = writeln!(
+        s,
+        "        // Which way the probe's reading moves when the spindle moves towards the PIGA\n        \
+         // (the arm's PIGA end pointing at the probe); it sets the sign of C_r:\n        \
+         //   against_o1_x1 (or reading_falls_towards_piga): {};\n        \
+         //   along_o1_x1 (or reading_rises_towards_piga): {}.",
+        pipeline::ProbeDirectionName::AgainstO1X1.words(),
+        pipeline::ProbeDirectionName::AlongO1X1.words(),
     );
     placeholder(
         s,
@@ -207,7 +211,22 @@ fn centrifuge_to_fill(s: &mut String) {
         "lever.probe_direction",
         "Does the probe's reading fall (against_o1_x1) or rise (along_o1_x1) as the spindle moves towards the PIGA?",
     );
+    angle_zero_comment(s, "        ", "// angle_zero_deg: 0.0,");
     s.push_str("    ),\n");
+}
+
+/// The angle zero, optional: a comment at `indent` saying what it is and what is taken
+/// without it, and the field commented out (`example`).
+fn angle_zero_comment(s: &mut String, indent: &str, example: &str) {
+    for line in [
+        "// The angle zero, deg: what the spindle encoder reads (an index pulse: how far the",
+        "// spindle has turned past its rising edge) when the arm's PIGA end points at the",
+        "// probe. Not stated, 0 is taken and `check`, the report and the certificate say so;",
+        "// an encoder zero elsewhere changes C_r with no other sign (docs/YOUR-DATA.md).",
+        example,
+    ] {
+        let _ = writeln!(s, "{indent}{line}");
+    }
 }
 
 fn k1(s: &mut String) {
@@ -240,12 +259,16 @@ fn centrifuge_from_profile(s: &mut String, profile: &ProfilePlan, relative: &Rel
     match profile.centrifuge.map(|i| &profile.config.centrifuges[i]) {
         Some(c) => {
             let lever = &c.lever;
-            let direction = match lever.probe_direction {
-                Some(pipeline::ProbeDirectionName::AlongO1X1) => {
-                    "its reading rising as the spindle moves towards the PIGA"
-                }
-                _ => "its reading falling as the spindle moves towards the PIGA",
-            };
+            let direction = lever.probe_direction.unwrap_or_default().words();
+            let angle_zero = lever.angle_zero_deg.map_or_else(
+                || "; it states no angle zero, so 0° is taken".to_owned(),
+                |deg| {
+                    format!(
+                        "; its encoder reads {deg}° when the arm's PIGA end points at the probe \
+                         (the angle zero)"
+                    )
+                },
+            );
             let num = |v: Option<f64>| v.map_or_else(|| "?".to_owned(), |x| format!("{x}"));
             let _ = writeln!(
                 s,
@@ -253,7 +276,7 @@ fn centrifuge_from_profile(s: &mut String, profile: &ProfilePlan, relative: &Rel
                 ron_string(&c.name),
                 comment_text(&format!(
                     "{} ({}): R = {} m, g = {} m/s²; the probe {} mm above the tilt pivot and \
-                     {} mm below the PIGA's plane, {direction}",
+                     {} mm below the PIGA's plane: {direction}{angle_zero}",
                     c.description,
                     c.identity,
                     num(c.radius_m),
@@ -262,6 +285,9 @@ fn centrifuge_from_profile(s: &mut String, profile: &ProfilePlan, relative: &Rel
                     num(lever.probe_to_piga_mm),
                 ))
             );
+            if lever.angle_zero_deg.is_none() {
+                angle_zero_comment(s, "    ", "// lever: (angle_zero_deg: 0.0),");
+            }
         }
         None => placeholder(
             s,

@@ -87,13 +87,40 @@ fn poisoned_study(dir: &Path, name: &str, g_source: &str, certificate_text: &str
         out.push_str(&rest[..i + 2]);
         let after = &rest[i + 3..];
         let end = after.find('"').unwrap();
-        out.push_str(&ron(&format!("{} {certificate_text}", &after[..end])));
+        let value = &after[..end];
+        if is_iso_date(value) || is_country(value) {
+            // a date or a country code is not free text: refused unless ISO (a test below)
+            out.push_str(&ron(value));
+        } else {
+            out.push_str(&ron(&format!("{value} {certificate_text}")));
+        }
         rest = &after[end + 1..];
     }
     out.push_str(rest);
     let path = dir.join("study.ron");
     std::fs::write(&path, format!("{head}{out}")).unwrap();
     path
+}
+
+/// `YYYY-MM-DD`, or two of them joined by ` to `.
+fn is_iso_date(text: &str) -> bool {
+    if let Some((a, b)) = text.split_once(" to ") {
+        return is_iso_date(a) && is_iso_date(b);
+    }
+    let b = text.as_bytes();
+    b.len() == 10
+        && b.iter().enumerate().all(|(i, c)| {
+            if i == 4 || i == 7 {
+                *c == b'-'
+            } else {
+                c.is_ascii_digit()
+            }
+        })
+}
+
+/// Two capital letters (ISO 3166-1 alpha-2).
+fn is_country(text: &str) -> bool {
+    text.len() == 2 && text.bytes().all(|c| c.is_ascii_uppercase())
 }
 
 fn study(config: &Path, out: &Path) -> Output {
@@ -263,4 +290,28 @@ fn hidden_characters_in_identifying_text_are_refused_naming_the_field() {
         );
         assert_eq!(hidden(&stderr), None, "{stderr}");
     }
+}
+
+#[test]
+fn a_date_that_is_not_iso_is_refused_naming_its_field() {
+    let dir = test_support::Scratch::new("cli-hostile-date");
+    let config = poisoned_study(dir.path(), "campaign", "nominal", "");
+    let text = std::fs::read_to_string(&config).unwrap();
+    let start = text
+        .find("received: \"")
+        .expect("the fixture states the date received")
+        + 11;
+    let poisoned = format!(
+        "{}2026-11-16 </style><script>{}",
+        &text[..start],
+        &text[start + 10..]
+    );
+    std::fs::write(&config, poisoned).unwrap();
+    let out = dir.path().join("out");
+    let run = study(&config, &out);
+    let stderr = String::from_utf8(run.stderr).unwrap();
+    assert!(!run.status.success());
+    assert!(stderr.contains("certificate.dates.received"), "{stderr}");
+    assert_eq!(hidden(&stderr), None);
+    assert!(!out.join("certificate.html").exists());
 }

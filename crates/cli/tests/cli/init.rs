@@ -559,16 +559,30 @@ fn a_probe_in_volts_in_tdms_or_mat_asks_for_its_sensitivity() {
         );
         assert!(config.contains(unit), "{config}");
         assert!(config.contains("probe's sensitivity"), "{config}");
+        // the angle zero, optional, is explained and left out (0 taken, and said)
+        assert!(
+            config.contains("        // angle_zero_deg: 0.0,\n"),
+            "{config}"
+        );
         // `check` names the field left to fill in and asks for it.
         let check = cli(&["check", out.to_str().unwrap()]);
         assert_eq!(check.status.code(), Some(1));
+        let printed = String::from_utf8_lossy(&check.stdout);
         assert!(
-            String::from_utf8_lossy(&check.stdout).contains(
+            printed.contains(
                 "`phases[0].points.format.gap.unit` is not filled in (FILL_IN): What are the \
                  probe's sensitivity and its standard uncertainty"
             ),
-            "{}",
-            String::from_utf8_lossy(&check.stdout)
+            "{printed}"
+        );
+        // the direction still to fill in is described by what to check at the machine, not
+        // as the stand-in `check` reads in its place
+        assert!(
+            printed.contains(
+                "direction (`lever.probe_direction`): not filled in: `against_o1_x1` if the \
+                 probe's gap closes (its reading falls) when the spindle moves towards the PIGA"
+            ),
+            "{printed}"
         );
     }
 }

@@ -244,6 +244,30 @@ fn a_german_export_and_a_profile_give_the_certificate_with_only_the_questions_an
     );
     assert_eq!(json["certificate"]["equipment"][1]["identity"], "CP-7731");
     assert_eq!(json["inputs"]["radius_m"], 2.5);
+    // The centrifuge's angle zero and probe direction, stated by the profile.
+    assert_eq!(json["inputs"]["angle_zero"]["stated"], true);
+    assert_eq!(json["inputs"]["angle_zero"]["angle_zero_deg"], 0.0);
+    assert_eq!(json["inputs"]["probe_direction"], "against_o1_x1");
+    let v = values
+        .iter()
+        .find(|v| v["field"] == "lever.angle_zero_deg")
+        .unwrap();
+    assert_eq!(v["from"], "profile");
+    // The digital certificate beside it states the profile's laboratory and its country.
+    let dcc = std::fs::read_to_string(certificate.with_file_name("certificate.dcc.xml")).unwrap();
+    for stated in [
+        "<dcc:countryCodeISO3166_1>DE</dcc:countryCodeISO3166_1>",
+        "Inertial Sensors Calibration Laboratory",
+        "12 Centrifuge Road",
+        "Accredited calibration laboratory no. K-0000 (example)",
+        "B. Manager",
+    ] {
+        assert!(dcc.contains(stated), "{stated} not in\n{dcc}");
+    }
+    assert!(
+        !dcc.contains("does not state the laboratory's country"),
+        "{dcc}"
+    );
     assert!(
         json["provenance"]["profile"]["sha256"]
             .as_str()

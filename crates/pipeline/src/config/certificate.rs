@@ -52,6 +52,21 @@ pub struct CertificateConfig {
     /// (|z| > 3 between the two methods); without it such a certificate is refused. The
     /// certificate prints the reason.
     pub certify_despite_check: Option<String>,
+    /// The certificate this one follows (the item's previous calibration certificate), when
+    /// there is one: the digital certificate (`certificate.dcc.xml`) names it as its
+    /// `previousReport`.
+    pub previous_certificate: Option<PreviousCertificateConfig>,
+}
+
+/// The certificate a certificate follows (`certificate.previous_certificate`).
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PreviousCertificateConfig {
+    /// Its unique identification.
+    pub id: String,
+    /// SHA-256 of its file (its `certificate.dcc.xml`, or the PDF issued), 64 hexadecimal
+    /// digits, when known.
+    pub sha256: Option<String>,
 }
 
 /// Which method's coefficients a certificate certifies (`certificate.certify`).
@@ -78,6 +93,9 @@ pub struct LaboratoryConfig {
     pub address: String,
     /// Accreditation body and number, if accredited.
     pub accreditation: Option<String>,
+    /// The laboratory's country, as ISO 3166-1 writes it (two capital letters: `DE`, `GB`);
+    /// the digital certificate states it (`ZZ`, "not stated", without it).
+    pub country: Option<String>,
 }
 
 /// The customer (`certificate.customer`).

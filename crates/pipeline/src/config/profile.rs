@@ -55,6 +55,9 @@ pub struct ProfileLaboratory {
     pub address: String,
     /// Accreditation body and number, if accredited.
     pub accreditation: Option<String>,
+    /// The laboratory's country, as ISO 3166-1 writes it (two capital letters: `DE`, `GB`);
+    /// the digital certificate states it.
+    pub country: Option<String>,
 }
 
 /// A person who signs (`signatories[…]`).
@@ -129,8 +132,14 @@ pub struct ProfileLever {
     pub probe_to_piga_mm: Option<f64>,
     /// Its standard uncertainty, mm.
     pub probe_to_piga_u_mm: Option<f64>,
-    /// Which way the probe measures (docs/PROFILE.md says it in words).
+    /// Which way the probe measures (docs/PROFILE.md says it in words): `against_o1_x1`
+    /// (also written `reading_falls_towards_piga`) or `along_o1_x1`
+    /// (`reading_rises_towards_piga`).
     pub probe_direction: Option<ProbeDirectionName>,
+    /// The angle zero, deg: what the centrifuge's spindle encoder reads (or how far the
+    /// spindle has turned past its index pulse's rising edge) when the arm's PIGA end points
+    /// at the probe; a study's `lever.angle_zero_deg` overrides it.
+    pub angle_zero_deg: Option<f64>,
 }
 
 /// A centrifuge's traceability statements (`centrifuges[…].traceability`).

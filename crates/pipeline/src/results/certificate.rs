@@ -26,6 +26,9 @@ pub struct Laboratory {
     /// Accreditation body and number, if accredited.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accreditation: Option<String>,
+    /// The laboratory's country (ISO 3166-1 alpha-2), if stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub country: Option<String>,
 }
 
 /// The item calibrated.
@@ -96,6 +99,16 @@ pub struct Authorisation {
     pub name: String,
     /// Role.
     pub role: String,
+}
+
+/// The certificate a certificate follows.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PreviousCertificate {
+    /// Its unique identification.
+    pub id: String,
+    /// SHA-256 of its file, 64 lowercase hexadecimal digits, when stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sha256: Option<String>,
 }
 
 /// The decision rule of the statements of conformity (ILAC-G8:09/2019 §4.2).
@@ -239,6 +252,9 @@ pub struct CertificateResults {
     /// What the certificate certifies: the method, why, and the coefficients with their
     /// stated intervals, covariance and range of validity.
     pub certified: Certified,
+    /// The certificate this one follows (absent: none stated).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub previous_certificate: Option<PreviousCertificate>,
 }
 
 /// Which method's coefficients a certificate certifies, as configured
@@ -394,13 +410,4 @@ pub struct Certified {
     pub covariance: Vec<Vec<f64>>,
     /// One range of validity per mounting fitted.
     pub validity: Vec<ValidityRange>,
-}
-
-/// The covariance matrix of a GUM evaluation's outputs (JCGM 102 §6.2: `U_y = C·U_x·Cᵀ`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct OutputCovariance {
-    /// The outputs, in the matrix's order.
-    pub outputs: Vec<String>,
-    /// The matrix, row by row, in the outputs' units.
-    pub matrix: Vec<Vec<f64>>,
 }

@@ -162,7 +162,7 @@ pub struct TwoOrientationResults {
     pub headline: TwoOrientationHeadline,
     /// The GUM covariance matrix of k0 and k1 of each mounting, k2 and k3 (every input), in
     /// their own units.
-    pub covariance: super::certificate::OutputCovariance,
+    pub covariance: super::common::OutputCovariance,
     /// The comparison with the probe phase.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub probe: Option<ProbeComparison>,

@@ -8,6 +8,7 @@ mod baseline;
 mod calibration;
 mod certificate;
 mod certify;
+mod declared_sigma;
 mod exported_table;
 mod in_memory;
 mod lab_variants;

@@ -103,7 +103,12 @@ fn a_study_naming_its_profile_runs_to_the_numbers_of_the_study_stating_everythin
     assert_eq!(with_profile.two_orientation, reference.two_orientation);
     let cert = with_profile.certificate.as_ref().unwrap();
     let reference_cert = reference.certificate.as_ref().unwrap();
-    assert_eq!(cert.laboratory, reference_cert.laboratory);
+    // The laboratory as the reference states it, and its country (which the digital
+    // certificate states) from the profile.
+    let mut laboratory = cert.laboratory.clone();
+    assert_eq!(laboratory.country.as_deref(), Some("DE"));
+    laboratory.country = None;
+    assert_eq!(laboratory, reference_cert.laboratory);
     assert_eq!(cert.location, reference_cert.location);
     assert_eq!(cert.procedure, reference_cert.procedure);
     assert_eq!(cert.authorisation, reference_cert.authorisation);
@@ -153,6 +158,7 @@ fn a_study_naming_its_profile_runs_to_the_numbers_of_the_study_stating_everythin
         "g_m_s2",
         "lever.pivot_to_probe_mm",
         "lever.probe_direction",
+        "lever.angle_zero_deg",
         "uncertainty.radius_u_m",
         "uncertainty.probe_gain_u_relative",
         "two_orientation.orientations[1].radius_m",
@@ -220,6 +226,61 @@ fn what_the_study_states_overrides_the_profile_and_says_so() {
     assert_eq!(radius.u, Some(1.0e-5));
 }
 
+/// The probe direction and the angle zero are the centrifuge's in the profile; the study's
+/// override them (either name of a direction), and neither stated leaves the angle zero
+/// unstated (0 taken, and said) and the direction the paper's.
+#[test]
+fn the_centrifuges_probe_direction_and_angle_zero_come_from_the_profile_unless_the_study_states_them()
+ {
+    let (profile, path) = lab();
+    let study = root().join("fixtures/studies/two_orientation_profile.ron");
+    let text = two_orientation_with_profile(
+        "    lever: (angle_zero_deg: 30.0, probe_direction: reading_rises_towards_piga),\n",
+        DATES,
+    );
+    let mut config = StudyConfig::from_ron(&text, &study).unwrap();
+    let used = profile.apply(&mut config, &study).unwrap();
+    assert_eq!(config.lever.angle_zero_deg, Some(30.0));
+    assert_eq!(
+        config.lever.probe_direction,
+        Some(pipeline::ProbeDirectionName::AlongO1X1)
+    );
+    for field in ["lever.angle_zero_deg", "lever.probe_direction"] {
+        let v = used.values.iter().find(|v| v.field == field).unwrap();
+        assert_eq!(v.from, ValueSource::Study, "{field}");
+    }
+    // The profile's, when the study states neither.
+    let mut config =
+        StudyConfig::from_ron(&two_orientation_with_profile("", DATES), &study).unwrap();
+    profile.apply(&mut config, &study).unwrap();
+    assert_eq!(config.lever.angle_zero_deg, Some(0.0));
+    assert_eq!(
+        config.lever.probe_direction,
+        Some(pipeline::ProbeDirectionName::AgainstO1X1)
+    );
+    // A profile whose centrifuge states no angle zero: none is stated, and the results say
+    // 0 was taken.
+    let lab_text = std::fs::read_to_string(&path).unwrap();
+    let without = lab_text.replacen("                angle_zero_deg: 0.0,\n", "", 1);
+    assert_ne!(without, lab_text);
+    let profile = Profile::from_ron(&without, &path).unwrap();
+    let config = StudyConfig::from_ron(&two_orientation_with_profile("", DATES), &study).unwrap();
+    let results = pipeline::run(
+        &Inputs::with_profile(config, Some(&profile), &study, &pipeline::Files).unwrap(),
+    )
+    .unwrap();
+    assert!(!results.inputs.angle_zero.stated);
+    assert!(
+        !results
+            .profile
+            .as_ref()
+            .unwrap()
+            .values
+            .iter()
+            .any(|v| v.field == "lever.angle_zero_deg")
+    );
+}
+
 #[test]
 fn equipment_past_its_calibration_due_date_is_warned() {
     let late = r#"(received: "2027-02-01", measured: "2027-02-03", issued: "2027-02-08")"#;
@@ -276,6 +337,7 @@ fn a_bad_profile_is_refused_with_every_problem_naming_lab_ron_and_the_field() {
             "identity: \"asset 1021\"",
             "identity: \"asset \u{202e}1201\"",
         ),
+        ("country: \"DE\"", "country: \"Germany\""),
     ]);
     let text = chain(&e);
     let PipelineError::Several { errors } = &e else {
@@ -294,10 +356,11 @@ fn a_bad_profile_is_refused_with_every_problem_naming_lab_ron_and_the_field() {
         "`centrifuges[0].traceability.rate_scale` is required",
         "`centrifuges[0].identity` holds the character U+202E",
         "`gravity.u_m_s2` = 9.8: a standard uncertainty as large as the quantity itself (`gravity.g_m_s2` = 9.8 m/s²)",
+        "`laboratory.country`: must be a country code of ISO 3166-1: two capital letters",
     ] {
         assert!(text.contains(expected), "{expected}\nin\n{text}");
     }
-    assert_eq!(errors.len(), 9, "{text}");
+    assert_eq!(errors.len(), 10, "{text}");
 }
 
 #[test]

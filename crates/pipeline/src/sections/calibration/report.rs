@@ -9,7 +9,7 @@ use crate::piga_data::{Origin, PigaPoints};
 use crate::results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
     Estimate, Headline, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance,
-    PigaCoefficients, ProbeSign, UncertaintyInflation, Warning,
+    PigaCoefficients, UncertaintyInflation, Warning,
 };
 
 /// The results of an evaluated calibration.
@@ -272,10 +272,7 @@ pub(crate) fn results(
         condition_number: fit.condition_number,
         budget,
         monte_carlo,
-        probe_direction: match setting.probe_direction {
-            harmonics::ProbeDirection::AlongO1X1 => ProbeSign::AlongO1X1,
-            _ => ProbeSign::AgainstO1X1,
-        },
+        probe_direction: crate::inputs::probe_sign(setting.probe_direction),
         headline,
         warnings,
     }

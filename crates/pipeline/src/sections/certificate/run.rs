@@ -113,6 +113,7 @@ pub(crate) fn run(
         conformity,
         authorisation: cert.authorisation.clone(),
         certified,
+        previous_certificate: cert.previous_certificate.clone(),
     })
 }
 

@@ -9,7 +9,7 @@ use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::Check;
 use crate::results::{
     Authorisation, CertifyPolicy, Condition, Dates, DecisionRule, Equipment, Item, Laboratory,
-    Party, Warning,
+    Party, PreviousCertificate, Warning,
 };
 
 /// A specification limit, validated.
@@ -43,6 +43,7 @@ pub(crate) struct Certificate {
     pub(crate) rule: Option<DecisionRule>,
     pub(crate) limits_source: Option<String>,
     pub(crate) authorisation: Authorisation,
+    pub(crate) previous_certificate: Option<PreviousCertificate>,
     /// Which method's coefficients to certify.
     pub(crate) certify: CertifyPolicy,
     /// The laboratory's reason for certifying a value the study's check refutes.
@@ -243,6 +244,7 @@ pub(crate) fn validate(
             "the laboratory's address",
         ),
         accreditation: c.laboratory.accreditation.clone(),
+        country: c.laboratory.country.clone(),
     };
     let location = need(
         "location",
@@ -399,6 +401,37 @@ pub(crate) fn validate(
             "the role of who authorises it",
         ),
     };
+    let previous_certificate = c
+        .previous_certificate
+        .as_ref()
+        .map(|p| PreviousCertificate {
+            id: need(
+                "previous_certificate.id",
+                &p.id,
+                "the identification of the certificate this one follows",
+            ),
+            sha256: p.sha256.as_ref().map(|h| h.to_ascii_lowercase()),
+        });
+    if c.previous_certificate
+        .as_ref()
+        .and_then(|p| p.sha256.as_ref())
+        .is_some_and(|h| !(h.len() == 64 && h.bytes().all(|b| b.is_ascii_hexdigit())))
+    {
+        errors.push(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "certificate.previous_certificate.sha256".to_owned(),
+            reason: UnsupportedReason::NotSha256,
+        });
+    }
+    if let Some(country) = &c.laboratory.country
+        && !(country.len() == 2 && country.bytes().all(|b| b.is_ascii_uppercase()))
+    {
+        errors.push(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "certificate.laboratory.country".to_owned(),
+            reason: UnsupportedReason::NotCountryCode,
+        });
+    }
     PipelineError::from_list(errors)?;
     for (i, l) in limits.iter().enumerate() {
         for (end, v) in [("lower", l.lower), ("upper", l.upper)] {
@@ -424,6 +457,7 @@ pub(crate) fn validate(
         rule,
         limits_source: c.limits_source.clone().filter(|s| !s.trim().is_empty()),
         authorisation,
+        previous_certificate,
         certify: match c.certify {
             CertifyName::Auto => CertifyPolicy::Auto,
             CertifyName::Probe => CertifyPolicy::Probe,
@@ -463,6 +497,15 @@ fn texts(c: &CertificateConfig) -> Vec<(String, &str)> {
     }
     if let Some(r) = &c.certify_despite_check {
         list.push(("certify_despite_check".into(), r));
+    }
+    if let Some(country) = &c.laboratory.country {
+        list.push(("laboratory.country".into(), country));
+    }
+    if let Some(p) = &c.previous_certificate {
+        list.push(("previous_certificate.id".into(), &p.id));
+        if let Some(sha) = &p.sha256 {
+            list.push(("previous_certificate.sha256".into(), sha));
+        }
     }
     for (i, e) in c.equipment.iter().enumerate() {
         list.push((format!("equipment[{i}].role"), &e.role));

@@ -14,8 +14,9 @@ use crate::inputs::Core;
 use crate::piga_data::{self, PigaPoints};
 use crate::results::{
     BudgetLine, Coefficient, DegreesOfFreedom, Estimate, Headline, InfiniteDof, MonteCarloOutput,
-    MountingResults, PhaseResults, ProbeComparison, RateSpread, TwoOrientationBudgets,
-    TwoOrientationHeadline, TwoOrientationMonteCarlo, TwoOrientationResults, Warning,
+    MountingResults, PhaseResults, ProbeComparison, ProbeDeclared, RateSpread,
+    TwoOrientationBudgets, TwoOrientationHeadline, TwoOrientationMonteCarlo, TwoOrientationResults,
+    Warning,
 };
 
 /// Runs the section against the study's phase results (the probe phase's C_r).
@@ -266,7 +267,19 @@ pub(crate) fn run(
             difference_m_s2,
             u_m_s2,
             z,
-        } => Warning::probe_disagrees(&phase.name, difference_m_s2, u_m_s2, z),
+        } => Warning::probe_disagrees(
+            &ProbeDeclared {
+                phase: phase.name.clone(),
+                angle_zero: core.angle_zero,
+                direction: crate::inputs::probe_sign(core.lever.probe_direction),
+                gap_field: s.gap_unit.0.clone(),
+                gap_unit: s.gap_unit.1.clone(),
+            },
+            phase.fit.c_r_m_s2,
+            difference_m_s2,
+            u_m_s2,
+            z,
+        ),
     }));
     Ok((results, warnings))
 }
