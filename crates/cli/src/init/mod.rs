@@ -537,7 +537,7 @@ fn plan<'a>(
 }
 
 /// The files of a set of PIGA data.
-fn piga_files<'a, 'b>(d: &'b config::PigaData<'a>) -> Vec<&'a Finding> {
+fn piga_files<'a>(d: &config::PigaData<'a>) -> Vec<&'a Finding> {
     match d {
         config::PigaData::Table(t) => vec![*t],
         config::PigaData::Recordings(g) => g.files.clone(),

@@ -12,7 +12,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{DecisionRuleName, ProbeDirectionName};
+use super::certificate::DecisionRuleName;
+use super::direction::ProbeDirectionName;
 
 /// A lab profile (`lab.ron`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
