@@ -135,18 +135,16 @@ pub(crate) fn load(config: &Path) -> anyhow::Result<pipeline::Inputs> {
     let text = edge_io::text_from_bytes(config, bytes)?;
     let left = crate::init::config::placeholders(&text);
     if !left.is_empty() {
-        let lines: Vec<String> = left
-            .iter()
-            .map(|(line, code)| format!("line {line}: `{code}`"))
-            .collect();
+        let lines: Vec<String> = left.iter().map(|l| format!("  {}", l.words())).collect();
         anyhow::bail!(
-            "{}: {} value{} not filled in ({}): {}; write them, then `check` lists anything \
-             else",
+            "{}: {} value{} not filled in ({}); answer {}, then `check` lists anything \
+             else:\n{}",
             config.display(),
             left.len(),
             if left.len() == 1 { " is" } else { "s are" },
             crate::init::PLACEHOLDER,
-            lines.join(", ")
+            if left.len() == 1 { "it" } else { "them" },
+            lines.join("\n")
         );
     }
     let study = pipeline::parse_study(&text, config).map_err(|e| match &e {

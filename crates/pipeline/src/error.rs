@@ -305,6 +305,27 @@ pub enum PipelineError {
         /// The keys it may have.
         known: Vec<String>,
     },
+    /// A date that is not written `YYYY-MM-DD` (ISO 8601), or a day that does not exist.
+    #[error("{}: field `{field}` = {value:?}: not a date written YYYY-MM-DD (hint: {hint})", path.display())]
+    InvalidDate {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the field.
+        field: String,
+        /// The text given.
+        value: String,
+        /// The same date written as asked, when it can be told.
+        hint: String,
+    },
+    /// A study names a lab profile that was not read with it (built from values without its
+    /// profile: [`crate::Inputs::with_profile`] takes it).
+    #[error("{}: field `profile` names {}, which was not read with the study (read the study with `load_study` or `parse_study`, or pass the profile to `Inputs::with_profile`)", path.display(), profile.display())]
+    ProfileNotRead {
+        /// The study file.
+        path: PathBuf,
+        /// The profile it names.
+        profile: PathBuf,
+    },
     /// A text field holds a character that hides, reorders or acts instead of showing (a
     /// control character or a bidirectional override).
     #[error("{}: field `{field}` holds the character {hidden}: text that a report or certificate shows must show what it says (control characters and bidirectional overrides can hide, reorder or act on it); write it on one line without them", path.display())]

@@ -480,6 +480,9 @@ pub(crate) fn files<'a>(out: &mut String, provenance: Option<&'a Provenance>, so
         );
     };
     record(out, "study: ", &provenance.config);
+    if let Some(p) = &provenance.profile {
+        record(out, "lab profile: ", p);
+    }
     for f in &provenance.inputs {
         record(out, "", f);
     }

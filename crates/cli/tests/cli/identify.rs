@@ -80,8 +80,11 @@ const GERMAN: &str = "fixtures/recordings/piga-table-de/piga_export_utf8.csv";
 /// `--rate-column`, `--rate-unit`), never a key of a study's `format` block.
 #[test]
 fn reading_errors_hint_at_identifys_own_options() {
-    let cases: [(&[&str], &str); 4] = [
+    let cases: [(&[&str], &str); 5] = [
         (&[], "--skip-lines N"),
+        // The lines skipped, the fields still read at commas: the header is one name that
+        // splits at `;`, and the hint names the delimiter, not metadata lines.
+        (&["--skip-lines", "5"], "--delimiter ';'"),
         (&["--delimiter", ";", "--skip-lines", "5"], "--rate-column"),
         (
             &[

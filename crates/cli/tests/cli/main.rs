@@ -6,6 +6,7 @@ mod hostile_text;
 mod human;
 mod identify;
 mod init;
+mod lab_folder;
 mod outputs;
 mod plan;
 mod progress;

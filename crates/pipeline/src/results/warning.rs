@@ -61,6 +61,12 @@ pub enum WarningCode {
     TwoOrientationRatesBunched,
     /// A section of the study file written under a former name, read as the new one.
     DeprecatedKey,
+    /// An instrument of the certificate was past its calibration due date on the
+    /// measurement date.
+    CalibrationOverdue,
+    /// A calibration due date or the measurement date is not written `YYYY-MM-DD`, so the
+    /// two cannot be compared.
+    CalibrationDueUnchecked,
 }
 
 impl WarningCode {
@@ -86,6 +92,8 @@ impl WarningCode {
             Self::RateOutsidePhase => "rate_outside_phase",
             Self::CorrectionUncertain => "correction_uncertain",
             Self::ConeCr => "cone_c_r",
+            Self::CalibrationOverdue => "calibration_overdue",
+            Self::CalibrationDueUnchecked => "calibration_due_unchecked",
             Self::Omega4NotSeparable => "omega4_not_separable",
             Self::ProbeDisagrees => "probe_disagrees",
             Self::DeprecatedKey => "deprecated_key",
@@ -118,6 +126,8 @@ impl WarningCode {
             Self::Omega4NotSeparable => "ω⁴ term hard to separate in the two-orientation fit",
             Self::ProbeDisagrees => "the PIGA's radius growth and the probe's disagree",
             Self::DeprecatedKey => "a section under a former name",
+            Self::CalibrationOverdue => "equipment past its calibration due date",
+            Self::CalibrationDueUnchecked => "calibration due dates not compared",
             Self::TwoOrientationRatesBunched => "two-orientation rates too bunched for k2 and C",
         }
     }
@@ -392,6 +402,42 @@ impl Warning {
                  in the study file (the old name will be refused in a later version)"
             ),
             location: old.into(),
+        }
+    }
+
+    /// `calibration_overdue`: the instrument `role` `identity` was due for calibration on
+    /// `due`, before the measurement's last day `measured`.
+    #[must_use]
+    pub fn calibration_overdue(
+        role: &str,
+        identity: &str,
+        due: &str,
+        measured: &str,
+        location: &str,
+    ) -> Self {
+        Self {
+            code: WarningCode::CalibrationOverdue,
+            message: format!(
+                "the {role} {identity} was due for calibration on {due}, before the \
+                 measurement ({measured}): its calibration had expired when it was used, so the \
+                 certificate's traceability through it does not hold (calibrate it, or state the \
+                 departure from the procedure)"
+            ),
+            location: location.into(),
+        }
+    }
+
+    /// `calibration_due_unchecked`: `what` cannot be compared (a date not written
+    /// `YYYY-MM-DD`).
+    #[must_use]
+    pub fn calibration_due_unchecked(what: &str) -> Self {
+        Self {
+            code: WarningCode::CalibrationDueUnchecked,
+            message: format!(
+                "the equipment's calibration due dates were not compared with the measurement \
+                 date: {what}"
+            ),
+            location: "certificate.equipment".into(),
         }
     }
 
