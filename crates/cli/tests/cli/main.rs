@@ -5,6 +5,7 @@ mod hostile_text;
 mod human;
 mod identify;
 mod init;
+mod one_voice;
 mod outputs;
 mod plan;
 mod progress;
