@@ -275,6 +275,60 @@ impl std::fmt::Display for CalibrationWarning {
     }
 }
 
+/// k0…k3, the apparent k2 and Δk2 of a compensated calibration ([`crate::output`]'s order)
+/// through the measurement model ([`crate::CalibrationModel`]) by the GUM, with no Type B
+/// input (R, g, the rate scale, the lever heights and the probe gain exact, a given k1
+/// exact): the fit's coefficients as one Type A group with [`Weighting::group_dof`], and C_r
+/// with `c_r_dof` degrees of freedom (`None`: infinitely many). The study evaluates the same
+/// model with its Type B inputs; with none it gives these numbers, so `centrifuge-cal
+/// identify` reports the study's k2 and u(k2) — the u by the same numerical sensitivities.
+///
+/// # Errors
+/// Those of [`crate::measurement_inputs`] and [`uncertainty::gum`].
+pub fn without_type_b(
+    calibrated: &Calibrated<CompensatedCalibration>,
+    c_r_dof: Option<usize>,
+) -> Result<uncertainty::GumResult, uncertainty::UncertaintyError> {
+    use crate::{CalibrationModel, CrInput, K1Input, K1Mode, Nominal, TypeB};
+    let c = &calibrated.calibration;
+    let geometry = c.uncompensated.geometry;
+    // lever heights enter as their ratio to the nominal one, exactly 1 here: any pair will do
+    let nominal = Nominal {
+        radius_m: geometry.radius_m,
+        g_m_s2: geometry.g_m_s2,
+        pivot_to_probe_mm: 1.0,
+        probe_to_piga_mm: 1.0,
+    };
+    let (mode, k1) = match c.compensation.k1 {
+        K1Source::Fitted => (K1Mode::Fitted, K1Input::Fitted),
+        K1Source::Given { k1_rad_s_g } => (
+            K1Mode::Given,
+            K1Input::Given {
+                k1_rad_s_g,
+                u_rad_s_g: 0.0,
+            },
+        ),
+    };
+    let sigma = c.compensation.c_r.c_r_sigma_m_s2;
+    let c_r = CrInput {
+        c_r_m_s2: c.compensation.c_r.c_r_m_s2,
+        sigma: (sigma > 0.0).then(|| (sigma, c_r_dof.unwrap_or(usize::MAX))),
+    };
+    let (_, inputs) = crate::measurement_inputs(
+        &nominal,
+        &TypeB::default(),
+        c_r,
+        k1,
+        &c.uncompensated.fit,
+        calibrated.weighting.group_dof,
+    )?;
+    uncertainty::gum(
+        &CalibrationModel::new(nominal, mode),
+        &inputs,
+        &uncertainty::GumOptions::default(),
+    )
+}
+
 /// The budget line of a fit's coefficients as one Type A group, in words: `fit` names the fit
 /// (`the eq. 18 fit`), `group_dof` says where their u comes from — the points' stated σ
 /// (infinite degrees of freedom) or the fit's residuals. The one-mounting and the

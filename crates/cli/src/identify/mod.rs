@@ -263,7 +263,10 @@ impl Identify {
         let rate_deg_s = table.rate_deg_s.clone();
         let output = table.output_rad_s.clone();
         let sigma = table.sigma_rad_s.clone();
-        let rate_rad_s: Vec<f64> = rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let rate_rad_s: Vec<f64> = rate_deg_s
+            .iter()
+            .map(|&d| units::deg_s_to_rad_s(d))
+            .collect();
         let output_rad_s = &output;
         let context = || format!("identifying {}", self.file.display());
         // An error about a row of the design is an error about a line of the file.
@@ -365,7 +368,7 @@ impl Identify {
                 calibration::calibrate(&points, geometry).map_err(refused)?,
             ),
         };
-        let view = result.view();
+        let view = result.view()?;
         let k1_words = match (&from, k1) {
             (Some(f), _) => f.k1_words.clone(),
             (None, Some(_)) => "given with --k1".to_owned(),
@@ -410,14 +413,18 @@ struct View<'a> {
     weighting: &'a Weighting,
     residual_sd_rad_s: f64,
     warnings: &'a [CalibrationWarning],
+    /// The compensated k2's standard uncertainty as the study's measurement model gives it
+    /// without Type B inputs (`calibration::without_type_b`), rad/(s·g²).
+    k2_u_rad_s_g2: Option<f64>,
 }
 
 impl Identified {
-    fn view(&self) -> View<'_> {
-        match self {
+    fn view(&self) -> anyhow::Result<View<'_>> {
+        Ok(match self {
             Self::Measured(c) => View {
                 cal: &c.calibration,
                 comp: None,
+                k2_u_rad_s_g2: None,
                 weighting: &c.weighting,
                 residual_sd_rad_s: c.residual_sd_rad_s,
                 warnings: &c.warnings,
@@ -428,8 +435,12 @@ impl Identified {
                 weighting: &c.weighting,
                 residual_sd_rad_s: c.residual_sd_rad_s,
                 warnings: &c.warnings,
+                k2_u_rad_s_g2: Some(
+                    calibration::without_type_b(c, None)?.outputs[calibration::output::K2]
+                        .standard_uncertainty,
+                ),
             },
-        }
+        })
     }
 }
 
@@ -574,9 +585,10 @@ fn print_report(
             c.compensated.k2_apparent_sigma_rad_s_g2,
             c.k2_sigma_from_c_r_rad_s_g2,
         );
+        let u_k2 = v.k2_u_rad_s_g2.unwrap_or(c.k2_sigma_rad_s_g2);
         let nu = match w.group_dof {
             uncertainty::Dof::Finite(dof) if u_fit > 0.0 => {
-                uncertainty::Dof::Finite(c.k2_sigma_rad_s_g2.powi(4) / (u_fit.powi(4) / dof))
+                uncertainty::Dof::Finite(u_k2.powi(4) / (u_fit.powi(4) / dof))
             }
             _ => uncertainty::Dof::Infinite,
         };
@@ -586,8 +598,8 @@ fn print_report(
              from C_r {u_c:.3e}; ν_eff {})",
             "compensated k2",
             c.k2_rad_s_g2,
-            c.k2_sigma_rad_s_g2,
-            k95(nu) * c.k2_sigma_rad_s_g2,
+            u_k2,
+            k95(nu) * u_k2,
             match nu {
                 uncertainty::Dof::Finite(nu) if nu <= 1e4 => format!("{nu:.1}"),
                 _ => "above 10⁴".to_owned(),
@@ -614,7 +626,7 @@ fn to_json(path: &Path, v: &View<'_>) -> serde_json::Value {
             "delta_k2_rad_s_g2": c.delta_k2.delta_k2_rad_s_g2,
             "delta_k2_sigma_rad_s_g2": c.delta_k2.sigma_rad_s_g2,
             "k2_rad_s_g2": c.k2_rad_s_g2,
-            "k2_sigma_rad_s_g2": c.k2_sigma_rad_s_g2,
+            "k2_sigma_rad_s_g2": v.k2_u_rad_s_g2.unwrap_or(c.k2_sigma_rad_s_g2),
             "k2_sigma_fit_rad_s_g2": c.compensated.k2_apparent_sigma_rad_s_g2,
             "k2_sigma_from_c_r_rad_s_g2": c.k2_sigma_from_c_r_rad_s_g2,
         })
@@ -642,7 +654,7 @@ fn to_json(path: &Path, v: &View<'_>) -> serde_json::Value {
         "excess_u_rad_s": w.excess_u_rad_s,
         "sigma_used_rad_s": w.sigma_used,
         "coefficients_dof": match w.group_dof {
-            uncertainty::Dof::Finite(nu) => serde_json::json!(nu),
+            uncertainty::Dof::Finite(_) => serde_json::json!(w.noise_dof),
             uncertainty::Dof::Infinite => serde_json::json!("infinite"),
         },
         "residuals_rad_s": cal.residuals_rad_s,
@@ -763,7 +775,7 @@ mod tests {
             "{}",
             c.calibration.k2_rad_s_g2
         );
-        let json = to_json(&args.file, &Identified::Compensated(c).view());
+        let json = to_json(&args.file, &Identified::Compensated(c).view().unwrap());
         assert_eq!(json["distinct_rates"], 8);
         assert!(json["compensated"]["k2_rad_s_g2"].as_f64().is_some());
         args.run().unwrap();

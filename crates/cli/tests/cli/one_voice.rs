@@ -161,8 +161,16 @@ fn identify_and_the_study_give_the_same_calibration_of_a_3_sigma_scatter_table()
     same("k2", &k2["k2_rad_s_g2"], &c["coefficients"]["k2"]["value"]);
     same("u(k2)", &k2["k2_sigma_rad_s_g2"], &c["coefficients"]["k2"]["u"]);
     same("Δk2", &k2["delta_k2_rad_s_g2"], &c["delta_k2"]["value"]);
-    same("k0", &i["coefficients"]["bias_rad_s"], &c["coefficients"]["k0"]["value"]);
-    same("k3", &i["coefficients"]["k3_rad_s_g3"], &c["coefficients"]["k3"]["value"]);
+    same(
+        "k0",
+        &i["coefficients"]["bias_rad_s"]["value"],
+        &c["coefficients"]["k0"]["value"],
+    );
+    same(
+        "k3",
+        &i["coefficients"]["k3_rad_s_g3"]["value"],
+        &c["coefficients"]["k3"]["value"],
+    );
     // the residuals in rad/s, their SD, and the degrees of freedom the coefficients carry
     same(
         "residual SD",
