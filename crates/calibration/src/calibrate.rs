@@ -8,8 +8,8 @@ use identify::{
     Calibration, CompensatedCalibration, Compensation, CrEstimate, Geometry, IdentifyError,
     K1Source,
 };
-use units::{Compact, Requirement};
 use uncertainty::Dof;
+use units::{Compact, Requirement};
 
 use crate::vif::{CoefficientInflation, INFLATION_LIMIT, coefficient_inflation};
 
@@ -548,8 +548,7 @@ fn calibrate_with<C: AsMeasured>(
     let residual_sd_rad_s = (ss / noise_dof.max(1) as f64).sqrt();
     // a design the fit accepted gives these too; should one not, the results say so by
     // leaving them out
-    let inflation =
-        coefficient_inflation(points.rates_rad_s, sigma_used.as_deref(), geometry).ok();
+    let inflation = coefficient_inflation(points.rates_rad_s, sigma_used.as_deref(), geometry).ok();
     let mut warnings = Vec::new();
     if let Some(i) = inflation.as_ref().filter(|i| i.degraded()) {
         let (lo, hi) = points
@@ -559,7 +558,7 @@ fn calibrate_with<C: AsMeasured>(
                 (a.min(r), b.max(r))
             });
         warnings.push(CalibrationWarning::RatesBunched {
-            inflation: i.clone(),
+            inflation: *i,
             points: points.rates_rad_s.len(),
             range_deg_s: (lo.to_degrees(), hi.to_degrees()),
         });
@@ -670,8 +669,7 @@ mod tests {
         assert_eq!(unweighted.weighting.sigma_used, None);
         // Unweighted, the residual SD in rad/s is the fit's own.
         assert!(
-            (unweighted.residual_sd_rad_s
-                / unweighted.calibration.uncompensated.fit.residual_sd
+            (unweighted.residual_sd_rad_s / unweighted.calibration.uncompensated.fit.residual_sd
                 - 1.0)
                 .abs()
                 < 1e-12
@@ -706,7 +704,10 @@ mod tests {
             ]
         );
         let text = err.to_string();
-        assert!(text.contains("point 3: rate = 0 must be finite and > 0"), "{text}");
+        assert!(
+            text.contains("point 3: rate = 0 must be finite and > 0"),
+            "{text}"
+        );
         assert!(
             text.contains("point 8: standard uncertainty σ = 1e300 must lie in"),
             "{text}"

@@ -47,8 +47,8 @@ mod vif;
 
 pub use calibrate::{
     AsMeasured, BadPoint, Calibrated, CalibrationError, CalibrationWarning, PointValue, Points,
-    SIGMA_MAX_RAD_S, SIGMA_MIN_RAD_S, Weighting, calibrate, calibrate_compensated,
-    check_points, compensation, noise_budget_line, without_type_b,
+    SIGMA_MAX_RAD_S, SIGMA_MIN_RAD_S, Weighting, calibrate, calibrate_compensated, check_points,
+    compensation, noise_budget_line, without_type_b,
 };
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};

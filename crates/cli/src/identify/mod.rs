@@ -331,10 +331,9 @@ impl Identify {
                                 calibration::PointValue::Output => {
                                     (self.output_column.as_str(), b.value)
                                 }
-                                calibration::PointValue::Sigma => (
-                                    self.sigma_column.as_deref().unwrap_or("σ"),
-                                    b.value,
-                                ),
+                                calibration::PointValue::Sigma => {
+                                    (self.sigma_column.as_deref().unwrap_or("σ"), b.value)
+                                }
                             };
                             format!(
                                 "{}:{}: column `{column}` = {}: {}",
@@ -359,14 +358,14 @@ impl Identify {
                         k1_rad_s_g,
                     }),
                 };
-                Identified::Compensated(
+                Identified::Compensated(Box::new(
                     calibration::calibrate_compensated(&points, geometry, &compensation)
                         .map_err(refused)?,
-                )
+                ))
             }
-            None => Identified::Measured(
+            None => Identified::Measured(Box::new(
                 calibration::calibrate(&points, geometry).map_err(refused)?,
-            ),
+            )),
         };
         let view = result.view()?;
         let k1_words = match (&from, k1) {
@@ -402,8 +401,8 @@ impl Identify {
 
 /// The calibration `identify` made: as measured, or compensated (eq. 19).
 enum Identified {
-    Measured(Calibrated<Calibration>),
-    Compensated(Calibrated<CompensatedCalibration>),
+    Measured(Box<Calibrated<Calibration>>),
+    Compensated(Box<Calibrated<CompensatedCalibration>>),
 }
 
 /// What the output shows of a calibration, either kind.
@@ -775,7 +774,10 @@ mod tests {
             "{}",
             c.calibration.k2_rad_s_g2
         );
-        let json = to_json(&args.file, &Identified::Compensated(c).view().unwrap());
+        let json = to_json(
+            &args.file,
+            &Identified::Compensated(Box::new(c)).view().unwrap(),
+        );
         assert_eq!(json["distinct_rates"], 8);
         assert!(json["compensated"]["k2_rad_s_g2"].as_f64().is_some());
         args.run().unwrap();

@@ -52,7 +52,9 @@ const SIGMA_RAD_S: f64 = 1e-9;
 /// (a fixed pattern of ±1…±4.5 σ, RMS ≈ 3 σ) that the σ column does not hold.
 fn table(rates_deg_s: &[f64]) -> String {
     let (r, g, k1, k2, k3) = (2.5, 9.8, 0.56, 5e-7, 2e-8);
-    let pattern = [3.0, -2.5, 4.5, -3.5, 1.0, -4.0, 2.5, -1.5, 3.5, -3.0, 2.0, -4.0];
+    let pattern = [
+        3.0, -2.5, 4.5, -3.5, 1.0, -4.0, 2.5, -1.5, 3.5, -3.0, 2.0, -4.0,
+    ];
     let mut text = String::from("rate_deg_s,output_rad_s,sigma_rad_s\n");
     for (d, p) in rates_deg_s.iter().zip(pattern) {
         let w = d.to_radians();
@@ -99,8 +101,7 @@ const STUDY: &str = r#"(
 )"#;
 
 fn f(v: &Value) -> f64 {
-    v.as_f64()
-        .unwrap_or_else(|| panic!("not a number: {v}"))
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 /// Equal to 1e-12 relative.
@@ -159,7 +160,11 @@ fn identify_and_the_study_give_the_same_calibration_of_a_3_sigma_scatter_table()
     // the compensated k2 and its u (the fit's and C_r's: the study has no Type B inputs)
     let k2 = &i["compensated"];
     same("k2", &k2["k2_rad_s_g2"], &c["coefficients"]["k2"]["value"]);
-    same("u(k2)", &k2["k2_sigma_rad_s_g2"], &c["coefficients"]["k2"]["u"]);
+    same(
+        "u(k2)",
+        &k2["k2_sigma_rad_s_g2"],
+        &c["coefficients"]["k2"]["u"],
+    );
     same("Δk2", &k2["delta_k2_rad_s_g2"], &c["delta_k2"]["value"]);
     same(
         "k0",
@@ -184,10 +189,16 @@ fn identify_and_the_study_give_the_same_calibration_of_a_3_sigma_scatter_table()
         same("residual", a, &row["residual_rad_s"]);
     }
     assert_eq!(f(&i["coefficients_dof"]), 6.0);
-    assert_eq!(c["budget"]["k2"].as_array().unwrap().last().unwrap()["dof"], 6.0);
+    assert_eq!(
+        c["budget"]["k2"].as_array().unwrap().last().unwrap()["dof"],
+        6.0
+    );
     // the warnings: identify's, word for word, among the study's (its lack of fit)
     let warnings = i["warnings"].as_array().unwrap();
-    let codes: Vec<&str> = warnings.iter().map(|w| w["code"].as_str().unwrap()).collect();
+    let codes: Vec<&str> = warnings
+        .iter()
+        .map(|w| w["code"].as_str().unwrap())
+        .collect();
     assert_eq!(codes, ["calibration_lack_of_fit"]);
     let study_warnings = study["warnings"].as_array().unwrap();
     for w in warnings {
@@ -229,7 +240,11 @@ fn identify_refuses_what_the_study_refuses() {
         let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
         let target = &mut lines[line - 1];
         let edited = format!("{target}\n").replacen(replace, with, 1);
-        assert_ne!(edited.trim_end(), target.as_str(), "{case}: nothing replaced");
+        assert_ne!(
+            edited.trim_end(),
+            target.as_str(),
+            "{case}: nothing replaced"
+        );
         *target = edited.trim_end().to_owned();
         std::fs::write(dir.0.join("piga.csv"), lines.join("\n") + "\n").unwrap();
         std::fs::write(dir.0.join("study.ron"), STUDY).unwrap();
