@@ -102,6 +102,16 @@ pub enum PipelineError {
         /// The solver's error.
         source: identify::IdentifyError,
     },
+    /// The calibration refused its points (`calibration::check_points`).
+    #[error("{}: `{field}`", path.display())]
+    Calibration {
+        /// The file concerned.
+        path: PathBuf,
+        /// The section whose points were refused.
+        field: String,
+        /// The calibration's error.
+        source: ::calibration::CalibrationError,
+    },
     /// The uncertainty evaluation failed.
     #[error("{}: `{field}`", path.display())]
     Uncertainty {
@@ -426,9 +436,34 @@ pub enum InvalidReason {
         "a standard uncertainty must be finite and > 0 (a σ of 0 would give the row infinite weight)"
     )]
     SigmaNotPositive,
+    /// A standard uncertainty outside what the fit can weight by.
+    #[error(
+        "a standard uncertainty must lie in [1e-150, 1e150] rad/s (its weight 1/σ² and σ² \
+         itself must be numbers the fit can hold; a point this uncertain carries no \
+         information: leave it out)"
+    )]
+    SigmaOutOfRange,
     /// A harmonic order outside 1 to 8.
     #[error("must be 1 to 8")]
     HarmonicOrder,
+}
+
+impl InvalidReason {
+    /// Why the calibration refused a value of a point (`calibration::check_points`), in the
+    /// words of a table's value: the one mapping the study and `centrifuge-cal identify`
+    /// share.
+    #[must_use]
+    pub fn of_point(point: &::calibration::BadPoint) -> Self {
+        use ::calibration::PointValue;
+        match point.what {
+            PointValue::Rate => Self::RateNotPositive,
+            PointValue::Output => Self::NotFinite,
+            PointValue::Sigma if point.value.is_finite() && point.value > 0.0 => {
+                Self::SigmaOutOfRange
+            }
+            PointValue::Sigma => Self::SigmaNotPositive,
+        }
+    }
 }
 
 /// Why a setting cannot be used with the rest of the configuration or data.

@@ -7,6 +7,7 @@ mod human;
 mod identify;
 mod init;
 mod lab_folder;
+mod one_voice;
 mod outputs;
 mod plan;
 mod progress;

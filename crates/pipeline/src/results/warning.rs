@@ -252,17 +252,14 @@ impl Warning {
         }
     }
 
-    /// `calibration_lack_of_fit`: the eq. 18 residuals are `birge` × the points' σ.
+    /// `calibration_lack_of_fit`: the eq. 18 residuals exceed the points' σ, in the
+    /// calibration's own words (`calibration::CalibrationWarning::LackOfFit`, which
+    /// `centrifuge-cal identify` prints too).
     #[must_use]
-    pub fn calibration_lack_of_fit(birge: f64, dof: usize) -> Self {
+    pub fn calibration_lack_of_fit(warning: &::calibration::CalibrationWarning) -> Self {
         Self {
             code: WarningCode::CalibrationLackOfFit,
-            message: format!(
-                "the eq. 18 residuals are {birge:.1}× the points' standard uncertainties \
-                 (√(χ²/ν), {dof} degrees of freedom): the points scatter more than their σ say — \
-                 run-to-run variation the within-run σ do not hold, an unmodelled term, or a \
-                 rate error. The coefficients' σ are enlarged by this ratio"
-            ),
+            message: warning.to_string(),
             location: "calibration".into(),
         }
     }
