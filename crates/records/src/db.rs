@@ -531,6 +531,14 @@ impl Database {
         Ok(UnitRecords { unit, certificates })
     }
 
+    /// Every unit recorded, as `MODEL/SERIAL`, in order.
+    ///
+    /// # Errors
+    /// [`RecordsError::Sqlite`].
+    pub fn units(&self) -> Result<Vec<String>> {
+        self.names("SELECT model || '/' || serial FROM units ORDER BY model, serial")
+    }
+
     /// The campaigns and balance events of centrifuge `name`.
     ///
     /// # Errors
@@ -550,7 +558,8 @@ impl Database {
                 known,
             });
         };
-        // Per study, the phase its calibration compensated with, else its last phase.
+        // Per study, the phase its calibration compensated with, else its last phase; a study
+        // whose certificate a corrected one superseded is the same campaign: left out.
         let mut stmt = self
             .conn
             .prepare_cached(
@@ -560,6 +569,8 @@ impl Database {
                  WHERE s.centrifuge_id = ?1 AND p.position = COALESCE( \
                      (SELECT q.position FROM probe_phases q WHERE q.study_id = s.id AND q.name = s.compensated_with), \
                      (SELECT max(q.position) FROM probe_phases q WHERE q.study_id = s.id)) \
+                   AND NOT EXISTS (SELECT 1 FROM certificates c JOIN certificates n \
+                       ON n.supersedes = c.id WHERE c.study_id = s.id) \
                  ORDER BY s.measured_day, s.id",
             )
             .map_err(self.sql("reading the centrifuge's campaigns"))?;
