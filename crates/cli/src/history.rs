@@ -95,7 +95,7 @@ impl History {
             if self.target_u95.is_some() && self.share.is_none() {
                 writeln!(
                     console,
-                    "(the share of the target U95 is the default, {} %: --share to change it)",
+                    "(the share of the target U95 is the default, {:.0} %: --share to change it)",
                     DEFAULT_SHARE * 100.0
                 )?;
             }

@@ -36,12 +36,34 @@ fn signed_pm(value: f64, expanded: f64) -> String {
     }
 }
 
-fn drift_line(d: &Drift, unit: &str) -> String {
+/// A share or a probability in percent as a person writes it (`20 %`, `99.5 %`).
+fn percent(fraction: f64) -> String {
+    let text = format!("{:.3}", fraction * 100.0);
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    format!("{text} %")
+}
+
+/// What the drift was fitted through, and the scale it is written in (`1e6` for µm·s²).
+struct Fitted {
+    what: &'static str,
+    scale: f64,
+}
+
+const CERTIFICATES: Fitted = Fitted {
+    what: "certificates",
+    scale: 1.0,
+};
+
+fn drift_line(d: &Drift, unit: &str, fitted: &Fitted) -> String {
     let mut line = format!(
-        "drift {} {unit} per year (± U95, k = {}, {} certificates): {}",
-        signed_pm(d.rate_per_year, d.expanded_rate_per_year),
+        "drift {} {unit} per year (± U95, k = {}, {} {}): {}",
+        signed_pm(
+            d.rate_per_year * fitted.scale,
+            d.expanded_rate_per_year * fitted.scale
+        ),
         significant(d.k95, 3),
         d.points,
+        fitted.what,
         if d.significant {
             "significant at 95 %"
         } else {
@@ -59,9 +81,9 @@ fn drift_line(d: &Drift, unit: &str) -> String {
     line
 }
 
-fn prediction_line(p: &Prediction, unit: &str, what: &str) -> String {
+fn prediction_line(p: &Prediction, unit: &str, what: &str, reading: &str) -> String {
     format!(
-        "{what} on {}: {} {unit} (± U95 of the value; a calibration on that date would read it ± {})",
+        "{what} on {}: {} {unit} (± U95 of the value; {reading} on that date would read it ± {})",
         p.date,
         pm(p.value, p.k95 * p.u),
         significant(p.k95 * p.u_reading, 2)
@@ -121,11 +143,15 @@ pub fn history_text(h: &UnitHistory) -> String {
         }
         match (&t.drift, &t.prediction) {
             (Some(d), Some(p)) => {
-                let _ = writeln!(out, "  {}", drift_line(d, &t.unit));
-                let _ = writeln!(out, "  {}", prediction_line(p, &t.unit, "predicted"));
+                let _ = writeln!(out, "  {}", drift_line(d, &t.unit, &CERTIFICATES));
+                let _ = writeln!(
+                    out,
+                    "  {}",
+                    prediction_line(p, &t.unit, "predicted", "a calibration")
+                );
             }
             (Some(d), None) => {
-                let _ = writeln!(out, "  {}", drift_line(d, &t.unit));
+                let _ = writeln!(out, "  {}", drift_line(d, &t.unit, &CERTIFICATES));
             }
             _ => {
                 let _ = writeln!(
@@ -151,11 +177,11 @@ pub fn history_text(h: &UnitHistory) -> String {
         let iv = &i.interval;
         let _ = writeln!(out);
         let head = format!(
-            "recommended interval for {} (tolerance ± {} {} on the deviation from the value certified, reliability {} %)",
+            "recommended interval for {} (tolerance ± {} {} on the deviation from the value certified, reliability {})",
             i.term,
             significant(iv.request.tolerance, 3),
             i.unit,
-            significant(iv.request.reliability * 100.0, 3)
+            percent(iv.request.reliability)
         );
         let verdict = match (iv.attainable, iv.years, i.due) {
             (false, _, _) => format!(
@@ -358,11 +384,19 @@ pub fn health_text(h: &CentrifugeHealth) -> String {
             );
         }
     }
+    let campaigns = |scale| Fitted {
+        what: "campaigns",
+        scale,
+    };
     if let Some(d) = &h.c_r_drift {
-        let _ = writeln!(out, "C_r {}", drift_line(d, "m·s²"));
+        let _ = writeln!(out, "C_r {}", drift_line(d, "µm·s²", &campaigns(1e6)));
     }
     if let Some(d) = &h.delta_k2_drift {
-        let _ = writeln!(out, "Δk2 {}", drift_line(d, "rad/(s·g²)"));
+        let _ = writeln!(
+            out,
+            "Δk2 {}",
+            drift_line(d, "rad/(s·g²)", &campaigns(1.0))
+        );
     }
     if let Some(next) = h.next {
         let _ = writeln!(
@@ -379,13 +413,13 @@ pub fn health_text(h: &CentrifugeHealth) -> String {
         let _ = writeln!(
             out,
             "{}",
-            prediction_line(p, "rad/(s·g²)", "Δk2 predicted")
+            prediction_line(p, "rad/(s·g²)", "Δk2 predicted", "a campaign")
         );
     }
     let limit_words = |l: f64, t: f64| {
         format!(
-            "{} % of the target U95 of k2 ({} rad/(s·g²)): {} rad/(s·g²)",
-            significant(h.share * 100.0, 3),
+            "{} of the target U95 of k2 ({} rad/(s·g²)): {} rad/(s·g²)",
+            percent(h.share),
             significant(t, 3),
             significant(l, 3)
         )
@@ -395,7 +429,7 @@ pub fn health_text(h: &CentrifugeHealth) -> String {
         (Advice::Rebalance, Some(l), Some(t), Some(p)) => {
             let _ = writeln!(
                 out,
-                "warning: rebalance before the next campaign. Δk2 predicted on {} is {} rad/(s·g²), above {}; the compensation's error grows with Δk2, and a Δk2 this large takes that share of the uncertainty the calibration is to meet.",
+                "warning: rebalance before the next campaign. Δk2 predicted on {} is {} rad/(s·g²), above {}. Δk2 is what the probe method removes from k2, so the compensation's error grows with it: beyond this share of the target U95 it puts the calibration's uncertainty at risk.",
                 p.date,
                 significant(p.value, 3),
                 limit_words(l, t)
@@ -520,6 +554,22 @@ pub fn health_svg(h: &CentrifugeHealth) -> Result<String> {
         label: Some("Δk2 ± 2σ".to_owned()),
     }];
     let mut extra = Vec::new();
+    if let (Some(p), Some(d), Some(since)) = (
+        &h.predicted_delta_k2,
+        &h.delta_k2_drift,
+        h.campaigns
+            .iter()
+            .map(|c| c.date)
+            .find(|date| h.since.is_none_or(|s| *date >= s)),
+    ) {
+        let at = |date: Date| d.intercept + d.rate_per_year * date.years_since(d.origin);
+        dk2.push(Series::Line {
+            points: vec![(year(since), at(since)), (year(p.date), at(p.date))],
+            color: "#888",
+            width: 1.2,
+            label: Some("drift since the latest balance (weighted fit)".to_owned()),
+        });
+    }
     if let Some(p) = &h.predicted_delta_k2 {
         dk2.push(Series::ErrorBars {
             points: vec![(year(p.date), p.value, p.k95 * p.u)],
@@ -532,10 +582,7 @@ pub fn health_svg(h: &CentrifugeHealth) -> Result<String> {
             points: vec![(xr.0, l), (xr.1, l)],
             color: "#e67e22",
             width: 1.5,
-            label: Some(format!(
-                "{} % of the target U95",
-                significant(h.share * 100.0, 3)
-            )),
+            label: Some(format!("{} of the target U95", percent(h.share))),
         });
         extra.push(l);
     }
