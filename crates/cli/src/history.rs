@@ -81,8 +81,7 @@ impl History {
             )?;
             if let Some(svg) = &self.svg {
                 let text = report::health_svg(&health)?;
-                std::fs::write(svg, text)
-                    .with_context(|| format!("writing {}", svg.display()))?;
+                std::fs::write(svg, text).with_context(|| format!("writing {}", svg.display()))?;
             }
             if self.json {
                 writeln!(console, "{}", edge_io::to_json_pretty(&health)?)?;
@@ -104,7 +103,10 @@ impl History {
             }
             return Ok(());
         }
-        let unit = self.unit.as_deref().context("give a unit or --centrifuge")?;
+        let unit = self
+            .unit
+            .as_deref()
+            .context("give a unit or --centrifuge")?;
         let interval = match (&self.term, self.tolerance) {
             (Some(term), Some(tolerance)) => Some((
                 term.clone(),

@@ -134,7 +134,10 @@ fn parse_date(field: &str, text: Option<&str>) -> anyhow::Result<Option<Date>> {
 
 fn optional_file(path: &Path) -> anyhow::Result<Option<Vec<u8>>> {
     if path.is_file() {
-        Ok(Some(edge_io::read_bytes_capped(path, CERTIFICATE_MAX_BYTES)?))
+        Ok(Some(edge_io::read_bytes_capped(
+            path,
+            CERTIFICATE_MAX_BYTES,
+        )?))
     } else {
         Ok(None)
     }
@@ -152,12 +155,13 @@ pub(crate) fn record_dir(db: &mut Database, dir: &Path, extra: &Extra) -> anyhow
     let bytes = edge_io::read_bytes_capped(&results_path, RESULTS_MAX_BYTES)?;
     let value: serde_json::Value = serde_json::from_slice(&bytes)
         .with_context(|| format!("{}: not a study's results (JSON)", results_path.display()))?;
-    let results: pipeline::StudyResults = serde_json::from_value(value.clone()).with_context(|| {
-        format!(
-            "{}: not a study's results as this centrifuge-cal writes them (docs/RESULTS.md)",
-            results_path.display()
-        )
-    })?;
+    let results: pipeline::StudyResults =
+        serde_json::from_value(value.clone()).with_context(|| {
+            format!(
+                "{}: not a study's results as this centrifuge-cal writes them (docs/RESULTS.md)",
+                results_path.display()
+            )
+        })?;
     let provenance = match value.get("provenance") {
         Some(p) => Some(
             ProvenanceDto::deserialize(p)

@@ -162,14 +162,20 @@ mod tests {
             assert_eq!(Date::parse(&d.to_string()), Some(d), "{d}");
         }
         assert_eq!(Date::parse("2027-02-29"), None);
-        assert_eq!(Date::parse("2028-02-29").map(|d| d.to_string()).as_deref(), Some("2028-02-29"));
+        assert_eq!(
+            Date::parse("2028-02-29").map(|d| d.to_string()).as_deref(),
+            Some("2028-02-29")
+        );
         assert_eq!(Date::parse("2026-13-01"), None);
     }
 
     #[test]
     fn spans() {
         let (a, b) = Date::parse_span("measured", "2026-11-19 to 2026-11-20").unwrap();
-        assert_eq!((a.to_string(), b.to_string()), ("2026-11-19".into(), "2026-11-20".into()));
+        assert_eq!(
+            (a.to_string(), b.to_string()),
+            ("2026-11-19".into(), "2026-11-20".into())
+        );
         assert!(matches!(
             Date::parse_span("certificate.dates.measured", "last week"),
             Err(RecordsError::Date { field, .. }) if field == "certificate.dates.measured"

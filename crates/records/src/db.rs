@@ -90,13 +90,12 @@ impl Database {
         } else {
             OpenFlags::SQLITE_OPEN_READ_WRITE
         } | OpenFlags::SQLITE_OPEN_NO_MUTEX;
-        let conn = Connection::open_with_flags(path, flags).map_err(|source| {
-            RecordsError::Sqlite {
+        let conn =
+            Connection::open_with_flags(path, flags).map_err(|source| RecordsError::Sqlite {
                 path: shown.clone(),
                 action: "opening",
                 source,
-            }
-        })?;
+            })?;
         Self::setup(conn, shown)
     }
 
@@ -248,7 +247,8 @@ impl Database {
             ))
             .map_err(err("recording the schema version"))?;
         }
-        tx.commit().map_err(err("committing the schema's migration"))
+        tx.commit()
+            .map_err(err("committing the schema's migration"))
     }
 
     /// The schema version of the open database.
@@ -416,31 +416,51 @@ impl Database {
     /// # Errors
     /// [`RecordsError::UnknownUnit`], [`RecordsError::AmbiguousUnit`], [`RecordsError::Sqlite`].
     pub fn unit_records(&self, query: &str) -> Result<UnitRecords> {
+        // By serial, and by MODEL/SERIAL split at each '/' (a serial may hold one): each an
+        // indexed lookup.
         let mut stmt = self
             .conn
             .prepare_cached(
                 "SELECT id, kind, manufacturer, model, serial FROM units \
-                 WHERE serial = ?1 OR model || '/' || serial = ?1",
+                 WHERE (?1 IS NULL AND serial = ?2) OR (model = ?1 AND serial = ?2)",
             )
             .map_err(self.sql("finding the unit"))?;
-        let found: Vec<(i64, UnitIdentity)> = stmt
-            .query_map([query], |r| {
-                Ok((
-                    r.get(0)?,
-                    UnitIdentity {
-                        kind: r.get(1)?,
-                        manufacturer: r.get(2)?,
-                        model: r.get(3)?,
-                        serial: r.get(4)?,
-                    },
-                ))
-            })
-            .and_then(Iterator::collect)
-            .map_err(self.sql("finding the unit"))?;
+        let mut candidates: Vec<(Option<&str>, &str)> = vec![(None, query)];
+        candidates.extend(
+            query
+                .match_indices('/')
+                .map(|(i, _)| (Some(&query[..i]), &query[i + 1..])),
+        );
+        let mut found: Vec<(i64, UnitIdentity)> = Vec::new();
+        for (model, serial) in candidates {
+            let rows: Vec<(i64, UnitIdentity)> = stmt
+                .query_map(params![model, serial], |r| {
+                    Ok((
+                        r.get(0)?,
+                        UnitIdentity {
+                            kind: r.get(1)?,
+                            manufacturer: r.get(2)?,
+                            model: r.get(3)?,
+                            serial: r.get(4)?,
+                        },
+                    ))
+                })
+                .and_then(Iterator::collect)
+                .map_err(self.sql("finding the unit"))?;
+            for row in rows {
+                if !found.iter().any(|(id, _)| *id == row.0) {
+                    found.push(row);
+                }
+            }
+        }
         let (unit_id, unit) = match found.len() {
-            1 => found.into_iter().next().ok_or_else(|| unreachable_unit(query))?,
+            1 => found
+                .into_iter()
+                .next()
+                .ok_or_else(|| unreachable_unit(query))?,
             0 => {
-                let known = self.names("SELECT model || '/' || serial FROM units ORDER BY 1 LIMIT 20")?;
+                let known =
+                    self.names("SELECT model || '/' || serial FROM units ORDER BY 1 LIMIT 20")?;
                 return Err(RecordsError::UnknownUnit {
                     query: query.to_owned(),
                     known,

@@ -165,7 +165,11 @@ pub fn fit_drift(quantity: &str, observations: &[Observation]) -> Result<Option<
         )
     };
     let scaled = birge.is_some_and(|r| r > 1.0);
-    let scale = if scaled { birge.unwrap_or(1.0).powi(2) } else { 1.0 };
+    let scale = if scaled {
+        birge.unwrap_or(1.0).powi(2)
+    } else {
+        1.0
+    };
     let cov = cov.map(|row| row.map(|c| c * scale));
     #[allow(clippy::cast_precision_loss)] // a count of records
     let dof = if scaled {
@@ -173,11 +177,9 @@ pub fn fit_drift(quantity: &str, observations: &[Observation]) -> Result<Option<
     } else {
         uncertainty::Dof::Infinite
     };
-    let k95 = uncertainty::coverage_factor(0.95, dof).map_err(|source| {
-        RecordsError::Coverage {
-            quantity: quantity.to_owned(),
-            source,
-        }
+    let k95 = uncertainty::coverage_factor(0.95, dof).map_err(|source| RecordsError::Coverage {
+        quantity: quantity.to_owned(),
+        source,
     })?;
     let u_rate = cov[1][1].max(0.0).sqrt();
     let drift = Drift {

@@ -38,13 +38,17 @@ pub enum RecordsError {
         known: i64,
     },
     /// No records database at the path given (reading never creates one).
-    #[error("no records database at {path}: record a study first (`centrifuge-cal record RESULTS_DIR --records {path}`)")]
+    #[error(
+        "no records database at {path}: record a study first (`centrifuge-cal record RESULTS_DIR --records {path}`)"
+    )]
     Missing {
         /// The path.
         path: String,
     },
     /// A date that is not `YYYY-MM-DD` (or a span of two).
-    #[error("field `{field}` = {value:?}: expected a calendar date written as ISO 8601 does (2026-11-19, or 2026-11-19 to 2026-11-20 for a span)")]
+    #[error(
+        "field `{field}` = {value:?}: expected a calendar date written as ISO 8601 does (2026-11-19, or 2026-11-19 to 2026-11-20 for a span)"
+    )]
     Date {
         /// The field.
         field: String,

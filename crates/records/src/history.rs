@@ -19,7 +19,11 @@ pub struct HistoryOptions {
 
 /// Where the date of the prediction comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "snake_case"))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(rename_all = "snake_case")
+)]
 pub enum AtSource {
     /// Given (`--at`).
     Given,
@@ -105,8 +109,11 @@ pub struct UnitHistory {
 /// [`RecordsError::UnknownTerm`] for an interval's term the certificates do not certify; the
 /// drift fit's and the interval's errors.
 pub fn unit_history(records: UnitRecords, options: &HistoryOptions) -> Result<UnitHistory> {
-    let current: Vec<&StoredCertificate> =
-        records.certificates.iter().filter(|c| c.is_current()).collect();
+    let current: Vec<&StoredCertificate> = records
+        .certificates
+        .iter()
+        .filter(|c| c.is_current())
+        .collect();
     let mut terms: Vec<TermHistory> = Vec::new();
     for c in &current {
         for t in &c.terms {
@@ -211,7 +218,11 @@ pub struct HealthOptions {
 
 /// Where the next campaign's date comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "snake_case"))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(rename_all = "snake_case")
+)]
 pub enum NextSource {
     /// Given (`--next`).
     Given,
@@ -221,7 +232,11 @@ pub enum NextSource {
 
 /// The advice before the next campaign.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize), serde(rename_all = "snake_case"))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize),
+    serde(rename_all = "snake_case")
+)]
 pub enum Advice {
     /// The predicted |Δk2| exceeds the share of the target U95: rebalance first.
     Rebalance,

@@ -128,7 +128,12 @@ mod tests {
             tolerance: 2.0,
             reliability: 0.9,
         };
-        for (u0, b, ub) in [(0.3, 0.5, 0.1), (0.3, 0.01, 0.4), (0.1, -1.0, 0.0), (0.3, 0.2, 0.2 / 1.2816)] {
+        for (u0, b, ub) in [
+            (0.3, 0.5, 0.1),
+            (0.3, 0.01, 0.4),
+            (0.1, -1.0, 0.0),
+            (0.3, 0.2, 0.2 / 1.2816),
+        ] {
             let i = variables_interval(req, u0, b, ub).unwrap();
             let t = i.years.unwrap();
             let at_end = b.abs() * t + i.z * (u0 * u0 + ub * ub * t * t).sqrt();

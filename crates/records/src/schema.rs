@@ -39,6 +39,7 @@ CREATE TABLE units (
     UNIQUE (manufacturer, model, serial)
 );
 CREATE INDEX units_serial ON units (serial);
+CREATE INDEX units_model_serial ON units (model, serial);
 
 CREATE TABLE centrifuges (
     id INTEGER PRIMARY KEY,

@@ -210,7 +210,9 @@ impl Submission<'_> {
                 .iter()
                 .enumerate()
                 .map(|(i, k)| {
-                    let w = |q: &'static str| move || format!("certificate.certified.coefficients[{i}].{q}");
+                    let w = |q: &'static str| {
+                        move || format!("certificate.certified.coefficients[{i}].{q}")
+                    };
                     Ok(CertifiedRow {
                         term: k.name.clone(),
                         mounting: k.mounting.clone(),

@@ -189,11 +189,9 @@ pub fn history_text(h: &UnitHistory) -> String {
                 significant(iv.z * iv.u0, 3),
                 significant(iv.request.tolerance, 3)
             ),
-            (true, Some(y), Some(due)) => format!(
-                "{} years from {}, due {due}",
-                significant(y, 3),
-                i.from
-            ),
+            (true, Some(y), Some(due)) => {
+                format!("{} years from {}, due {due}", significant(y, 3), i.from)
+            }
             _ => "not limited by the drift: no drift and no uncertainty of it".to_owned(),
         };
         let _ = writeln!(out, "{head}: {verdict}");
@@ -392,11 +390,7 @@ pub fn health_text(h: &CentrifugeHealth) -> String {
         let _ = writeln!(out, "C_r {}", drift_line(d, "µm·s²", &campaigns(1e6)));
     }
     if let Some(d) = &h.delta_k2_drift {
-        let _ = writeln!(
-            out,
-            "Δk2 {}",
-            drift_line(d, "rad/(s·g²)", &campaigns(1.0))
-        );
+        let _ = writeln!(out, "Δk2 {}", drift_line(d, "rad/(s·g²)", &campaigns(1.0)));
     }
     if let Some(next) = h.next {
         let _ = writeln!(
@@ -425,7 +419,12 @@ pub fn health_text(h: &CentrifugeHealth) -> String {
         )
     };
     let _ = writeln!(out);
-    match (h.advice, h.limit_rad_s_g2, h.target_u95_rad_s_g2, &h.predicted_delta_k2) {
+    match (
+        h.advice,
+        h.limit_rad_s_g2,
+        h.target_u95_rad_s_g2,
+        &h.predicted_delta_k2,
+    ) {
         (Advice::Rebalance, Some(l), Some(t), Some(p)) => {
             let _ = writeln!(
                 out,

@@ -42,7 +42,13 @@ fn simulated_study(dir: &Path, k2: f64, seed: u64, id: &str, date: &str) -> Path
     let scenario_path = dir.join("scenario.ron");
     std::fs::write(&scenario_path, scenario).unwrap();
     let sim = dir.join("sim");
-    ok(&cli(&["simulate", "--config", s(&scenario_path), "--out", s(&sim)]));
+    ok(&cli(&[
+        "simulate",
+        "--config",
+        s(&scenario_path),
+        "--out",
+        s(&sim),
+    ]));
     let study = std::fs::read_to_string(root().join("fixtures/studies/campaign.ron"))
         .unwrap()
         .replace("../campaign/", &format!("{}/", s(&sim)))
@@ -88,10 +94,20 @@ fn history_recovers_a_known_drift_and_predicts_the_third_study() {
         let k2 = 5.0e-7 + drift_per_year * y as f64;
         let config = simulated_study(&dir, k2, 11 + y as u64, &format!("CC-Y{y}"), date);
         let out = dir.join("out");
-        let mut args = vec!["study", "--config", s(&config), "--out", s(&out), "--no-compare"];
+        let mut args = vec![
+            "study",
+            "--config",
+            s(&config),
+            "--out",
+            s(&out),
+            "--no-compare",
+        ];
         args.extend(["--records", s(&db_all)]);
         let text = ok(&cli(&args));
-        assert!(text.contains(&format!("certificate CC-Y{y} of unit PIGA-16/SN 1604-0117")), "{text}");
+        assert!(
+            text.contains(&format!("certificate CC-Y{y} of unit PIGA-16/SN 1604-0117")),
+            "{text}"
+        );
         if y < 2 {
             ok(&cli(&["record", s(&out), "--records", s(&db_two)]));
         }
@@ -106,19 +122,37 @@ fn history_recovers_a_known_drift_and_predicts_the_third_study() {
             .clone();
         certified_k2.push((f(&k2["value"]), f(&k2["u"])));
     }
-    let all = json(&cli(&["history", "SN 1604-0117", "--json", "--records", s(&db_all)]));
+    let all = json(&cli(&[
+        "history",
+        "SN 1604-0117",
+        "--json",
+        "--records",
+        s(&db_all),
+    ]));
     let k2 = term(&all, "k2");
     assert_eq!(k2["points"].as_array().unwrap().len(), 3);
     let drift = &k2["drift"];
-    let (b, expanded) = (f(&drift["rate_per_year"]), f(&drift["expanded_rate_per_year"]));
+    let (b, expanded) = (
+        f(&drift["rate_per_year"]),
+        f(&drift["expanded_rate_per_year"]),
+    );
     assert!(
         (b - drift_per_year).abs() <= expanded,
         "drift {b:e} ± {expanded:e} per year, true {drift_per_year:e}"
     );
-    assert!(drift["significant"].as_bool().unwrap(), "a drift of 3.4 u per year is seen");
+    assert!(
+        drift["significant"].as_bool().unwrap(),
+        "a drift of 3.4 u per year is seen"
+    );
 
     let two = json(&cli(&[
-        "history", "SN 1604-0117", "--json", "--at", dates[2], "--records", s(&db_two),
+        "history",
+        "SN 1604-0117",
+        "--json",
+        "--at",
+        dates[2],
+        "--records",
+        s(&db_two),
     ]));
     let p = &term(&two, "k2")["prediction"];
     assert_eq!(p["date"], dates[2]);
@@ -152,7 +186,10 @@ fn many_results(dir: &Path, n: usize) -> Vec<PathBuf> {
             std::fs::write(
                 d.join("results.json"),
                 text.replace("CC-2026-0042", &format!("CC-P{i:03}"))
-                    .replace("2026-11-19 to 2026-11-20", &format!("2026-{month:02}-{day:02}")),
+                    .replace(
+                        "2026-11-19 to 2026-11-20",
+                        &format!("2026-{month:02}-{day:02}"),
+                    ),
             )
             .unwrap();
             d
@@ -161,7 +198,14 @@ fn many_results(dir: &Path, n: usize) -> Vec<PathBuf> {
 }
 
 fn count(db: &Path, table: &str) -> i64 {
-    let out = cli(&["history", "--centrifuge", "CF-2 (asset 1021)", "--json", "--records", s(db)]);
+    let out = cli(&[
+        "history",
+        "--centrifuge",
+        "CF-2 (asset 1021)",
+        "--json",
+        "--records",
+        s(db),
+    ]);
     let health = json(&out);
     match table {
         "campaigns" => health["campaigns"].as_array().unwrap().len() as i64,
@@ -178,7 +222,13 @@ fn two_processes_recording_fifty_studies_each_lose_none() {
     let spawn = |half: &[PathBuf]| {
         let script = half
             .iter()
-            .map(|d| format!("'{bin}' record '{}' --records '{}' >/dev/null || exit 1", s(d), s(&db)))
+            .map(|d| {
+                format!(
+                    "'{bin}' record '{}' --records '{}' >/dev/null || exit 1",
+                    s(d),
+                    s(&db)
+                )
+            })
             .collect::<Vec<_>>()
             .join("\n");
         Command::new("sh")
@@ -193,10 +243,20 @@ fn two_processes_recording_fifty_studies_each_lose_none() {
     let b = spawn(&dirs[50..]);
     for child in [a, b] {
         let out = child.wait_with_output().unwrap();
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
     assert_eq!(count(&db, "campaigns"), 100, "100 records, none lost");
-    let unit = json(&cli(&["history", "SN 1604-0117", "--json", "--records", s(&db)]));
+    let unit = json(&cli(&[
+        "history",
+        "SN 1604-0117",
+        "--json",
+        "--records",
+        s(&db),
+    ]));
     assert_eq!(unit["certificates"].as_array().unwrap().len(), 100);
     // recording one again is a no-op that says so
     let again = ok(&cli(&["record", s(&dirs[7]), "--records", s(&db)]));
@@ -220,14 +280,23 @@ fn a_killed_recording_leaves_the_database_as_it_was() {
         .unwrap();
     let start = std::time::Instant::now();
     while !marker.exists() {
-        assert!(start.elapsed().as_secs() < 60, "the recording reached its commit");
+        assert!(
+            start.elapsed().as_secs() < 60,
+            "the recording reached its commit"
+        );
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     child.kill().unwrap(); // SIGKILL: no clean-up runs
     let _ = child.wait();
     // everything but the commit was written; none of it is in the database
     assert_eq!(count(&db, "campaigns"), 1);
-    let unit = json(&cli(&["history", "SN 1604-0117", "--json", "--records", s(&db)]));
+    let unit = json(&cli(&[
+        "history",
+        "SN 1604-0117",
+        "--json",
+        "--records",
+        s(&db),
+    ]));
     assert_eq!(unit["certificates"].as_array().unwrap().len(), 1);
     // and the database takes the same recording afterwards
     let text = ok(&cli(&["record", s(&dirs[1]), "--records", s(&db)]));
@@ -244,8 +313,14 @@ fn a_file_that_is_not_a_records_database_is_refused_unchanged() {
     let out = cli(&["record", s(&dirs[0]), "--records", s(&file)]);
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("is not a centrifuge-cal records database"), "{err}");
-    assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a database\n".repeat(100));
+    assert!(
+        err.contains("is not a centrifuge-cal records database"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap(),
+        "not a database\n".repeat(100)
+    );
     let missing = scratch.path().join("none.sqlite");
     let out = cli(&["history", "SN 1", "--records", s(&missing)]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("no records database at"));
@@ -297,7 +372,11 @@ fn history_text_snapshots() {
         v["phases"][0]["delta_k2_rad_s_g2"] = (dk2 * c_r_new / c_r).into();
         let d = scratch.path().join(format!("s{i}"));
         std::fs::create_dir_all(&d).unwrap();
-        std::fs::write(d.join("results.json"), serde_json::to_vec_pretty(&v).unwrap()).unwrap();
+        std::fs::write(
+            d.join("results.json"),
+            serde_json::to_vec_pretty(&v).unwrap(),
+        )
+        .unwrap();
         d
     };
     let wiggle = [0.0, 0.3, -0.2, 0.1];
@@ -312,8 +391,21 @@ fn history_text_snapshots() {
         ok(&cli(&["record", s(&d), "--records", s(&db)]));
     }
     // the 2024 certificate corrected
-    let d = write(9, "CC-2024-0042-R1", "2024-11-19", k2_value + 1.2e-7, c_r * 1.25);
-    let recorded = ok(&cli(&["record", s(&d), "--records", s(&db), "--supersedes", "CC-2024-0042"]));
+    let d = write(
+        9,
+        "CC-2024-0042-R1",
+        "2024-11-19",
+        k2_value + 1.2e-7,
+        c_r * 1.25,
+    );
+    let recorded = ok(&cli(&[
+        "record",
+        s(&d),
+        "--records",
+        s(&db),
+        "--supersedes",
+        "CC-2024-0042",
+    ]));
     assert!(recorded.contains("superseding CC-2024-0042"), "{recorded}");
     ok(&cli(&[
         "record",
@@ -358,7 +450,11 @@ fn history_text_snapshots() {
     for svg in [&svg, &health_svg] {
         let text = std::fs::read_to_string(svg).unwrap();
         assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
-        assert!(!text.contains("NaN") && !text.contains("inf"), "{}", svg.display());
+        assert!(
+            !text.contains("NaN") && !text.contains("inf"),
+            "{}",
+            svg.display()
+        );
         if let Some(dir) = std::env::var_os("CENTRIFUGE_CAL_KEEP_SVG") {
             std::fs::copy(svg, Path::new(&dir).join(svg.file_name().unwrap())).unwrap();
         }

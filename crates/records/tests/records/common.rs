@@ -18,7 +18,12 @@ pub(crate) fn campaign() -> &'static StudyResults {
 
 /// The campaign's results as a certificate `id` measured on `date`, with k2 (and its
 /// interval) moved to `k2`, and C_r moved to `c_r_m_s2` (Δk2 with it, eq. 19).
-pub(crate) fn variant(id: &str, date: &str, k2: Option<f64>, c_r_m_s2: Option<f64>) -> StudyResults {
+pub(crate) fn variant(
+    id: &str,
+    date: &str,
+    k2: Option<f64>,
+    c_r_m_s2: Option<f64>,
+) -> StudyResults {
     let mut r = campaign().clone();
     let cert = r.certificate.as_mut().unwrap();
     cert.id = id.to_owned();

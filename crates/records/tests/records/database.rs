@@ -43,7 +43,10 @@ fn a_study_is_recorded_once_and_read_back_as_certified() {
     let certified = &r.certificate.as_ref().unwrap().certified;
     assert_eq!(c.terms.len(), certified.coefficients.len());
     for (t, k) in c.terms.iter().zip(&certified.coefficients) {
-        assert_eq!((t.term.as_str(), t.value, t.u, t.expanded), (k.name.as_str(), k.value, k.u, k.expanded));
+        assert_eq!(
+            (t.term.as_str(), t.value, t.u, t.expanded),
+            (k.name.as_str(), k.value, k.u, k.expanded)
+        );
     }
     assert_eq!(c.covariance, certified.covariance);
     assert_eq!(c.measured, Date::parse("2026-11-19").unwrap());
@@ -66,10 +69,19 @@ fn the_dcc_is_stored_with_its_digest() {
     s.dcc_xml = Some(&dcc);
     s.certificate_pdf = Some(&pdf);
     db.record(&s).unwrap();
-    assert_eq!(db.dcc_xml("CC-2026-0042").unwrap().as_deref(), Some(dcc.as_slice()));
+    assert_eq!(
+        db.dcc_xml("CC-2026-0042").unwrap().as_deref(),
+        Some(dcc.as_slice())
+    );
     let unit = db.unit_records("SN 1604-0117").unwrap();
-    assert_eq!(unit.certificates[0].dcc_sha256.as_deref(), Some(sha256_hex(&dcc).as_str()));
-    assert_eq!(unit.certificates[0].pdf_sha256.as_deref(), Some(sha256_hex(&pdf).as_str()));
+    assert_eq!(
+        unit.certificates[0].dcc_sha256.as_deref(),
+        Some(sha256_hex(&dcc).as_str())
+    );
+    assert_eq!(
+        unit.certificates[0].pdf_sha256.as_deref(),
+        Some(sha256_hex(&pdf).as_str())
+    );
 }
 
 #[test]
@@ -108,7 +120,11 @@ fn a_corrected_certificate_supersedes_the_old_and_both_remain() {
     let h = unit_history(unit, &HistoryOptions::default()).unwrap();
     let k2 = h.terms.iter().find(|t| t.label == "k2").unwrap();
     let ids: Vec<&str> = k2.points.iter().map(|p| p.certificate.as_str()).collect();
-    assert_eq!(ids, ["CC-7-R1", "CC-8"], "the history uses the current certificate");
+    assert_eq!(
+        ids,
+        ["CC-7-R1", "CC-8"],
+        "the history uses the current certificate"
+    );
     assert_eq!(k2.points[0].value, 5.2e-7);
 
     // a certificate is superseded once; an unknown one cannot be
@@ -121,7 +137,10 @@ fn a_corrected_certificate_supersedes_the_old_and_both_remain() {
         Err(RecordsError::AlreadySuperseded { by, .. }) if by == "CC-7-R1"
     ));
     s.supersedes = Some("CC-404".into());
-    assert!(matches!(db.record(&s), Err(RecordsError::SupersedesUnknown { .. })));
+    assert!(matches!(
+        db.record(&s),
+        Err(RecordsError::SupersedesUnknown { .. })
+    ));
     assert_eq!(db.counts().unwrap().1, 3);
 }
 
@@ -181,11 +200,23 @@ fn files_that_are_not_records_are_refused_and_left_as_they_were() {
         let before = std::fs::read(path).unwrap();
         for access in [Access::CreateIfMissing, Access::Existing] {
             let e = Database::open(path, access).unwrap_err();
-            assert!(matches!(e, RecordsError::NotRecords { .. }), "{}: {e}", path.display());
+            assert!(
+                matches!(e, RecordsError::NotRecords { .. }),
+                "{}: {e}",
+                path.display()
+            );
             assert!(e.to_string().contains("not modified"), "{e}");
         }
-        assert_eq!(std::fs::read(path).unwrap(), before, "{} unchanged", path.display());
-        assert!(!path.with_extension("sqlite-wal").exists(), "no journal left beside it");
+        assert_eq!(
+            std::fs::read(path).unwrap(),
+            before,
+            "{} unchanged",
+            path.display()
+        );
+        assert!(
+            !path.with_extension("sqlite-wal").exists(),
+            "no journal left beside it"
+        );
     }
     let missing = temp_db("missing");
     assert!(matches!(

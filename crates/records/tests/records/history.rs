@@ -37,7 +37,11 @@ fn the_worked_example_of_the_interval_equals_a_hand_calculation() {
     let t = (-bb - (bb * bb - 4.0 * a * c).sqrt()) / (2.0 * a);
     assert_relative_eq!(interval.years.unwrap(), t, max_relative = 1e-12);
     // at the end of the interval the deviation and its one-sided 95 % bound reach L
-    assert_relative_eq!(b * t + z * (u0 * u0 + ub * ub * t * t).sqrt(), l, max_relative = 1e-12);
+    assert_relative_eq!(
+        b * t + z * (u0 * u0 + ub * ub * t * t).sqrt(),
+        l,
+        max_relative = 1e-12
+    );
     // the document states the same number
     let doc = std::fs::read_to_string(
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/RECORDS.md"),
@@ -66,7 +70,10 @@ fn the_centrifuge_warns_before_the_campaign_whose_delta_k2_would_exceed_the_shar
     let first_over = (0..noise.len())
         .find(|&n| c_r(n) * dk2_per_c_r > limit)
         .unwrap();
-    assert_eq!(first_over, 5, "the simulation crosses the limit at campaign 5");
+    assert_eq!(
+        first_over, 5,
+        "the simulation crosses the limit at campaign 5"
+    );
 
     let mut db = Database::in_memory().unwrap();
     let start = Date::parse("2026-01-15").unwrap();
@@ -91,14 +98,24 @@ fn the_centrifuge_warns_before_the_campaign_whose_delta_k2_would_exceed_the_shar
             continue;
         }
         // the next campaign is predicted 120 days on (the mean spacing)
-        assert_eq!(health.next.unwrap().days() - start.days(), 120 * (n as i64 + 1));
+        assert_eq!(
+            health.next.unwrap().days() - start.days(),
+            120 * (n as i64 + 1)
+        );
         let d = health.delta_k2_drift.as_ref().unwrap();
-        assert!(d.significant, "campaign {n}: the drift of Δk2 is significant");
+        assert!(
+            d.significant,
+            "campaign {n}: the drift of Δk2 is significant"
+        );
         if health.advice == Advice::Rebalance && warned_before.is_none() {
             warned_before = Some(n + 1);
         }
         if n + 1 < first_over {
-            assert_ne!(health.advice, Advice::Rebalance, "no warning before campaign {n}");
+            assert_ne!(
+                health.advice,
+                Advice::Rebalance,
+                "no warning before campaign {n}"
+            );
         }
     }
     assert_eq!(
@@ -108,8 +125,12 @@ fn the_centrifuge_warns_before_the_campaign_whose_delta_k2_would_exceed_the_shar
     );
 
     // a balancing starts the fit again
-    db.record_balance("CF-2 (asset 1021)", Date::from_days(start.days() + 120 * 8), "trial weight, 12 g at 40°")
-        .unwrap();
+    db.record_balance(
+        "CF-2 (asset 1021)",
+        Date::from_days(start.days() + 120 * 8),
+        "trial weight, 12 g at 40°",
+    )
+    .unwrap();
     let health = centrifuge_health(
         db.centrifuge_records("CF-2 (asset 1021)").unwrap(),
         &HealthOptions {
