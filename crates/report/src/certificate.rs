@@ -10,11 +10,11 @@
 
 use std::fmt::Write as _;
 
-use pipeline::StudyResults;
+use pipeline::{CertifiedMethod, StudyResults};
 
 use crate::certificate_tables::{
-    budget, compensation_block, conformity, data_used, files, gum_against_mc, input_unit,
-    results_table,
+    budget, certified_table, compensation_block, conformity, data_used, files, gum_against_mc,
+    input_unit, results_table,
 };
 use crate::certificate_two_orientation;
 use crate::error::{ReportError, Result};
@@ -108,6 +108,15 @@ pub fn certificate_html(
          term Δk2. Model of the mean output rate: ω<sub>out</sub> = k0 + k1·a + k2·a² + k3·a³ \
          with a the specific force along the input axis in g.</p>"
     );
+    let probe_certified = info.certified.method == CertifiedMethod::Probe;
+    if !probe_certified {
+        certified_table(&mut out, &info.certified);
+        let _ = writeln!(
+            out,
+            "<p>The probe method's coefficients (one mounting, input axis towards the spindle \
+             axis), stated as a check; their k2 and k3 are not certified:</p>"
+        );
+    }
     results_table(&mut out, c, &heads);
     compensation_block(&mut out, c, &results.inputs.angle_zero, &heads[2]);
     if let Some(s) = &results.two_orientation {
@@ -116,6 +125,7 @@ pub fn certificate_html(
             s,
             &heads[2],
             c.coefficients.k1.value,
+            probe_certified,
         );
     }
     // the statements of conformity, the statement of scope and the authorisation on one page

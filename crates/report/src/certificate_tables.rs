@@ -5,7 +5,8 @@
 use std::fmt::Write as _;
 
 use pipeline::{
-    AngleZero, CalibrationResults, CertificateResults, DecisionRule, StudyResults, Verdict,
+    AngleZero, CalibrationResults, CertificateResults, Certified, DecisionRule, HeadlineMethod,
+    StudyResults, Verdict,
 };
 
 use crate::format;
@@ -492,4 +493,59 @@ pub(crate) fn files<'a>(out: &mut String, provenance: Option<&'a Provenance>, so
         esc(&software.version),
         esc(&software.commit)
     );
+}
+
+/// The certified coefficients (`results.certificate.certified`) when another method than the
+/// probe method is certified: what is certified, why, and each coefficient with its stated
+/// 95 % interval, in its unit and relative to k1.
+pub(crate) fn certified_table(out: &mut String, k: &Certified) {
+    let _ = writeln!(
+        out,
+        "<p><strong>Certified: {}.</strong> {}</p>",
+        esc(k.method.words()),
+        esc(&k.reason)
+    );
+    let _ = writeln!(
+        out,
+        "<table class=\"results\"><thead><tr><th>coefficient</th><th class=\"num\">value</th>\
+         <th class=\"num\">expanded uncertainty U</th><th class=\"num\">k</th><th class=\"num\">ν<sub>eff</sub></th>\
+         <th>unit</th><th>coverage interval from</th></tr></thead><tbody>"
+    );
+    for q in &k.coefficients {
+        let mounting = match q.mounting.as_deref() {
+            Some("ia_in") => " (input axis towards the spindle axis)".to_owned(),
+            Some("ia_out") => " (input axis away from the spindle axis)".to_owned(),
+            Some(m) => format!(" ({m})"),
+            None => String::new(),
+        };
+        let name = format!("{}{mounting}", q.name);
+        let (kk, nu) = match q.k {
+            Some(f) => (format::coverage_factor(f), format::dof(q.dof)),
+            None => ("—".to_owned(), "—".to_owned()),
+        };
+        let method = match q.interval_method {
+            HeadlineMethod::Gum => "GUM (JCGM 100)",
+            HeadlineMethod::MonteCarlo => "Monte Carlo (JCGM 101)",
+        };
+        let (value, u) = cells(q.value, q.value - q.low95, q.high95 - q.value);
+        let _ = writeln!(
+            out,
+            "<tr><td>{}</td><td class=\"num\">{value}</td><td class=\"num\">{u}</td><td class=\"num\">{kk}</td>\
+             <td class=\"num\">{nu}</td><td>{}</td><td>{method}</td></tr>",
+            esc(&name),
+            esc(&q.unit)
+        );
+        if let Some(r) = &q.relative {
+            let (value, u) = cells(r.value, r.value - r.low95, r.high95 - r.value);
+            let _ = writeln!(
+                out,
+                "<tr><td>{}/k1{}</td><td class=\"num\">{value}</td><td class=\"num\">{u}</td><td class=\"num\">{kk}</td>\
+                 <td class=\"num\">{nu}</td><td>{}</td><td>{method}</td></tr>",
+                esc(&q.name),
+                esc(&mounting),
+                esc(&r.unit)
+            );
+        }
+    }
+    let _ = writeln!(out, "</tbody></table>");
 }

@@ -52,6 +52,7 @@ pub(crate) fn certificate_block(
     s: &TwoOrientationResults,
     certified_k2: &Headline,
     k1: f64,
+    probe_certified: bool,
 ) {
     let _ = writeln!(out, "<section class=\"check\">");
     let _ = writeln!(out, "<h3>Check by the two-orientation method</h3>");
@@ -88,14 +89,22 @@ pub(crate) fn certificate_block(
     let micro = micro_scale(k1);
     for (name, h, scale, unit) in [
         (
-            "k2, probe method (certified above)",
+            if probe_certified {
+                "k2, probe method (certified above)"
+            } else {
+                "k2, probe method (a check, not certified)"
+            },
             certified_k2,
             1.0,
             "rad/(s·g²)",
         ),
         ("k2, two-orientation method", &two, 1.0, "rad/(s·g²)"),
         (
-            "k2/k1, probe method (certified above)",
+            if probe_certified {
+                "k2/k1, probe method (certified above)"
+            } else {
+                "k2/k1, probe method (a check, not certified)"
+            },
             certified_k2,
             micro,
             "µg/g²",
@@ -169,18 +178,24 @@ pub(crate) fn certificate_block(
                  relative to the arm, the probe's sign convention or its gap unit (each changes \
                  C<sub>r</sub> with no other sign) — or, those right, the working radius grows in a \
                  way the probe does not see (the arm stretching under centrifugal load, a mount \
-                 that gives) or the lever heights are wrong. The certified k2 is \
+                 that gives) or the lever heights are wrong. The probe method's k2 is \
                  compensated with the probe's C<sub>r</sub> only and keeps k1·(C − C<sub>r</sub>)·g/R²: \
                  it lies {above} the two-orientation k2 by {excess_native} rad/(s·g²) \
-                 ({excess_micro} µg/g²).</p>",
+                 ({excess_micro} µg/g²){certified}.</p>",
                 z = signed(p.z),
+                certified = if probe_certified {
+                    "; it is certified only because the study says so \
+                     (certificate.certify_despite_check)"
+                } else {
+                    "; the two-orientation k2 is the one certified"
+                },
             );
         } else {
             let _ = writeln!(
                 out,
                 "<p>z = (C − C<sub>r</sub>)/u(C − C<sub>r</sub>) = {z}, within ±3: the radius growth \
                  the PIGA measures agrees with the probe's, and the probe method's compensation is \
-                 confirmed by the PIGA's own output (the certified k2 lies {above} the \
+                 confirmed by the PIGA's own output (the probe method's k2 lies {above} the \
                  two-orientation k2 by {excess_native} rad/(s·g²), {excess_micro} µg/g²).</p>",
                 z = signed(p.z),
             );

@@ -195,7 +195,7 @@ fn the_certificate_states_the_two_orientation_check() {
     // arm stretch is seen (z ≈ +8)
     for words in [
         "<h3>Check by the two-orientation method</h3>",
-        "k2, probe method (certified above)",
+        "k2, probe method (a check, not certified)",
         "k2, two-orientation method",
         "k2/k1, two-orientation method",
         "µg/g²",
@@ -207,6 +207,23 @@ fn the_certificate_states_the_two_orientation_check() {
     ] {
         assert!(part.contains(words), "{words} not in\n{part}");
     }
+    // what is certified is stated before the probe method's table, which is called a check
+    let results_part = &html[..start];
+    for words in [
+        "<strong>Certified: the two-orientation method.</strong>",
+        "k0/k1 (input axis towards the spindle axis)",
+        "<tr><td>k2/k1</td>",
+        "their k2 and k3 are not certified",
+    ] {
+        assert!(
+            results_part.contains(words),
+            "{words} not in\n{results_part}"
+        );
+    }
+    assert!(
+        part.contains("the two-orientation k2 is the one certified"),
+        "{part}"
+    );
     insta::assert_snapshot!("two_orientation_certificate_html", part);
 }
 
