@@ -79,12 +79,11 @@ fn submission(e: &Encoded) -> Submission<'_> {
 fn database(base: &StudyResults, software: &dcc::Software) -> PathBuf {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target/records-bench");
     let path = dir.join("records.sqlite");
-    if path.is_file() {
-        if let Ok(db) = Database::open(&path, Access::Existing) {
-            if db.counts().map(|c| c.1).unwrap_or(0) >= (UNITS * PER_UNIT) as i64 {
-                return path;
-            }
-        }
+    if path.is_file()
+        && let Ok(db) = Database::open(&path, Access::Existing)
+        && db.counts().map(|c| c.1).unwrap_or(0) >= (UNITS * PER_UNIT) as i64
+    {
+        return path;
     }
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();

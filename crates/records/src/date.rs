@@ -149,6 +149,13 @@ impl fmt::Display for Date {
     }
 }
 
+#[cfg(feature = "serde")]
+impl serde::Serialize for Date {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -180,12 +187,5 @@ mod tests {
             Date::parse_span("certificate.dates.measured", "last week"),
             Err(RecordsError::Date { field, .. }) if field == "certificate.dates.measured"
         ));
-    }
-}
-
-#[cfg(feature = "serde")]
-impl serde::Serialize for Date {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_str(self)
     }
 }

@@ -99,7 +99,7 @@ impl Drift {
 /// [`RecordsError::Fit`] when the solver fails; [`RecordsError::Coverage`] for the t quantile.
 pub fn fit_drift(quantity: &str, observations: &[Observation]) -> Result<Option<Drift>> {
     for (i, o) in observations.iter().enumerate() {
-        if !o.value.is_finite() || !(o.u.is_finite() && o.u > 0.0) {
+        if !(o.value.is_finite() && o.u.is_finite() && o.u > 0.0) {
             return Err(RecordsError::NonFinite {
                 what: format!("{quantity}: record {} (value or its u > 0)", i + 1),
             });

@@ -112,8 +112,8 @@ pub fn history_text(h: &UnitHistory) -> String {
     let _ = writeln!(out);
     let _ = writeln!(
         out,
-        "{:<24} {:<10} {:<10} {}",
-        "certificate", "measured", "issued", "status"
+        "{:<24} {:<10} {:<10} status",
+        "certificate", "measured", "issued"
     );
     for c in &h.certificates {
         let status = match (&c.superseded_by, &c.supersedes) {
