@@ -12,6 +12,7 @@ mod accuracy;
 mod check;
 mod console;
 mod harmonics;
+mod history;
 mod identify;
 mod init;
 mod paths;
@@ -19,6 +20,7 @@ mod plan;
 mod plan_two_orientation;
 mod problems;
 mod progress;
+mod record;
 mod regress;
 mod simulate;
 mod study;
@@ -68,6 +70,12 @@ enum Command {
     /// Check a study configuration without running it: what the study will do, and every
     /// problem found in it and its files, grouped, with hints.
     Check(check::Check),
+    /// Record a study's outputs (results.json and its certificate) in the records database,
+    /// or a balancing of a centrifuge (docs/RECORDS.md).
+    Record(record::Record),
+    /// A unit's certified coefficients across its certificates (drift, prediction, the
+    /// recommended interval), or a centrifuge's health (--centrifuge), from the records.
+    History(Box<history::History>),
 }
 
 /// Runs the command line as the installed `centrifuge-cal` ([`Places::installed`]).
@@ -122,6 +130,8 @@ where
         Command::Plan(c) => c.run(places),
         Command::Init(c) => c.run(),
         Command::Check(c) => c.run(),
+        Command::Record(c) => c.run(),
+        Command::History(c) => c.run(),
     };
     match outcome {
         Ok(()) => 0,

@@ -27,6 +27,10 @@ pub(crate) struct Study {
     /// Do not compare with expected values.
     #[arg(long, conflicts_with = "expected")]
     no_compare: bool,
+    /// Record the study in this records database once its outputs are written
+    /// (`centrifuge-cal record`; docs/RECORDS.md). A study that fails records nothing.
+    #[arg(long, value_name = "FILE")]
+    records: Option<PathBuf>,
 }
 
 impl Study {
@@ -121,6 +125,23 @@ impl Study {
         }
         if let Some(xml) = &files.certificate_dcc {
             writeln!(console, "wrote {}", xml.display())?;
+        }
+        if let Some(db_path) = &self.records {
+            let recorded = records::Database::open(db_path, records::Access::CreateIfMissing)
+                .map_err(anyhow::Error::new)
+                .and_then(|mut db| {
+                    crate::record::record_dir(&mut db, &out, &crate::record::Extra::default())
+                })
+                .with_context(|| {
+                    format!(
+                        "the study's outputs are written in {}, but recording them failed; \
+                         record them with `centrifuge-cal record {} --records {}`",
+                        out.display(),
+                        out.display(),
+                        db_path.display()
+                    )
+                })?;
+            crate::record::print_outcome(&mut console, db_path, None, &out, &recorded)?;
         }
         Ok(())
     }

@@ -12,6 +12,7 @@ mod outputs;
 mod plan;
 mod progress;
 mod readme_path;
+mod records;
 mod snapshots;
 mod stdout;
 mod workflow;
