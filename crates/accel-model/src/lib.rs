@@ -69,11 +69,17 @@
 
 mod closed_form;
 mod error;
+mod ieee836;
 mod orientation;
 mod piga;
 
 pub use closed_form::{Eq17Terms, eq17};
 pub use error::{AccelModelError, Result};
+pub use ieee836::{
+    AccelKind, CaseAxes, CaseInputs, ModelCoefficients, MountedPoint, MountedSpindle, Mounting,
+    MountingAngles, MountingPreset, NODES_PER_REVOLUTION, NominalAxis, OutputUnit, TERM_COUNT,
+    Term, mounted_point,
+};
 pub use orientation::Orientation;
 pub use piga::{
     AxisInputs, OUTPUT_HIGHEST_HARMONIC, PigaCoefficients, RatePoint, mean_output_rad_s,
