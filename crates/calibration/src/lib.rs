@@ -41,6 +41,7 @@
 mod calibrate;
 mod limits;
 mod model;
+mod mountings;
 mod quantities;
 mod two_orientation;
 mod vif;
@@ -52,6 +53,12 @@ pub use calibrate::{
 };
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
+pub use mountings::{
+    ArmStretch, ArmStretchEstimate, Column, Confounded, JointDesign, JointSpec, MountingData,
+    MountingsError, MountingsFit, NuisanceEstimate, Nuisances, PoorlySeparated, ProbeCompensation,
+    RANK_TOLERANCE, Separability, SeparabilityWarning, TermEstimate, fit_mountings, joint_design,
+    separability,
+};
 pub use quantities::{CrInput, K1Input, TypeB, measurement_inputs};
 pub use two_orientation::{
     B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,

@@ -35,14 +35,18 @@ impl CaseAxes {
         [[i[0], p[0], o[0]], [i[1], p[1], o[1]], [i[2], p[2], o[2]]]
     }
 
-    /// The nominal input along each case axis, `a_j = c_j·a + z_j` with `a = R·ω²/g`: the
-    /// specific force of a centrifuge with no error motion and no Earth rate is
-    /// `(−a, 0, 1)` g in O2 (the centripetal acceleration towards the axis, gravity's support
-    /// up), so `c_j` is the axis's inward radial component `−x_j` and `z_j` its vertical one.
+    /// The nominal input along each case axis, `a_j = c_j·a + t_j·b + z_j` with
+    /// `a = ρ_x·ω²/g` and `b = ρ_y·ω²/g`: the specific force at a point `(ρ_x, ρ_y, 0)` of the
+    /// spindle frame turning at ω with no Earth rate is `(−a, −b, 1)` g in O2 (the centripetal
+    /// acceleration towards the axis, gravity's support up), so `c_j = −x_j` is the axis's
+    /// inward radial component, `t_j = −y_j` its component against the motion and `z_j` its
+    /// vertical one. `ρ_x` is the radius (with the spindle's drift along the arm), `ρ_y` the
+    /// drift across it.
     #[must_use]
     pub fn nominal(&self) -> [NominalAxis; 3] {
         self.rows().map(|v| NominalAxis {
             radial: -v[0],
+            across: -v[1],
             vertical: v[2],
         })
     }
@@ -95,11 +99,14 @@ impl CaseAxes {
     }
 }
 
-/// The nominal input along one case axis: `c·a + z` in g, `a = R·ω²/g`.
+/// The nominal input along one case axis: `c·a + t·b + z` in g, `a = ρ_x·ω²/g`,
+/// `b = ρ_y·ω²/g` ([`CaseAxes::nominal`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NominalAxis {
     /// `c`: the axis's inward radial component (IA in: 1, IA out: −1, tangential: 0).
     pub radial: f64,
+    /// `t`: the axis's component against the motion, `−y` (IA tangential along −Y2: 1).
+    pub across: f64,
     /// `z`: the axis's component along the spindle axis (gravity's share, g).
     pub vertical: f64,
 }
