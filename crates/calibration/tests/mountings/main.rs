@@ -2,5 +2,6 @@
 //! the fixtures' data, the separability analysis, and the coverage of simulated campaigns.
 
 mod coverage;
+mod numpy_data;
 mod separable;
 mod special_cases;
