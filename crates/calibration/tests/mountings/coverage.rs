@@ -149,6 +149,7 @@ pub(crate) fn data<'a>(rates: &'a [f64], outputs: &'a [Vec<f64>]) -> Vec<Mountin
         .collect()
 }
 
+#[allow(clippy::print_stderr)] // the coverage per term, shown with --nocapture
 fn coverage_of(kind: AccelKind, seed: u64) {
     let (coefficients, terms, sigma) = truth(kind);
     let spec = spec(kind, terms.clone());

@@ -75,6 +75,7 @@ fn write_kind(kind: AccelKind, tag: &str, dir: &std::path::Path) -> std::path::P
 }
 
 #[test]
+#[allow(clippy::print_stderr)] // where the files went, shown with --nocapture
 fn a_campaign_of_each_kind_is_written_for_the_numpy_fit() {
     let dir = std::env::var_os("MODEL_NUMPY_DIR").map_or_else(
         || std::env::temp_dir().join("centrifuge-cal-model-numpy"),
