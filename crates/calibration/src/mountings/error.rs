@@ -47,7 +47,7 @@ pub enum MountingsError {
     },
     /// The chosen mountings cannot separate the chosen terms: the design is rank deficient.
     #[error("{0}")]
-    NotSeparable(Box<crate::mountings::Separability>),
+    NotSeparable(Box<super::report::Separability>),
     /// The least-squares fit failed.
     #[error("the joint fit over the mountings: {0}")]
     Fit(#[source] IdentifyError),

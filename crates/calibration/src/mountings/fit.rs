@@ -5,10 +5,12 @@ use accel_model::{AccelKind, Term};
 use identify::{Fit, LstsqOptions, lstsq_design};
 use nalgebra::DMatrix;
 
-use super::design::{Column, JointDesign, build};
+use super::check::check;
+use super::column::Column;
+use super::design::{JointDesign, build};
 use super::error::MountingsError;
 use super::separability::{full_rank, separability};
-use super::spec::{ArmStretch, JointSpec, MountingData, check};
+use super::spec::{ArmStretch, JointSpec, MountingData};
 use crate::Weighting;
 use crate::calibrate::weigh;
 

@@ -12,19 +12,23 @@
 //! give the same coefficients (tests in `crates/calibration/tests`).
 //!
 //! Read in this order: `spec` (what the lab declares: the kind, the terms, each mounting's
-//! data and nuisance terms), `error`, `design` (the columns and the design, once), `fit`
-//! (the joint fit and its results), `separability` (the analysis before it).
+//! data and nuisance terms), `column` (the design's columns and their words), `report` (what
+//! the separability analysis finds, in words), `error`, `check`, `design` (the design, once),
+//! `separability` (the analysis before any fit), `fit` (the joint fit and its results).
 
+mod check;
+mod column;
 mod design;
 mod error;
 mod fit;
+mod report;
 mod separability;
 mod spec;
 
-pub use design::{Column, JointDesign, joint_design};
+pub use column::Column;
+pub use design::{JointDesign, joint_design};
 pub use error::MountingsError;
 pub use fit::{ArmStretchEstimate, MountingsFit, NuisanceEstimate, TermEstimate, fit_mountings};
-pub use separability::{
-    Confounded, PoorlySeparated, RANK_TOLERANCE, Separability, SeparabilityWarning, separability,
-};
+pub use report::{Confounded, PoorlySeparated, Separability, SeparabilityWarning};
+pub use separability::{RANK_TOLERANCE, separability};
 pub use spec::{ArmStretch, JointSpec, MountingData, Nuisances, ProbeCompensation};
