@@ -88,7 +88,7 @@ pub(crate) fn understand(f: &mut Finding, bytes: &[u8], tdms: bool) {
             .filter(|o| o != g)
             .collect::<std::collections::BTreeSet<_>>();
         f.format.push(Setting::new(
-            format!("group: {g:?}"),
+            format!("group: {}", super::setting::ron_string(g)),
             format!(
                 "the {} holding the {item}s {}{}",
                 if tdms { "group" } else { "struct variable" },

@@ -452,7 +452,7 @@ fn uncertainty_to_fill(s: &mut String) {
         ),
         (
             "g_source",
-            format!("{p:?}"),
+            ron_string(p),
             "Where does g come from (the gravity survey and its report)?",
         ),
         (
