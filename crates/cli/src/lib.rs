@@ -9,6 +9,7 @@
 //! edge that touches files (`.ci/layering`).
 
 mod accuracy;
+mod certificate;
 mod check;
 mod console;
 mod harmonics;
@@ -68,6 +69,9 @@ enum Command {
     /// Check a study configuration without running it: what the study will do, and every
     /// problem found in it and its files, grouped, with hints.
     Check(check::Check),
+    /// Write the calibration certificate (PDF/A) of a study's results folder again, from its
+    /// results.json: no browser, no study run.
+    Certificate(certificate::Certificate),
 }
 
 /// Runs the command line as the installed `centrifuge-cal` ([`Places::installed`]).
@@ -122,6 +126,7 @@ where
         Command::Plan(c) => c.run(places),
         Command::Init(c) => c.run(),
         Command::Check(c) => c.run(),
+        Command::Certificate(c) => c.run(),
     };
     match outcome {
         Ok(()) => 0,

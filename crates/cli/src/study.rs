@@ -116,8 +116,8 @@ impl Study {
         if let Some(svg) = &files.balance_polar_svg {
             writeln!(console, "wrote {}", svg.display())?;
         }
-        if let Some(html) = &files.certificate_html {
-            writeln!(console, "wrote {}", html.display())?;
+        if let Some(pdf) = &files.certificate_pdf {
+            writeln!(console, "wrote {}", pdf.display())?;
         }
         Ok(())
     }

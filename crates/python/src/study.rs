@@ -90,6 +90,23 @@ pub(crate) fn run_study_dict(
     .map_err(|e| e.into_py(py))
 }
 
+/// Writes the calibration certificate (PDF/A-2b) of a study's results folder (or its
+/// results.json) to `out` (default: certificate.pdf in the folder), as `centrifuge-cal
+/// certificate` does (`report::write_certificate`); returns the path written.
+#[pyfunction]
+#[pyo3(signature = (results, out = None))]
+pub(crate) fn certificate(
+    py: Python<'_>,
+    results: PathBuf,
+    out: Option<PathBuf>,
+) -> PyResult<String> {
+    py.detach(|| -> Result<String, PyErrLater> {
+        let written = report::write_certificate(&results, out.as_deref())?;
+        Ok(written.display().to_string())
+    })
+    .map_err(|e| e.into_py(py))
+}
+
 /// An error raised while the GIL was released, turned into a Python exception after.
 enum PyErrLater {
     Pipeline(pipeline::PipelineError),

@@ -183,6 +183,10 @@ pub struct ConformityStatement {
     /// Upper tolerance limit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub upper: Option<f64>,
+    /// Where the limits come from (customer specification, contract, data sheet), as the
+    /// study file states it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<String>,
     /// The statement.
     pub verdict: Verdict,
 }

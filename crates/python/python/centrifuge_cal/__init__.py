@@ -11,7 +11,8 @@ The Rust toolkit behind ``cargo xtask``, with numpy arrays in and typed results 
   a GUM budget and a Monte Carlo check (JCGM 100/101);
 - :func:`advise_balance` and :func:`plan`: the balance advisor and the test planner;
 - :func:`run_study`: a whole study from its configuration file or a dict of the same shape,
-  returning what ``results.json`` holds.
+  returning what ``results.json`` holds;
+- :func:`certificate`: the calibration certificate (PDF/A) of a study's results folder.
 
 Units are in the names (``rate_deg_s``, ``radius_error_um``, ``c_r_m_s2``). Errors are
 :class:`CentrifugeCalError` subclasses with the command line's message. Long computations
@@ -254,6 +255,21 @@ def run_study(
     if isinstance(config, dict):
         return _study_dict(config, base_dir, {})
     return StudyResults._of(json.loads(_native.run_study_file(os.fspath(config))))
+
+
+def certificate(results_dir: PathLike, out: PathLike | None = None) -> str:
+    """Writes the calibration certificate of a study's results folder as PDF/A-2b, as
+    ``centrifuge-cal certificate RESULTS_DIR --out FILE.pdf`` does, and returns the path
+    written.
+
+    ``results_dir`` is the folder a study wrote (holding ``results.json``; the study's
+    configuration needs a ``certificate`` section) or that ``results.json``; ``out`` defaults
+    to ``certificate.pdf`` in that folder. Raises :class:`ComputationError` when the results
+    have no certificate or cannot be read.
+    """
+    return _native.certificate(
+        os.fspath(results_dir), None if out is None else os.fspath(out)
+    )
 
 
 def _study_dict(
@@ -500,6 +516,7 @@ __all__ = [
     "Warning",
     "advise_balance",
     "calibrate",
+    "certificate",
     "delta_k2",
     "fit_harmonics",
     "fit_radius_error",

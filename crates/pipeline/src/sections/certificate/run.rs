@@ -68,6 +68,7 @@ pub(crate) fn run(cert: &Certificate, c: &CalibrationResults) -> CertificateResu
                     high95: value + above,
                     lower: l.lower,
                     upper: l.upper,
+                    source: l.source.clone(),
                     verdict: Verdict::of(value, (below, above), l.lower, l.upper, rule),
                 }
             })

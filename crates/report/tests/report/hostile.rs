@@ -1,0 +1,244 @@
+//! Hostile text through every free-text field of the certificate section (issue 27, part 5):
+//! the payload corpus `fixtures/payloads.json` (HTML and CSS that loads, typst markup that
+//! reads files, PDF syntax, ESC/OSC/BEL, bidirectional overrides, NUL, a 100 kB string) in
+//! each field of the campaign's certificate. The certificate is typeset by the real engine;
+//! its pages show every payload as text (control and bidirectional characters as
+//! `[U+XXXX]`), the typesetter was asked for no file, and the PDF has no JavaScript, no
+//! action, no embedded file.
+
+use std::path::Path;
+
+use pipeline::CertificateResults;
+use report::{Provenance, Software};
+
+struct Payload {
+    name: String,
+    text: String,
+}
+
+fn payloads() -> Vec<Payload> {
+    let text = std::fs::read_to_string(super::root().join("fixtures/payloads.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    json["payloads"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            let repeat = p["repeat"].as_u64().unwrap_or(1);
+            Payload {
+                name: p["name"].as_str().unwrap().to_owned(),
+                text: p["text"]
+                    .as_str()
+                    .unwrap()
+                    .repeat(usize::try_from(repeat).unwrap()),
+            }
+        })
+        .collect()
+}
+
+/// Every free-text field of the certificate section, by its study-file name.
+fn fields(c: &mut CertificateResults) -> Vec<(String, &mut String)> {
+    let mut out: Vec<(String, &mut String)> = vec![
+        ("id".into(), &mut c.id),
+        ("laboratory.name".into(), &mut c.laboratory.name),
+        ("laboratory.address".into(), &mut c.laboratory.address),
+        ("location".into(), &mut c.location),
+        ("customer.name".into(), &mut c.customer.name),
+        ("customer.address".into(), &mut c.customer.address),
+        ("item.description".into(), &mut c.item.description),
+        ("item.manufacturer".into(), &mut c.item.manufacturer),
+        ("item.model".into(), &mut c.item.model),
+        ("item.serial".into(), &mut c.item.serial),
+        ("item.condition".into(), &mut c.item.condition),
+        ("dates.received".into(), &mut c.dates.received),
+        ("dates.measured".into(), &mut c.dates.measured),
+        ("dates.issued".into(), &mut c.dates.issued),
+        ("operator".into(), &mut c.operator),
+        ("procedure".into(), &mut c.procedure),
+        ("authorisation.name".into(), &mut c.authorisation.name),
+        ("authorisation.role".into(), &mut c.authorisation.role),
+    ];
+    if let Some(a) = c.laboratory.accreditation.as_mut() {
+        out.push(("laboratory.accreditation".into(), a));
+    }
+    if let Some(d) = c.deviations.as_mut() {
+        out.push(("deviations".into(), d));
+    }
+    for (i, e) in c.equipment.iter_mut().enumerate() {
+        out.push((format!("equipment[{i}].role"), &mut e.role));
+        out.push((format!("equipment[{i}].description"), &mut e.description));
+        out.push((format!("equipment[{i}].identity"), &mut e.identity));
+        out.push((format!("equipment[{i}].calibration_due"), &mut e.calibration_due));
+    }
+    for (i, x) in c.conditions.iter_mut().enumerate() {
+        out.push((format!("conditions[{i}].quantity"), &mut x.quantity));
+        out.push((format!("conditions[{i}].value"), &mut x.value));
+    }
+    for (i, t) in c.traceability.iter_mut().enumerate() {
+        out.push((format!("traceability[{i}].statement"), &mut t.statement));
+    }
+    if let Some(conformity) = c.conformity.as_mut() {
+        for (i, s) in conformity.statements.iter_mut().enumerate() {
+            if let Some(source) = s.source.as_mut() {
+                out.push((format!("limits[{i}].source"), source));
+            }
+        }
+    }
+    out
+}
+
+fn campaign() -> (pipeline::StudyResults, Provenance) {
+    let study = pipeline::load_study(Path::new("../../fixtures/studies/campaign.ron")).unwrap();
+    let results = pipeline::run(&study).unwrap();
+    let provenance = Provenance::of_study(&study, None).unwrap();
+    (results, provenance)
+}
+
+fn software() -> Software {
+    Software {
+        version: "centrifuge-cal (test build)".to_owned(),
+        commit: "0000000000000000000000000000000000000000".to_owned(),
+    }
+}
+
+fn no_whitespace(text: &str) -> String {
+    text.chars().filter(|c| !c.is_whitespace()).collect()
+}
+
+/// The names of a PDF's objects (`/Type`, `/JavaScript`), outside its strings, comments and
+/// streams: what a reader acts on. The file has no object streams (typst writes none), so
+/// every dictionary is in the open.
+fn pdf_names(pdf: &[u8]) -> Vec<String> {
+    let mut names = Vec::new();
+    let mut i = 0;
+    while i < pdf.len() {
+        match pdf[i] {
+            b'%' => {
+                while i < pdf.len() && pdf[i] != b'\n' && pdf[i] != b'\r' {
+                    i += 1;
+                }
+            }
+            b'(' => {
+                // a literal string: balanced parentheses, backslash escapes
+                let mut depth = 0usize;
+                while i < pdf.len() {
+                    match pdf[i] {
+                        b'\\' => i += 1,
+                        b'(' => depth += 1,
+                        b')' => {
+                            depth -= 1;
+                            if depth == 0 {
+                                break;
+                            }
+                        }
+                        _ => {}
+                    }
+                    i += 1;
+                }
+            }
+            b'<' if pdf.get(i + 1) != Some(&b'<') => {
+                while i < pdf.len() && pdf[i] != b'>' {
+                    i += 1;
+                }
+            }
+            b'<' => i += 1,
+            b's' if pdf[i..].starts_with(b"stream") && (i == 0 || !pdf[i - 1].is_ascii_alphanumeric()) => {
+                let end = pdf[i..]
+                    .windows(9)
+                    .position(|w| w == b"endstream")
+                    .map_or(pdf.len(), |p| i + p + 9);
+                i = end;
+                continue;
+            }
+            b'/' => {
+                let start = i + 1;
+                i += 1;
+                while i < pdf.len()
+                    && !pdf[i].is_ascii_whitespace()
+                    && !b"/[]<>(){}%".contains(&pdf[i])
+                {
+                    i += 1;
+                }
+                names.push(String::from_utf8_lossy(&pdf[start..i]).into_owned());
+                continue;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    names
+}
+
+/// What a PDF must not hold: script, actions that run or load something, attachments.
+const ACTIVE: [&str; 15] = [
+    "JavaScript", "JS", "Launch", "GoToR", "GoToE", "URI", "SubmitForm", "ImportData",
+    "EmbeddedFile", "EmbeddedFiles", "RichMedia", "OpenAction", "AA", "Movie", "Sound",
+];
+
+fn assert_shown_and_inert(payload: &Payload, results: &pipeline::StudyResults, provenance: &Provenance, fields: &[String]) {
+    let doc = report::certificate_document(results, Some(provenance), &software())
+        .unwrap_or_else(|e| panic!("{}: {e}", payload.name));
+    assert!(doc.denied().is_empty(), "{}: asked for {:?}", payload.name, doc.denied());
+    let text = no_whitespace(&doc.laid_out_texts().join(""));
+    for (n, field) in fields.iter().enumerate() {
+        let shown = no_whitespace(&typeset::printable(&format!("F{n:02}:{}", payload.text)));
+        assert!(
+            text.contains(&shown),
+            "{}: field {field} is not shown as written ({} characters expected)",
+            payload.name,
+            shown.len()
+        );
+    }
+    let pdf = doc
+        .pdf()
+        .unwrap_or_else(|e| panic!("{}: no PDF/A: {e}", payload.name));
+    let names = pdf_names(&pdf);
+    assert!(names.iter().any(|n| n == "Catalog"), "the tokenizer sees the PDF's objects");
+    for active in ACTIVE {
+        assert!(
+            !names.iter().any(|n| n == active),
+            "{}: the PDF holds /{active}",
+            payload.name
+        );
+    }
+}
+
+#[test]
+fn every_payload_in_every_field_is_shown_as_text_and_runs_nothing() {
+    let (results, provenance) = campaign();
+    for payload in payloads().iter().filter(|p| p.text.len() < 10_000) {
+        let mut hostile = results.clone();
+        let cert = hostile.certificate.as_mut().unwrap();
+        let mut names = Vec::new();
+        for (n, (name, value)) in fields(cert).into_iter().enumerate() {
+            *value = format!("F{n:02}:{}", payload.text);
+            names.push(name);
+        }
+        assert!(names.len() > 30, "{} fields", names.len());
+        assert_shown_and_inert(payload, &hostile, &provenance, &names);
+    }
+}
+
+/// The 100 kB string: one field at a time (all at once would be some thousand pages).
+#[test]
+fn a_100_kb_string_in_each_field_is_shown_whole() {
+    let (results, provenance) = campaign();
+    let payloads = payloads();
+    let big = payloads
+        .iter()
+        .find(|p| p.text.len() >= 100_000)
+        .expect("the corpus's 100 kB string");
+    let count = fields(results.clone().certificate.as_mut().unwrap()).len();
+    for k in 0..count {
+        let mut hostile = results.clone();
+        let cert = hostile.certificate.as_mut().unwrap();
+        let mut name = String::new();
+        for (n, (field, value)) in fields(cert).into_iter().enumerate() {
+            if n == k {
+                *value = format!("F00:{}", big.text);
+                name = field;
+            }
+        }
+        assert_shown_and_inert(big, &hostile, &provenance, &[name]);
+    }
+}
