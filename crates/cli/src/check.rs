@@ -71,12 +71,13 @@ impl Check {
                 )
             })
             .collect();
+        let direction_unfilled = found.iter().any(|p| p.contains("probe_direction"));
         let filled = stand_ins(text);
         let mut console = Console::stdout();
         match pipeline::StudyConfig::from_ron(&filled, path) {
             Err(e) => found.extend(problems::each(&e)),
             Ok(config) => {
-                let plan = describe(&config, path);
+                let plan = describe(&config, path, direction_unfilled);
                 console.write_str(&plan)?;
                 let files = count_files(&config);
                 let bar = crate::progress::spinner(format!("reading and checking {files} files"));
@@ -139,8 +140,9 @@ fn num(v: Option<&Value>) -> String {
         .map_or_else(|| "—".to_owned(), |x| format!("{x}"))
 }
 
-/// What the study will do, in words, from the configuration's own field names.
-fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
+/// What the study will do, in words, from the configuration's own field names
+/// (`direction_unfilled`: the probe direction is still a placeholder).
+fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: bool) -> String {
     let v = serde_json::to_value(config).unwrap_or(Value::Null);
     let mut s = String::new();
     let _ = writeln!(
@@ -157,16 +159,35 @@ fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
         num(v.get("k1_rad_s_g"))
     );
     let lever = &v["lever"];
-    let direction = match lever["probe_direction"].as_str() {
-        Some("along_o1_x1") => "along the sleeve axis O1X1",
-        _ => "against the sleeve axis O1X1 (the paper's set-up)",
-    };
     let _ = writeln!(
         s,
-        "probe: {} mm above the tilt pivot, {} mm below the PIGA's plane, measuring {direction}",
+        "probe: {} mm above the tilt pivot, {} mm below the PIGA's plane",
         num(lever.get("pivot_to_probe_mm")),
         num(lever.get("probe_to_piga_mm"))
     );
+    let direction = if direction_unfilled {
+        format!(
+            "not filled in: `against_o1_x1` if {}; `along_o1_x1` if {}",
+            pipeline::ProbeDirectionName::AgainstO1X1.words(),
+            pipeline::ProbeDirectionName::AlongO1X1.words()
+        )
+    } else {
+        config.lever.probe_direction.words().to_owned()
+    };
+    let _ = writeln!(s, "  direction (`lever.probe_direction`): {direction}");
+    let angle_zero = pipeline::AngleZero {
+        angle_zero_deg: config.lever.angle_zero_deg.unwrap_or(0.0),
+        stated: config.lever.angle_zero_deg.is_some(),
+        // a recordings phase whose format names an encoder or an index pulse (the default
+        // format's encoder column counts: most files have it)
+        measured_angles: config.phases.iter().any(|p| match &p.points {
+            pipeline::Points::Recordings(set) => {
+                !matches!(set.format.angle, recording::AngleSource::Rate { .. })
+            }
+            _ => false,
+        }),
+    };
+    let _ = writeln!(s, "  angle zero: {}", angle_zero.words());
     for phase in v["phases"].as_array().into_iter().flatten() {
         let name = phase["name"].as_str().unwrap_or("");
         let points = &phase["points"];
@@ -196,8 +217,9 @@ fn describe(config: &pipeline::StudyConfig, path: &Path) -> String {
                     }
                 )
             }
-            "harmonics" => format!(
-                "{} first-harmonic coefficients given",
+            "first_harmonic" => format!(
+                "{} first-harmonic coefficients given (taken as fitted against the angle zero: \
+                 `lever.angle_zero_deg` moves recorded angles only)",
                 body.as_array().map_or(0, Vec::len)
             ),
             "radius_error" => format!(
@@ -342,7 +364,7 @@ fn format_words(f: &Value) -> String {
     if let Some((kind, body)) = angle.as_object().and_then(|m| m.iter().next()) {
         parts.push(match kind.as_str() {
             "encoder" => format!(
-                "angle from the encoder `{}` in {}",
+                "angle from the encoder `{}` in {}{}",
                 body["column"].as_str().unwrap_or(""),
                 match &body["unit"] {
                     Value::String(u) => u.clone(),
@@ -351,6 +373,12 @@ fn format_words(f: &Value) -> String {
                         num(c.get("per_rev"))
                     )),
                     _ => String::new(),
+                },
+                if body["optional"].as_bool() == Some(true) {
+                    " when the file has it (else the declared rate, the first sample taken at 0° \
+                     from the angle zero)"
+                } else {
+                    ""
                 }
             ),
             "index_pulse" => format!(
@@ -358,7 +386,8 @@ fn format_words(f: &Value) -> String {
                 body["column"].as_str().unwrap_or("")
             ),
             "rate" => format!(
-                "angle from the declared rate, starting at {}° (nothing measures it)",
+                "angle from the declared rate, the first sample taken at {}° from the angle \
+                 zero (nothing measures it; `lever.angle_zero_deg` does not move it)",
                 num(body.get("start_angle_deg"))
             ),
             other => other.to_owned(),

@@ -53,13 +53,19 @@ impl Console {
 impl<W: Write> Console<W> {
     /// Writes formatted text and flushes it (what `write!` and `writeln!` call).
     pub(crate) fn write_fmt(&mut self, args: fmt::Arguments<'_>) -> Result<(), ConsoleError> {
-        self.out.write_fmt(args)?;
-        Ok(self.out.flush()?)
+        match args.as_str() {
+            Some(text) => self.write_str(text),
+            None => self.write_str(&args.to_string()),
+        }
     }
 
-    /// Writes text and flushes it.
+    /// Writes text and flushes it. Characters that would act on a terminal instead of
+    /// showing (ESC and the other control characters but line feed and tab, bidirectional
+    /// overrides), which text from a file or configuration can hold, are written visibly
+    /// (`\u{1b}`, `<U+202E>`).
     pub(crate) fn write_str(&mut self, text: &str) -> Result<(), ConsoleError> {
-        self.out.write_all(text.as_bytes())?;
+        self.out
+            .write_all(edge_io::visible_lines(text).as_bytes())?;
         Ok(self.out.flush()?)
     }
 }

@@ -39,6 +39,10 @@ pub(crate) struct Harmonics {
     /// The probe measures along O1X1 (default: against it, as in the paper); sets the sign of β.
     #[arg(long)]
     probe_along: bool,
+    /// What the encoder reads, deg, when the arm's PIGA end points at the probe (a study's
+    /// `lever.angle_zero_deg`): measured angles are taken less it before the fit (default 0).
+    #[arg(long, allow_negative_numbers = true)]
+    angle_zero_deg: Option<f64>,
     /// The recording format, a RON file as in a study's `format: (...)`; the flags below
     /// override its fields.
     #[arg(long, value_name = "FILE.ron")]
@@ -208,7 +212,13 @@ impl Harmonics {
             revolutions: self.revolutions,
             max_gap_intervals: format.max_gap_intervals,
         };
-        let recording = self.load(&format)?;
+        let mut recording = self.load(&format)?;
+        if let Some(deg) = self.angle_zero_deg {
+            if !deg.is_finite() {
+                bail!("--angle-zero-deg {deg}: must be finite");
+            }
+            recording.shift_angle_zero(deg.to_radians());
+        }
         let rate_rad_s = self.rate_deg_s.to_radians();
         let result = recording::analyze_recording(&recording, rate_rad_s, &config)?;
         let direction = if self.probe_along {
@@ -260,6 +270,8 @@ impl Harmonics {
             "mean": coefficients(&fit.mean),
             "std": fit.std.as_ref().map(coefficients),
             "std_error": fit.std_error.as_ref().map(coefficients),
+            "angle_zero_deg": self.angle_zero_deg.unwrap_or(0.0),
+            "angle_zero_stated": self.angle_zero_deg.is_some(),
             "first_harmonic": {
                 "c1": h.c1,
                 "s1": h.s1,
@@ -369,6 +381,21 @@ impl Harmonics {
                 "along O1X1"
             }
         )?;
+        if result.angle_source != AngleSourceKind::DeclaredRate {
+            writeln!(
+                t,
+                "angle zero: {}",
+                match self.angle_zero_deg {
+                    Some(deg) => format!(
+                        "the encoder reads {deg}° when the arm's PIGA end points at the probe \
+                         (--angle-zero-deg): measured angles taken less {deg}°"
+                    ),
+                    None => "not given: the encoder taken to read 0° when the arm's PIGA end \
+                             points at the probe (--angle-zero-deg)"
+                        .to_owned(),
+                }
+            )?;
+        }
         let rms: Vec<String> = fit
             .revolutions
             .iter()

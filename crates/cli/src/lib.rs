@@ -138,7 +138,11 @@ where
 /// Prints `error: <message>` on standard error (if it can) and returns status 1.
 fn fail(message: &str) -> u8 {
     // Nothing is left to report a failure of standard error to.
-    let _ = writeln!(std::io::stderr(), "error: {message}");
+    let _ = writeln!(
+        std::io::stderr(),
+        "error: {}",
+        edge_io::visible_lines(message)
+    );
     1
 }
 

@@ -119,6 +119,9 @@ impl Study {
         if let Some(pdf) = &files.certificate_pdf {
             writeln!(console, "wrote {}", pdf.display())?;
         }
+        if let Some(xml) = &files.certificate_dcc {
+            writeln!(console, "wrote {}", xml.display())?;
+        }
         Ok(())
     }
 }

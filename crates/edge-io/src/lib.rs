@@ -15,6 +15,10 @@
 //! - [`ron_options`]: the one RON dialect of the workspace's configuration files (studies,
 //!   scenarios, expected values, plans): optional sections are written without `Some(...)`.
 //!
+//! - [`visible`] and [`hidden_char`]: text from a file shown to a person, with the characters
+//!   that hide, reorder or act (control characters, bidirectional overrides) written visibly or
+//!   found, for the fields that refuse them.
+//!
 //! Errors are one typed enum, [`EdgeIoError`], whose every variant names the file or directory.
 
 mod error;
@@ -23,11 +27,13 @@ pub mod fault;
 mod json;
 mod output;
 mod text;
+mod visible;
 
 pub use error::{EdgeIoError, Result};
 pub use json::{JsonError, NonFiniteValue, check_finite, to_json_pretty};
 pub use output::OutputSet;
 pub use text::{CONFIG_MAX_BYTES, read_bytes_capped, read_text_capped, text_from_bytes};
+pub use visible::{HiddenChar, hidden_char, is_hidden, visible, visible_lines};
 
 /// The RON dialect of every configuration file in the workspace: RON with implicit `Some`
 /// (an optional section is written as its value, not `Some(value)`).

@@ -11,6 +11,7 @@ use recording::RecordingFormat;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
+use crate::results::ProbeSign;
 
 mod certificate;
 mod table;
@@ -326,21 +327,51 @@ pub struct LeverConfig {
     pub pivot_to_probe_mm: f64,
     /// Height from the probe plane to the PIGA centre-of-mass plane, mm.
     pub probe_to_piga_mm: f64,
-    /// The probe's measuring direction (default: against O1X1, the paper's set-up).
+    /// The probe's measuring direction (default: against O1X1, the paper's set-up: the
+    /// probe's reading falls when the spindle moves towards the PIGA).
     #[serde(default)]
     pub probe_direction: ProbeDirectionName,
+    /// The angle zero of eq. 20–21, deg: what the spindle encoder reads (or how far the
+    /// spindle has turned past the index pulse's rising edge) when the arm's PIGA end
+    /// points at the probe (the arm along O1X1). Measured angles are taken less it before
+    /// the fit. Absent: taken as 0, and `check`, the report and results.json say so
+    /// (`docs/YOUR-DATA.md`). An angle from the declared rate is not moved by it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angle_zero_deg: Option<f64>,
 }
 
-/// Direction in which the displacement probe measures, relative to the sleeve axis O1X1.
+/// Direction in which the displacement probe measures, relative to the sleeve axis O1X1:
+/// which way its reading moves when the spindle moves towards the PIGA, the arm at the
+/// angle zero. Each has a name that says it (`reading_falls_towards_piga`,
+/// `reading_rises_towards_piga`) beside the paper's (`against_o1_x1`, `along_o1_x1`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum ProbeDirectionName {
-    /// Against O1X1 (the paper's set-up, Fig. 3).
+    /// Against O1X1 (the paper's set-up, Fig. 3): the reading falls (the gap closes) when
+    /// the spindle moves towards the PIGA.
     #[default]
-    #[serde(rename = "against_o1_x1")]
+    #[serde(rename = "against_o1_x1", alias = "reading_falls_towards_piga")]
     AgainstO1X1,
-    /// Along O1X1.
-    #[serde(rename = "along_o1_x1")]
+    /// Along O1X1: the reading rises when the spindle moves towards the PIGA.
+    #[serde(rename = "along_o1_x1", alias = "reading_rises_towards_piga")]
     AlongO1X1,
+}
+
+impl ProbeDirectionName {
+    /// The direction as results.json and the report state it ([`ProbeSign::words`] are its
+    /// words, the one place they are written).
+    #[must_use]
+    pub const fn sign(self) -> ProbeSign {
+        match self {
+            Self::AgainstO1X1 => ProbeSign::AgainstO1X1,
+            Self::AlongO1X1 => ProbeSign::AlongO1X1,
+        }
+    }
+
+    /// The words a person checks at the machine ([`ProbeSign::words`]).
+    #[must_use]
+    pub const fn words(self) -> &'static str {
+        self.sign().words()
+    }
 }
 
 /// A radius-error model, as the study file and `results.json` name it.
@@ -565,6 +596,10 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "MechanismConfig" => "mechanism",
         "CalibrationConfig" => "calibration",
         "PigaTableConfig" => "calibration.table (or two_orientation.orientations[…].table)",
+        "OutputSigma" => {
+            "calibration.table.output_sigma_rad_s (or \
+             two_orientation.orientations[…].table.output_sigma_rad_s)"
+        }
         "PigaRecordingSet" => {
             "calibration.recordings (or two_orientation.orientations[…].recordings)"
         }
@@ -591,6 +626,7 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "CoefficientName" => "certificate.limits[…].coefficient",
         "LimitUnitName" => "certificate.limits[…].unit",
         "DecisionRuleName" => "certificate.decision_rule",
+        "CertifyName" => "certificate.certify",
         "AuthorisationConfig" => "certificate.authorisation",
         "TwoOrientationConfig" => "two_orientation",
         "OrientationConfig" => "two_orientation.orientations[…]",
@@ -643,6 +679,18 @@ fn parse_message(code: &ron::Error) -> String {
         }
         E::DuplicateStructField { field, outer } => {
             format!("field `{field}` given twice{}", in_key(outer.as_ref()))
+        }
+        E::NoSuchEnumVariant { found, outer, .. }
+            if outer.as_deref() == Some("ProbeDirectionName") =>
+        {
+            format!(
+                "unknown choice `{found}`{}; expected `against_o1_x1` (also written \
+             `reading_falls_towards_piga`: {}) or `along_o1_x1` (also written \
+             `reading_rises_towards_piga`: {})",
+                in_key(outer.as_ref()),
+                ProbeDirectionName::AgainstO1X1.words(),
+                ProbeDirectionName::AlongO1X1.words(),
+            )
         }
         E::NoSuchEnumVariant {
             expected,
@@ -697,5 +745,38 @@ mod tests {
         );
         assert!(m.contains("`four_term` in `radius_model`"), "{m}");
         assert!(!m.contains("RadiusModelName"), "{m}");
+    }
+
+    /// A probe direction the file misnames is answered with both names of each choice and
+    /// the words a person checks at the machine; the self-describing names are read.
+    #[test]
+    fn a_bad_probe_direction_is_answered_in_words() {
+        let study = |direction: &str| {
+            format!(
+                "(name: \"x\", radius_m: 1.0, g_m_s2: 9.8, k1_rad_s_g: 1.0, lever: \
+                 (pivot_to_probe_mm: 1.0, probe_to_piga_mm: 1.0, probe_direction: {direction}), \
+                 phases: [])"
+            )
+        };
+        let m = message(&study("towards_the_probe"));
+        assert_eq!(
+            m,
+            "unknown choice `towards_the_probe` in `lever.probe_direction (or \
+             balance.second_probe.probe_direction)`; expected `against_o1_x1` (also written \
+             `reading_falls_towards_piga`: the probe's gap closes (its reading falls) when the \
+             spindle moves towards the PIGA (probe measuring against O1X1, the paper's set-up)) \
+             or `along_o1_x1` (also written `reading_rises_towards_piga`: the probe's reading \
+             rises when the spindle moves towards the PIGA (probe measuring along O1X1))"
+        );
+        for (name, direction) in [
+            (
+                "reading_falls_towards_piga",
+                ProbeDirectionName::AgainstO1X1,
+            ),
+            ("reading_rises_towards_piga", ProbeDirectionName::AlongO1X1),
+        ] {
+            let config = StudyConfig::from_ron(&study(name), Path::new("s.ron")).unwrap();
+            assert_eq!(config.lever.probe_direction, direction);
+        }
     }
 }

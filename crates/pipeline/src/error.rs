@@ -178,6 +178,30 @@ pub enum PipelineError {
         /// What is wrong with it.
         reason: InvalidReason,
     },
+    /// A PIGA table row whose rate has no entry in `output_sigma_rad_s: per_rate(...)`.
+    #[error(
+        "{}: `{field}`: {}:{line}: rate {rate} deg/s has no standard uncertainty in `per_rate` \
+         (rates listed: {listed_text}) (hint: add `({rate}, σ)` to `per_rate`, or give one σ for \
+         every row with `constant(σ)`)",
+        path.display(),
+        file.display(),
+        rate = units::Compact(*rate_deg_s),
+        listed_text = listed.iter().map(|r| units::Compact(*r).to_string()).collect::<Vec<_>>().join(", ")
+    )]
+    RateWithoutSigma {
+        /// The configuration file.
+        path: PathBuf,
+        /// The field stating the output noise (`calibration.table.output_sigma_rad_s`).
+        field: String,
+        /// The table file.
+        file: PathBuf,
+        /// The row's line.
+        line: usize,
+        /// The row's rate, deg/s.
+        rate_deg_s: f64,
+        /// The rates `per_rate` lists, deg/s.
+        listed: Vec<f64>,
+    },
     /// A calibration table has too few distinct rates for the eq. 18 design.
     #[error("{}: `{field}`: {} has {distinct} distinct rate(s); the eq. 18 calibration needs at least {need} (six unknowns and one degree of freedom)", path.display(), file.display())]
     TooFewRates {
@@ -259,6 +283,51 @@ pub enum PipelineError {
         key: String,
         /// The keys it may have.
         known: Vec<String>,
+    },
+    /// A text field holds a character that hides, reorders or acts instead of showing (a
+    /// control character or a bidirectional override).
+    #[error("{}: field `{field}` holds the character {hidden}: text that a report or certificate shows must show what it says (control characters and bidirectional overrides can hide, reorder or act on it); write it on one line without them", path.display())]
+    HiddenCharacter {
+        /// The file concerned.
+        path: PathBuf,
+        /// The field.
+        field: String,
+        /// The character and where it is.
+        hidden: edge_io::HiddenChar,
+    },
+    /// A stated standard uncertainty as large as the quantity it is the uncertainty of.
+    #[error("{}: field `{field}` = {u_c}: a standard uncertainty as large as the quantity itself (`{quantity_field}` = {quantity_c} {unit}) cannot be meant; check its unit ({unit})", path.display(), u_c = units::Compact(*u), quantity_c = units::Compact(*quantity))]
+    ImplausibleUncertainty {
+        /// The file concerned.
+        path: PathBuf,
+        /// The uncertainty's field.
+        field: String,
+        /// The uncertainty given.
+        u: f64,
+        /// The quantity's field (or what it is).
+        quantity_field: String,
+        /// The quantity's value.
+        quantity: f64,
+        /// The unit both are in.
+        unit: &'static str,
+    },
+    /// A certificate would certify a value that the study's own check refutes.
+    #[error("{}: field `certificate.certify`: {message}", path.display())]
+    CertifiesRefutedValue {
+        /// The configuration file.
+        path: PathBuf,
+        /// What would be certified and what refutes it, with the way out.
+        message: String,
+    },
+    /// A stated 95 % coverage interval that cannot be stated: it does not contain its
+    /// estimate, has zero width while the standard uncertainty is not zero, or is not
+    /// finite.
+    #[error("{}: {}", path.display(), interval)]
+    DegenerateInterval {
+        /// The configuration file.
+        path: PathBuf,
+        /// The quantity, its interval and what is wrong with it.
+        interval: Box<DegenerateInterval>,
     },
     /// A study file could not be read: missing, too large, or not UTF-8 text.
     #[error(transparent)]
@@ -393,6 +462,14 @@ pub enum UnsupportedReason {
     /// A certificate states a calibration's results.
     #[error("a certificate needs a `calibration` section: it states the calibration's results")]
     CertificateNeedsCalibration,
+    /// A previous certificate's digest that is not a SHA-256.
+    #[error(
+        "must be the SHA-256 of the previous certificate's file: 64 hexadecimal digits (as `sha256sum` prints them)"
+    )]
+    NotSha256,
+    /// A country that is not an ISO 3166-1 alpha-2 code.
+    #[error("must be a country code of ISO 3166-1: two capital letters (`DE`, `GB`, `US`)")]
+    NotCountryCode,
     /// The counterweight section reads one published change of radius error.
     #[error("the counterweight section needs a phase given as radius_change")]
     CounterweightNeedsRadiusChange,
@@ -436,3 +513,24 @@ fn list(errors: &[PipelineError]) -> String {
 
 /// Result alias of this crate.
 pub type Result<T> = std::result::Result<T, PipelineError>;
+
+/// A 95 % coverage interval that cannot be stated ([`PipelineError::DegenerateInterval`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{quantity}: its 95 % coverage interval [{low_c}, {high_c}] {problem} (estimate {value_c}, u = {u_c}); the largest contribution to its uncertainty is {dominant}: check that input's stated uncertainty", low_c = units::Compact(*low), high_c = units::Compact(*high), value_c = units::Compact(*value), u_c = units::Compact(*u))]
+pub struct DegenerateInterval {
+    /// The quantity (`k1 of the calibration`).
+    pub quantity: String,
+    /// The estimate.
+    pub value: f64,
+    /// Its standard uncertainty.
+    pub u: f64,
+    /// Lower end.
+    pub low: f64,
+    /// Upper end.
+    pub high: f64,
+    /// What is wrong with it, in words.
+    pub problem: &'static str,
+    /// The input whose uncertainty contributes most, with the field that states it where
+    /// known.
+    pub dominant: String,
+}

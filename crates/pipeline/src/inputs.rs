@@ -14,6 +14,7 @@ use recording::{
 
 use crate::config::{ProbeDirectionName, StudyConfig};
 use crate::error::{InvalidReason, PipelineError, Result};
+use crate::results::{AngleZero, ProbeSign};
 
 /// The caller's access to the data files a study names: files at the edge
 /// ([`crate::load_study`]), or data held in memory (a test, another program).
@@ -161,12 +162,22 @@ pub(crate) struct Core {
     pub(crate) k1_rad_s_g: f64,
     pub(crate) lever: LeverGeometry,
     pub(crate) lever_ratio: f64,
+    /// The angle zero the probe recordings' measured angles are taken from
+    /// (`lever.angle_zero_deg`, 0 when not stated).
+    pub(crate) angle_zero: AngleZero,
 }
 
 impl Core {
     /// Validates the study's scalars and lever.
     pub(crate) fn new(config: &StudyConfig, source: &Path) -> Result<Self> {
         let check = Check { path: source };
+        if let Some(hidden) = edge_io::hidden_char(&config.name) {
+            return Err(PipelineError::HiddenCharacter {
+                path: source.to_owned(),
+                field: "name".to_owned(),
+                hidden,
+            });
+        }
         check.positive("radius_m", config.radius_m)?;
         check.positive("g_m_s2", config.g_m_s2)?;
         check.positive("k1_rad_s_g", config.k1_rad_s_g)?;
@@ -182,6 +193,18 @@ impl Core {
                 field: "lever".to_owned(),
                 source: source_error,
             })?;
+        let angle_zero = match config.lever.angle_zero_deg {
+            Some(deg) => {
+                check.finite("lever.angle_zero_deg".to_owned(), deg)?;
+                AngleZero {
+                    angle_zero_deg: deg,
+                    stated: true,
+                    // known once the recordings are read
+                    measured_angles: false,
+                }
+            }
+            None => AngleZero::default(),
+        };
         Ok(Self {
             source: source.to_owned(),
             name: config.name.clone(),
@@ -190,6 +213,7 @@ impl Core {
             k1_rad_s_g: config.k1_rad_s_g,
             lever,
             lever_ratio,
+            angle_zero,
         })
     }
 
@@ -209,6 +233,15 @@ impl Core {
     /// Field checks naming the configuration file.
     pub(crate) fn check(&self) -> Check<'_> {
         Check { path: &self.source }
+    }
+}
+
+/// The results' name of the library's probe direction (whose words are
+/// [`ProbeSign::words`]).
+pub(crate) const fn probe_sign(direction: ProbeDirection) -> ProbeSign {
+    match direction {
+        ProbeDirection::AlongO1X1 => ProbeSign::AlongO1X1,
+        ProbeDirection::AgainstO1X1 => ProbeSign::AgainstO1X1,
     }
 }
 

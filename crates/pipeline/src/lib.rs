@@ -57,6 +57,7 @@
 mod config;
 mod error;
 mod inputs;
+mod intervals;
 mod load;
 mod piga_data;
 mod results;
@@ -66,29 +67,31 @@ mod type_b;
 
 pub use ::calibration::CalibrationModel;
 pub use config::{
-    AuthorisationConfig, CertificateConfig, CoefficientName, ConditionConfig, DatesConfig,
-    DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig, LimitUnitName,
-    PartyConfig, TraceabilityConfig, TypeBInputName,
+    AuthorisationConfig, CertificateConfig, CertifyName, CoefficientName, ConditionConfig,
+    DatesConfig, DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig,
+    LimitUnitName, PartyConfig, PreviousCertificateConfig, TraceabilityConfig, TypeBInputName,
 };
 pub use config::{
     BalanceConfig, CounterweightConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
 };
 pub use config::{
     CalibrationConfig, FitSettings, HarmonicPoint, K1Config, LeverConfig, MechanismConfig,
-    PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName, RadiusModelName,
-    RadiusPoint, RecordingPoint, RecordingSet, StudyConfig, TableLayoutError, TrialsConfig,
-    UncertaintyConfig, Weighting,
+    OutputSigma, PhaseConfig, PigaRecordingSet, PigaTableConfig, Points, ProbeDirectionName,
+    RadiusModelName, RadiusPoint, RecordingPoint, RecordingSet, SIGMA_RATE_TOLERANCE, StudyConfig,
+    TableLayoutError, TrialsConfig, UncertaintyConfig, Weighting,
 };
 pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
-pub use error::{InvalidReason, PipelineError, Result, UnsupportedReason};
+pub use error::{DegenerateInterval, InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
 /// The size and SHA-256 of a file as a study read it (provenance).
 pub use recording::FileDigest;
+pub use results::{AngleZero, ProbeDeclared};
 pub use results::{
-    Authorisation, CertificateResults, Condition, Conformity, ConformityStatement, Dates,
-    DecisionRule, Equipment, Headline, HeadlineMethod, Item, Laboratory, Party, ProbeSign,
-    Traceability, Verdict,
+    Authorisation, CertificateResults, Certified, CertifiedCoefficient, CertifiedMethod,
+    CertifyPolicy, Condition, Conformity, ConformityStatement, Dates, DecisionRule, Equipment,
+    Headline, HeadlineMethod, Item, Laboratory, MethodCheck, OutputCovariance, Party,
+    PreviousCertificate, ProbeSign, RelativeValue, Traceability, ValidityRange, Verdict,
 };
 pub use results::{
     BalancePhase, BalanceResults, CheckResult, CorrectionResult, CounterweightResults,

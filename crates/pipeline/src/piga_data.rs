@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 use rayon::prelude::*;
 use recording::FileDigest;
 
-use crate::config::{PigaRecordingSet, PigaTableConfig, TableLayoutError};
+use crate::config::{
+    OutputSigma, PigaRecordingSet, PigaTableConfig, SIGMA_RATE_TOLERANCE, TableLayoutError,
+};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource, InputFile, InputRole};
 use crate::results::{PigaRecordingResult, Warning};
@@ -255,6 +257,9 @@ pub(crate) fn load_piga_table(
     };
     let layout = config.piga_format().map_err(layout_error)?;
     let format = config.reader_format().map_err(layout_error)?;
+    if let Some(declared) = &config.output_sigma_rad_s {
+        check_declared_sigma(declared, config, field, source)?;
+    }
     let read = load.read_table(&file, &format).map_err(recording_error)?;
     let t = recording::PigaTable::from_table(read.value, &layout).map_err(recording_error)?;
     let lines: Vec<usize> = (0..t.len()).map(|i| t.line_of_row(i)).collect();
@@ -283,6 +288,12 @@ pub(crate) fn load_piga_table(
     {
         return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
     }
+    let sigma = match &config.output_sigma_rad_s {
+        Some(declared) => Some(declared_sigma(
+            declared, &rates, &lines, field, &file, source,
+        )?),
+        None => sigma,
+    };
     Ok(PigaTableRows {
         field: field.to_owned(),
         file: file.clone(),
@@ -354,4 +365,110 @@ pub(crate) fn load_piga_recordings(
         order: set.order,
         files,
     })
+}
+
+/// Checks a table's stated output noise (`output_sigma_rad_s`) before the table is read: no
+/// σ column beside it, every σ finite and > 0, every rate finite, > 0 and listed once.
+fn check_declared_sigma(
+    declared: &OutputSigma,
+    config: &PigaTableConfig,
+    field: &str,
+    source: &Path,
+) -> Result<()> {
+    let check = Check { path: source };
+    let key = format!("{field}.output_sigma_rad_s");
+    let column = match &config.format {
+        Some(f) if f.sigma.is_some() => Some(format!("{field}.format.sigma")),
+        _ => config
+            .sigma_column
+            .as_ref()
+            .map(|_| format!("{field}.sigma_column")),
+    };
+    if let Some(other) = column {
+        return Err(PipelineError::StatedTwice {
+            path: source.to_owned(),
+            field: key,
+            other,
+            what: "each output's standard uncertainty",
+        });
+    }
+    let sigma_ok = |s: f64| s.is_finite() && s > 0.0;
+    match declared {
+        OutputSigma::Constant(s) => {
+            if !sigma_ok(*s) {
+                return Err(check.invalid(
+                    format!("{key}.constant"),
+                    *s,
+                    InvalidReason::SigmaNotPositive,
+                ));
+            }
+        }
+        OutputSigma::PerRate(list) => {
+            if list.is_empty() {
+                return Err(PipelineError::EmptyList {
+                    path: source.to_owned(),
+                    field: format!("{key}.per_rate"),
+                });
+            }
+            for (i, &(rate, s)) in list.iter().enumerate() {
+                let entry = format!("{key}.per_rate[{i}]");
+                check.rate(format!("{entry} (rate_deg_s)"), rate)?;
+                if !sigma_ok(s) {
+                    return Err(check.invalid(
+                        format!("{entry} (sigma_rad_s)"),
+                        s,
+                        InvalidReason::SigmaNotPositive,
+                    ));
+                }
+                if let Some(j) = list[..i].iter().position(|&(r, _)| same_rate(r, rate)) {
+                    return Err(PipelineError::DuplicateRate {
+                        path: source.to_owned(),
+                        field: entry,
+                        first: format!("{key}.per_rate[{j}]"),
+                        rate_deg_s: rate,
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Two rates, deg/s, equal to [`SIGMA_RATE_TOLERANCE`].
+fn same_rate(a: f64, b: f64) -> bool {
+    (a - b).abs() <= SIGMA_RATE_TOLERANCE * a.abs().max(b.abs())
+}
+
+/// Each row's standard uncertainty from the stated output noise (checked by
+/// [`check_declared_sigma`]): the constant, or its rate's entry; every row whose rate is not
+/// listed is an error, all at once.
+fn declared_sigma(
+    declared: &OutputSigma,
+    rates_deg_s: &[f64],
+    lines: &[usize],
+    field: &str,
+    file: &Path,
+    source: &Path,
+) -> Result<Vec<f64>> {
+    let list = match declared {
+        OutputSigma::Constant(s) => return Ok(vec![*s; rates_deg_s.len()]),
+        OutputSigma::PerRate(list) => list,
+    };
+    let mut sigma = Vec::with_capacity(rates_deg_s.len());
+    let mut errors = Vec::new();
+    for (i, &rate) in rates_deg_s.iter().enumerate() {
+        match list.iter().find(|&&(r, _)| same_rate(r, rate)) {
+            Some(&(_, s)) => sigma.push(s),
+            None => errors.push(PipelineError::RateWithoutSigma {
+                path: source.to_owned(),
+                field: format!("{field}.output_sigma_rad_s"),
+                file: file.to_owned(),
+                line: lines[i],
+                rate_deg_s: rate,
+                listed: list.iter().map(|&(r, _)| r).collect(),
+            }),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    Ok(sigma)
 }

@@ -47,7 +47,7 @@ impl Inputs {
     /// one).
     pub fn new(mut config: StudyConfig, source: &Path, load: &dyn DataSource) -> Result<Self> {
         let deprecated = config.take_deprecated_keys(source)?;
-        let core = Core::new(&config, source)?;
+        let mut core = Core::new(&config, source)?;
         let check = core.check();
         let checked = phases::check(&check, &config)?;
         let second_probe = balance::second_probe_phases(config.balance.as_ref(), &checked.names);
@@ -57,6 +57,7 @@ impl Inputs {
             .as_ref()
             .map(|m| mechanism::validate(&check, m, config.k1_rad_s_g, &names))
             .transpose()?;
+        PipelineError::from_list(crate::type_b::implausible(&check, &config))?;
         let type_b = match config.calibration {
             Some(_) => crate::type_b::type_b(
                 &check,
@@ -99,7 +100,8 @@ impl Inputs {
             .map(|s| two_orientation::validate(&check, s, &config, &names, core.base(), load))
             .transpose()?;
         let base = core.base().to_owned();
-        let phases = checked.load(&config.phases, &base, source, load)?;
+        let phases = checked.load(&config.phases, &base, source, load, &core.angle_zero)?;
+        core.angle_zero.measured_angles = phases.measure_angles();
         let calibration = match (config.calibration.as_ref(), calibration_refs) {
             (Some(c), Some(refs)) => Some(calibration::load(c, refs, type_b, &base, source, load)?),
             _ => None,
@@ -223,6 +225,7 @@ pub fn run_with_progress(
     let calibration = match inputs.calibration.as_ref() {
         Some(c) => {
             let (results, more) = calibration::run(core, c, &phases[c.phase])?;
+            crate::intervals::check_calibration(&core.source, &results)?;
             warnings.extend(more);
             Some(results)
         }
@@ -241,17 +244,25 @@ pub fn run_with_progress(
         .as_ref()
         .map(|c| counterweight::run(core, c, &phases[c.phase].name))
         .transpose()?;
-    let certificate = match (inputs.certificate.as_ref(), calibration.as_ref()) {
-        (Some(cert), Some(c)) => Some(certificate::run(cert, c)),
-        _ => None,
-    };
     let two_orientation = match inputs.two_orientation.as_ref() {
         Some(s) => {
             let (results, more) = two_orientation::run(core, s, &phases)?;
+            crate::intervals::check_two_orientation(&core.source, &results)?;
             warnings.extend(more);
             Some(results)
         }
         None => None,
+    };
+    // after the two-orientation section: the certificate may certify its coefficients
+    let certificate = match (inputs.certificate.as_ref(), calibration.as_ref()) {
+        (Some(cert), Some(c)) => Some(certificate::run(
+            &core.source,
+            cert,
+            c,
+            two_orientation.as_ref(),
+            core.radius_m,
+        )?),
+        _ => None,
     };
     let results = StudyResults {
         study: core.name.clone(),
@@ -260,6 +271,8 @@ pub fn run_with_progress(
             g_m_s2: core.g_m_s2,
             k1_rad_s_g: core.k1_rad_s_g,
             lever_ratio: core.lever_ratio,
+            probe_direction: crate::inputs::probe_sign(core.lever.probe_direction),
+            angle_zero: core.angle_zero,
         },
         phases,
         mechanism,

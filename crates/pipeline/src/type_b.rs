@@ -4,7 +4,7 @@
 //! probe gain stated once (here or by the compared phase's recordings in volts). Core: used by
 //! sections, importing none.
 
-use crate::config::UncertaintyConfig;
+use crate::config::{StudyConfig, UncertaintyConfig};
 use crate::error::{PipelineError, Result};
 use crate::inputs::Check;
 
@@ -142,4 +142,73 @@ pub(crate) fn type_b(
         notes,
         from_section: true,
     }))
+}
+
+/// The Type B uncertainties of `config` that are as large as the quantity they are the
+/// uncertainty of (u(R) ≥ R, u(g) ≥ g, a relative u ≥ 1, u of the pivot-to-probe height ≥ that
+/// height): a unit slip or a typing error, never a plausible statement. Every one at once.
+pub(crate) fn implausible(check: &Check<'_>, config: &StudyConfig) -> Vec<PipelineError> {
+    let Some(u) = &config.uncertainty else {
+        return Vec::new();
+    };
+    let mut radii = vec![("radius_m".to_owned(), config.radius_m)];
+    if let Some(t) = &config.two_orientation {
+        for (i, o) in t.orientations.iter().enumerate() {
+            if let Some(r) = o.radius_m {
+                radii.push((format!("two_orientation.orientations[{i}].radius_m"), r));
+            }
+        }
+    }
+    let smallest_radius = radii
+        .iter()
+        .filter(|(_, r)| r.is_finite() && *r > 0.0)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .cloned();
+    let mut list = Vec::new();
+    let mut one = |name: &str, value: Option<f64>, quantity: Option<(String, f64)>, unit| {
+        if let (Some(v), Some((quantity_field, q))) = (value, quantity)
+            && v.is_finite()
+            && q.is_finite()
+            && q > 0.0
+            && v >= q
+        {
+            list.push(PipelineError::ImplausibleUncertainty {
+                path: check.path.to_owned(),
+                field: format!("uncertainty.{name}"),
+                u: v,
+                quantity_field,
+                quantity: q,
+                unit,
+            });
+        }
+    };
+    one("radius_u_m", u.radius_u_m, smallest_radius, "m");
+    one(
+        "g_u_m_s2",
+        u.g_u_m_s2,
+        Some(("g_m_s2".to_owned(), config.g_m_s2)),
+        "m/s²",
+    );
+    one(
+        "rate_u_relative",
+        u.rate_u_relative,
+        Some(("the rate itself".to_owned(), 1.0)),
+        "relative",
+    );
+    one(
+        "probe_gain_u_relative",
+        u.probe_gain_u_relative,
+        Some(("the probe gain itself".to_owned(), 1.0)),
+        "relative",
+    );
+    one(
+        "pivot_to_probe_u_mm",
+        u.pivot_to_probe_u_mm,
+        Some((
+            "lever.pivot_to_probe_mm".to_owned(),
+            config.lever.pivot_to_probe_mm,
+        )),
+        "mm",
+    );
+    list
 }

@@ -99,10 +99,20 @@ pub fn simulate_plan(
     )
 }
 
+/// The label of the simulated campaigns' streams (`units::stream_seed`).
+const CAMPAIGN_STREAM: u64 = 0xCA4B_A167;
+
+/// The random stream of simulated campaign `c` under the user's `seed`: the seed and the
+/// campaign through `units::stream_seed`, so that no two (seed, campaign) pairs share a stream
+/// (with `seed + c`, seed 1's campaign 1 drew seed 2's campaign 0).
+pub(crate) fn campaign_rng(seed: u64, c: usize) -> StdRng {
+    StdRng::seed_from_u64(units::stream_seed(seed, CAMPAIGN_STREAM, c as u64))
+}
+
 /// The spread of k2 over `campaigns` simulated campaigns against `predicted_u_rad_s_g2`:
 /// `parts` holds each part's (a mounting's) noise-free mean outputs and their σ; campaign
-/// `c` adds a normal draw of each point's σ to its output (from its own `StdRng` seeded
-/// `seed + c`, in parallel, so the result does not depend on the number of threads) and
+/// `c` adds a normal draw of each point's σ to its output (from its own stream,
+/// [`campaign_rng`], in parallel, so the result does not depend on the number of threads) and
 /// `fit_k2` fits the parts' outputs. Shared by [`simulate_plan`] and
 /// [`simulate_two_orientation_plan`](crate::simulate_two_orientation_plan).
 pub(crate) fn spread_of_k2(
@@ -131,7 +141,7 @@ pub(crate) fn spread_of_k2(
     let k2: Vec<f64> = (0..campaigns)
         .into_par_iter()
         .map(|c| {
-            let mut rng = StdRng::seed_from_u64(seed.wrapping_add(c as u64));
+            let mut rng = campaign_rng(seed, c);
             let y: Vec<Vec<f64>> = parts
                 .iter()
                 .map(|(noise_free, sigma)| {
@@ -161,4 +171,21 @@ pub(crate) fn spread_of_k2(
         mean_k2_rad_s_g2: mean,
         noise_free_k2_rad_s_g2: noise_free_k2,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// No campaign of one seed draws the stream of a campaign of a neighbouring seed.
+    #[test]
+    fn campaign_streams_do_not_depend_on_the_seed_plus_the_campaign() {
+        let first =
+            |seed: u64, c: usize| -> f64 { StandardNormal.sample(&mut campaign_rng(seed, c)) };
+        let seed1: Vec<u64> = (1..200).map(|c| first(1, c).to_bits()).collect();
+        let seed2: Vec<u64> = (0..199).map(|c| first(2, c).to_bits()).collect();
+        assert!(seed1.iter().all(|x| !seed2.contains(x)));
+        // and the same (seed, campaign) gives the same stream
+        assert_eq!(first(7, 3).to_bits(), first(7, 3).to_bits());
+    }
 }

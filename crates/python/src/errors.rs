@@ -1,11 +1,120 @@
-//! Rust errors as the package's Python exceptions (`centrifuge_cal.errors`), with the
-//! command line's message and the file, line, field and hint the error names.
+//! The package's exceptions and warning class, created here (`create_exception!`), and Rust
+//! errors raised as them: the command line's message, and the file, line, field and hint
+//! read from the error's own fields (never from its text).
 
+use std::path::Path;
+
+use pyo3::exceptions::{PyException, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyTuple, PyType};
 
-/// The exception classes, by their name in `centrifuge_cal.errors`.
-#[derive(Debug, Clone, Copy)]
+pyo3::create_exception!(
+    centrifuge_cal.errors,
+    CentrifugeCalError,
+    PyException,
+    "Base class of every error this package raises. Its `message` is the command line's \
+     (what `cargo xtask` prints after `error: `); `file`, `line` (1-based), `field` (a field \
+     of a configuration, or an argument's name) and `hint` (what to change) are what the \
+     error locates, `None` where it names none."
+);
+pyo3::create_exception!(
+    centrifuge_cal.errors,
+    RecordingError,
+    CentrifugeCalError,
+    "A recording that cannot be read, or whose samples cannot be analysed."
+);
+pyo3::create_exception!(
+    centrifuge_cal.errors,
+    ConfigError,
+    CentrifugeCalError,
+    "A study, plan or format description refused (an unknown key, a missing field, a value \
+     out of range, a file named that cannot be read, a structure nested too deeply)."
+);
+pyo3::create_exception!(
+    centrifuge_cal.errors,
+    ComputationError,
+    CentrifugeCalError,
+    "A computation that cannot give a trustworthy number (an ill-conditioned fit, a \
+     non-finite result)."
+);
+pyo3::create_exception!(
+    centrifuge_cal.errors,
+    CentrifugeCalWarning,
+    PyUserWarning,
+    "A number was computed, but something may make it wrong (the study's warnings: its \
+     `code` is results.json's, e.g. `implausible_gap_unit`, `drift_not_fitted`)."
+);
+
+/// `InputError(CentrifugeCalError, ValueError)`: two bases, which `create_exception!` does
+/// not take, so it is made by `type(...)` once.
+static INPUT_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+fn input_error_type(py: Python<'_>) -> PyResult<&Bound<'_, PyType>> {
+    INPUT_ERROR
+        .get_or_try_init(py, || {
+            let namespace = PyDict::new(py);
+            namespace.set_item("__module__", "centrifuge_cal.errors")?;
+            namespace.set_item(
+                "__doc__",
+                "A bad argument: an array of the wrong length, shape or dtype, a NaN, time that \
+                 does not increase, a value out of range (also a `ValueError`).",
+            )?;
+            let bases = PyTuple::new(
+                py,
+                [
+                    py.get_type::<CentrifugeCalError>(),
+                    py.get_type::<PyValueError>(),
+                ],
+            )?;
+            py.get_type::<PyType>()
+                .call1(("InputError", bases, namespace))?
+                .cast_into::<PyType>()
+                .map(Bound::unbind)
+                .map_err(PyErr::from)
+        })
+        .map(|t| t.bind(py))
+}
+
+/// The `message` of an error: its first argument (a property of `CentrifugeCalError`, so
+/// that an error raised with one argument has it too).
+#[pyfunction]
+fn error_message(error: &Bound<'_, PyAny>) -> PyResult<String> {
+    let args = error.getattr("args")?;
+    match args.get_item(0) {
+        Ok(first) => first.str()?.extract(),
+        Err(_) => Ok(String::new()),
+    }
+}
+
+/// Adds the classes to the module, with their attributes' defaults (`None`) and the
+/// `message` property on the base class.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    let base = py.get_type::<CentrifugeCalError>();
+    for name in ["file", "line", "field", "hint"] {
+        base.setattr(name, py.None())?;
+    }
+    let getter = wrap_pyfunction!(error_message, m)?;
+    let property = py
+        .import("builtins")?
+        .getattr("property")?
+        .call1((getter,))?;
+    base.setattr("message", property)?;
+    m.add("CentrifugeCalError", base)?;
+    m.add("InputError", input_error_type(py)?)?;
+    m.add("RecordingError", py.get_type::<RecordingError>())?;
+    m.add("ConfigError", py.get_type::<ConfigError>())?;
+    m.add("ComputationError", py.get_type::<ComputationError>())?;
+    m.add(
+        "CentrifugeCalWarning",
+        py.get_type::<CentrifugeCalWarning>(),
+    )?;
+    Ok(())
+}
+
+/// The exception classes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Kind {
     /// A bad argument or array (also a `ValueError`).
     Input,
@@ -18,13 +127,13 @@ pub(crate) enum Kind {
 }
 
 impl Kind {
-    const fn class(self) -> &'static str {
-        match self {
-            Self::Input => "InputError",
-            Self::Recording => "RecordingError",
-            Self::Config => "ConfigError",
-            Self::Computation => "ComputationError",
-        }
+    fn class(self, py: Python<'_>) -> PyResult<Bound<'_, PyType>> {
+        Ok(match self {
+            Self::Input => input_error_type(py)?.clone(),
+            Self::Recording => py.get_type::<RecordingError>(),
+            Self::Config => py.get_type::<ConfigError>(),
+            Self::Computation => py.get_type::<ComputationError>(),
+        })
     }
 }
 
@@ -46,10 +155,9 @@ pub(crate) fn chain_message(e: &(dyn std::error::Error + 'static)) -> String {
     out
 }
 
-/// What an error locates, read from its `Debug` form (the error types keep these in fields
-/// named `path`/`file`, `line` and `field`, at any depth of nesting): the innermost file and
-/// line, the outermost field.
-#[derive(Debug, Default, PartialEq)]
+/// What an error locates, from its fields: the innermost file and line, the outermost
+/// field, the hint.
+#[derive(Debug, Default, Clone, PartialEq)]
 pub(crate) struct Located {
     pub(crate) file: Option<String>,
     pub(crate) line: Option<usize>,
@@ -57,117 +165,311 @@ pub(crate) struct Located {
     pub(crate) hint: Option<String>,
 }
 
-/// The Rust string literal starting just after an opening quote, unescaped.
-fn literal(s: &str) -> Option<String> {
-    let mut out = String::new();
-    let mut chars = s.chars();
-    while let Some(c) = chars.next() {
-        match c {
-            '"' => return Some(out),
-            '\\' => match chars.next()? {
-                'n' => out.push('\n'),
-                't' => out.push('\t'),
-                'r' => out.push('\r'),
-                '0' => out.push('\0'),
-                'u' => {
-                    // \u{XXXX}
-                    let rest: String = chars.by_ref().take_while(|&c| c != '}').collect();
-                    let code = u32::from_str_radix(rest.trim_start_matches('{'), 16).ok()?;
-                    out.push(char::from_u32(code)?);
-                }
-                other => out.push(other),
-            },
-            c => out.push(c),
-        }
-    }
-    None
-}
-
-/// The number after `line: ` or `line: Some(`.
-fn number(s: &str) -> Option<usize> {
-    let s = s.strip_prefix("Some(").unwrap_or(s);
-    let digits: String = s.chars().take_while(char::is_ascii_digit).collect();
-    digits.parse().ok()
+fn file(path: &Path) -> Option<String> {
+    Some(path.display().to_string())
 }
 
 impl Located {
-    pub(crate) fn of(debug: &str, message: &str) -> Self {
-        let mut found = Self::default();
-        // (position, value) of every key, to pair the innermost file with its line.
-        let mut files = Vec::new();
-        for key in ["path: \"", "file: \""] {
-            for (at, _) in debug.match_indices(key) {
-                if let Some(v) = literal(&debug[at + key.len()..]) {
-                    files.push((at, v));
-                }
-            }
+    /// Only a field (an argument's name, a configuration's key).
+    pub(crate) fn field(field: impl Into<String>) -> Self {
+        Self {
+            field: Some(field.into()),
+            ..Self::default()
         }
-        files.sort_by_key(|(at, _)| *at);
-        found.file = files.last().map(|(_, v)| v.clone());
-        found.line = debug
-            .match_indices("line: ")
-            .filter_map(|(at, k)| number(&debug[at + k.len()..]))
-            .last();
-        found.field = debug
-            .match_indices("field: \"")
-            .find_map(|(at, k)| literal(&debug[at + k.len()..]));
-        found.hint = message.find("(hint: ").map(|at| {
-            let rest = &message[at + "(hint: ".len()..];
-            // up to the parenthesis that closes `(hint: `
-            let mut depth = 0usize;
-            let mut end = rest.len();
-            for (i, c) in rest.char_indices() {
-                match c {
-                    '(' => depth += 1,
-                    ')' if depth == 0 => {
-                        end = i;
-                        break;
-                    }
-                    ')' => depth -= 1,
-                    _ => {}
+    }
+
+    /// A study's error.
+    pub(crate) fn pipeline(e: &pipeline::PipelineError) -> Self {
+        use pipeline::PipelineError as E;
+        let at = |path: &Path, field: &str| Self {
+            file: file(path),
+            field: Some(field.to_owned()),
+            ..Self::default()
+        };
+        match e {
+            E::Parse {
+                path,
+                line,
+                message,
+                ..
+            } => Self {
+                file: file(path),
+                line: Some(*line),
+                field: serde_field(message),
+                hint: None,
+            },
+            E::MissingField { path, field, hint } => Self {
+                hint: Some(hint.clone()),
+                ..at(path, field)
+            },
+            E::Recording {
+                path,
+                field,
+                source,
+            } => {
+                let inner = Self::recording(source);
+                Self {
+                    file: inner.file.or_else(|| file(path)),
+                    line: inner.line,
+                    field: Some(field.clone()),
+                    hint: inner.hint,
                 }
             }
-            rest[..end].to_owned()
-        });
-        found
+            E::TableValue {
+                field,
+                file: table,
+                line,
+                ..
+            } => Self {
+                file: file(table),
+                line: Some(*line),
+                field: Some(field.clone()),
+                hint: None,
+            },
+            E::TooFewRates {
+                field, file: table, ..
+            } => Self {
+                file: file(table),
+                field: Some(field.clone()),
+                ..Self::default()
+            },
+            E::Harmonics {
+                path,
+                field,
+                source,
+            } => Self {
+                hint: Self::harmonics(source).hint,
+                ..at(path, field)
+            },
+            E::InvalidField { path, field, .. }
+            | E::DuplicateRate { path, field, .. }
+            | E::TooFewPoints { path, field, .. }
+            | E::NonFiniteResult { path, field, .. }
+            | E::Identify { path, field, .. }
+            | E::Uncertainty { path, field, .. }
+            | E::Balance { path, field, .. }
+            | E::EmptyList { path, field }
+            | E::Kinematics { path, field, .. }
+            | E::AccelModel { path, field, .. }
+            | E::Unsupported { path, field, .. }
+            | E::DuplicateName { path, field, .. }
+            | E::InvalidName { path, field, .. }
+            | E::UnknownPhase { path, field, .. }
+            | E::StatedTwice { path, field, .. }
+            | E::UnknownKey { path, field, .. } => at(path, field),
+            E::File(e) => Self::edge(e),
+            E::TwoOrientation { path, source } => Self {
+                file: file(path),
+                field: two_orientation_field(source),
+                ..Self::default()
+            },
+            E::Several { errors } => errors.first().map(Self::pipeline).unwrap_or_default(),
+            _ => Self::default(),
+        }
     }
+
+    /// A recording's or table's error.
+    pub(crate) fn recording(e: &recording::RecordingError) -> Self {
+        use recording::{Hint, RecordingError as E};
+        let hint = |h: &Option<Hint>| h.map(|h| h.to_string());
+        let at = |path: &Path, line: Option<usize>, hint: Option<String>| Self {
+            file: file(path),
+            line,
+            field: None,
+            hint,
+        };
+        match e {
+            E::LineTooLong { path, line, .. }
+            | E::NoRows { path, line }
+            | E::ColumnUnit { path, line, .. }
+            | E::MissingField { path, line, .. }
+            | E::FieldCount { path, line, .. }
+            | E::TimeNotIncreasing { path, line, .. }
+            | E::OutputStep { path, line, .. } => at(path, Some(*line), None),
+            E::MissingColumn {
+                path,
+                line,
+                hint: h,
+                ..
+            }
+            | E::Parse {
+                path,
+                line,
+                hint: h,
+                ..
+            }
+            | E::NonFinite {
+                path,
+                line,
+                hint: h,
+                ..
+            } => at(path, Some(*line), hint(h)),
+            E::SampleGap { path, line, .. } => at(path, Some(*line), Some(Hint::OnGap.to_string())),
+            E::Samples {
+                path,
+                line,
+                hint: h,
+                source,
+            } => Self {
+                field: Self::harmonics(source).field,
+                ..at(path, *line, hint(h))
+            },
+            E::NonFiniteSample { path, .. } => at(path, None, Some(Hint::OnNonFinite.to_string())),
+            E::TimeAxis { path, source, .. } => at(
+                path,
+                None,
+                matches!(source, harmonics::HarmonicsError::SampleGap { .. })
+                    .then(|| Hint::OnGap.to_string()),
+            ),
+            E::Io { path, .. }
+            | E::TooFewIndexPulses { path, .. }
+            | E::Empty { path }
+            | E::Truncated { path, .. }
+            | E::BadMagic { path, .. }
+            | E::MatV73 { path }
+            | E::Malformed { path, .. }
+            | E::Unsupported { path, .. }
+            | E::MissingChannel { path, .. }
+            | E::ChannelLength { path, .. }
+            | E::NoTimeBase { path, .. }
+            | E::SettingNotForFile { path, .. }
+            | E::TooFewRevolutions { path, .. } => at(path, None, None),
+            E::InvalidDelimiter { .. } => Self::field("delimiter"),
+            E::DuplicateColumn { field, .. } | E::InvalidSensitivity { field, .. } => {
+                Self::field(*field)
+            }
+            E::InvalidCountsPerRev => Self::field("angle"),
+            E::InvalidStartAngle { .. } => Self::field("start_angle_deg"),
+            E::InvalidGapLimit { .. } => Self::field("max_gap_intervals"),
+            _ => Self::default(),
+        }
+    }
+
+    /// A harmonic fit's error on arrays: the argument it is about.
+    pub(crate) fn harmonics(e: &harmonics::HarmonicsError) -> Self {
+        use harmonics::HarmonicsError as E;
+        let field = match e {
+            E::NonFinite { column, .. } | E::LengthMismatch { column, .. } => match *column {
+                "angle" => "angle_rad",
+                "time" => "time_s",
+                c => c,
+            },
+            E::TimeNotIncreasing { .. } | E::SampleGap { .. } | E::NonFiniteInterval { .. } => {
+                "time_s"
+            }
+            E::AngleNotIncreasing { .. } | E::RateMismatch { .. } => "angle_rad",
+            E::InvalidOrder { .. } => "order",
+            E::InvalidSetting { field, .. } => field,
+            E::InvalidRate { .. } => "rate_deg_s",
+            E::TooFewRevolutions { .. } => "revolutions",
+            _ => return Self::default(),
+        };
+        Self::field(field)
+    }
+
+    /// A configuration file's error (too large, unreadable, not UTF-8).
+    pub(crate) fn edge(e: &edge_io::EdgeIoError) -> Self {
+        use edge_io::EdgeIoError as E;
+        match e {
+            E::Read { path, .. } | E::TooLarge { path, .. } => Self {
+                file: file(path),
+                ..Self::default()
+            },
+            E::InvalidUtf8 { path, line, .. } => Self {
+                file: file(path),
+                line: Some(*line),
+                ..Self::default()
+            },
+            _ => Self::default(),
+        }
+    }
+
+    /// A plan's error.
+    pub(crate) fn planning(e: &planning::PlanningError) -> Self {
+        use planning::PlanningError as E;
+        match e {
+            E::InvalidField { field, .. } | E::NonFinite { field, .. } => Self::field(*field),
+            E::TooFewPoints { .. } => Self::field("schedule.points"),
+            E::TwoOrientation(source) => Self {
+                field: two_orientation_field(source),
+                ..Self::default()
+            },
+            _ => Self::default(),
+        }
+    }
+}
+
+fn two_orientation_field(e: &calibration::TwoOrientationError) -> Option<String> {
+    use calibration::TwoOrientationError as E;
+    match e {
+        E::OneOrientationOnly { field, .. }
+        | E::SameOrientation { field, .. }
+        | E::MissingOrientation { field }
+        | E::MissingRadius { field }
+        | E::Invalid { field, .. }
+        | E::TooFewRates { field, .. } => Some(field.clone()),
+        _ => None,
+    }
+}
+
+/// The field serde names in "unknown field `x`" or "missing field `x`" (serde's errors
+/// carry no structured field: their message is all there is).
+pub(crate) fn serde_field(message: &str) -> Option<String> {
+    [
+        "unknown field `",
+        "missing field `",
+        "unknown variant `",
+        "Unexpected field named `",
+        "Unexpected missing field named `",
+        "Unexpected variant named `",
+    ]
+    .iter()
+    .find_map(|k| {
+        let rest = &message[message.find(k)? + k.len()..];
+        Some(rest[..rest.find('`')?].to_owned())
+    })
 }
 
 /// A Python exception of `kind` with `message` and what it locates.
 pub(crate) fn raise(py: Python<'_>, kind: Kind, message: String, located: Located) -> PyErr {
     let build = || -> PyResult<PyErr> {
-        let class = py.import("centrifuge_cal.errors")?.getattr(kind.class())?;
-        let kwargs = PyDict::new(py);
-        kwargs.set_item("file", located.file)?;
-        kwargs.set_item("line", located.line)?;
-        kwargs.set_item("field", located.field)?;
-        kwargs.set_item("hint", located.hint)?;
-        let value = class.call((message,), Some(&kwargs))?;
+        let value = kind.class(py)?.call1((message,))?;
+        value.setattr("file", located.file)?;
+        value.setattr("line", located.line)?;
+        value.setattr("field", located.field)?;
+        value.setattr("hint", located.hint)?;
         Ok(PyErr::from_value(value))
     };
     build().unwrap_or_else(|e| e)
 }
 
-/// A Rust library error as a Python exception of `kind`.
-pub(crate) fn from_error<E: std::error::Error + 'static>(
-    py: Python<'_>,
-    kind: Kind,
-    e: &E,
-) -> PyErr {
-    let message = chain_message(e);
-    let located = Located::of(&format!("{e:?}"), &message);
-    raise(py, kind, message, located)
-}
-
 /// An [`Kind::Input`] error naming the argument `field`.
 pub(crate) fn input(py: Python<'_>, field: &str, message: String) -> PyErr {
-    raise(
-        py,
-        Kind::Input,
-        message,
-        Located {
-            field: Some(field.to_owned()),
-            ..Located::default()
-        },
-    )
+    raise(py, Kind::Input, message, Located::field(field))
+}
+
+/// A study's error as the class of what it is about.
+pub(crate) fn pipeline(py: Python<'_>, e: &pipeline::PipelineError) -> PyErr {
+    use pipeline::PipelineError as E;
+    let kind = match e {
+        E::Recording { .. } => Kind::Recording,
+        E::Identify { .. } | E::Uncertainty { .. } | E::NonFiniteResult { .. } => Kind::Computation,
+        _ => Kind::Config,
+    };
+    raise(py, kind, chain_message(e), Located::pipeline(e))
+}
+
+/// A recording's error.
+pub(crate) fn recording(py: Python<'_>, e: &recording::RecordingError) -> PyErr {
+    raise(py, Kind::Recording, chain_message(e), Located::recording(e))
+}
+
+/// A plan's error.
+pub(crate) fn planning(py: Python<'_>, e: &planning::PlanningError) -> PyErr {
+    raise(py, Kind::Config, chain_message(e), Located::planning(e))
+}
+
+/// A configuration file's error.
+pub(crate) fn edge(py: Python<'_>, e: &edge_io::EdgeIoError) -> PyErr {
+    raise(py, Kind::Config, chain_message(e), Located::edge(e))
 }

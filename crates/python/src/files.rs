@@ -12,9 +12,11 @@ use recording::RecordingFormat;
 
 use crate::errors::{self, Kind, Located};
 use crate::fit;
+use crate::study::serde_error;
+use crate::values::value;
 
 /// A recording format from a RON file (as `cargo xtask harmonics --format FILE.ron`) or from
-/// JSON text of the same shape (a Python dict); `None`: the default format.
+/// a Python dict of the same shape; `None`: the default format.
 pub(crate) fn format(
     py: Python<'_>,
     ron_path: Option<PathBuf>,
@@ -22,7 +24,7 @@ pub(crate) fn format(
 ) -> PyResult<RecordingFormat> {
     if let Some(path) = ron_path {
         let text = edge_io::read_text_capped(&path, edge_io::CONFIG_MAX_BYTES)
-            .map_err(|e| errors::from_error(py, Kind::Config, &e))?;
+            .map_err(|e| errors::edge(py, &e))?;
         return edge_io::ron_options().from_str(&text).map_err(|e| {
             let message = format!("{}: {e}", path.display());
             errors::raise(
@@ -32,7 +34,7 @@ pub(crate) fn format(
                 Located {
                     file: Some(path.display().to_string()),
                     line: Some(e.span.start.line),
-                    field: unknown_field(&e.code.to_string()),
+                    field: errors::serde_field(&e.code.to_string()),
                     hint: None,
                 },
             )
@@ -40,46 +42,9 @@ pub(crate) fn format(
     }
     match dict {
         Some(d) => serde_json::from_value(value(py, d, "format")?)
-            .map_err(|e| json_error(py, "format", &e)),
+            .map_err(|e| serde_error(py, "format", &e)),
         None => Ok(RecordingFormat::default()),
     }
-}
-
-/// The field serde names in "unknown field `x`" or "missing field `x`".
-pub(crate) fn unknown_field(message: &str) -> Option<String> {
-    [
-        "unknown field `",
-        "missing field `",
-        "unknown variant `",
-        "Unexpected field named `",
-        "Unexpected missing field named `",
-        "Unexpected variant named `",
-    ]
-    .iter()
-    .find_map(|k| {
-        let rest = &message[message.find(k)? + k.len()..];
-        Some(rest[..rest.find('`')?].to_owned())
-    })
-}
-
-/// A dict that serde refuses, in serde's words without JSON's line and column (the dict
-/// has none).
-pub(crate) fn json_error(py: Python<'_>, what: &str, e: &serde_json::Error) -> PyErr {
-    let text = e.to_string();
-    let text = text
-        .rfind(" at line ")
-        .map_or(text.as_str(), |at| &text[..at])
-        .to_owned();
-    let field = unknown_field(&text);
-    errors::raise(
-        py,
-        Kind::Config,
-        format!("{what}: {text}"),
-        Located {
-            field,
-            ..Located::default()
-        },
-    )
 }
 
 /// A probe recording read from a file, held by Rust (its samples are copied into numpy
@@ -91,23 +56,34 @@ pub(crate) struct NativeRecording {
 
 #[pymethods]
 impl NativeRecording {
-    /// `{path, time_s, gap, angle_rad, gap_unit, angle_source}` (arrays as numpy arrays).
+    /// `{path, time_s, gap_um, angle_rad, declared_gap_unit, um_per_declared_unit,
+    /// angle_source}`: the arrays as numpy arrays, the gap in µm (the study's unit),
+    /// converted from the file's declared unit as the study converts it.
     fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let r = &self.inner;
+        let um = r.gap_unit.um_per_unit();
         let d = PyDict::new(py);
         d.set_item("path", r.path.display().to_string())?;
         d.set_item("time_s", r.time_s.clone().into_pyarray(py))?;
-        d.set_item("gap", r.gap.clone().into_pyarray(py))?;
+        let gap_um: Vec<f64> = if um == 1.0 {
+            r.gap.clone()
+        } else {
+            r.gap.iter().map(|g| g * um).collect()
+        };
+        d.set_item("gap_um", gap_um.into_pyarray(py))?;
         d.set_item(
             "angle_rad",
             r.angle_rad.as_ref().map(|a| a.clone().into_pyarray(py)),
         )?;
-        d.set_item("gap_unit", r.gap_unit.symbol())?;
+        d.set_item("declared_gap_unit", r.gap_unit.symbol())?;
+        d.set_item("um_per_declared_unit", um)?;
+        d.set_item("volts", r.sensitivity.is_some())?;
         d.set_item("angle_source", r.angle_source.name())?;
         Ok(d)
     }
 
-    /// The per-revolution fit as `cargo xtask harmonics` does it, with its warnings.
+    /// The per-revolution fit as the study fits a recording (`recording::analyze_recording`),
+    /// with its warnings; the lengths in µm as the study scales them.
     #[pyo3(signature = (rate_rad_s, order, drift, revolutions, probe_along))]
     fn analyze<'py>(
         &self,
@@ -127,13 +103,14 @@ impl NativeRecording {
         };
         let result = py
             .detach(|| recording::analyze_recording(r, rate_rad_s, &config))
-            .map_err(|e| errors::from_error(py, Kind::Recording, &e))?;
+            .map_err(|e| errors::recording(py, &e))?;
         let direction = if probe_along {
             ProbeDirection::AlongO1X1
         } else {
             ProbeDirection::AgainstO1X1
         };
-        let d = fit::analysis(py, &result.analysis, direction)?;
+        let d = fit::analysis(py, &result.analysis, direction, r.gap_unit.um_per_unit())?;
+        d.set_item("declared_gap_unit", r.gap_unit.symbol())?;
         d.set_item("samples", r.len())?;
         d.set_item("angle_source", result.angle_source.name())?;
         d.set_item("rate_deg_s", rate_rad_s.to_degrees())?;
@@ -163,8 +140,8 @@ pub(crate) fn read_recording(
     let inner = py
         .detach(|| load(&path, &format, group, waveform_time))
         .map_err(|e| match e {
-            Load::Recording(e) => errors::from_error(py, Kind::Recording, &e),
-            Load::Usage(m) => errors::raise(py, Kind::Input, m, Located::default()),
+            Load::Recording(e) => errors::recording(py, &e),
+            Load::Usage(m) => errors::raise(py, Kind::Input, m, Located::field("format")),
         })?;
     Ok(NativeRecording { inner })
 }
@@ -195,83 +172,4 @@ fn load(
         } => Load::Usage(format!("{setting} applies to {applies_to} only")),
         e => Load::Recording(e),
     })
-}
-
-/// A Python value (dict, list, tuple, str, int, float, bool, None, a path) as a JSON value,
-/// floats exactly (no text in between); `at` names where it is in errors.
-pub(crate) fn value(
-    py: Python<'_>,
-    obj: &Bound<'_, PyAny>,
-    at: &str,
-) -> PyResult<serde_json::Value> {
-    use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyTuple};
-    use serde_json::Value;
-    let bad = |what: String| {
-        errors::raise(
-            py,
-            Kind::Config,
-            format!("{at}: {what}"),
-            Located {
-                field: Some(at.to_owned()),
-                ..Located::default()
-            },
-        )
-    };
-    if obj.is_none() {
-        return Ok(Value::Null);
-    }
-    if obj.is_instance_of::<PyBool>() {
-        return Ok(Value::Bool(obj.extract()?));
-    }
-    if obj.is_instance_of::<PyInt>() {
-        if let Ok(i) = obj.extract::<i64>() {
-            return Ok(Value::from(i));
-        }
-        if let Ok(u) = obj.extract::<u64>() {
-            return Ok(Value::from(u));
-        }
-        return Err(bad(format!("the integer {obj} is out of range")));
-    }
-    if obj.is_instance_of::<PyFloat>() {
-        let x: f64 = obj.extract()?;
-        return serde_json::Number::from_f64(x)
-            .map(Value::Number)
-            .ok_or_else(|| bad(format!("{x} is not a finite number")));
-    }
-    if obj.is_instance_of::<PyString>() {
-        return Ok(Value::String(obj.extract()?));
-    }
-    if let Ok(d) = obj.cast::<PyDict>() {
-        let mut map = serde_json::Map::new();
-        for (k, v) in d.iter() {
-            let key: String = k
-                .extract()
-                .map_err(|_| bad(format!("the key {k} is not a string")))?;
-            let inner = value(py, &v, &format!("{at}.{key}"))?;
-            map.insert(key, inner);
-        }
-        return Ok(Value::Object(map));
-    }
-    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
-        let mut out = Vec::new();
-        for (i, v) in obj.try_iter()?.enumerate() {
-            out.push(value(py, &v?, &format!("{at}[{i}]"))?);
-        }
-        return Ok(Value::Array(out));
-    }
-    // a path (os.PathLike), or a numpy scalar (float64, int64): by its Python conversion
-    let os = py.import("os")?;
-    if let Ok(p) = os.call_method1("fspath", (obj,)) {
-        return Ok(Value::String(p.extract()?));
-    }
-    if let Ok(i) = obj.call_method0("__index__") {
-        return value(py, &i, at);
-    }
-    if let Ok(x) = obj.call_method0("__float__") {
-        return value(py, &x, at);
-    }
-    Err(bad(format!(
-        "a {} is not a configuration value",
-        obj.get_type().name()?
-    )))
 }

@@ -12,9 +12,9 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use recording::{AngleSourceKind, Diagnostic};
+use recording::{AngleSourceKind, Diagnostic, LengthUnit};
 
-use crate::errors::{self, Kind};
+use crate::errors::{self, Kind, Located};
 
 /// A 1-D float64 array as a slice: borrowed when contiguous (the Python side makes it so),
 /// else copied.
@@ -50,12 +50,21 @@ pub(crate) fn coefficients<'py>(py: Python<'py>, c: &Coefficients) -> PyResult<B
 }
 
 /// The analysis as a dict: the statistics, the first harmonic, and the per-revolution
-/// values as numpy arrays (one row per revolution).
+/// values as numpy arrays (one row per revolution); lengths in µm, the fit's coefficients
+/// (in the gap's declared unit) times `um` (µm per that unit), as the study scales them.
 pub(crate) fn analysis<'py>(
     py: Python<'py>,
     fit: &HarmonicAnalysis,
     direction: ProbeDirection,
+    um: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let scaled_fit;
+    let fit = if um == 1.0 {
+        fit
+    } else {
+        scaled_fit = scaled(fit, um);
+        &scaled_fit
+    };
     let d = PyDict::new(py);
     d.set_item("order", fit.order)?;
     d.set_item("drift", fit.drift)?;
@@ -84,9 +93,14 @@ pub(crate) fn analysis<'py>(
         }
         None => d.set_item("incomplete_revolution", py.None())?,
     }
-    let h = fit
-        .first_harmonic()
-        .map_err(|e| errors::from_error(py, Kind::Computation, &e))?;
+    let h = fit.first_harmonic().map_err(|e| {
+        errors::raise(
+            py,
+            Kind::Computation,
+            errors::chain_message(&e),
+            Located::harmonics(&e),
+        )
+    })?;
     let first = PyDict::new(py);
     first.set_item("c1", h.c1)?;
     first.set_item("s1", h.s1)?;
@@ -161,6 +175,20 @@ pub(crate) fn warnings<'py>(
     Ok(list)
 }
 
+/// The analysis with its lengths times `um` (coefficients, spreads, residuals; the
+/// condition numbers and sample counts as they are).
+fn scaled(fit: &HarmonicAnalysis, um: f64) -> HarmonicAnalysis {
+    let mut out = fit.clone();
+    out.mean = fit.mean.scaled(um);
+    out.std = fit.std.as_ref().map(|c| c.scaled(um));
+    out.std_error = fit.std_error.as_ref().map(|c| c.scaled(um));
+    for r in &mut out.revolutions {
+        r.coefficients = r.coefficients.scaled(um);
+        r.residual_rms *= um;
+    }
+    out
+}
+
 /// The encoder's mean rate over samples `from..=to` (unwrapped: a turn for each step
 /// beyond ±π), rad/s.
 fn encoder_rate(time_s: &[f64], angle: &[f64], from: usize, to: usize) -> Option<f64> {
@@ -187,10 +215,28 @@ struct ArrayFit {
     seconds: f64,
 }
 
-/// Fit eq. 20 to each complete revolution of arrays (the GIL released meanwhile).
+/// A gap unit by its symbol (`nm`, `um` or `µm`, `mm`, `m`), as a format's `unit`.
+pub(crate) fn length_unit(py: Python<'_>, symbol: &str) -> PyResult<LengthUnit> {
+    Ok(match symbol {
+        "nm" => LengthUnit::Nm,
+        "um" | "µm" | "μm" => LengthUnit::Um,
+        "mm" => LengthUnit::Mm,
+        "m" => LengthUnit::M,
+        other => {
+            return Err(errors::input(
+                py,
+                "gap_unit",
+                format!("gap_unit: {other:?} is not a length unit (nm, um, mm or m)"),
+            ));
+        }
+    })
+}
+
+/// Fit eq. 20 to each complete revolution of arrays (the GIL released meanwhile); the gap
+/// is in `gap_unit`, the results in µm.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (time_s, gap, angle_rad, rate_rad_s, start_angle_rad, order, drift, revolutions, max_gap_intervals, probe_along))]
+#[pyo3(signature = (time_s, gap, angle_rad, rate_rad_s, start_angle_rad, order, drift, revolutions, max_gap_intervals, probe_along, gap_unit))]
 pub(crate) fn fit_harmonics<'py>(
     py: Python<'py>,
     time_s: PyReadonlyArray1<'py, f64>,
@@ -203,7 +249,9 @@ pub(crate) fn fit_harmonics<'py>(
     revolutions: Option<usize>,
     max_gap_intervals: f64,
     probe_along: bool,
+    gap_unit: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let unit = length_unit(py, gap_unit)?;
     let t = Samples::of(&time_s);
     let g = Samples::of(&gap);
     let a = angle_rad.as_ref().map(Samples::of);
@@ -266,6 +314,7 @@ pub(crate) fn fit_harmonics<'py>(
         if a.is_none() {
             diagnostics.push(Diagnostic::AngleFromRate {
                 unread_columns: Vec::new(),
+                start_angle_deg: start_angle_rad.to_degrees(),
             });
         }
         if let Some(m) = measured_rate_rad_s
@@ -289,6 +338,8 @@ pub(crate) fn fit_harmonics<'py>(
             measured_rate_rad_s.unwrap_or(rate_rad_s),
         );
         diagnostics.extend(statistics.diagnostics);
+        // a gap implausible in its declared unit (mm read as µm): as the study warns
+        diagnostics.extend(recording::implausible_gap(unit, &analysis));
         Ok(ArrayFit {
             analysis,
             measured_rate_rad_s,
@@ -302,32 +353,14 @@ pub(crate) fn fit_harmonics<'py>(
             | harmonics::HarmonicsError::NonFiniteResult { .. } => Kind::Computation,
             _ => Kind::Input,
         };
-        let message = errors::chain_message(&e);
-        let mut located = errors::Located::of(&format!("{e:?}"), &message);
-        // the argument the error is about
-        located.field = match &e {
-            harmonics::HarmonicsError::NonFinite { column, .. }
-            | harmonics::HarmonicsError::LengthMismatch { column, .. } => Some(match *column {
-                "angle" => "angle_rad".to_owned(),
-                "time" => "time_s".to_owned(),
-                c => c.to_owned(),
-            }),
-            harmonics::HarmonicsError::TimeNotIncreasing { .. }
-            | harmonics::HarmonicsError::SampleGap { .. }
-            | harmonics::HarmonicsError::NonFiniteInterval { .. } => Some("time_s".to_owned()),
-            harmonics::HarmonicsError::AngleNotIncreasing { .. }
-            | harmonics::HarmonicsError::RateMismatch { .. } => Some("angle_rad".to_owned()),
-            harmonics::HarmonicsError::InvalidOrder { .. } => Some("order".to_owned()),
-            _ => located.field,
-        };
-        errors::raise(py, kind, message, located)
+        errors::raise(py, kind, errors::chain_message(&e), Located::harmonics(&e))
     })?;
     let direction = if probe_along {
         ProbeDirection::AlongO1X1
     } else {
         ProbeDirection::AgainstO1X1
     };
-    let d = analysis(py, &fit.analysis, direction)?;
+    let d = analysis(py, &fit.analysis, direction, unit.um_per_unit())?;
     d.set_item("samples", t.len())?;
     d.set_item(
         "angle_source",
@@ -345,5 +378,6 @@ pub(crate) fn fit_harmonics<'py>(
     d.set_item("dropped_revolutions", 0)?;
     d.set_item("warnings", warnings(py, &fit.diagnostics)?)?;
     d.set_item("rust_seconds", fit.seconds)?;
+    d.set_item("declared_gap_unit", unit.symbol())?;
     Ok(d)
 }

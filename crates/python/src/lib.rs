@@ -1,25 +1,34 @@
 //! `centrifuge_cal._native`: the Rust side of the `centrifuge_cal` Python package.
 //!
 //! Thin bindings over the workspace's libraries; the Python package
-//! (`python/centrifuge_cal`) gives them their Pythonic shape: typed result objects, checked
-//! arrays and the exception classes. Equations are those of the libraries called: the
-//! per-revolution harmonic fit (eq. 20–21, `harmonics`), the radius-error fit and Δk2
-//! (eq. 16, 19, `identify`), the study with its calibration (eq. 18) and uncertainty budget
+//! (`python/centrifuge_cal`) gives them their Pythonic shape: typed result objects and
+//! checked arrays. Equations are those of the libraries called: the per-revolution
+//! harmonic fit (eq. 20–21, `harmonics`), the radius-error fit and Δk2 (eq. 16, 19,
+//! `identify`), the study with its calibration (eq. 18, 23) and uncertainty budget
 //! (`pipeline`, `report`), the test planner (`planning`).
 //!
-//! Long computations release the GIL (`Python::detach`); contiguous float64 arrays are
-//! read in place, never copied.
+//! What crosses is native: arrays as numpy arrays (a study's tables as
+//! `recording::Table`s built from them), results as Python dicts and lists built from the
+//! Rust results' `Serialize` (`to_python`), dicts of a configuration read into the
+//! configuration's types (`values`, depth-limited), exceptions of classes created here
+//! (`errors`) with their fields from the errors' own. Long computations release the GIL
+//! and stop on Ctrl-C (`interrupt`); contiguous float64 arrays are read in place.
 
 mod errors;
 mod files;
 mod fit;
+mod interrupt;
 mod study;
+mod to_python;
+mod values;
 
 use pyo3::prelude::*;
 
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    errors::register(m)?;
+    m.add_function(wrap_pyfunction!(study::defaults, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_harmonics, m)?)?;
     m.add_function(wrap_pyfunction!(files::read_recording, m)?)?;
     m.add_class::<files::NativeRecording>()?;

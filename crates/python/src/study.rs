@@ -1,5 +1,6 @@
-//! Whole studies, plans, and the radius-error fit with Δk2, as the command line computes
-//! them; results as the JSON text `results.json` / `plan.json` hold.
+//! Whole studies and plans, as the command line computes them, their results as Python
+//! objects of `results.json`'s and `plan.json`'s shape (built from the Rust results, no
+//! text in between); the radius-error fit with Δk2; the study's defaults.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -7,15 +8,25 @@ use std::path::{Path, PathBuf};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use serde::Serialize;
 
 use crate::errors::{self, Kind, Located};
-use crate::files::{json_error, unknown_field, value};
 use crate::fit::Samples;
+use crate::interrupt::interruptible;
+use crate::to_python::{ToPythonError, to_python};
+use crate::values::value;
 
-/// A study's data files: tables given in memory by their path (the Python API's arrays),
-/// everything else from disk.
+/// A table given as arrays: its columns by name, and each row's label.
+#[derive(Debug, Clone)]
+struct ArrayTable {
+    columns: Vec<(String, Vec<f64>)>,
+    labels: Option<Vec<String>>,
+}
+
+/// A study's data files: tables given as arrays by their name (the Python API's), every
+/// other file from disk.
 struct Memory {
-    tables: HashMap<PathBuf, Vec<u8>>,
+    tables: HashMap<PathBuf, ArrayTable>,
 }
 
 impl pipeline::DataSource for Memory {
@@ -33,61 +44,94 @@ impl pipeline::DataSource for Memory {
         format: &recording::TableFormat,
     ) -> Result<recording::Table, recording::RecordingError> {
         match self.tables.get(path) {
-            Some(text) => recording::parse_table(text, path, format),
+            Some(t) => {
+                recording::Table::from_columns(path, format, t.columns.clone(), t.labels.clone())
+            }
             None => pipeline::Files.table(path, format),
         }
     }
 }
 
-fn pipeline_error(py: Python<'_>, e: &pipeline::PipelineError) -> PyErr {
-    let kind = match e {
-        pipeline::PipelineError::Recording { .. } => Kind::Recording,
-        pipeline::PipelineError::Identify { .. }
-        | pipeline::PipelineError::Uncertainty { .. }
-        | pipeline::PipelineError::NonFiniteResult { .. } => Kind::Computation,
-        _ => Kind::Config,
-    };
-    let message = errors::chain_message(e);
-    let mut located = Located::of(&format!("{e:?}"), &message);
-    if located.field.is_none() {
-        located.field = unknown_field(&message);
-    }
-    errors::raise(py, kind, message, located)
+/// An error met while the GIL was released, raised as the package's exception after.
+enum Failure {
+    Pipeline(pipeline::PipelineError),
+    Report(report::ReportError),
+    Planning(planning::PlanningError),
 }
 
-/// Runs the study file at `path` as `cargo xtask study --config PATH` does; returns the
-/// text of its `results.json` (with `provenance`, without the comparison with expected
-/// values).
+impl From<pipeline::PipelineError> for Failure {
+    fn from(e: pipeline::PipelineError) -> Self {
+        Self::Pipeline(e)
+    }
+}
+
+impl From<report::ReportError> for Failure {
+    fn from(e: report::ReportError) -> Self {
+        Self::Report(e)
+    }
+}
+
+impl From<planning::PlanningError> for Failure {
+    fn from(e: planning::PlanningError) -> Self {
+        Self::Planning(e)
+    }
+}
+
+impl Failure {
+    fn raise(self, py: Python<'_>) -> PyErr {
+        match self {
+            Self::Pipeline(e) => errors::pipeline(py, &e),
+            Self::Report(e) => errors::raise(
+                py,
+                Kind::Computation,
+                errors::chain_message(&e),
+                Located::default(),
+            ),
+            Self::Planning(e) => errors::planning(py, &e),
+        }
+    }
+}
+
+/// A result as a Python object; a number that is not finite is a [`Kind::Computation`]
+/// error naming it.
+fn native<'py, T: Serialize + ?Sized>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
+    to_python(py, value).map_err(|e| match e {
+        ToPythonError::Python(e) => e,
+        e @ ToPythonError::NonFinite { .. } => {
+            errors::raise(py, Kind::Computation, e.to_string(), Located::default())
+        }
+        e @ ToPythonError::Custom(_) => {
+            errors::raise(py, Kind::Computation, e.to_string(), Located::default())
+        }
+    })
+}
+
+/// results.json's document: `provenance` first, then the results.
+#[derive(Serialize)]
+struct WithProvenance<'a> {
+    provenance: &'a report::Provenance,
+    #[serde(flatten)]
+    results: &'a pipeline::StudyResults,
+}
+
+/// Runs the study file at `path` as `cargo xtask study --config PATH` does; returns what
+/// its `results.json` holds (with `provenance`). The GIL is released; Ctrl-C stops it.
 #[pyfunction]
-pub(crate) fn run_study_file(py: Python<'_>, path: PathBuf) -> PyResult<String> {
-    py.detach(|| -> Result<String, PyErrLater> {
+pub(crate) fn run_study_file(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyAny>> {
+    let (results, provenance) = interruptible(py, move || -> Result<_, Failure> {
         let inputs = pipeline::load_study(&path)?;
         let results = pipeline::run(&inputs)?;
         let provenance = report::Provenance::of_study(&inputs, None)?;
-        Ok(report::results_json_with_provenance(&results, &provenance)?)
-    })
-    .map_err(|e| e.into_py(py))
-}
-
-/// Runs a study given as a dict of the configuration's shape; `source` names it in
-/// errors and its folder is where relative data files are found; `tables` are files given
-/// in memory (path → text). Returns the text of `results.json` (without provenance).
-#[pyfunction]
-#[pyo3(signature = (config, source, tables))]
-pub(crate) fn run_study_dict(
-    py: Python<'_>,
-    config: Bound<'_, PyAny>,
-    source: PathBuf,
-    tables: HashMap<PathBuf, Vec<u8>>,
-) -> PyResult<String> {
-    let config: pipeline::StudyConfig = serde_json::from_value(value(py, &config, "study")?)
-        .map_err(|e| json_error(py, "study", &e))?;
-    py.detach(|| -> Result<String, PyErrLater> {
-        let inputs = pipeline::Inputs::new(config, &source, &Memory { tables })?;
-        let results = pipeline::run(&inputs)?;
-        Ok(report::results_json(&results)?)
-    })
-    .map_err(|e| e.into_py(py))
+        Ok((results, provenance))
+    })?
+    .map_err(|e| e.raise(py))?;
+    native(
+        py,
+        &WithProvenance {
+            provenance: &provenance,
+            results: &results,
+        },
+    )
 }
 
 /// Writes the calibration certificate (PDF/A-2b) of a study's results folder (or its
@@ -100,64 +144,102 @@ pub(crate) fn certificate(
     results: PathBuf,
     out: Option<PathBuf>,
 ) -> PyResult<String> {
-    py.detach(|| -> Result<String, PyErrLater> {
+    interruptible(py, move || -> Result<String, Failure> {
         let written = report::write_certificate(&results, out.as_deref())?;
         Ok(written.display().to_string())
-    })
-    .map_err(|e| e.into_py(py))
+    })?
+    .map_err(|e| e.raise(py))
 }
 
-/// An error raised while the GIL was released, turned into a Python exception after.
-enum PyErrLater {
-    Pipeline(pipeline::PipelineError),
-    Report(report::ReportError),
-    Planning(planning::PlanningError),
-    Config(String, Located),
-}
-
-impl From<pipeline::PipelineError> for PyErrLater {
-    fn from(e: pipeline::PipelineError) -> Self {
-        Self::Pipeline(e)
-    }
-}
-
-impl From<report::ReportError> for PyErrLater {
-    fn from(e: report::ReportError) -> Self {
-        Self::Report(e)
-    }
-}
-
-impl From<planning::PlanningError> for PyErrLater {
-    fn from(e: planning::PlanningError) -> Self {
-        Self::Planning(e)
-    }
-}
-
-impl PyErrLater {
-    fn into_py(self, py: Python<'_>) -> PyErr {
-        match self {
-            Self::Pipeline(e) => pipeline_error(py, &e),
-            Self::Report(e) => errors::from_error(py, Kind::Computation, &e),
-            Self::Planning(e) => errors::from_error(py, Kind::Config, &e),
-            Self::Config(m, l) => errors::raise(py, Kind::Config, m, l),
+/// The tables of a study given as arrays: `{name: {"columns": {column: array}, "labels":
+/// [str] | None}}`.
+fn array_tables(tables: &Bound<'_, PyDict>) -> PyResult<HashMap<PathBuf, ArrayTable>> {
+    let py = tables.py();
+    let mut out = HashMap::new();
+    for (name, table) in tables.iter() {
+        let name: PathBuf = name.extract()?;
+        let table = table.cast::<PyDict>()?;
+        let mut columns = Vec::new();
+        if let Some(given) = table.get_item("columns")? {
+            for (column, values) in given.cast::<PyDict>()?.iter() {
+                let values: PyReadonlyArray1<'_, f64> = values.extract().map_err(|_| {
+                    errors::input(
+                        py,
+                        &column.to_string(),
+                        format!("{column}: a 1-D float64 array is needed"),
+                    )
+                })?;
+                columns.push((column.extract()?, values.as_array().to_vec()));
+            }
         }
+        let labels = match table.get_item("labels")? {
+            Some(l) if !l.is_none() => Some(l.extract::<Vec<String>>()?),
+            _ => None,
+        };
+        out.insert(name, ArrayTable { columns, labels });
     }
+    Ok(out)
 }
 
-/// Plans a campaign from a plan file (RON, as `cargo xtask plan --config FILE`) or JSON
-/// dict of the same shape; returns the plan as JSON text (`plan.json`'s `plan`, or
-/// `{"two_orientation": …}` for a plan file with that section).
+/// Runs a study given as a dict of the configuration's shape; `source` names it in errors
+/// and its folder is where relative data files are found; `tables` are tables given as
+/// arrays, by the file name the configuration gives them. Returns what `results.json`
+/// holds (without provenance). The GIL is released; Ctrl-C stops it.
+#[pyfunction]
+#[pyo3(signature = (config, source, tables))]
+pub(crate) fn run_study_dict<'py>(
+    py: Python<'py>,
+    config: Bound<'py, PyAny>,
+    source: PathBuf,
+    tables: Bound<'py, PyDict>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let config: pipeline::StudyConfig = serde_json::from_value(value(py, &config, "study")?)
+        .map_err(|e| serde_error(py, "study", &e))?;
+    let memory = Memory {
+        tables: array_tables(&tables)?,
+    };
+    let results = interruptible(py, move || -> Result<_, Failure> {
+        let inputs = pipeline::Inputs::new(config, &source, &memory)?;
+        Ok(pipeline::run(&inputs)?)
+    })?
+    .map_err(|e| e.raise(py))?;
+    native(py, &results)
+}
+
+/// A dict that serde refuses, in serde's words without JSON's line and column (the dict
+/// has none).
+pub(crate) fn serde_error(py: Python<'_>, what: &str, e: &serde_json::Error) -> PyErr {
+    let text = e.to_string();
+    let text = text
+        .rfind(" at line ")
+        .map_or(text.as_str(), |at| &text[..at])
+        .to_owned();
+    let field = errors::serde_field(&text);
+    errors::raise(
+        py,
+        Kind::Config,
+        format!("{what}: {text}"),
+        Located {
+            field,
+            ..Located::default()
+        },
+    )
+}
+
+/// Plans a campaign from a plan file (RON, as `cargo xtask plan --config FILE`) or a dict
+/// of the same shape; returns `plan.json`'s `plan` (or `{"two_orientation": …}` for a plan
+/// with that section). The GIL is released; Ctrl-C stops it.
 #[pyfunction]
 #[pyo3(signature = (ron_path=None, dict=None))]
-pub(crate) fn plan(
-    py: Python<'_>,
+pub(crate) fn plan<'py>(
+    py: Python<'py>,
     ron_path: Option<PathBuf>,
-    dict: Option<Bound<'_, PyAny>>,
-) -> PyResult<String> {
+    dict: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     let inputs: planning::PlanInputs = match (ron_path, dict) {
         (Some(path), _) => {
             let text = edge_io::read_text_capped(&path, edge_io::CONFIG_MAX_BYTES)
-                .map_err(|e| errors::from_error(py, Kind::Config, &e))?;
+                .map_err(|e| errors::edge(py, &e))?;
             edge_io::ron_options().from_str(&text).map_err(|e| {
                 let code = e.code.to_string();
                 errors::raise(
@@ -172,14 +254,14 @@ pub(crate) fn plan(
                     Located {
                         file: Some(path.display().to_string()),
                         line: Some(e.span.start.line),
-                        field: unknown_field(&code),
+                        field: errors::serde_field(&code),
                         hint: None,
                     },
                 )
             })?
         }
         (None, Some(d)) => serde_json::from_value(value(py, &d, "plan")?)
-            .map_err(|e| json_error(py, "plan", &e))?,
+            .map_err(|e| serde_error(py, "plan", &e))?,
         (None, None) => {
             return Err(errors::input(
                 py,
@@ -188,18 +270,27 @@ pub(crate) fn plan(
             ));
         }
     };
-    py.detach(|| -> Result<String, PyErrLater> {
+    enum Planned {
+        One(Box<planning::Plan>),
+        Two(Box<planning::TwoOrientationPlan>),
+    }
+    let planned = interruptible(py, move || -> Result<Planned, Failure> {
         // A plan file with `two_orientation` plans both mountings, as the command does.
-        if inputs.two_orientation.is_some() {
-            let plan = planning::plan_two_orientation(&inputs)?;
-            return edge_io::to_json_pretty(&serde_json::json!({ "two_orientation": plan }))
-                .map_err(|e| PyErrLater::Config(format!("plan: {e}"), Located::default()));
+        Ok(if inputs.two_orientation.is_some() {
+            Planned::Two(Box::new(planning::plan_two_orientation(&inputs)?))
+        } else {
+            Planned::One(Box::new(planning::plan(&inputs)?))
+        })
+    })?
+    .map_err(|e| e.raise(py))?;
+    match planned {
+        Planned::One(p) => native(py, &*p),
+        Planned::Two(p) => {
+            let d = PyDict::new(py);
+            d.set_item("two_orientation", native(py, &*p)?)?;
+            Ok(d.into_any())
         }
-        let plan = planning::plan(&inputs)?;
-        edge_io::to_json_pretty(&plan)
-            .map_err(|e| PyErrLater::Config(format!("plan: {e}"), Located::default()))
-    })
-    .map_err(|e| e.into_py(py))
+    }
 }
 
 /// The radius-error fit `Δr = a (+ b·ω) + C_r·ω²` (eq. 16) by QR least squares, weighted
@@ -225,7 +316,14 @@ pub(crate) fn fit_radius_error<'py>(
         Some(s) => identify::fit_radius_error_weighted(w.get(), r.get(), s.get(), model),
         None => identify::fit_radius_error(w.get(), r.get(), model),
     }
-    .map_err(|e| errors::from_error(py, Kind::Computation, &e))?;
+    .map_err(|e| {
+        errors::raise(
+            py,
+            Kind::Computation,
+            errors::chain_message(&e),
+            Located::default(),
+        )
+    })?;
     let d = PyDict::new(py);
     d.set_item("model", if three_term { "three_term" } else { "two_term" })?;
     d.set_item("c_r_m_s2", fit.c_r_m_s2)?;
@@ -274,6 +372,38 @@ pub(crate) fn delta_k2(
         },
         identify::Geometry { radius_m, g_m_s2 },
     )
-    .map_err(|e| errors::from_error(py, Kind::Input, &e))?;
+    .map_err(|e| {
+        errors::raise(
+            py,
+            Kind::Input,
+            errors::chain_message(&e),
+            Located::default(),
+        )
+    })?;
     Ok((p.delta_k2_rad_s_g2, p.sigma_rad_s_g2))
+}
+
+/// The study's defaults, from where the study takes them: the harmonic fit's
+/// (`pipeline::FitSettings::default()`: order, drift, revolutions), a recording format's
+/// gap limit (`recording::RecordingFormat::default()`), a calibration section's Monte
+/// Carlo seed and trials (a section that states only what it must, read by the study's own
+/// reader), and the most trials the Monte Carlo method runs (`uncertainty::MAX_TRIALS`).
+#[pyfunction]
+pub(crate) fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let fit = pipeline::FitSettings::default();
+    let format = recording::RecordingFormat::default();
+    let calibration: pipeline::CalibrationConfig =
+        serde_json::from_value(serde_json::json!({ "compensate_with": "" }))
+            .map_err(|e| errors::raise(py, Kind::Config, e.to_string(), Located::default()))?;
+    let d = PyDict::new(py);
+    d.set_item("order", fit.order)?;
+    d.set_item("drift", fit.drift)?;
+    d.set_item("revolutions", fit.revolutions)?;
+    d.set_item("max_gap_intervals", format.max_gap_intervals)?;
+    d.set_item("seed", calibration.seed)?;
+    d.set_item("trials", native(py, &calibration.trials)?)?;
+    d.set_item("k1", native(py, &calibration.k1)?)?;
+    // the Monte Carlo method's cap, which it refuses beyond
+    d.set_item("max_trials", uncertainty::MAX_TRIALS)?;
+    Ok(d)
 }

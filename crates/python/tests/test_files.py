@@ -28,10 +28,13 @@ def test_a_csv_recording_reads_into_arrays() -> None:
 
 
 def test_the_fit_of_a_file_equals_the_command_line() -> None:
-    cli = xtask("harmonics", str(CSV), "--rate-deg-s", "120", "--json")
+    # the command's `harmonics` fits without the drift term unless asked; the study (and
+    # Python, with the study's defaults) fit it
+    cli = xtask("harmonics", str(CSV), "--rate-deg-s", "120", "--json", "--drift")
     assert cli.status == 0, cli.stderr
     expected = json.loads(cli.stdout)
     fit = cc.read_recording(CSV).fit_harmonics(rate_deg_s=120.0)
+    assert fit.drift is cc.STUDY_DEFAULTS["drift"] is True
     assert fit.revolutions_used == expected["revolutions_used"]
     assert fit.measured_rate_deg_s == expected["measured_rate_deg_s"]
     for key in ("l0",):
@@ -81,8 +84,11 @@ def test_a_format_dict_reads_a_lab_file(tmp_path: Path) -> None:
         "angle": {"encoder": {"column": "enc", "unit": "deg"}},
     }
     rec = cc.read_recording(path, fmt)
-    assert rec.gap_unit == "mm"
-    np.testing.assert_allclose(rec.gap * 1e3, csv.gap, rtol=1e-9)
+    # the gap in µm, as the study converts it, with the declared unit and the factor stated
+    assert rec.gap_unit == "um" and rec.declared_gap_unit == "mm"
+    assert rec.um_per_declared_unit == 1000.0
+    np.testing.assert_allclose(rec.gap_um, csv.gap, rtol=1e-9)
+    assert rec.gap is rec.gap_um
     np.testing.assert_allclose(rec.time_s, csv.time_s, rtol=1e-9, atol=1e-12)
     # the same description as a RON file
     ron = tmp_path / "lab.ron"

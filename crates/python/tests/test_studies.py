@@ -53,6 +53,11 @@ def test_fixture_study_equals_the_command_line(name: str, tmp_path: Path) -> Non
     assert_close(got.to_dict(), expected)
     assert got.study == expected["study"]
     assert got.phases[0]["name"] == expected["phases"][0]["name"]
+    # each section an attribute, the two-orientation one included
+    assert got.two_orientation == expected.get("two_orientation")
+    assert got.calibration == expected.get("calibration")
+    if name.startswith("two_orientation"):
+        assert got.two_orientation is not None and "k2" in str(got.two_orientation)
 
 
 PAPER_LIKE: dict[str, Any] = {

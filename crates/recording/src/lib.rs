@@ -98,7 +98,8 @@ pub use analysis::diagnostic::{
 };
 pub use analysis::piga::{PigaOutputRate, reduce_piga_recording};
 pub use analysis::probe::{
-    RecordingAnalysis, RevolutionStatistics, analyze_recording, revolution_statistics,
+    RecordingAnalysis, RevolutionStatistics, analyze_recording, implausible_gap,
+    revolution_statistics,
 };
 pub use binary::mat::{list_mat, load_mat, mat_variable, parse_mat};
 pub use binary::tdms::{list_tdms, load_tdms, parse_tdms, tdms_channel};

@@ -241,7 +241,7 @@ pub(crate) fn counterweight_section(out: &mut String, c: &CounterweightResults) 
         if c.stiffness_source.is_empty() {
             String::new()
         } else {
-            format!(" ({})", c.stiffness_source)
+            format!(" ({})", crate::format::md_text(&c.stiffness_source))
         },
         c.unbalance_per_um_g_mm,
         c.unbalance_x_g_mm,

@@ -4,6 +4,8 @@ use std::fmt::Write as _;
 
 use pipeline::{BudgetLine, CalibrationResults, Coefficient, DegreesOfFreedom};
 
+use crate::format;
+
 /// A rate to six decimals at most, trailing zeros dropped (a measured rate is not exactly
 /// the declared one).
 fn rate(rate_deg_s: f64) -> String {
@@ -81,7 +83,7 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         "{}: {} points at {} distinct rates, {} residual degrees of freedom, residual SD {:.3e} rad/s{}. \
          k1 {}; g = {} m/s²{}. C_r = {:.4e} ± {:.2e} m·s² (phase `{}`), Δk2 = k1·C_r·g/R² = {:.4e} ± {:.2e} rad/(s·g²) removed.\n",
         match &c.table {
-            Some(t) => format!("Table `{t}`"),
+            Some(t) => format!("Table {}", format::md_text(t)),
             None => format!(
                 "{} raw output recordings, each reduced to its mean output over whole spindle revolutions",
                 c.recordings.len()
@@ -109,7 +111,7 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         if c.g_source.is_empty() {
             String::new()
         } else {
-            format!(" ({})", c.g_source)
+            format!(" ({})", format::md_text(&c.g_source))
         },
         c.c_r_m_s2.value,
         c.c_r_m_s2.u,
@@ -195,8 +197,8 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         for r in &c.recordings {
             let _ = writeln!(
                 out,
-                "| `{}` | {} | {:.6} | {} | {} ({}) | {:.9e} | {:.2e} | {:.2e} | {:.2e} |",
-                r.file,
+                "| {} | {} | {:.6} | {} | {} ({}) | {:.9e} | {:.2e} | {:.2e} | {:.2e} |",
+                format::md_text(&r.file),
                 r.declared_rate_deg_s,
                 r.rate_deg_s,
                 r.angle_source,
@@ -229,10 +231,12 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
                 || "—".to_owned(),
                 |u| format!("{:+.2}", r.residual_rad_s / u)
             ),
-            r.label.as_deref().unwrap_or("—"),
+            r.label
+                .as_deref()
+                .map_or_else(|| "—".to_owned(), format::md_text),
             match (&r.line, &r.file) {
                 (Some(l), _) => format!("line {l}"),
-                (None, Some(f)) => format!("`{f}`"),
+                (None, Some(f)) => format::md_text(f),
                 (None, None) => "—".to_owned(),
             },
         );
@@ -249,7 +253,7 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
             let _ = writeln!(
                 out,
                 "| {} | {} | {:+.3e} | {:.2e} | {:+.2} |",
-                l.label,
+                format::md_text(&l.label),
                 l.rows,
                 l.mean_residual_rad_s,
                 l.u_rad_s,

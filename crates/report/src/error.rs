@@ -107,6 +107,9 @@ pub enum ReportError {
         /// What is wrong.
         message: String,
     },
+    /// The digital calibration certificate (`certificate.dcc.xml`) cannot be written.
+    #[error("certificate.dcc.xml: {0}")]
+    Dcc(#[from] dcc::DccError),
     /// The results have no phase to draw.
     #[error("the results have no phase")]
     NoPhase,

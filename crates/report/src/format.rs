@@ -319,10 +319,46 @@ pub(crate) fn esc(text: &str) -> String {
     out
 }
 
+/// Text from a file or a configuration written into Markdown (`report.md`) as text, never as
+/// markup: `&`, `<` and `>` become HTML entities (no raw HTML reaches a renderer), the
+/// characters that start code, emphasis, links, images or table cells within a line (`\\`,
+/// `` ` ``, `*`, `[`, `]`, `|`) are escaped with a backslash, and hidden characters (controls,
+/// line breaks, bidirectional overrides) are written visibly. The text is always inline (a
+/// table cell or a sentence), so what matters only at a line's start needs nothing.
+pub(crate) fn md_text(text: &str) -> String {
+    let shown = edge_io::visible(text);
+    let mut out = String::with_capacity(shown.len() + 8);
+    for c in shown.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '\\' | '`' | '*' | '[' | ']' | '|' => {
+                out.push('\\');
+                out.push(c);
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use pipeline::InfiniteDof;
+
+    #[test]
+    fn markdown_text_is_never_markup() {
+        let t = md_text("<img src=x onerror=alert(1)> `code` [a](javascript:x) | *b* \u{1b}[31m");
+        assert!(!t.contains('<') && !t.contains('>'), "{t}");
+        assert!(t.contains("&lt;img"), "{t}");
+        assert!(t.contains("\\`code\\`"), "{t}");
+        assert!(t.contains("\\[a\\](javascript:x)"), "{t}");
+        assert!(t.contains("\\|") && t.contains("\\*b\\*"), "{t}");
+        assert!(!t.contains('\u{1b}'), "{t}");
+        assert_eq!(md_text("SN 1604"), "SN 1604");
+    }
 
     #[test]
     fn a_value_is_rounded_to_its_uncertainty() {

@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 
 use crate::expected::{CheckOutcome, Expected};
+use crate::format;
 use pipeline::MechanismResults;
 use pipeline::model_name;
 use pipeline::{ModelFit, PhaseResults, StudyResults};
@@ -26,15 +27,25 @@ pub fn render(
     let mut out = String::new();
     let published = |path: &str| expected.and_then(|e| e.published(path));
     let i = &results.inputs;
-    let _ = writeln!(out, "# Study `{}`\n", results.study);
+    let _ = writeln!(out, "# Study {}\n", format::md_text(&results.study));
     crate::summary::summary_markdown(&mut out, results);
     let _ = writeln!(
         out,
         "Inputs: R = {} m, g = {} m/s², k1 = {} rad/(s·g), lever ratio (probe → PIGA plane) = {:.6}.\n",
         i.radius_m, i.g_m_s2, i.k1_rad_s_g, i.lever_ratio
     );
+    let _ = writeln!(
+        out,
+        "Probe declarations (`lever`): direction: {}; angle zero: {}.\n",
+        i.probe_direction.words(),
+        i.angle_zero.words()
+    );
     if let Some(e) = expected {
-        let _ = writeln!(out, "Published values for comparison: {}.\n", e.source);
+        let _ = writeln!(
+            out,
+            "Published values for comparison: {}.\n",
+            format::md_text(&e.source)
+        );
     }
     if !results.warnings.is_empty() && results.calibration.is_none() {
         let _ = writeln!(
@@ -42,7 +53,13 @@ pub fn render(
             "## Warnings\n\nThe numbers below were computed, but these may make them wrong:\n"
         );
         for w in &results.warnings {
-            let _ = writeln!(out, "- **{}** ({}): {}", w.code, w.location, w.message);
+            let _ = writeln!(
+                out,
+                "- **{}** ({}): {}",
+                w.code,
+                format::md_text(&w.location),
+                format::md_text(&w.message)
+            );
         }
         let _ = writeln!(out);
     }

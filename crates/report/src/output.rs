@@ -23,6 +23,7 @@ const STUDY_FILES: &[&str] = &[
     "certificate.pdf",
     // written by earlier versions: removed when a study writes into the folder again
     "certificate.html",
+    dcc::FILE_NAME,
 ];
 
 /// The files a study wrote.
@@ -43,6 +44,9 @@ pub struct WrittenFiles {
     pub balance_polar_svg: Option<PathBuf>,
     /// `certificate.pdf` (PDF/A-2b), when the study has a certificate section.
     pub certificate_pdf: Option<PathBuf>,
+    /// `certificate.dcc.xml`, the certificate as a DCC, when the study has a certificate
+    /// section.
+    pub certificate_dcc: Option<PathBuf>,
 }
 
 /// What a study's `results.json` holds: the results and, when recorded, their provenance.
@@ -119,7 +123,8 @@ pub fn results_json_with_provenance(
 
 /// Writes `results.json` (with `provenance` when given), `report.md`, `radius_error.svg`,
 /// for phases given as recordings `probe_signals_<phase>.svg`, and for a study with a
-/// certificate section `certificate.pdf` (PDF/A-2b; its input files from `provenance`) into `dir`, atomically: every
+/// certificate section `certificate.pdf` (PDF/A-2b) and `certificate.dcc.xml` (the same
+/// certificate as a DCC; their input files from `provenance`) into `dir`, atomically: every
 /// file is rendered first, then written through an [`OutputSet`], so `dir` ends up holding
 /// exactly these files, or, on any error, what it held before, byte for byte. Files of an
 /// earlier study that this one does not write (a probe figure) are removed.
@@ -177,6 +182,12 @@ pub fn write_outputs(
         .map(|_| crate::certificate::certificate_pdf(results, provenance, &Software::this_build()))
         .transpose()?;
 
+    let certificate_dcc = results
+        .certificate
+        .as_ref()
+        .map(|_| certificate_dcc(results, provenance))
+        .transpose()?;
+
     let mut set = OutputSet::create(dir, STUDY_FILES)?;
     let results_json = set.write("results.json", json.as_bytes())?;
     let report_md = set.write("report.md", report.as_bytes())?;
@@ -199,6 +210,9 @@ pub fn write_outputs(
     let certificate_pdf = certificate
         .map(|pdf| set.write("certificate.pdf", &pdf))
         .transpose()?;
+    let certificate_dcc = certificate_dcc
+        .map(|xml| set.write(dcc::FILE_NAME, xml.as_bytes()))
+        .transpose()?;
     set.commit()?;
     Ok(WrittenFiles {
         results_json,
@@ -208,7 +222,36 @@ pub fn write_outputs(
         calibration_residuals_svg,
         balance_polar_svg,
         certificate_pdf,
+        certificate_dcc,
     })
+}
+
+/// The certificate as a DCC (`crates/dcc`): its software this build, its input files the
+/// configuration and every data file of `provenance` (none stated without one).
+fn certificate_dcc(results: &StudyResults, provenance: Option<&Provenance>) -> Result<String> {
+    let build = Software::this_build();
+    let software = dcc::Software {
+        name: crate::TOOL.to_owned(),
+        release: env!("CARGO_PKG_VERSION").to_owned(),
+        commit: build.commit,
+    };
+    let files: Option<Vec<dcc::InputFile>> = provenance.map(|p| {
+        let record = |f: &crate::provenance::FileRecord, role: &str| dcc::InputFile {
+            path: f.path.clone(),
+            bytes: f.bytes,
+            sha256: f.sha256.clone(),
+            role: f.role.clone().unwrap_or_else(|| role.to_owned()),
+            field: f.field.clone(),
+        };
+        std::iter::once(record(&p.config, "configuration"))
+            .chain(p.inputs.iter().map(|f| record(f, "data")))
+            .collect()
+    });
+    Ok(dcc::write_dcc(&dcc::DccInput {
+        results,
+        software: &software,
+        files: files.as_deref(),
+    })?)
 }
 
 /// Re-renders the certificate of a study's results: reads `results` (a study's output folder

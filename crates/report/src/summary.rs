@@ -54,25 +54,41 @@ fn lines(c: &CalibrationResults) -> Vec<Line> {
         .collect()
 }
 
-/// C_r and Δk2 with their expanded uncertainties at k2's coverage factor.
+/// C_r and Δk2 with their standard uncertainties (each is a quantity of its own: neither
+/// borrows k2's coverage factor).
 fn compensation(c: &CalibrationResults) -> (String, String) {
-    let k = c.coefficients.k2.k;
     let micro = 1e6 / c.coefficients.k1.value;
     (
         format!(
-            "C_r = {} m·s² (U, k = {}; phase `{}`); sign convention: {}",
-            format::pair(c.c_r_combined_m_s2.value, k * c.c_r_combined_m_s2.u).joined(),
-            format::coverage_factor(k),
-            c.compensate_with,
+            "C_r = {} m·s² (value ± standard uncertainty u; phase `{}`); sign convention: {}",
+            format::pair(c.c_r_combined_m_s2.value, c.c_r_combined_m_s2.u).joined(),
+            edge_io::visible(&c.compensate_with),
             c.probe_direction.words()
         ),
         format!(
-            "Δk2 = k1·C_r·g/R² = {} rad/(s·g²) = {} µg/g² (U, k = {}), removed from k2",
-            format::pair(c.delta_k2.value, k * c.delta_k2.u).joined(),
-            format::pair(c.delta_k2.value * micro, k * c.delta_k2.u * micro.abs()).joined(),
-            format::coverage_factor(k),
+            "Δk2 = k1·C_r·g/R² = {} rad/(s·g²) = {} µg/g² (value ± standard uncertainty u), removed from k2",
+            format::pair(c.delta_k2.value, c.delta_k2.u).joined(),
+            format::pair(c.delta_k2.value * micro, c.delta_k2.u * micro.abs()).joined(),
         ),
     )
+}
+
+/// What the certificate certifies, in two lines: the method with k2 and its stated interval
+/// relative to k1, and why.
+fn certified_lines(results: &StudyResults) -> Option<(String, String)> {
+    let cert = results.certificate.as_ref()?;
+    let c = &cert.certified;
+    let k2 = c.coefficients.iter().find(|k| k.name == "k2")?;
+    let r = k2.relative.as_ref()?;
+    let text = format::interval(r.value, r.value - r.low95, r.high95 - r.value).joined();
+    Some((
+        format!(
+            "certificate {} certifies {}: k2/k1 = {text} µg/g² (95 % interval)",
+            edge_io::visible(&cert.id),
+            c.method.words()
+        ),
+        format!("why: {}", edge_io::visible(&c.reason)),
+    ))
 }
 
 /// Every warning of a study: the study's (with where they arise) and the calibration's.
@@ -136,8 +152,13 @@ pub fn summary_text(results: &StudyResults) -> Option<String> {
         );
     }
     let (cr, dk2) = compensation(c);
-    let _ = writeln!(out, "  {cr}").and_then(|()| writeln!(out, "  {dk2}"));
+    let _ = writeln!(out, "  {cr}");
+    let _ = writeln!(out, "  angle zero: {}", results.inputs.angle_zero.words());
+    let _ = writeln!(out, "  {dk2}");
     crate::two_orientation::summary_lines(&mut out, results);
+    if let Some((what, why)) = certified_lines(results) {
+        let _ = writeln!(out, "{what}\n  {why}");
+    }
     let all = warnings(results);
     if all.is_empty() {
         let _ = writeln!(out, "no warnings");
@@ -179,13 +200,21 @@ pub(crate) fn summary_markdown(out: &mut String, results: &StudyResults) {
     }
     let (cr, dk2) = compensation(c);
     let _ = writeln!(out, "\n{cr}.\n\n{dk2}.\n");
+    if let Some((what, why)) = certified_lines(results) {
+        let _ = writeln!(
+            out,
+            "The {}. {}\n",
+            format::md_text(&what),
+            format::md_text(&why)
+        );
+    }
     let all = warnings(results);
     if all.is_empty() {
         let _ = writeln!(out, "No warnings.\n");
     } else {
         let _ = writeln!(out, "Warnings:\n");
         for w in all {
-            let _ = writeln!(out, "- {w}");
+            let _ = writeln!(out, "- {}", format::md_text(&w));
         }
         let _ = writeln!(out);
     }

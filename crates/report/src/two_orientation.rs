@@ -96,6 +96,15 @@ pub(crate) fn summary_alone(results: &StudyResults) -> Option<String> {
     let mut out = String::new();
     let _ = writeln!(out, "Study `{}`", results.study);
     lines(&mut out, s);
+    if s.probe.is_some() {
+        let i = &results.inputs;
+        let _ = writeln!(
+            out,
+            "  probe: {}; angle zero: {}",
+            i.probe_direction.words(),
+            i.angle_zero.words()
+        );
+    }
     if results.warnings.is_empty() {
         let _ = writeln!(out, "no warnings");
     } else {
@@ -232,9 +241,11 @@ pub(crate) fn section(out: &mut String, s: &TwoOrientationResults) {
         let _ = writeln!(
             out,
             "The probe's C_r of phase `{}` ({how}) is {} m·s² (standard uncertainty). The \
-             difference C − C_r = {}, z = {:+.1}: {}. A difference is radius growth the probe \
-             does not see (arm stretch), or a wrong probe declaration (direction, gap unit, \
-             lever heights).\n",
+             difference C − C_r = {}, z = {:+.1}: {}. A difference is first a wrong declaration \
+             of the probe — its angle zero (`lever.angle_zero_deg`), its direction \
+             (`lever.probe_direction`) or its gap unit (the phase's `format.gap.unit`) — and, \
+             those right, radius growth the probe does not see (arm stretch) or wrong lever \
+             heights.\n",
             p.phase,
             format::pair(p.c_r_m_s2.value, p.c_r_m_s2.u).joined(),
             with_u95(&p.difference_m_s2, "m·s²"),
@@ -302,7 +313,7 @@ pub(crate) fn section(out: &mut String, s: &TwoOrientationResults) {
 /// A mounting's data in words: its table, or its raw recordings reduced to points.
 fn mounting_data(m: &pipeline::MountingResults) -> String {
     match &m.table {
-        Some(t) => format!("table `{t}`"),
+        Some(t) => format!("table {}", crate::format::md_text(t)),
         None => format!(
             "{} raw output recordings, each reduced to its mean over whole revolutions",
             m.recordings.len()

@@ -127,16 +127,21 @@ pub(crate) fn outside(doc: &PagedDocument, area: Area) -> Vec<Stray> {
     strays
 }
 
-/// Each page's glyph runs in frame order.
-pub(crate) fn laid_out_texts(doc: &PagedDocument) -> Vec<String> {
+/// Each page's glyph runs in frame order; with `body`, only those whose baseline lies between
+/// its top and bottom (the page's running head and foot left out).
+pub(crate) fn laid_out_texts(doc: &PagedDocument, body: Option<Area>) -> Vec<String> {
     doc.pages()
         .iter()
         .map(|page| {
             let mut items = Vec::new();
             visit(&page.frame, Transform::identity(), &mut items);
+            let h = page.frame.size().y.to_pt();
+            let inside = |y: f64| {
+                body.is_none_or(|a| y >= a.top_pt && y <= h - a.bottom_pt)
+            };
             items
                 .into_iter()
-                .filter(|(_, _, baseline)| baseline.is_finite())
+                .filter(|(_, _, baseline)| baseline.is_finite() && inside(*baseline))
                 .map(|(text, _, _)| text)
                 .collect::<Vec<_>>()
                 .join(" ")

@@ -199,7 +199,15 @@ impl Document {
     /// cell after cell), its glyph runs joined by a space.
     #[must_use]
     pub fn laid_out_texts(&self) -> Vec<String> {
-        layout::laid_out_texts(&self.document)
+        layout::laid_out_texts(&self.document, None)
+    }
+
+    /// As [`Document::laid_out_texts`], of the runs whose baseline lies between the top and
+    /// the bottom of `body` (the running head and foot left out, so that a table cell broken
+    /// across pages reads as one text).
+    #[must_use]
+    pub fn body_texts(&self, body: Area) -> Vec<String> {
+        layout::laid_out_texts(&self.document, Some(body))
     }
 }
 

@@ -259,6 +259,13 @@ pub enum UncertaintyError {
         /// The cap.
         max_trials: u64,
     },
+    /// The evaluation was asked to stop ([`stoppable`](crate::stoppable): an interrupted
+    /// caller) before it finished.
+    #[error("stopped on request after {trials} trials")]
+    Stopped {
+        /// Trials run before it stopped.
+        trials: u64,
+    },
     /// An option is out of its domain.
     #[error("option {name} = {} is invalid: {requirement}", units::Compact(*value))]
     InvalidOption {

@@ -168,6 +168,7 @@ impl Identify {
             delimiter: ',',
             sigma_column: None,
             label_column: None,
+            output_sigma_rad_s: None,
             format: Some(PigaTableFormat {
                 delimiter: if matches!(self.delimiter, ' ' | '\t') {
                     Delimiter::Whitespace

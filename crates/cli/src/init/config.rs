@@ -56,11 +56,14 @@ pub(crate) fn render(plan: &Plan<'_>, relative: &RelativePath<'_>) -> String {
          \x20   lever: (\n\
          \x20       pivot_to_probe_mm: {p},  // height from the spindle's tilt pivot to the probe plane, mm\n\
          \x20       probe_to_piga_mm: {p},   // height from the probe plane to the PIGA's centre-of-mass plane, mm\n\
-         \x20       // Which way the probe measures: against_o1_x1 (the paper's set-up, Fig. 3: the\n\
-         \x20       // probe faces the sleeve against its axis O1X1) or along_o1_x1. It sets the sign\n\
-         \x20       // of the phase β of the imbalance.\n\
+         \x20       // Which way the probe's reading moves when the spindle moves towards the PIGA\n\
+         \x20       // (the arm's PIGA end pointing at the probe); it sets the sign of C_r:\n\
+         \x20       //   against_o1_x1 (or reading_falls_towards_piga): {against};\n\
+         \x20       //   along_o1_x1 (or reading_rises_towards_piga): {along}.\n\
          \x20       probe_direction: {p},\n\
-         \x20   ),"
+         \x20   ),",
+        against = pipeline::ProbeDirectionName::AgainstO1X1.words(),
+        along = pipeline::ProbeDirectionName::AlongO1X1.words(),
     );
     s.push_str("    phases: [\n");
     for phase in &plan.phases {

@@ -550,10 +550,16 @@ fn a_probe_in_volts_in_tdms_or_mat_asks_for_its_sensitivity() {
         // `check` names the line left to fill in.
         let check = cli(&["check", out.to_str().unwrap()]);
         assert_eq!(check.status.code(), Some(1));
+        let printed = String::from_utf8_lossy(&check.stdout);
+        assert!(printed.contains("sensitivity: FILL_IN"), "{printed}");
+        // the direction still to fill in is described by what to check at the machine, not
+        // as the stand-in `check` reads in its place
         assert!(
-            String::from_utf8_lossy(&check.stdout).contains("sensitivity: FILL_IN"),
-            "{}",
-            String::from_utf8_lossy(&check.stdout)
+            printed.contains(
+                "direction (`lever.probe_direction`): not filled in: `against_o1_x1` if the \
+                 probe's gap closes (its reading falls) when the spindle moves towards the PIGA"
+            ),
+            "{printed}"
         );
     }
 }

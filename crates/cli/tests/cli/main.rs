@@ -1,6 +1,7 @@
 //! Command-line behaviour of the `centrifuge-cal` subcommands (one binary, a module per subcommand).
 
 mod harmonics;
+mod hostile_text;
 mod human;
 mod identify;
 mod init;

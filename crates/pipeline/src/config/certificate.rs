@@ -41,6 +41,43 @@ pub struct CertificateConfig {
     pub decision_rule: Option<DecisionRuleName>,
     /// Who authorises the certificate.
     pub authorisation: AuthorisationConfig,
+    /// Which method's coefficients the certificate certifies: `auto` (default: the
+    /// two-orientation method when both mountings were measured, else the probe method),
+    /// `probe` or `two_orientation`.
+    pub certify: CertifyName,
+    /// The laboratory's reason for certifying a value that the study's own check refutes
+    /// (|z| > 3 between the two methods); without it such a certificate is refused. The
+    /// certificate prints the reason.
+    pub certify_despite_check: Option<String>,
+    /// The certificate this one follows (the item's previous calibration certificate), when
+    /// there is one: the digital certificate (`certificate.dcc.xml`) names it as its
+    /// `previousReport`.
+    pub previous_certificate: Option<PreviousCertificateConfig>,
+}
+
+/// The certificate a certificate follows (`certificate.previous_certificate`).
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PreviousCertificateConfig {
+    /// Its unique identification.
+    pub id: String,
+    /// SHA-256 of its file (its `certificate.dcc.xml`, or the PDF issued), 64 hexadecimal
+    /// digits, when known.
+    pub sha256: Option<String>,
+}
+
+/// Which method's coefficients a certificate certifies (`certificate.certify`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CertifyName {
+    /// The two-orientation method when the study has both mountings, else the probe method.
+    #[default]
+    Auto,
+    /// The probe method: eq. 18 on the calibration section's data, k2 compensated with the
+    /// probe's C_r.
+    Probe,
+    /// The two-orientation method: eq. 23 on both mountings, k2 from the PIGA alone.
+    TwoOrientation,
 }
 
 /// The laboratory (`certificate.laboratory`).
@@ -53,6 +90,9 @@ pub struct LaboratoryConfig {
     pub address: String,
     /// Accreditation body and number, if accredited.
     pub accreditation: Option<String>,
+    /// The laboratory's country, as ISO 3166-1 writes it (two capital letters: `DE`, `GB`);
+    /// the digital certificate states it (`ZZ`, "not stated", without it).
+    pub country: Option<String>,
 }
 
 /// The customer (`certificate.customer`).

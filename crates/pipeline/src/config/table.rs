@@ -41,6 +41,12 @@ pub struct PigaTableConfig {
     /// with its residual; rows with the same label are compared.
     #[serde(default)]
     pub label_column: Option<String>,
+    /// The standard uncertainty of each mean output, stated rather than read from a σ
+    /// column (`constant(1e-9)` for every row, or `per_rate([(20.0, 1e-9), ...])`), rad/s.
+    /// Weighted exactly as a σ column of those values; stating both this and a σ column
+    /// (`sigma_column`, or `sigma` in `format`) is an error.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub output_sigma_rad_s: Option<OutputSigma>,
     /// The table as the laboratory exported it (delimiter, decimal comma, lines to skip,
     /// named columns with their units, σ and label columns), the same `format` block as
     /// `recording`'s PIGA-table reader takes; with it, the columns are named in it and not
@@ -48,6 +54,23 @@ pub struct PigaTableConfig {
     #[serde(default)]
     pub format: Option<recording::PigaTableFormat>,
 }
+
+/// A PIGA table's output noise stated in the study file (`output_sigma_rad_s`), for a table
+/// without a σ column.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OutputSigma {
+    /// One standard uncertainty for every row, rad/s (> 0).
+    Constant(f64),
+    /// One per rate: `(rate_deg_s, sigma_rad_s)` pairs; every row's rate must be listed
+    /// (rates equal to a relative 1e-9, as read from the table in deg/s); a listed rate no
+    /// row has is not used.
+    PerRate(Vec<(f64, f64)>),
+}
+
+/// Relative tolerance within which a table row's rate is the rate of an `output_sigma_rad_s:
+/// per_rate(...)` entry (rates are read in the table's own unit and converted to deg/s).
+pub const SIGMA_RATE_TOLERANCE: f64 = 1e-9;
 
 pub(crate) fn default_rate_column() -> String {
     "rate_deg_s".to_owned()

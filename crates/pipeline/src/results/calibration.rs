@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::common::{DegreesOfFreedom, Estimate};
+use super::declarations::ProbeSign;
 
 /// A calibrated coefficient with its uncertainty per JCGM 100.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -244,6 +245,9 @@ pub struct CalibrationResults {
     pub labels: Vec<LabelSummary>,
     /// Correlation matrix of the six fitted coefficients, in the order of `terms`.
     pub correlation: Vec<Vec<f64>>,
+    /// The GUM covariance matrix of k0, k1, k2, k3 (every input: the fit, C_r and the Type B
+    /// inputs), in their own units.
+    pub covariance: super::common::OutputCovariance,
     /// The design's terms: `1, ω, ω², ω³, a², a³`.
     pub terms: Vec<String>,
     /// Variance inflation factor of each non-constant term (a diagnostic: every polynomial
@@ -285,34 +289,6 @@ pub struct UncertaintyInflation {
     /// u in the fit over u in the same fit without the ω and ω³ nuisance columns: their
     /// price, large on every design (a diagnostic).
     pub nuisance: PigaCoefficients<f64>,
-}
-
-/// The probe's measuring direction, as the study file names it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub enum ProbeSign {
-    /// Against O1X1 (the paper's set-up): motion of the spindle towards the PIGA closes the gap.
-    #[serde(rename = "against_o1_x1")]
-    AgainstO1X1,
-    /// Along O1X1: motion of the spindle towards the PIGA opens the gap.
-    #[serde(rename = "along_o1_x1")]
-    AlongO1X1,
-}
-
-impl ProbeSign {
-    /// The convention in words: which way the gap moves when the spindle moves towards
-    /// the PIGA.
-    pub const fn words(self) -> &'static str {
-        match self {
-            Self::AgainstO1X1 => {
-                "the probe's gap closes (its reading falls) when the spindle moves towards the PIGA \
-                 (probe measuring against O1X1, the paper's set-up)"
-            }
-            Self::AlongO1X1 => {
-                "the probe's gap opens (its reading rises) when the spindle moves towards the PIGA \
-                 (probe measuring along O1X1)"
-            }
-        }
-    }
 }
 
 /// Which method a coefficient's stated 95 % interval comes from.

@@ -30,3 +30,12 @@ pub struct Estimate {
     /// Its standard uncertainty.
     pub u: f64,
 }
+
+/// The covariance matrix of a GUM evaluation's outputs (JCGM 102 §6.2: `U_y = C·U_x·Cᵀ`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OutputCovariance {
+    /// The outputs, in the matrix's order.
+    pub outputs: Vec<String>,
+    /// The matrix, row by row, in the outputs' units.
+    pub matrix: Vec<Vec<f64>>,
+}

@@ -9,6 +9,7 @@ mod balance;
 mod calibration;
 mod certificate;
 mod common;
+mod declarations;
 mod mechanism;
 mod phases;
 mod two_orientation;
@@ -17,11 +18,12 @@ mod warning;
 pub use balance::*;
 pub use calibration::*;
 pub use certificate::*;
-pub use common::{DegreesOfFreedom, Estimate, InfiniteDof};
+pub use common::{DegreesOfFreedom, Estimate, InfiniteDof, OutputCovariance};
+pub use declarations::{AngleZero, ProbeSign};
 pub use mechanism::*;
 pub use phases::*;
 pub use two_orientation::*;
-pub use warning::{Warning, WarningCode};
+pub use warning::{ProbeDeclared, Warning, WarningCode};
 
 /// All results of a study.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -65,6 +67,12 @@ pub struct StudyInputs {
     pub k1_rad_s_g: f64,
     /// Lever ratio from the probe plane to the PIGA plane.
     pub lever_ratio: f64,
+    /// The probe's measuring direction (`lever.probe_direction`).
+    #[serde(default)]
+    pub probe_direction: ProbeSign,
+    /// The angle zero (`lever.angle_zero_deg`), and whether the study states it.
+    #[serde(default)]
+    pub angle_zero: AngleZero,
 }
 
 impl StudyResults {

@@ -27,6 +27,10 @@ pub struct MountingResults {
     pub recordings: Vec<PigaRecordingResult>,
     /// Points fitted: the table's rows, or the recordings.
     pub points: usize,
+    /// The lowest rate fitted, deg/s.
+    pub rate_low_deg_s: f64,
+    /// The highest rate fitted, deg/s.
+    pub rate_high_deg_s: f64,
     /// Distinct rates.
     pub distinct_rates: usize,
     /// Bias k0 of this mounting (with the gravity seen through its tilt), rad/s.
@@ -81,6 +85,8 @@ pub struct TwoOrientationBudgets {
 pub struct TwoOrientationHeadline {
     /// k2.
     pub k2: Headline,
+    /// k3.
+    pub k3: Headline,
     /// C.
     pub c: Headline,
 }
@@ -154,6 +160,9 @@ pub struct TwoOrientationResults {
     pub monte_carlo: TwoOrientationMonteCarlo,
     /// The 95 % interval each is stated with (JCGM 101 §8).
     pub headline: TwoOrientationHeadline,
+    /// The GUM covariance matrix of k0 and k1 of each mounting, k2 and k3 (every input), in
+    /// their own units.
+    pub covariance: super::common::OutputCovariance,
     /// The comparison with the probe phase.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub probe: Option<ProbeComparison>,

@@ -4,6 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::declarations::{AngleZero, ProbeSign};
+
 /// What a warning is about: a short stable code, `snake_case` in results.json.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -223,7 +225,8 @@ impl Warning {
             message: format!(
                 "{with_sigma} gives each point's standard uncertainty but {without_sigma} does \
                  not: the two-orientation fit is unweighted, its uncertainties come from the \
-                 residuals, and the given ones are not used (give `sigma_column` for a table)"
+                 residuals, and the given ones are not used (state a table's σ by `sigma_column` or \
+                 `output_sigma_rad_s`)"
             ),
             location: without_sigma.into(),
         }
@@ -380,25 +383,98 @@ impl Warning {
         }
     }
 
-    /// `probe_disagrees`: the PIGA's C and phase `phase`'s C_r differ by `difference ± u`
-    /// m·s² (`z`).
+    /// `probe_disagrees`: the PIGA's C and the probe's C_r (`c_r`, m·s²) differ by
+    /// `difference ± u` m·s² (`z`). The message names the probe's three declarations that
+    /// show exactly so — the angle zero, the probe direction and the gap unit, each with the
+    /// field that states it and what it says now — before radius growth the probe does not
+    /// see.
     #[must_use]
-    pub fn probe_disagrees(phase: &str, difference: f64, u: f64, z: f64) -> Self {
+    pub fn probe_disagrees(
+        declared: &ProbeDeclared,
+        c_r: f64,
+        difference: f64,
+        u: f64,
+        z: f64,
+    ) -> Self {
+        let c = c_r + difference;
+        let ratio = c_r / c;
+        let ratio_text = if ratio.is_finite() {
+            format!("; C_r/C = {}", units::Compact(round_to(ratio, 3)))
+        } else {
+            String::new()
+        };
+        // an encoder zero off by φ makes C_r cos φ times its value for an imbalance along
+        // the arm
+        let offset_hint = if ratio.is_finite() && ratio > 0.0 && ratio < 1.0 {
+            format!(
+                " (C_r/C = {} would then be φ ≈ {}°)",
+                units::Compact(round_to(ratio, 3)),
+                ratio.acos().to_degrees().round()
+            )
+        } else {
+            String::new()
+        };
+        let angle = if declared.angle_zero.stated {
+            format!(
+                "now {}°",
+                units::Compact(declared.angle_zero.angle_zero_deg)
+            )
+        } else {
+            "not stated, so 0° is taken".to_owned()
+        };
         Self {
             code: WarningCode::ProbeDisagrees,
             message: format!(
                 "the radius growth C the PIGA measures in its two orientations differs from the \
                  probe's C_r of phase `{phase}` by {difference:+.3e} ± {u:.1e} m·s² (C − C_r; \
-                 z = {z:+.1}, beyond ±3). Either the radius grows in a way the probe does not see (the arm \
-                 stretching under centrifugal load, a mount that gives), and a k2 compensated \
-                 with the probe keeps that part of the error; or the probe's declaration is \
-                 wrong: its measuring direction (`lever.probe_direction`), the unit of its gap \
-                 column (`format`), or the lever heights. Check the declaration first; if it \
-                 is right, state the two-orientation k2"
+                 z = {z:+.1}, beyond ±3{ratio_text}). A wrong declaration of the probe shows \
+                 exactly so, with no other sign; check these three first: (1) the angle zero, \
+                 `lever.angle_zero_deg` ({angle}): what the encoder reads when the arm's PIGA \
+                 end points at the probe; an encoder zero off by φ turns the probe's first \
+                 harmonic by φ, which makes C_r cos φ times its value when the imbalance lies \
+                 along the arm{offset_hint}, more or less otherwise; (2) the probe direction, \
+                 `lever.probe_direction` \
+                 ({direction}: {direction_words}): the other way round turns C_r's sign (C_r/C \
+                 near −1); (3) the gap unit, `{gap_field}` ({gap_unit}): a column in mm read \
+                 as µm makes C_r 1000 times too small. If all three are right, the radius grows \
+                 in a way the probe does not see (the arm stretching under centrifugal load, a \
+                 mount that gives, or wrong lever heights `lever.pivot_to_probe_mm`, \
+                 `lever.probe_to_piga_mm`), and a k2 compensated with the probe keeps that \
+                 part of the error: state the two-orientation k2",
+                phase = declared.phase,
+                direction = declared.direction.name(),
+                direction_words = declared.direction.words(),
+                gap_field = declared.gap_field,
+                gap_unit = declared.gap_unit,
             ),
             location: "two_orientation.compare_with".into(),
         }
     }
+}
+
+/// `x` rounded to `digits` significant digits (a ratio as a person reads it).
+fn round_to(x: f64, digits: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
+}
+
+/// What the probe phase a two-orientation study compares with declares: the declarations
+/// a disagreement of C and C_r names first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProbeDeclared {
+    /// The phase's name.
+    pub phase: String,
+    /// The angle zero (`lever.angle_zero_deg`).
+    pub angle_zero: AngleZero,
+    /// The probe's measuring direction (`lever.probe_direction`).
+    pub direction: ProbeSign,
+    /// The field that states the phase's gap unit (`phases[0].points.format.gap.unit`).
+    pub gap_field: String,
+    /// What it states (`um`, `mm`, or the unit of given coefficients).
+    pub gap_unit: String,
 }
 
 #[cfg(test)]

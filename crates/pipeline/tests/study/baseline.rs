@@ -108,6 +108,12 @@ fn old_shape(mut v: Value) -> Value {
     root.remove("warnings");
     // Added by issue 12 (not in the baseline): the paper check of the counterweight.
     root.remove("counterweight");
+    // Added by issue 28 (not in the baseline): the probe's declarations echoed with the
+    // inputs.
+    if let Some(Value::Object(inputs)) = root.get_mut("inputs") {
+        inputs.remove("probe_direction");
+        inputs.remove("angle_zero");
+    }
     if let Some(Value::Array(phases)) = root.get_mut("phases") {
         for phase in phases {
             if let Some(Value::Array(points)) = phase.get_mut("points") {

@@ -112,3 +112,63 @@ fn an_unknown_certificate_key_names_its_place() {
         "{text}"
     );
 }
+
+/// The campaign study with `fields` added to its certificate section and `country` to its
+/// laboratory.
+fn campaign_with(fields: &str, country: &str) -> Result<Inputs, PipelineError> {
+    let path = root().join("fixtures/studies/campaign.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = text
+        .replacen(
+            "        authorisation: (",
+            &format!("        {fields}\n        authorisation: ("),
+            1,
+        )
+        .replacen(
+            "            accreditation: ",
+            &format!("            country: {country},\n            accreditation: "),
+            1,
+        );
+    let config = StudyConfig::from_ron(&text, &path)?;
+    Inputs::new(config, &path, &pipeline::Files)
+}
+
+#[test]
+fn the_previous_certificate_and_the_country_are_checked_and_recorded() {
+    let e = campaign_with(
+        "previous_certificate: (id: \" \", sha256: \"0123abcd\"),",
+        "\"de\"",
+    )
+    .unwrap_err();
+    let PipelineError::Several { errors } = &e else {
+        panic!("expected every problem at once, got {e}");
+    };
+    let text = chain(&e);
+    for field in [
+        "certificate.previous_certificate.id",
+        "certificate.previous_certificate.sha256",
+        "certificate.laboratory.country",
+    ] {
+        assert!(text.contains(&format!("`{field}`")), "{field}: {text}");
+    }
+    assert_eq!(errors.len(), 3, "{text}");
+    assert!(text.contains("64 hexadecimal digits"), "{text}");
+    assert!(text.contains("two capital letters"), "{text}");
+
+    let sha = "AB".repeat(32);
+    let inputs = campaign_with(
+        &format!("previous_certificate: (id: \"CC-2025-0031\", sha256: \"{sha}\"),"),
+        "\"DE\"",
+    )
+    .unwrap();
+    let results = pipeline::run(&inputs).unwrap();
+    let cert = results.certificate.unwrap();
+    let previous = cert.previous_certificate.unwrap();
+    assert_eq!(previous.id, "CC-2025-0031");
+    assert_eq!(
+        previous.sha256.unwrap(),
+        "ab".repeat(32),
+        "recorded in lower case"
+    );
+    assert_eq!(cert.laboratory.country.as_deref(), Some("DE"));
+}

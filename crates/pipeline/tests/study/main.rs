@@ -7,6 +7,8 @@ mod balancing;
 mod baseline;
 mod calibration;
 mod certificate;
+mod certify;
+mod declared_sigma;
 mod exported_table;
 mod in_memory;
 mod lab_variants;

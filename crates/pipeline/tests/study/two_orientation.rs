@@ -101,7 +101,17 @@ pub(crate) enum Declared {
     WrongSign,
     /// The gap column holds mm, the study reads µm (the default unit).
     MillimetresReadAsMicrometres,
+    /// The encoder reads 330° when the arm's PIGA end points at the probe (its zero 30°
+    /// past the arm's reference), and the study does not say so.
+    EncoderZeroOff30,
+    /// The same encoder, declared: `lever.angle_zero_deg: 330.0`.
+    EncoderZeroOff30Stated,
 }
+
+/// The encoder's reading at the angle zero in [`Declared::EncoderZeroOff30`], deg: its zero
+/// 30° from the arm's reference, on the side where the campaign's imbalance (about 14° from
+/// the arm) makes the error large (C_r × 0.74; 30° the other way gives × 0.99).
+pub(crate) const ENCODER_ZERO_DEG: f64 = 330.0;
 
 /// The campaign study's probe phase on the simulation's probe recordings, as the lab
 /// declares the probe: the study text (no calibration section) and its files in memory.
@@ -114,6 +124,20 @@ pub(crate) fn probe_study(
         let mut r = r.clone();
         if declared == Declared::MillimetresReadAsMicrometres {
             r.gap_um.iter_mut().for_each(|g| *g *= 1e-3);
+        }
+        if matches!(
+            declared,
+            Declared::EncoderZeroOff30 | Declared::EncoderZeroOff30Stated
+        ) {
+            // the same samples, read by an encoder whose zero lies 30° past the arm's
+            // reference: it reads 330° more (30° less), wrapping at 360°
+            let angles = r
+                .angle_deg
+                .as_mut()
+                .expect("the campaign records the encoder");
+            angles
+                .iter_mut()
+                .for_each(|a| *a = (*a + ENCODER_ZERO_DEG).rem_euclid(360.0));
         }
         let mut csv = Vec::new();
         r.write_csv(&mut csv).unwrap();
@@ -140,6 +164,17 @@ pub(crate) fn probe_study(
             "probe_direction: against_o1_x1",
             "probe_direction: along_o1_x1",
         );
+    }
+    // the campaign study states its encoder's angle zero (0°)
+    match declared {
+        Declared::EncoderZeroOff30Stated => {
+            text = text.replace(
+                "angle_zero_deg: 0.0",
+                &format!("angle_zero_deg: {ENCODER_ZERO_DEG:?}"),
+            );
+        }
+        Declared::EncoderZeroOff30 => text = text.replace(", angle_zero_deg: 0.0", ""),
+        _ => {}
     }
     (text, files)
 }

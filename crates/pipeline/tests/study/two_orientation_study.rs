@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use pipeline::{Inputs, PipelineError, StudyConfig, StudyResults, WarningCode};
 use simulate::{Orientation, Simulation};
 
-use super::two_orientation::{C_R, DIR, Declared, K2, probe_study, scenario};
+use super::two_orientation::{C_R, DIR, Declared, ENCODER_ZERO_DEG, K2, probe_study, scenario};
 use test_support::MemoryFiles as Files;
 
 /// The two-orientation section on the simulation's two mounting tables, compared with the probe
@@ -174,6 +174,71 @@ fn a_wrong_probe_declaration_warns_through_the_study() {
         assert!(p.z.abs() > 3.0, "z = {}", p.z);
         assert!(warned(&r, WarningCode::ProbeDisagrees));
     }
+}
+
+/// Probe recordings whose encoder's zero lies 30° from the arm (it reads 330° when the arm's
+/// PIGA end points at the probe; a rotated copy of the campaign's, without arm stretch):
+/// declared (`lever.angle_zero_deg: 330.0`), C_r equals the zero-offset study's to 1e-9
+/// relative and the
+/// two methods agree; undeclared, C_r shrinks with no other sign in the probe phase, and the
+/// two-orientation section's disagreement names the angle zero first, with its field.
+#[test]
+fn an_encoder_zero_off_the_arm_is_exact_declared_and_named_undeclared() {
+    let sim = simulate::simulate(&scenario(22, 0.0)).unwrap();
+    let right = study(&sim, Declared::Right);
+    let declared = study(&sim, Declared::EncoderZeroOff30Stated);
+    let c_r = right.phases[0].fit.c_r_m_s2;
+    let c_r_declared = declared.phases[0].fit.c_r_m_s2;
+    assert!(
+        ((c_r_declared - c_r) / c_r).abs() < 1e-9,
+        "declared {c_r_declared:e} against {c_r:e}"
+    );
+    assert!(declared.inputs.angle_zero.stated);
+    assert_eq!(declared.inputs.angle_zero.angle_zero_deg, ENCODER_ZERO_DEG);
+    assert!(!warned(&declared, WarningCode::ProbeDisagrees));
+    assert!(right.inputs.angle_zero.stated && right.inputs.angle_zero.angle_zero_deg == 0.0);
+
+    let undeclared = study(&sim, Declared::EncoderZeroOff30);
+    assert!(!undeclared.inputs.angle_zero.stated);
+    let c_r_undeclared = undeclared.phases[0].fit.c_r_m_s2;
+    assert!(
+        ((c_r_undeclared - c_r) / c_r).abs() > 0.05,
+        "undeclared {c_r_undeclared:e} against {c_r:e}"
+    );
+    // nothing in the probe phase itself shows it
+    assert!(
+        !undeclared
+            .warnings
+            .iter()
+            .any(|w| w.location.starts_with("phases")),
+        "{:?}",
+        undeclared.warnings
+    );
+    let p = undeclared
+        .two_orientation
+        .as_ref()
+        .unwrap()
+        .probe
+        .as_ref()
+        .unwrap();
+    assert!(p.z.abs() > 3.0, "z = {}", p.z);
+    let w = undeclared
+        .warnings
+        .iter()
+        .find(|w| w.code == WarningCode::ProbeDisagrees)
+        .expect("the disagreement warning");
+    let m = &w.message;
+    let at = |needle: &str| {
+        m.find(needle)
+            .unwrap_or_else(|| panic!("{needle:?} in {m}"))
+    };
+    // the three declarations first, by the fields a person edits, then arm stretch
+    assert!(
+        at("`lever.angle_zero_deg` (not stated, so 0° is taken)") < at("`lever.probe_direction`")
+    );
+    assert!(at("`lever.probe_direction`") < at("`phases[0].points.format.gap.unit` (um)"));
+    assert!(at("`phases[0].points.format.gap.unit`") < at("arm stretching"));
+    insta::assert_snapshot!("probe_disagrees_undeclared_angle_zero", m);
 }
 
 /// A section with a missing radius, the same orientation twice and tables with too few

@@ -195,8 +195,10 @@ fn a_volts_recording_states_the_probe_gain_once() {
 }
 
 /// The probe's sign convention is echoed in words with C_r (issue 19 item 6): a study
-/// declared `along_o1_x1` says the gap opens when the spindle moves towards the PIGA, so a
-/// wrong declaration is visible beside the C_r it changed.
+/// declared `along_o1_x1` says the probe's reading rises when the spindle moves towards the
+/// PIGA, so a wrong declaration is visible beside the C_r it changed. The self-describing
+/// names (`reading_falls_towards_piga`, `reading_rises_towards_piga`) are the same
+/// declarations.
 #[test]
 fn the_probe_sign_convention_is_echoed_in_words() {
     let path = root().join("fixtures/studies/campaign.ron");
@@ -213,10 +215,23 @@ fn the_probe_sign_convention_is_echoed_in_words() {
         a.probe_direction.words()
     );
     assert!(
-        b.probe_direction.words().contains("gap opens"),
+        b.probe_direction.words().contains("reading rises"),
         "{}",
         b.probe_direction.words()
     );
     // the slip changes C_r's sign; the echo is what shows which convention produced it
     assert!(a.c_r_m_s2.value * b.c_r_m_s2.value < 0.0);
+    for (alias, same) in [
+        ("reading_falls_towards_piga", &a),
+        ("reading_rises_towards_piga", &b),
+    ] {
+        let text = campaign_text().replace(
+            "probe_direction: against_o1_x1",
+            &format!("probe_direction: {alias}"),
+        );
+        let r = pipeline::run(&inputs(&text, &path).unwrap()).unwrap();
+        let c = r.calibration.unwrap();
+        assert_eq!(c.probe_direction, same.probe_direction, "{alias}");
+        assert_eq!(c.c_r_m_s2.value, same.c_r_m_s2.value, "{alias}");
+    }
 }

@@ -44,8 +44,8 @@ class Warning(_Result):
 
 @dataclass(frozen=True)
 class Coefficients(_Result):
-    """Eq. 20's coefficients, in the gap's unit: ``l0`` and, for order k = 1…N, ``c[k-1]``
-    (cos kθ) and ``s[k-1]`` (sin kθ); ``drift_per_s`` (gap unit per second) when fitted."""
+    """Eq. 20's coefficients, in µm: ``l0`` and, for order k = 1…N, ``c[k-1]`` (cos kθ) and
+    ``s[k-1]`` (sin kθ); ``drift_per_s`` (µm per second) when fitted."""
 
     l0: float
     c: tuple[float, ...]
@@ -62,7 +62,7 @@ class Coefficients(_Result):
 @dataclass(frozen=True)
 class FirstHarmonic(_Result):
     """The first harmonic of the mean coefficients (eq. 21): ``c1``, ``s1`` and
-    ``amplitude`` ΔR1 in the gap's unit, ``beta_deg`` β for the probe's direction."""
+    ``amplitude`` ΔR1 in µm, ``beta_deg`` β for the probe's direction."""
 
     c1: float
     s1: float
@@ -101,8 +101,9 @@ class HarmonicFit(_Result):
     """The per-revolution Fourier fit of eq. 20 and its average across revolutions.
 
     ``mean``, ``std`` (sample standard deviation across revolutions) and ``std_error``
-    (``std/√K``) are in the gap's unit; ``std`` and ``std_error`` are ``None`` with one
-    revolution. ``measured_rate_deg_s`` is the encoder's mean rate over the revolutions
+    (``std/√K``) are in µm (``gap_unit``), converted from the gap's declared unit
+    (``declared_gap_unit``) as the study converts them; ``std`` and ``std_error`` are
+    ``None`` with one revolution. ``measured_rate_deg_s`` is the encoder's mean rate over the revolutions
     fitted (``None`` with the angle from the declared rate)."""
 
     samples: int
@@ -125,6 +126,12 @@ class HarmonicFit(_Result):
     #: Seconds the Rust computation took, the GIL released (checks, fit, statistics); the
     #: rest of the call is the binding's overhead (``bench/python_binding.py``).
     rust_seconds: float | None = dataclasses.field(default=None, compare=False, repr=False)
+    #: The unit of every length of the fit (``mean``, ``std``, ``first_harmonic``,
+    #: ``per_revolution``): µm, the study's, whatever the gap's declared unit.
+    gap_unit: str = "um"
+    #: The gap's declared unit (the format's, or ``fit_harmonics``' ``gap_unit``), which
+    #: the lengths were converted from.
+    declared_gap_unit: str = "um"
 
     @property
     def rate_rad_s(self) -> float:
@@ -157,6 +164,7 @@ class HarmonicFit(_Result):
             dropped_revolutions=int(d["dropped_revolutions"]),
             warnings=tuple(Warning(**w) for w in d["warnings"]),
             rust_seconds=d.get("rust_seconds"),
+            declared_gap_unit=d.get("declared_gap_unit", "um"),
         )
 
 
@@ -259,6 +267,9 @@ class StudyResults(_Result):
     balance: dict[str, Any] | None
     mechanism: dict[str, Any] | None
     data: dict[str, Any]
+    #: results.json's ``two_orientation`` object (the IA-in/IA-out fit of eq. 23: k2, C,
+    #: C − C_r against the probe, their budgets), ``None`` without that section.
+    two_orientation: dict[str, Any] | None = None
 
     def phase(self, name: str) -> dict[str, Any]:
         """The phase named ``name``; ``KeyError`` naming the study's phases otherwise."""
@@ -281,4 +292,5 @@ class StudyResults(_Result):
             balance=d.get("balance"),
             mechanism=d.get("mechanism"),
             data=d,
+            two_orientation=d.get("two_orientation"),
         )

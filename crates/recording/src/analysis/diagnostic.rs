@@ -55,6 +55,9 @@ pub enum Diagnostic {
     AngleFromRate {
         /// Header columns not read (one may be an encoder or index pulse).
         unread_columns: Vec<String>,
+        /// The angle the first sample is taken at, from the angle zero (the arm's PIGA end
+        /// pointing at the probe), deg: the format's `rate(start_angle_deg)`, 0 by default.
+        start_angle_deg: f64,
     },
     /// The measured mean rate differs from the declared one by more than
     /// [`RATE_WARNING_TOLERANCE`]; the measured one is used.
@@ -132,12 +135,18 @@ impl Diagnostic {
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::AngleFromRate { unread_columns } => {
+            Self::AngleFromRate {
+                unread_columns,
+                start_angle_deg,
+            } => {
                 write!(
                     f,
-                    "no angle was measured: the angle is built from the declared rate with \
-                     the format's start angle, so a real rate that differs, or a wrong start \
-                     angle, shifts β and C_r without any other sign"
+                    "no angle was measured: the angle is built from the declared rate, the \
+                     first sample taken to be {}° from the angle zero (the arm's PIGA end \
+                     pointing at the probe; `rate(start_angle_deg)`, and no encoder zero \
+                     applies), so a real rate that differs, or a wrong start angle, shifts β \
+                     and C_r without any other sign",
+                    units::Compact(*start_angle_deg)
                 )?;
                 if !unread_columns.is_empty() {
                     write!(

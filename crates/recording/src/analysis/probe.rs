@@ -11,7 +11,7 @@ use super::diagnostic::{
     Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
 };
 use crate::error::{Hint, RecordingError, Result};
-use crate::lab::format::OnBadSamples;
+use crate::lab::format::{LengthUnit, OnBadSamples};
 use crate::lab::probe::{AngleSourceKind, Recording, sample_index};
 
 /// A recording's harmonic analysis with what it rests on.
@@ -277,6 +277,7 @@ fn finish(
     if recording.angle_source == AngleSourceKind::DeclaredRate {
         diagnostics.push(Diagnostic::AngleFromRate {
             unread_columns: recording.unread_columns.clone(),
+            start_angle_deg: recording.start_angle_rad.to_degrees(),
         });
     }
     if let Some(m) = measured_rate_rad_s
@@ -288,7 +289,7 @@ fn finish(
         });
     }
     diagnostics.extend(statistics.diagnostics);
-    if let Some(d) = implausible_gap(recording, &analysis) {
+    if let Some(d) = implausible_gap(recording.gap_unit, &analysis) {
         diagnostics.push(d);
     }
     if dropped_revolutions > 0 {
@@ -311,9 +312,11 @@ fn finish(
 }
 
 /// [`Diagnostic::ImplausibleGap`] when the mean gap is below a micrometre or the first
-/// harmonic below a probe's own noise (1 nm).
-fn implausible_gap(recording: &Recording, analysis: &HarmonicAnalysis) -> Option<Diagnostic> {
-    let um = recording.gap_unit.um_per_unit();
+/// harmonic below a probe's own noise (1 nm): the check of a fit of a gap declared in
+/// `unit` (a recording's, or arrays handed over with their unit, as the Python package
+/// does), whose coefficients are in that unit.
+pub fn implausible_gap(unit: LengthUnit, analysis: &HarmonicAnalysis) -> Option<Diagnostic> {
+    let um = unit.um_per_unit();
     let mean_gap_um = analysis.mean.l0 * um;
     let first_harmonic_um = analysis.mean.c[0].hypot(analysis.mean.s[0]) * um;
     let noise_um = PROBE_RESOLUTION_UM;
@@ -323,7 +326,7 @@ fn implausible_gap(recording: &Recording, analysis: &HarmonicAnalysis) -> Option
             .iter()
             .all(|v| v.is_finite()))
     .then_some(Diagnostic::ImplausibleGap {
-        unit: recording.gap_unit,
+        unit,
         mean_gap_um,
         first_harmonic_um,
         noise_um,

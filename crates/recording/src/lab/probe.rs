@@ -122,6 +122,35 @@ impl Recording {
         }
     }
 
+    /// Moves a measured angle's zero to the angle zero of eq. 20–21 (the arm's PIGA end
+    /// pointing at the probe, along O1X1): `angle_zero_rad` is what the encoder reads (or
+    /// how far the spindle has turned past the index pulse's rising edge) there, and every
+    /// measured angle becomes the angle less it. An exact shift of the angle, before any
+    /// fit: the revolutions are cut at the same samples (they start a whole turn from the
+    /// first sample's angle), and the first harmonic comes out turned by the offset.
+    ///
+    /// An angle from the declared rate is not moved: its start angle
+    /// (`rate(start_angle_deg)`) is already the first sample's angle from the angle zero.
+    ///
+    /// ```
+    /// use recording::{parse_recording, RecordingFormat};
+    /// let text = "time_s,gap_um,angle_deg\n0.000,12.5,30.0\n0.001,12.6,31.0\n";
+    /// let mut rec = parse_recording(text.as_bytes(), "p.csv".as_ref(), &RecordingFormat::default())?;
+    /// rec.shift_angle_zero(30f64.to_radians());
+    /// approx::assert_relative_eq!(rec.angle_rad.as_ref().unwrap()[1], 1f64.to_radians(), epsilon = 1e-15);
+    /// # Ok::<(), recording::RecordingError>(())
+    /// ```
+    pub fn shift_angle_zero(&mut self, angle_zero_rad: f64) {
+        if angle_zero_rad == 0.0 {
+            return;
+        }
+        if let Some(a) = self.angle_rad.as_mut() {
+            for v in a {
+                *v -= angle_zero_rad;
+            }
+        }
+    }
+
     /// The samples as a [`ProbeSignal`]: the measured angle when there is one, else
     /// `θ = ω·(t − t₀) + θ₀` from the declared rate and the format's start angle.
     pub fn signal(&self, declared_rate_rad_s: f64) -> ProbeSignal<'_> {

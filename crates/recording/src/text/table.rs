@@ -260,6 +260,108 @@ pub fn parse_table(text: &[u8], path: &Path, format: &TableFormat) -> Result<Tab
     parser.finish()
 }
 
+impl Table {
+    /// A table held in memory as named columns (a caller's arrays: the Python package's), read
+    /// as [`parse_table`] reads a file of them: the format's required columns present, every
+    /// column as long as the first, at least one row, values finite unless the format allows
+    /// otherwise, a label for each row when the format names a label column. `path` names the
+    /// table in errors, whose "line" is the 1-based row (a column shorter than the longest is
+    /// [`RecordingError::MissingField`] at the row after its last).
+    ///
+    /// ```
+    /// use recording::{Table, TableColumn, TableFormat};
+    /// let format = TableFormat::new(
+    ///     vec![TableColumn::required("rate_deg_s"), TableColumn::optional("sigma")],
+    ///     false,
+    /// );
+    /// let columns = vec![("rate_deg_s".to_owned(), vec![10.0, 20.0])];
+    /// let table = Table::from_columns("<arrays>".as_ref(), &format, columns, None)?;
+    /// assert_eq!(table.column("rate_deg_s"), Some(&[10.0, 20.0][..]));
+    /// assert_eq!(table.column("sigma"), None);
+    /// assert_eq!(table.line_of_row(1), 2);
+    /// # Ok::<(), recording::RecordingError>(())
+    /// ```
+    pub fn from_columns(
+        path: &Path,
+        format: &TableFormat,
+        mut columns: Vec<(String, Vec<f64>)>,
+        labels: Option<Vec<String>>,
+    ) -> Result<Table> {
+        format.check()?;
+        let header: Vec<String> = columns
+            .iter()
+            .map(|(name, _)| name.clone())
+            .chain(labels.as_ref().and(format.label.clone()))
+            .collect();
+        let rows = columns.iter().map(|(_, v)| v.len()).max().unwrap_or(0);
+        let mut lines = LineTable::default();
+        lines.record(0, 1);
+        let missing = |column: &str| RecordingError::MissingColumn {
+            path: path.to_owned(),
+            line: 0,
+            column: column.to_owned(),
+            header: header.clone(),
+            hint: None,
+        };
+        let mut values: Vec<Option<Vec<f64>>> = Vec::with_capacity(format.columns.len());
+        for c in &format.columns {
+            match columns.iter().position(|(name, _)| *name == c.name) {
+                Some(k) => values.push(Some(std::mem::take(&mut columns[k].1))),
+                None if c.required => return Err(missing(&c.name)),
+                None => values.push(None),
+            }
+        }
+        if rows == 0 {
+            return Err(RecordingError::NoRows {
+                path: path.to_owned(),
+                line: 0,
+            });
+        }
+        for (c, column) in format.columns.iter().zip(&values) {
+            let Some(column) = column else { continue };
+            if column.len() < rows {
+                return Err(RecordingError::MissingField {
+                    path: path.to_owned(),
+                    line: column.len() + 1,
+                    column: c.name.clone(),
+                });
+            }
+            if !format.allow_non_finite
+                && let Some(i) = column.iter().position(|v| !v.is_finite())
+            {
+                return Err(RecordingError::NonFinite {
+                    path: path.to_owned(),
+                    line: i + 1,
+                    column: c.name.clone(),
+                    value: column[i],
+                    hint: None,
+                });
+            }
+        }
+        let labels = match (&format.label, labels) {
+            (None, _) => None,
+            (Some(label), None) => return Err(missing(label)),
+            (Some(label), Some(l)) if l.len() != rows => {
+                return Err(RecordingError::MissingField {
+                    path: path.to_owned(),
+                    line: l.len().min(rows) + 1,
+                    column: label.clone(),
+                });
+            }
+            (Some(_), Some(l)) => Some(l),
+        };
+        Ok(Table {
+            path: path.to_owned(),
+            names: format.columns.iter().map(|c| c.name.clone()).collect(),
+            columns: values,
+            header_line: 0,
+            header,
+            lines,
+            labels,
+        })
+    }
+}
+
 /// [`parse_table`] with every row parsed field by field: the reference path that the fast
 /// in-place path must agree with (same table, same error), for the tests and the fuzz
 /// targets. Not part of the crate's interface.

@@ -287,3 +287,64 @@ fn a_large_labelled_table_keeps_every_label_in_order() {
     assert_eq!(labels[39_999], "r39999");
     assert_eq!(t.column("rate_deg_s").unwrap()[39_999], 40_000.5);
 }
+
+#[test]
+fn a_table_of_arrays_is_read_as_its_file_is_and_refused_alike() {
+    use recording::Table;
+    let format = TableFormat {
+        label: Some("label".into()),
+        ..TableFormat::new(
+            vec![
+                TableColumn::required("rate_deg_s"),
+                TableColumn::required("output_rad_s"),
+                TableColumn::optional("sigma_rad_s"),
+            ],
+            false,
+        )
+    };
+    let path = std::path::Path::new("<arrays>");
+    let columns = || {
+        vec![
+            ("output_rad_s".to_owned(), vec![0.1, 0.2, 0.3]),
+            ("rate_deg_s".to_owned(), vec![10.0, 20.0, 30.0]),
+        ]
+    };
+    let labels = || Some(vec!["a".to_owned(), "b".to_owned(), "a".to_owned()]);
+    let table = Table::from_columns(path, &format, columns(), labels()).unwrap();
+    let text = "rate_deg_s,output_rad_s,label\n10,0.1,a\n20,0.2,b\n30,0.3,a\n";
+    let parsed = parse_table(text.as_bytes(), path, &format).unwrap();
+    for name in ["rate_deg_s", "output_rad_s", "sigma_rad_s"] {
+        assert_eq!(table.column(name), parsed.column(name), "{name}");
+    }
+    assert_eq!(table.labels(), parsed.labels());
+    assert_eq!(table.line_of_row(2), 3, "rows are counted from 1");
+    // a required column missing, a short column, a NaN, no labels, no rows
+    let missing = Table::from_columns(path, &format, columns()[..1].to_vec(), labels());
+    assert!(
+        matches!(missing, Err(RecordingError::MissingColumn { ref column, .. }) if column == "rate_deg_s")
+    );
+    let mut short = columns();
+    short[0].1.pop();
+    let short = Table::from_columns(path, &format, short, labels());
+    assert!(
+        matches!(short, Err(RecordingError::MissingField { line: 3, ref column, .. }) if column == "output_rad_s")
+    );
+    let mut nan = columns();
+    nan[1].1[1] = f64::NAN;
+    let nan = Table::from_columns(path, &format, nan, labels());
+    assert!(
+        matches!(nan, Err(RecordingError::NonFinite { line: 2, ref column, .. }) if column == "rate_deg_s")
+    );
+    let unlabelled = Table::from_columns(path, &format, columns(), None);
+    assert!(
+        matches!(unlabelled, Err(RecordingError::MissingColumn { ref column, .. }) if column == "label")
+    );
+    let empty = vec![
+        ("output_rad_s".to_owned(), vec![]),
+        ("rate_deg_s".to_owned(), vec![]),
+    ];
+    assert!(matches!(
+        Table::from_columns(path, &format, empty, Some(vec![])),
+        Err(RecordingError::NoRows { .. })
+    ));
+}

@@ -155,10 +155,10 @@ pub(crate) fn build(
     provenance: Option<&Provenance>,
     software: &Software,
 ) -> CertificateData {
-    let cert = certified::certified(results, c);
+    let cert = certified::certified(results, c, &info.certified);
     let item = &info.item;
     CertificateData {
-        id: info.id.clone(),
+        id: running(&info.id),
         issued: calendar_date(&info.dates.issued),
         running: Running {
             left: running(&info.laboratory.name),
@@ -168,19 +168,22 @@ pub(crate) fn build(
                 item.manufacturer, item.model, item.serial
             )),
         },
+        // the head of page 1 (a grid, which cannot break across pages): at most 90
+        // characters each, the identification table states them in full
         laboratory: Laboratory {
-            name: info.laboratory.name.clone(),
-            address: info.laboratory.address.clone(),
-            accreditation: info.laboratory.accreditation.clone(),
+            name: running(&info.laboratory.name),
+            address: running(&info.laboratory.address),
+            accreditation: info.laboratory.accreditation.as_deref().map(running),
         },
         identification: identification(info),
         serial: item.serial.clone(),
         certified: certified_section(&cert),
         results: results_table(&cert),
         results_notes: results_notes(&cert, c),
-        compensation: (cert.method == Method::Probe).then(|| compensation(c)),
+        compensation: (cert.method == Method::Probe)
+            .then(|| compensation(c, &results.inputs.angle_zero)),
         sign_convention: (cert.method == Method::Probe)
-            .then(|| runs(vec![t("Probe sign convention: "), t(c.probe_direction.words()), t(".")])),
+            .then(|| t(format!("Probe sign convention: {}.", probe_sign_words(c.probe_direction)))),
         check: results
             .two_orientation
             .as_ref()
@@ -190,9 +193,11 @@ pub(crate) fn build(
                 conditions stated. This certificate shall not be reproduced except in full \
                 without the written approval of the laboratory."
             .to_owned(),
+        // beside the signature (a block kept on one page): at most 90 characters each, the
+        // identification table states them in full
         authorisation: Authorisation {
-            name: info.authorisation.name.clone(),
-            role: info.authorisation.role.clone(),
+            name: running(&info.authorisation.name),
+            role: running(&info.authorisation.role),
             date: info.dates.issued.clone(),
         },
         method: method(results, info, &cert),
@@ -221,12 +226,30 @@ pub(crate) fn build(
                 .collect(),
         ),
         traceability: traceability(info),
-        budget: budget(c),
-        figure_caption: rich(
+        budget: match (cert.method, &results.two_orientation) {
+            (Method::TwoOrientation, Some(s)) => budget(
+                &s.budget.k2,
+                &s.k2,
+                "Uncertainty budget of the certified k2, two-orientation method (JCGM 100)",
+            ),
+            _ => budget(
+                &c.budget.k2,
+                &c.coefficients.k2,
+                "Uncertainty budget of the certified k2, probe method (JCGM 100)",
+            ),
+        },
+        figure_caption: rich(if cert.method == Method::Probe {
             "Residuals of the PIGA's mean output about the fitted model (eq. 18), with the \
-             standard uncertainty of each point as its error bar.",
-        ),
-        gum_against_mc: gum_against_mc(c),
+             standard uncertainty of each point as its error bar."
+        } else {
+            "Residuals of the PIGA's mean output in the IA-in mounting about the probe \
+             method's fit (eq. 18, the check), with the standard uncertainty of each point as \
+             its error bar."
+        }),
+        gum_against_mc: match (cert.method, &results.two_orientation) {
+            (Method::TwoOrientation, Some(s)) => gum_against_mc_two_orientation(s),
+            _ => gum_against_mc(c),
+        },
         data_used: data_used(results, c),
         files: files(provenance, software),
         end: format!("End of certificate {}", info.id),
@@ -267,7 +290,15 @@ fn identification(info: &CertificateResults) -> Vec<Field> {
         label: label.to_owned(),
         value,
     };
-    vec![
+    let mut fields = vec![
+        field("Certificate", info.id.clone()),
+        field(
+            "Issued by",
+            match &info.laboratory.accreditation {
+                Some(a) => format!("{}, {}; {a}", info.laboratory.name, info.laboratory.address),
+                None => format!("{}, {}", info.laboratory.name, info.laboratory.address),
+            },
+        ),
         field(
             "Item",
             format!(
@@ -287,12 +318,26 @@ fn identification(info: &CertificateResults) -> Vec<Field> {
         field("Date of issue", info.dates.issued.clone()),
         field("Procedure", info.procedure.clone()),
         field("Performed by", info.operator.clone()),
-    ]
+        field(
+            "Authorised by",
+            format!("{}, {}", info.authorisation.name, info.authorisation.role),
+        ),
+    ];
+    if let Some(p) = &info.previous_certificate {
+        fields.push(field(
+            "Follows certificate",
+            match &p.sha256 {
+                Some(h) => format!("{} (SHA-256 of its file {h})", p.id),
+                None => p.id.clone(),
+            },
+        ));
+    }
+    fields
 }
 
 fn certified_section(cert: &Certified) -> super::model::Certified {
     let name = method_name(cert.method);
-    let mountings: Vec<&str> = cert.validity.iter().map(|v| v.mounting_words).collect();
+    let mountings: Vec<&str> = cert.validity.iter().map(|v| v.mounting_words.as_str()).collect();
     let statement = match cert.method {
         Method::Probe => format!(
             "This certificate states the coefficients of the {name} (Liu et al. 2025): the \
@@ -319,7 +364,7 @@ fn certified_section(cert: &Certified) -> super::model::Certified {
     super::model::Certified {
         method: name.to_owned(),
         statement: rich(&statement),
-        reason: rich(&cert.reason),
+        reason: t(&cert.reason),
         model: rich(
             "Model of the mean output rate: ω_out = k0 + k1·a + k2·a² + k3·a³, with a the \
              specific force along the input axis in g (a = R·ω²/g at the working radius R and \
@@ -342,7 +387,7 @@ fn certified_section(cert: &Certified) -> super::model::Certified {
                     vec![
                         t(format!(
                             "{}: {}",
-                            mounting_label(Some(v.mounting)),
+                            mounting_label(Some(v.mounting.as_str())),
                             v.mounting_words
                         )),
                         t(format!("{} m", format::plain(v.radius_m))),
@@ -368,7 +413,7 @@ fn results_table(cert: &Certified) -> Table {
     let several = cert
         .coefficients
         .iter()
-        .filter_map(|c| c.mounting)
+        .filter_map(|c| c.mounting.as_deref())
         .any(|m| m == "ia_out");
     let mut rows = Vec::new();
     let row = |name: String, cells: [String; 3], k: String, dof: String, unit: &str, from: &str| {
@@ -385,8 +430,8 @@ fn results_table(cert: &Certified) -> Table {
         ]
     };
     let label = |c: &certified::Coefficient, suffix: &str| {
-        if several {
-            format!("{}{suffix} ({})", c.name, mounting_label(c.mounting))
+        if several && c.mounting.is_some() {
+            format!("{}{suffix} ({})", c.name, mounting_label(c.mounting.as_deref()))
         } else {
             format!("{}{suffix}", c.name)
         }
@@ -401,7 +446,7 @@ fn results_table(cert: &Certified) -> Table {
             } else {
                 "—".to_owned()
             },
-            c.unit,
+            &c.unit,
             interval_from(c.interval_method, c.borderline),
         ));
     }
@@ -416,7 +461,7 @@ fn results_table(cert: &Certified) -> Table {
                 } else {
                     "—".to_owned()
                 },
-                r.unit,
+                &r.unit,
                 interval_from(c.interval_method, c.borderline),
             ));
         }
@@ -446,7 +491,7 @@ fn results_notes(cert: &Certified, c: &CalibrationResults) -> Vec<Text> {
         .map_or(c.coefficients.k1.value, |x| x.value);
     vec![
         rich(
-            "u is the standard uncertainty. U is the expanded uncertainty for a coverage \
+            "u is the standard uncertainty; U is the expanded uncertainty for a coverage \
              probability of approximately 95 %: U = k·u with the coverage factor k of that \
              quantity, Student's t at its effective degrees of freedom ν_eff (Welch–Satterthwaite, \
              JCGM 100). Where the Monte Carlo method (JCGM 101) does not validate the GUM \
@@ -454,15 +499,23 @@ fn results_notes(cert: &Certified, c: &CalibrationResults) -> Vec<Text> {
              symmetric 95 % interval is stated instead, as +/− widths about the value; it has no \
              coverage factor.",
         ),
-        rich(&format!(
-            "The values relative to k1 use k1 = {} rad/(s·g) and g = {} m/s² (1 g).",
-            format::significant(k1, 7),
-            format::plain(c.g_m_s2)
-        )),
+        rich(&if cert.validity.len() > 1 {
+            format!(
+                "Each mounting's k0 relative to k1 uses that mounting's k1; k2 and k3 relative \
+                 to k1 use the mean of the two mountings' k1; g = {} m/s² (1 g).",
+                format::plain(c.g_m_s2)
+            )
+        } else {
+            format!(
+                "The values relative to k1 use k1 = {} rad/(s·g) and g = {} m/s² (1 g).",
+                format::significant(k1, 7),
+                format::plain(c.g_m_s2)
+            )
+        }),
     ]
 }
 
-fn compensation(c: &CalibrationResults) -> Table {
+fn compensation(c: &CalibrationResults, angle_zero: &pipeline::AngleZero) -> Table {
     let micro = 1e6 / c.coefficients.k1.value;
     let cr = format::pair(c.c_r_combined_m_s2.value, c.c_r_combined_m_s2.u);
     let dk2 = format::pair(c.delta_k2.value, c.delta_k2.u);
@@ -497,12 +550,56 @@ fn compensation(c: &CalibrationResults) -> Table {
                 t("rad/(s·g²)"),
                 rich(&format!(
                     "the pseudo-second-order term removed from the fitted a² coefficient \
-                     (eq. 19): {} µg/g²",
-                    dk2_micro.joined()
+                     (eq. 19): {} µg/g² relative to k1, standard uncertainty u = {} µg/g²",
+                    with_scale(&dk2_micro, &dk2_micro.value),
+                    with_scale(&dk2_micro, &dk2_micro.u)
                 )),
+            ],
+            vec![
+                t("angle zero of the probe analysis"),
+                t(angle_zero_value(angle_zero)),
+                t("—"),
+                t("deg"),
+                t(angle_zero_words(angle_zero)),
             ],
         ],
     )
+}
+
+/// The encoder's reading at the angle zero, as the compensation table states it.
+fn angle_zero_value(a: &pipeline::AngleZero) -> String {
+    if a.measured_angles {
+        format::plain(a.angle_zero_deg)
+    } else {
+        "—".to_owned()
+    }
+}
+
+/// The angle zero of the probe analysis in a customer's words (eq. 20–21).
+fn angle_zero_words(a: &pipeline::AngleZero) -> String {
+    let at = "when the arm's accelerometer end points at the probe";
+    match (a.measured_angles, a.stated) {
+        (false, _) => "not used: no probe recording measures its angle".to_owned(),
+        (true, false) => format!(
+            "not stated by the laboratory: the encoder is taken to read 0° {at}; an encoder \
+             zero elsewhere would change C_r with no other sign"
+        ),
+        (true, true) => format!("the encoder's reading {at}, as the laboratory states it"),
+    }
+}
+
+/// The probe's sign convention in the words a person checks at the machine (no axis name of
+/// the paper's figure).
+const fn probe_sign_words(sign: pipeline::ProbeSign) -> &'static str {
+    match sign {
+        pipeline::ProbeSign::AgainstO1X1 => {
+            "the probe's gap closes (its reading falls) when the spindle moves towards the \
+             accelerometer"
+        }
+        pipeline::ProbeSign::AlongO1X1 => {
+            "the probe's reading rises when the spindle moves towards the accelerometer"
+        }
+    }
 }
 
 fn signed(z: f64) -> String {
@@ -645,9 +742,11 @@ fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) ->
         } else {
             format!(
                 "The two methods disagree: z = (C − C_r)/u(C − C_r) = {z}, beyond ±3. Either \
-                 the working radius grows in a way the probe does not see (the arm stretching \
-                 under centrifugal load, a mount that gives), or the probe's declared sign \
-                 convention, gap unit or lever heights are wrong. The probe method's k2 is \
+                 the probe is declared wrongly — the encoder's angle zero relative to the arm, \
+                 the probe's sign convention or its gap unit (each changes C_r with no other \
+                 sign) — or, those right, the working radius grows in a way the probe does not \
+                 see (the arm stretching under centrifugal load, a mount that gives) or the \
+                 lever heights are wrong. The probe method's k2 is \
                  compensated with the probe's C_r only and keeps k1·(C − C_r)·g/R²: it lies \
                  {above} the two-orientation k2 by {native} rad/(s·g²) ({relative} µg/g²).",
                 z = signed(p.z)
@@ -661,16 +760,30 @@ fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) ->
     };
     Check {
         heading: heading.to_owned(),
-        intro: rich(&format!(
-            "The PIGA was also measured with its input axis turned round — {} — and both \
-             data sets fitted jointly (eq. 23; Sun et al. 2022). Turning the input axis round \
-             reverses the sign of the radius growth's term in the output but not that of \
-             k2·a²: the joint fit gives k2 and the total dynamic growth C of the working \
-             radius from the PIGA's own output, without the displacement probe. Sign \
-             convention: the working radius is R + C·ω², C and C_r positive when the radius \
-             grows with the rate; C − C_r > 0 when the PIGA sees more growth than the probe.",
-            mountings.join("; ")
-        )),
+        intro: rich(&if probe_is_certified {
+            format!(
+                "The PIGA was also measured with its input axis turned round — {} — and both \
+                 data sets fitted jointly (eq. 23; Sun et al. 2022). Turning the input axis \
+                 round reverses the sign of the radius growth's term in the output but not that \
+                 of k2·a²: the joint fit gives k2 and the total dynamic growth C of the working \
+                 radius from the PIGA's own output, without the displacement probe. Sign \
+                 convention: the working radius is R + C·ω², C and C_r positive when the radius \
+                 grows with the rate; C − C_r > 0 when the PIGA sees more growth than the probe.",
+                mountings.join("; ")
+            )
+        } else {
+            format!(
+                "The certified coefficients come from both mountings — {} — fitted jointly \
+                 (eq. 23; Sun et al. 2022), which gives k2 and the total dynamic growth C of the \
+                 working radius from the PIGA's own output. The probe method checks them: the \
+                 IA-in data alone, fitted by eq. 18 and compensated for the spindle's radius \
+                 growth C_r measured by a displacement probe (Liu et al. 2025). The two agree \
+                 when the probe sees all the growth, C − C_r = 0. Sign convention: the working \
+                 radius is R + C·ω², C and C_r positive when the radius grows with the rate; \
+                 C − C_r > 0 when the PIGA sees more growth than the probe.",
+                mountings.join("; ")
+            )
+        }),
         table: table(
             &[
                 "quantity",
@@ -793,6 +906,7 @@ pub(crate) fn input_unit(quantity: &str) -> Option<&'static str> {
         "g (gravity)" => "m/s²",
         "rate scale (common to every rate)" | "probe gain" => "1 (relative)",
         "pivot-to-probe height" | "probe-to-PIGA height" => "mm",
+        q if q.starts_with("R of the IA-") => "m",
         "C_r of the compensating phase" => "m·s²",
         "k1 (given)" => "rad/(s·g)",
         // the fit's coefficients as one correlated group: its contribution, sensitivity 1
@@ -820,10 +934,8 @@ fn nominal(x: f64) -> String {
     }
 }
 
-fn budget(c: &CalibrationResults) -> Budget {
-    let rows = c
-        .budget
-        .k2
+fn budget(lines: &[pipeline::BudgetLine], k2: &pipeline::Coefficient, heading: &str) -> Budget {
+    let rows = lines
         .iter()
         .map(|l| {
             let quantity = match &l.note {
@@ -843,9 +955,8 @@ fn budget(c: &CalibrationResults) -> Budget {
             ]
         })
         .collect();
-    let k2 = &c.coefficients.k2;
     Budget {
-        heading: "Uncertainty budget of k2 (JCGM 100)".to_owned(),
+        heading: heading.to_owned(),
         table: table(
             &[
                 "input quantity",
@@ -942,6 +1053,56 @@ fn gum_against_mc(c: &CalibrationResults) -> Section {
         intro: rich(&format!(
             "{} trials (adaptive, JCGM 101 §7.9), seed {}. The GUM interval is validated when \
              both its ends lie within the numerical tolerance δ of the Monte Carlo interval's.",
+            mc.trials, mc.seed
+        )),
+        table: table(
+            &[
+                "coefficient",
+                "GUM 95 % interval",
+                "Monte Carlo 95 % interval",
+                "largest end difference",
+                "δ",
+                "verdict",
+                "unit",
+            ],
+            &[false, true, true, true, true, false, false],
+            &[4, 10, 10, 5, 4, 8, 5],
+            rows,
+        ),
+    }
+}
+
+fn gum_against_mc_two_orientation(s: &TwoOrientationResults) -> Section {
+    let mc = &s.monte_carlo;
+    let rows = [
+        ("k2", &s.k2, &mc.k2, s.headline.k2, "rad/(s·g²)"),
+        ("k3", &s.k3, &mc.k3, s.headline.k3, "rad/(s·g³)"),
+        ("C", &s.c_m_s2, &mc.c, s.headline.c, "m·s²"),
+    ]
+    .into_iter()
+    .map(|(name, g, m, head, unit)| {
+        let ends = EndsWriter::new(g.value, m.tolerance);
+        let h = crate::headline::Headline {
+            stated: head,
+            gum: *g,
+        };
+        vec![
+            t(name),
+            t(ends.interval(g.value - g.u95, g.value + g.u95)),
+            t(ends.interval(m.low95, m.high95)),
+            t(format::significant(m.d_low.max(m.d_high), 2)),
+            t(format::significant(m.tolerance, 2)),
+            t(h.verdict_words()),
+            t(unit),
+        ]
+    })
+    .collect();
+    Section {
+        heading: "GUM against Monte Carlo, two-orientation method (JCGM 101 §8)".to_owned(),
+        intro: rich(&format!(
+            "{} trials (adaptive, JCGM 101 §7.9), seed {}. The GUM interval is validated when \
+             both its ends lie within the numerical tolerance δ of the Monte Carlo interval's. \
+             Each mounting's k0 and k1 are stated with their GUM interval.",
             mc.trials, mc.seed
         )),
         table: table(
@@ -1058,9 +1219,12 @@ fn data_used(results: &StudyResults, c: &CalibrationResults) -> DataUsed {
             format::significant(s.residual_sd_rad_s, 2)
         )));
     }
+    // the disagreement of the probe with the two-orientation fit is the check's verdict,
+    // stated there in a customer's words (the warning names the study file's fields)
     let warnings = results
         .warnings
         .iter()
+        .filter(|w| w.code != pipeline::WarningCode::ProbeDisagrees)
         .map(|w| rich(&w.message))
         .chain(c.warnings.iter().map(|w| rich(w)))
         .collect();

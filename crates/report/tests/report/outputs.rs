@@ -147,3 +147,34 @@ fn a_directory_holding_other_files_is_not_replaced() {
     }
     assert_eq!(names(&scratch.0), ["thesis.tex"]);
 }
+
+#[test]
+fn a_study_with_a_certificate_writes_its_dcc_beside_it() {
+    let scratch = Scratch::new("outputs-dcc");
+    let out = scratch.0.join("study");
+    let (campaign, mut results) = study("campaign.ron");
+    let provenance = Provenance::of_study(&campaign, None).unwrap();
+    let files = report::write_outputs(&out, &results, None, None, Some(&provenance)).unwrap();
+    let path = files.certificate_dcc.expect("certificate.dcc.xml");
+    assert_eq!(path, out.join("certificate.dcc.xml"));
+    assert!(names(&out).contains(&"certificate.pdf".to_owned()));
+    let xml = std::fs::read_to_string(&path).unwrap();
+    assert!(xml.starts_with("<?xml version=\"1.0\" encoding=\"UTF-8\"?>"));
+    assert!(xml.contains("<dcc:uniqueIdentifier>CC-2026-0042</dcc:uniqueIdentifier>"));
+    // the configuration and every data file, each with its SHA-256
+    for record in std::iter::once(&provenance.config).chain(&provenance.inputs) {
+        let line = format!("<dcc:charsXMLList>{}</dcc:charsXMLList>", record.sha256);
+        assert_eq!(xml.matches(&line).count(), 1, "{}", record.path);
+    }
+    let before = snapshot(&out);
+
+    // A certificate the DCC cannot state: the study writes nothing, the previous outputs stay.
+    results.certificate.as_mut().unwrap().item.serial = "SN \u{202e}4321".to_owned();
+    match report::write_outputs(&out, &results, None, None, Some(&provenance)) {
+        Err(ReportError::Dcc(dcc::DccError::HiddenCharacter { field, .. })) => {
+            assert_eq!(field, "certificate.item.serial");
+        }
+        other => panic!("expected the DCC's refusal, got {other:?}"),
+    }
+    assert_eq!(snapshot(&out), before);
+}

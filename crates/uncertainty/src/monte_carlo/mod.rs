@@ -24,7 +24,7 @@ use draw::{draws, run_batch};
 use options::check_options;
 use order::coverage_interval;
 
-pub use options::{McOptions, Trials};
+pub use options::{MAX_TRIALS, McOptions, Trials};
 pub use result::{McOutput, McResult, Stability};
 
 /// The Monte Carlo method of JCGM 101:2008 applied to `model` at `inputs`.
@@ -50,7 +50,8 @@ pub use result::{McOutput, McResult, Stability};
 /// Errors: invalid options; a correlated input that is not Normal or StudentT (or a group
 /// mixing them); more failed trials than `max_failed_fraction` of all trials (or a batch with
 /// fewer than two successful trials); not converged within `max_trials`, naming the first
-/// output and statistic that had not stabilised; an overflowing statistic.
+/// output and statistic that had not stabilised; an overflowing statistic; `Stopped` when
+/// the caller's flag ([`stoppable`](crate::stoppable)) is raised, checked before each batch.
 pub fn monte_carlo<M: MeasurementModel + ?Sized>(
     model: &M,
     inputs: &Inputs,
@@ -80,6 +81,9 @@ pub fn monte_carlo<M: MeasurementModel + ?Sized>(
     }
     let (mut trials, mut failed, mut first_failure, mut batches) = (0u64, 0u64, None, 0u64);
     loop {
+        if crate::stop::stop_requested() {
+            return Err(UncertaintyError::Stopped { trials });
+        }
         let this = match options.trials {
             Trials::Fixed(total) if total - trials < 2 * batch_size => total - trials,
             _ => batch_size,

@@ -20,6 +20,11 @@ pub enum Trials {
     Fixed(u64),
 }
 
+/// The most trials the method runs, adaptive or fixed: every model value is kept for the
+/// coverage intervals (8 bytes per output and trial, 80 MB per output here), so a count
+/// beyond it is refused before anything is allocated.
+pub const MAX_TRIALS: u64 = 10_000_000;
+
 /// Options of [`monte_carlo`](fn@crate::monte_carlo).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct McOptions {
@@ -31,7 +36,7 @@ pub struct McOptions {
     /// Significant decimal digits `n_dig` of the standard uncertainty for the numerical
     /// tolerance (§7.9.2; default 2).
     pub n_dig: u32,
-    /// Adaptive (default, capped at 10⁷ trials) or fixed.
+    /// Adaptive (default, capped at 10⁷ trials) or fixed (at most [`MAX_TRIALS`]).
     pub trials: Trials,
     /// Largest fraction of trials allowed to fail (the model returns an error or a non-finite
     /// output); default 10⁻³, at most ½. Failed trials are left out of every statistic.
@@ -45,7 +50,7 @@ impl Default for McOptions {
             coverage_probability: 0.95,
             n_dig: 2,
             trials: Trials::Adaptive {
-                max_trials: 10_000_000,
+                max_trials: MAX_TRIALS,
             },
             max_failed_fraction: 1e-3,
         }
@@ -99,10 +104,21 @@ pub(super) fn check_options(options: &McOptions, batch_size: u64) -> Result<()> 
             // two batches of max(100/(1 - p), 10^4) trials
             Requirement::AtLeast((2 * batch_size) as f64),
         ),
-        Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 => invalid(
+        Trials::Adaptive { max_trials } if max_trials > MAX_TRIALS => invalid(
+            "max_trials",
+            max_trials as f64,
+            Requirement::InRange {
+                min: (2 * batch_size) as f64,
+                max: MAX_TRIALS as f64,
+            },
+        ),
+        Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 || n > MAX_TRIALS => invalid(
             "trials",
             n as f64,
-            Requirement::AtLeast((100.0 / (1.0 - p)).ceil()),
+            Requirement::InRange {
+                min: (100.0 / (1.0 - p)).ceil(),
+                max: MAX_TRIALS as f64,
+            },
         ),
         _ => Ok(()),
     }

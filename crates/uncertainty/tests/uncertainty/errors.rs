@@ -323,6 +323,30 @@ fn invalid_options() {
             },
             "trials",
         ),
+        // beyond the cap: refused before the 8 GB of a billion trials' values is asked for
+        (
+            McOptions {
+                trials: Trials::Fixed(1_000_000_000),
+                ..McOptions::default()
+            },
+            "trials",
+        ),
+        (
+            McOptions {
+                trials: Trials::Fixed(uncertainty::MAX_TRIALS + 1),
+                ..McOptions::default()
+            },
+            "trials",
+        ),
+        (
+            McOptions {
+                trials: Trials::Adaptive {
+                    max_trials: u64::MAX,
+                },
+                ..McOptions::default()
+            },
+            "max_trials",
+        ),
     ] {
         assert!(
             matches!(monte_carlo(&model, &inputs, &options), Err(UncertaintyError::InvalidOption { name: n, .. }) if n == name),

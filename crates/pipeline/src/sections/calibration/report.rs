@@ -9,7 +9,7 @@ use crate::piga_data::{Origin, PigaPoints};
 use crate::results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
     Estimate, Headline, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance,
-    PigaCoefficients, ProbeSign, UncertaintyInflation, Warning,
+    PigaCoefficients, UncertaintyInflation, Warning,
 };
 
 /// The results of an evaluated calibration.
@@ -260,16 +260,19 @@ pub(crate) fn results(
         residuals,
         labels,
         correlation,
+        covariance: crate::results::OutputCovariance {
+            outputs: output::NAMES[..4].iter().map(|n| (*n).to_owned()).collect(),
+            matrix: (0..4)
+                .map(|i| (0..4).map(|j| cov(i, j)).collect())
+                .collect(),
+        },
         terms: TERM_NAMES.iter().map(|t| (*t).to_owned()).collect(),
         variance_inflation: e.vif.to_vec(),
         u_inflation: e.inflation.as_ref().map(u_inflation),
         condition_number: fit.condition_number,
         budget,
         monte_carlo,
-        probe_direction: match setting.probe_direction {
-            harmonics::ProbeDirection::AlongO1X1 => ProbeSign::AlongO1X1,
-            _ => ProbeSign::AgainstO1X1,
-        },
+        probe_direction: crate::inputs::probe_sign(setting.probe_direction),
         headline,
         warnings,
     }

@@ -1,18 +1,31 @@
 //! The certificate section's run: the statements, each Type B input's standard
 //! uncertainty from the calibration's k2 budget, and the statements of conformity.
 
+use std::path::Path;
+
+use super::certified::{certify, label};
 use super::validate::Certificate;
+use crate::error::Result;
 use crate::results::{
-    CalibrationResults, CertificateResults, Conformity, ConformityStatement, Traceability, Verdict,
+    CalibrationResults, CertificateResults, Conformity, ConformityStatement, Traceability,
+    TwoOrientationResults, Verdict,
 };
 
-const NAMES: [&str; 4] = ["k0", "k1", "k2", "k3"];
-const UNITS: [&str; 4] = ["rad/s", "rad/(s·g)", "rad/(s·g²)", "rad/(s·g³)"];
-const MICRO_UNITS: [&str; 4] = ["µg", "µg/g", "µg/g²", "µg/g³"];
-
-/// The certificate's results for the calibration `c`: the conformity of each limited
-/// coefficient is judged on its stated interval (the §8 headline), in the limit's unit.
-pub(crate) fn run(cert: &Certificate, c: &CalibrationResults) -> CertificateResults {
+/// The certificate's results for the calibration `c` and, when the study has both mountings,
+/// the two-orientation results `two`: what is certified (`certificate.certify`), and the
+/// conformity of each limited coefficient judged on its stated interval (the §8 headline),
+/// in the limit's unit, for every mounting the coefficient is certified for.
+///
+/// # Errors
+/// [`crate::PipelineError::CertifiesRefutedValue`] when the value to certify is one the
+/// study's own check refutes and the configuration gives no reason.
+pub(crate) fn run(
+    path: &Path,
+    cert: &Certificate,
+    c: &CalibrationResults,
+    two: Option<&TwoOrientationResults>,
+    radius_m: f64,
+) -> Result<CertificateResults> {
     let traceability = cert
         .traceability
         .iter()
@@ -29,52 +42,62 @@ pub(crate) fn run(cert: &Certificate, c: &CalibrationResults) -> CertificateResu
             }
         })
         .collect();
-    let heads = [
-        &c.headline.k0,
-        &c.headline.k1,
-        &c.headline.k2,
-        &c.headline.k3,
-    ];
-    let micro = 1e6 / c.coefficients.k1.value;
+    let certified = certify(
+        path,
+        cert.certify,
+        cert.despite_check.as_deref(),
+        c,
+        two,
+        radius_m,
+    )?;
+    let mountings = certified.validity.len();
     let conformity = cert.rule.map(|rule| Conformity {
         rule,
         statements: cert
             .limits
             .iter()
-            .map(|l| {
-                let h = heads[l.index];
-                // k1 relative to itself is 1: its "relative" limit is in parts per million of
-                // nothing; the native unit is kept for it.
-                let relative = l.relative && l.index != 1;
-                let scale = if relative { micro } else { 1.0 };
-                let value = h.value * scale;
-                let (below, above) = h.widths(scale);
-                ConformityStatement {
-                    coefficient: if relative {
-                        format!("{}/k1", NAMES[l.index])
-                    } else {
-                        NAMES[l.index].to_owned()
-                    },
-                    index: l.index,
-                    relative_to_k1: relative,
-                    unit: if relative {
-                        MICRO_UNITS[l.index]
-                    } else {
-                        UNITS[l.index]
-                    }
-                    .to_owned(),
-                    value,
-                    low95: value - below,
-                    high95: value + above,
-                    lower: l.lower,
-                    upper: l.upper,
-                    source: l.source.clone(),
-                    verdict: Verdict::of(value, (below, above), l.lower, l.upper, rule),
-                }
+            .flat_map(|l| {
+                certified
+                    .coefficients
+                    .iter()
+                    .filter(|k| k.name == ["k0", "k1", "k2", "k3"][l.index])
+                    .map(move |k| {
+                        // k1 relative to itself is 1: its "relative" limit is in parts per
+                        // million of nothing; the native unit is kept for it.
+                        let relative = k.relative.as_ref().filter(|_| l.relative);
+                        let (value, low95, high95, unit) = match relative {
+                            Some(r) => (r.value, r.low95, r.high95, r.unit.clone()),
+                            None => (k.value, k.low95, k.high95, k.unit.clone()),
+                        };
+                        let name = label(k, mountings);
+                        ConformityStatement {
+                            coefficient: if relative.is_some() {
+                                name.replacen(&k.name, &format!("{}/k1", k.name), 1)
+                            } else {
+                                name
+                            },
+                            index: l.index,
+                            relative_to_k1: relative.is_some(),
+                            unit,
+                            value,
+                            low95,
+                            high95,
+                            lower: l.lower,
+                            upper: l.upper,
+                            source: l.source.clone(),
+                            verdict: Verdict::of(
+                                value,
+                                (value - low95, high95 - value),
+                                l.lower,
+                                l.upper,
+                                rule,
+                            ),
+                        }
+                    })
             })
             .collect(),
     });
-    CertificateResults {
+    Ok(CertificateResults {
         id: cert.id.clone(),
         laboratory: cert.laboratory.clone(),
         location: cert.location.clone(),
@@ -89,7 +112,9 @@ pub(crate) fn run(cert: &Certificate, c: &CalibrationResults) -> CertificateResu
         traceability,
         conformity,
         authorisation: cert.authorisation.clone(),
-    }
+        certified,
+        previous_certificate: cert.previous_certificate.clone(),
+    })
 }
 
 #[cfg(test)]

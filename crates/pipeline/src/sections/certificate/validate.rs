@@ -1,12 +1,14 @@
 //! The certificate section's validation: every required field, all missing ones at once.
 
 use crate::config::{
-    CertificateConfig, DecisionRuleName, K1Config, LimitUnitName, StudyConfig, TypeBInputName,
+    CertificateConfig, CertifyName, DecisionRuleName, K1Config, LimitUnitName, StudyConfig,
+    TypeBInputName,
 };
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::Check;
 use crate::results::{
-    Authorisation, Condition, Dates, DecisionRule, Equipment, Item, Laboratory, Party,
+    Authorisation, CertifyPolicy, Condition, Dates, DecisionRule, Equipment, Item, Laboratory,
+    Party, PreviousCertificate,
 };
 
 /// A specification limit, validated.
@@ -41,6 +43,11 @@ pub(crate) struct Certificate {
     pub(crate) limits: Vec<Limit>,
     pub(crate) rule: Option<DecisionRule>,
     pub(crate) authorisation: Authorisation,
+    pub(crate) previous_certificate: Option<PreviousCertificate>,
+    /// Which method's coefficients to certify.
+    pub(crate) certify: CertifyPolicy,
+    /// The laboratory's reason for certifying a value the study's check refutes.
+    pub(crate) despite_check: Option<String>,
 }
 
 /// The input of the calibration model a traceability statement is about.
@@ -139,6 +146,40 @@ pub(crate) fn validate(
                 .to_owned(),
         });
     }
+    // Every text of the section shows what it says: no control character or bidirectional
+    // override (a serial number that reorders itself on the page, an escape sequence on a
+    // terminal).
+    for (field, text) in texts(c) {
+        if let Some(hidden) = edge_io::hidden_char(text) {
+            errors.push(PipelineError::HiddenCharacter {
+                path: check.path.to_owned(),
+                field: format!("certificate.{field}"),
+                hidden,
+            });
+        }
+    }
+    if c.certify == CertifyName::TwoOrientation && config.two_orientation.is_none() {
+        errors.push(PipelineError::MissingField {
+            path: check.path.to_owned(),
+            field: "two_orientation".to_owned(),
+            hint: "`certificate.certify: two_orientation` certifies the two-orientation \
+                   method's coefficients: the study needs its `two_orientation` section (IA in \
+                   and IA out)"
+                .to_owned(),
+        });
+    }
+    if c.certify_despite_check
+        .as_ref()
+        .is_some_and(|r| r.trim().is_empty())
+    {
+        errors.push(PipelineError::MissingField {
+            path: check.path.to_owned(),
+            field: "certificate.certify_despite_check".to_owned(),
+            hint: "the laboratory's reason for certifying a value the study's own check \
+                   refutes, in words the certificate prints"
+                .to_owned(),
+        });
+    }
     let mut need = |field: &str, value: &str, hint: &str| {
         if value.trim().is_empty() {
             errors.push(PipelineError::MissingField {
@@ -162,6 +203,7 @@ pub(crate) fn validate(
             "the laboratory's address",
         ),
         accreditation: c.laboratory.accreditation.clone(),
+        country: c.laboratory.country.clone(),
     };
     let location = need(
         "location",
@@ -319,6 +361,37 @@ pub(crate) fn validate(
             "the role of who authorises it",
         ),
     };
+    let previous_certificate = c
+        .previous_certificate
+        .as_ref()
+        .map(|p| PreviousCertificate {
+            id: need(
+                "previous_certificate.id",
+                &p.id,
+                "the identification of the certificate this one follows",
+            ),
+            sha256: p.sha256.as_ref().map(|h| h.to_ascii_lowercase()),
+        });
+    if c.previous_certificate
+        .as_ref()
+        .and_then(|p| p.sha256.as_ref())
+        .is_some_and(|h| !(h.len() == 64 && h.bytes().all(|b| b.is_ascii_hexdigit())))
+    {
+        errors.push(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "certificate.previous_certificate.sha256".to_owned(),
+            reason: UnsupportedReason::NotSha256,
+        });
+    }
+    if let Some(country) = &c.laboratory.country
+        && !(country.len() == 2 && country.bytes().all(|b| b.is_ascii_uppercase()))
+    {
+        errors.push(PipelineError::Unsupported {
+            path: check.path.to_owned(),
+            field: "certificate.laboratory.country".to_owned(),
+            reason: UnsupportedReason::NotCountryCode,
+        });
+    }
     PipelineError::from_list(errors)?;
     for (i, l) in limits.iter().enumerate() {
         for (end, v) in [("lower", l.lower), ("upper", l.upper)] {
@@ -343,7 +416,73 @@ pub(crate) fn validate(
         limits,
         rule,
         authorisation,
+        previous_certificate,
+        certify: match c.certify {
+            CertifyName::Auto => CertifyPolicy::Auto,
+            CertifyName::Probe => CertifyPolicy::Probe,
+            CertifyName::TwoOrientation => CertifyPolicy::TwoOrientation,
+        },
+        despite_check: c.certify_despite_check.clone(),
     })
+}
+
+/// Every text of the certificate section with its field (under `certificate.`).
+fn texts(c: &CertificateConfig) -> Vec<(String, &str)> {
+    let mut list: Vec<(String, &str)> = vec![
+        ("id".into(), &c.id),
+        ("laboratory.name".into(), &c.laboratory.name),
+        ("laboratory.address".into(), &c.laboratory.address),
+        ("location".into(), &c.location),
+        ("customer.name".into(), &c.customer.name),
+        ("customer.address".into(), &c.customer.address),
+        ("item.description".into(), &c.item.description),
+        ("item.manufacturer".into(), &c.item.manufacturer),
+        ("item.model".into(), &c.item.model),
+        ("item.serial".into(), &c.item.serial),
+        ("item.condition".into(), &c.item.condition),
+        ("dates.received".into(), &c.dates.received),
+        ("dates.measured".into(), &c.dates.measured),
+        ("dates.issued".into(), &c.dates.issued),
+        ("operator".into(), &c.operator),
+        ("procedure".into(), &c.procedure),
+        ("authorisation.name".into(), &c.authorisation.name),
+        ("authorisation.role".into(), &c.authorisation.role),
+    ];
+    if let Some(a) = &c.laboratory.accreditation {
+        list.push(("laboratory.accreditation".into(), a));
+    }
+    if let Some(d) = &c.deviations {
+        list.push(("deviations".into(), d));
+    }
+    if let Some(r) = &c.certify_despite_check {
+        list.push(("certify_despite_check".into(), r));
+    }
+    if let Some(country) = &c.laboratory.country {
+        list.push(("laboratory.country".into(), country));
+    }
+    if let Some(p) = &c.previous_certificate {
+        list.push(("previous_certificate.id".into(), &p.id));
+        if let Some(sha) = &p.sha256 {
+            list.push(("previous_certificate.sha256".into(), sha));
+        }
+    }
+    for (i, e) in c.equipment.iter().enumerate() {
+        list.push((format!("equipment[{i}].role"), &e.role));
+        list.push((format!("equipment[{i}].description"), &e.description));
+        list.push((format!("equipment[{i}].identity"), &e.identity));
+        list.push((
+            format!("equipment[{i}].calibration_due"),
+            &e.calibration_due,
+        ));
+    }
+    for (i, cnd) in c.conditions.iter().enumerate() {
+        list.push((format!("conditions[{i}].quantity"), &cnd.quantity));
+        list.push((format!("conditions[{i}].value"), &cnd.value));
+    }
+    for (i, t) in c.traceability.iter().enumerate() {
+        list.push((format!("traceability[{i}].statement"), &t.statement));
+    }
+    list
 }
 
 /// The name a traceability entry gives an input in the study file.

@@ -15,7 +15,7 @@ use crate::config::{
 };
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource, InputFile, InputRole, PhaseNames, rates_of};
-use crate::results::FitWeighting;
+use crate::results::{AngleZero, FitWeighting};
 
 /// The validated phases and the radius-error model they are fitted by.
 #[derive(Debug, Clone)]
@@ -115,10 +115,11 @@ impl Checked<'_> {
         base: &Path,
         source: &Path,
         load: &dyn DataSource,
+        angle_zero: &AngleZero,
     ) -> Result<Phases> {
         Ok(Phases {
             model: self.model,
-            list: load_phases(configs, self.phases, base, source, load)?,
+            list: load_phases(configs, self.phases, base, source, load, angle_zero)?,
         })
     }
 
@@ -159,6 +160,15 @@ impl Phases {
         })
     }
 
+    /// Whether a recording of the phases measures its angle (an encoder or an index pulse),
+    /// which the angle zero then moves.
+    pub(crate) fn measure_angles(&self) -> bool {
+        self.list.iter().any(|phase| match &phase.data {
+            PhaseData::Recordings(set) => set.files.iter().any(|f| f.recording.angle_rad.is_some()),
+            _ => false,
+        })
+    }
+
     /// Number of recordings to analyse.
     pub(crate) fn recordings(&self) -> usize {
         self.list
@@ -196,14 +206,17 @@ enum CheckedData {
 }
 
 /// Loads the recordings of every phase in parallel and assembles the phases; every loading
-/// error is reported, in the configuration's order.
+/// error is reported, in the configuration's order. Each measured angle is taken from the
+/// angle zero (`lever.angle_zero_deg`) before anything is fitted.
 fn load_phases(
     configs: &[PhaseConfig],
     checked: Vec<(FitWeighting, CheckedData)>,
     base: &Path,
     source: &Path,
     load: &dyn DataSource,
+    angle_zero: &AngleZero,
 ) -> Result<Vec<Phase>> {
+    let angle_zero_rad = angle_zero.angle_zero_deg.to_radians();
     // (phase index, file index, rate, resolved path, format)
     let mut jobs = Vec::new();
     for (p, config) in configs.iter().enumerate() {
@@ -217,7 +230,10 @@ fn load_phases(
         .par_iter()
         .map(|(_, _, _, file, format)| {
             let _span = tracing::info_span!("load", file = %file.display()).entered();
-            load.read_recording(file, format)
+            load.read_recording(file, format).map(|mut read| {
+                read.value.shift_angle_zero(angle_zero_rad);
+                read
+            })
         })
         .collect();
     let mut errors = Vec::new();

@@ -14,8 +14,9 @@ use crate::inputs::Core;
 use crate::piga_data::{self, PigaPoints};
 use crate::results::{
     BudgetLine, Coefficient, DegreesOfFreedom, Estimate, Headline, InfiniteDof, MonteCarloOutput,
-    MountingResults, PhaseResults, ProbeComparison, RateSpread, TwoOrientationBudgets,
-    TwoOrientationHeadline, TwoOrientationMonteCarlo, TwoOrientationResults, Warning,
+    MountingResults, PhaseResults, ProbeComparison, ProbeDeclared, RateSpread,
+    TwoOrientationBudgets, TwoOrientationHeadline, TwoOrientationMonteCarlo, TwoOrientationResults,
+    Warning,
 };
 
 /// Runs the section against the study's phase results (the probe phase's C_r).
@@ -162,6 +163,16 @@ pub(crate) fn run(
                 table: points.table.as_ref().map(|t| t.display().to_string()),
                 recordings: points.recordings.clone(),
                 points: points.rates_deg_s.len(),
+                rate_low_deg_s: points
+                    .rates_deg_s
+                    .iter()
+                    .copied()
+                    .fold(f64::INFINITY, f64::min),
+                rate_high_deg_s: points
+                    .rates_deg_s
+                    .iter()
+                    .copied()
+                    .fold(f64::NEG_INFINITY, f64::max),
                 distinct_rates: m.distinct_rates,
                 k0: coefficient(&format!("k0 ({tag})")),
                 k1: coefficient(&format!("k1 ({tag})")),
@@ -190,8 +201,10 @@ pub(crate) fn run(
         delta_k2_total: mc_output("Δk2,total"),
         difference: Some(mc_output("C − C_r")),
     };
+    let k3 = coefficient("k3");
     let headline = TwoOrientationHeadline {
         k2: Headline::of(&k2, &monte_carlo.k2),
+        k3: Headline::of(&k3, &monte_carlo.k3),
         c: Headline::of(&c, &monte_carlo.c),
     };
     let (k2_probe, k2_probe_u95) = probe_k2(core, s, &reduced, probe).map_err(fail)?;
@@ -220,7 +233,7 @@ pub(crate) fn run(
     let results = TwoOrientationResults {
         mountings,
         k2,
-        k3: coefficient("k3"),
+        k3,
         c_m_s2: c,
         delta_k2_total: coefficient("Δk2,total"),
         g_m_s2: Estimate {
@@ -241,6 +254,7 @@ pub(crate) fn run(
         },
         monte_carlo,
         headline,
+        covariance: output_covariance(&e.gum, 6),
         probe: Some(comparison),
     };
     warnings.extend(e.warnings.iter().map(|w| match *w {
@@ -253,7 +267,19 @@ pub(crate) fn run(
             difference_m_s2,
             u_m_s2,
             z,
-        } => Warning::probe_disagrees(&phase.name, difference_m_s2, u_m_s2, z),
+        } => Warning::probe_disagrees(
+            &ProbeDeclared {
+                phase: phase.name.clone(),
+                angle_zero: core.angle_zero,
+                direction: crate::inputs::probe_sign(core.lever.probe_direction),
+                gap_field: s.gap_unit.0.clone(),
+                gap_unit: s.gap_unit.1.clone(),
+            },
+            phase.fit.c_r_m_s2,
+            difference_m_s2,
+            u_m_s2,
+            z,
+        ),
     }));
     Ok((results, warnings))
 }
@@ -325,6 +351,17 @@ fn probe_k2(
         },
         k2.expanded_uncertainty,
     ))
+}
+
+/// The GUM covariance of the first `n` outputs (k0 and k1 of each mounting, k2, k3).
+fn output_covariance(gum: &uncertainty::GumResult, n: usize) -> crate::results::OutputCovariance {
+    let m = gum.outputs.len();
+    crate::results::OutputCovariance {
+        outputs: gum.outputs[..n].iter().map(|o| o.name.clone()).collect(),
+        matrix: (0..n)
+            .map(|i| (0..n).map(|j| gum.covariance[i * m + j]).collect())
+            .collect(),
+    }
 }
 
 fn dof_value(dof: Dof) -> DegreesOfFreedom {

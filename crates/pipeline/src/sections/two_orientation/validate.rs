@@ -34,6 +34,9 @@ pub(crate) struct TwoOrientationInputs {
     /// The probe phase compared with, and how it was chosen.
     pub(crate) phase: usize,
     pub(crate) chosen_by: &'static str,
+    /// The field stating the compared phase's gap unit, and what it states (for the
+    /// disagreement warning).
+    pub(crate) gap_unit: (String, String),
     pub(crate) seed: u64,
     /// `None`: adaptive.
     pub(crate) trials: Option<u64>,
@@ -223,6 +226,7 @@ pub(crate) fn validate(
     PipelineError::from_list(errors)?;
     Ok(TwoOrientationInputs {
         sets,
+        gap_unit: gap_unit(study, phase),
         phase,
         chosen_by,
         seed: config.seed,
@@ -230,6 +234,39 @@ pub(crate) fn validate(
         type_b,
         type_b_notes,
     })
+}
+
+/// The field that states the gap unit of phase `phase`, and what it states: a recordings
+/// phase's `format.gap.unit`, or the µm of given coefficients.
+fn gap_unit(study: &StudyConfig, phase: usize) -> (String, String) {
+    use crate::config::Points;
+    use recording::GapUnit;
+    let key = format!("phases[{phase}].points");
+    match study.phases.get(phase).map(|p| &p.points) {
+        Some(Points::Recordings(set)) => (
+            format!("{key}.format.gap.unit"),
+            match set.format.gap.unit {
+                GapUnit::Nm => "nm",
+                GapUnit::Um => "um",
+                GapUnit::Mm => "mm",
+                GapUnit::M => "m",
+                GapUnit::Volts { .. } => "volts, converted to µm by the probe's sensitivity",
+            }
+            .to_owned(),
+        ),
+        Some(Points::FirstHarmonic(_)) => (
+            format!("{key} (dc1_um, ds1_um)"),
+            "coefficients given in µm".to_owned(),
+        ),
+        Some(Points::RadiusError(_)) => (
+            format!("{key} (radius_error_um)"),
+            "radius errors given in µm".to_owned(),
+        ),
+        _ => (
+            format!("{key} (change_um)"),
+            "a change given in µm".to_owned(),
+        ),
+    }
 }
 
 /// The Type B inputs of the two-orientation budget: the `uncertainty` section read as the
