@@ -7,8 +7,14 @@
 //!   (compensated), k3, the apparent k2 and Δk2 = k1·C_r·g/R² as functions of R, g, a common
 //!   rate scale, the lever heights, the probe gain, C_r, k1 and the six eq. 18 coefficients —
 //!   implementing [`uncertainty::MeasurementModel`] for the GUM and Monte Carlo evaluations.
-//! - [`fit`]: the eq. 18 fit with and without compensation (eq. 19), weighted by the points'
-//!   σ, widened by the Paule–Mandel τ when the points scatter more than their σ say.
+//! - [`calibrate`] and [`calibrate_compensated`]: **the one calibration entry** — the
+//!   points checked ([`check_points`]: rates > 0, outputs finite, σ within
+//!   [`SIGMA_MIN_RAD_S`] … [`SIGMA_MAX_RAD_S`]), the eq. 18 fit without and with the
+//!   compensation of eq. 19, weighted by the points' σ and widened by the Paule–Mandel τ
+//!   when the points scatter more than their σ say, the residual SD in rad/s, the Birge
+//!   ratio (dimensionless), and the warnings ([`CalibrationWarning`]: lack of fit, no τ,
+//!   bunched rates). The study, `centrifuge-cal identify` and Python (through the study)
+//!   all call it; `identify` is the solver under it.
 //! - [`coefficient_inflation`]: how much wider u(k0…k3) are than an evenly spread design's
 //!   (warned on above [`INFLATION_LIMIT`]) and than without the nuisance terms ω, ω³;
 //!   [`variance_inflation`] (a diagnostic); the χ² limits [`lack_of_fit_limit`] and
@@ -32,14 +38,18 @@
 //! dynamic imbalance of centrifuge", 2025, eq. 17–19; JCGM 100:2008 (GUM); Paule R. C.,
 //! Mandel J., "Consensus values and weighting factors", J. Res. NBS 87 (1982) 377–385.
 
-mod fit;
+mod calibrate;
 mod limits;
 mod model;
 mod quantities;
 mod two_orientation;
 mod vif;
 
-pub use fit::{Fitted, Weighting, compensation, fit};
+pub use calibrate::{
+    AsMeasured, BadPoint, Calibrated, CalibrationError, CalibrationWarning, PointValue, Points,
+    SIGMA_MAX_RAD_S, SIGMA_MIN_RAD_S, Weighting, calibrate, calibrate_compensated, check_points,
+    compensation, noise_budget_line, without_type_b,
+};
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
 pub use quantities::{CrInput, K1Input, TypeB, measurement_inputs};

@@ -44,8 +44,7 @@ impl Certificate {
                 saved.provenance.as_ref(),
                 &report::Software::this_build(),
             )?;
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("creating {}", dir.display()))?;
+            std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
             for (n, png) in document.png_pages(self.dpi)?.iter().enumerate() {
                 let path = dir.join(format!("certificate-page-{}.png", n + 1));
                 std::fs::write(&path, png)

@@ -9,7 +9,8 @@ use anyhow::bail;
 use serde_json::Value;
 
 use crate::console::Console;
-use crate::init::{PLACEHOLDER, config::placeholders};
+use crate::init::PLACEHOLDER;
+use crate::init::config::{placeholders, split_comment};
 use crate::problems;
 
 /// Check a study configuration without running the study.
@@ -24,10 +25,7 @@ pub(crate) struct Check {
 fn stand_ins(text: &str) -> String {
     text.lines()
         .map(|line| {
-            let (code, comment) = match line.find("//") {
-                Some(at) => line.split_at(at),
-                None => (line, ""),
-            };
+            let (code, comment) = split_comment(line);
             if !code.contains(PLACEHOLDER) {
                 return line.to_owned();
             }
@@ -61,31 +59,85 @@ impl Check {
         let path = &self.config;
         let text = edge_io::read_text_capped(path, pipeline::MAX_STUDY_BYTES)?;
         let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-        let mut found: Vec<String> = placeholders(text)
-            .into_iter()
-            .map(|(line, code)| {
-                format!(
-                    "{}:{line}: `{code}` is not filled in (written by init as {PLACEHOLDER}: \
+        let left = placeholders(text);
+        let mut found: Vec<String> = left
+            .iter()
+            .map(|l| match &l.ask {
+                Some((field, question)) => format!(
+                    "{}:{}: `{field}` is not filled in ({PLACEHOLDER}): {question}",
+                    path.display(),
+                    l.line
+                ),
+                None => format!(
+                    "{}:{}: `{}` is not filled in (written by init as {PLACEHOLDER}: \
                      the files could not tell it)",
-                    path.display()
-                )
+                    path.display(),
+                    l.line,
+                    l.code
+                ),
             })
             .collect();
+        // A placeholder's stand-in value may itself be refused (an unknown signatory): that
+        // error says nothing the placeholder's line does not.
+        let placeholder_fields: Vec<String> = left
+            .iter()
+            .filter_map(|l| l.ask.as_ref().map(|(field, _)| format!("`{field}`")))
+            .collect();
+        let about_placeholder = |problem: &String| {
+            placeholder_fields
+                .iter()
+                .any(|f| problem.contains(f.as_str()))
+        };
         let direction_unfilled = found.iter().any(|p| p.contains("probe_direction"));
         let filled = stand_ins(text);
         let mut console = Console::stdout();
+        let mut warnings = Vec::new();
         match pipeline::StudyConfig::from_ron(&filled, path) {
             Err(e) => found.extend(problems::each(&e)),
             Ok(config) => {
-                let plan = describe(&config, path, direction_unfilled);
+                let profile = match pipeline::load_profile(&config, path) {
+                    Ok(p) => p,
+                    Err(e) => {
+                        found.extend(problems::each(&e));
+                        None
+                    }
+                };
+                let mut shown = config.clone();
+                let used = profile
+                    .as_ref()
+                    .and_then(|p| p.apply_partly(&mut shown, path));
+                let plan = describe(&shown, path, used.as_ref(), direction_unfilled);
                 console.write_str(&plan)?;
-                let files = count_files(&config);
-                let bar = crate::progress::spinner(format!("reading and checking {files} files"));
-                match pipeline::Inputs::new(config, path, &pipeline::Files) {
-                    Ok(_) => {}
-                    Err(e) => found.extend(problems::each(&e)),
+                if profile.is_some() || config.profile.is_none() {
+                    let files = count_files(&config);
+                    let bar =
+                        crate::progress::spinner(format!("reading and checking {files} files"));
+                    match pipeline::Inputs::with_profile(
+                        config,
+                        profile.as_ref(),
+                        path,
+                        &pipeline::Files,
+                    ) {
+                        Ok(inputs) => warnings = inputs.warnings(),
+                        Err(e) => found.extend(
+                            problems::each(&e)
+                                .into_iter()
+                                .filter(|p| !about_placeholder(p)),
+                        ),
+                    }
+                    bar.finish_and_clear();
                 }
-                bar.finish_and_clear();
+            }
+        }
+        let warnings: Vec<_> = warnings
+            .into_iter()
+            .filter(|w| !about_placeholder(&format!("`{}`", w.location)))
+            .filter(|w| left.is_empty() || w.code != pipeline::WarningCode::CalibrationDueUnchecked)
+            .collect();
+        if !warnings.is_empty() {
+            writeln!(console, "\nwarnings:")?;
+            for w in &warnings {
+                writeln!(console, "  {}: {}", w.code.title(), w.message)?;
             }
         }
         if found.is_empty() {
@@ -134,15 +186,25 @@ fn count(v: &Value, n: &mut usize) {
     }
 }
 
+/// Most rates of a phase `check` lists one by one.
+const CHECK_RATES_SHOWN: usize = 40;
+
 /// A number as written, or `—`.
 fn num(v: Option<&Value>) -> String {
+    // Short in every range: `1e300`, not 301 digits (docs/RELIABILITY.md).
     v.and_then(Value::as_f64)
-        .map_or_else(|| "—".to_owned(), |x| format!("{x}"))
+        .map_or_else(|| "—".to_owned(), |x| units::Compact(x).to_string())
 }
 
-/// What the study will do, in words, from the configuration's own field names
-/// (`direction_unfilled`: the probe direction is still a placeholder).
-fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: bool) -> String {
+/// What the study will do, in words, from the configuration's own field names (with what
+/// its lab profile gives filled in, `used` saying which; `direction_unfilled`: the probe
+/// direction is still a placeholder).
+fn describe(
+    config: &pipeline::StudyConfig,
+    path: &Path,
+    used: Option<&pipeline::ProfileResults>,
+    direction_unfilled: bool,
+) -> String {
     let v = serde_json::to_value(config).unwrap_or(Value::Null);
     let mut s = String::new();
     let _ = writeln!(
@@ -151,6 +213,33 @@ fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: boo
         v["name"].as_str().unwrap_or(""),
         path.display()
     );
+    if let Some(used) = used {
+        let from = |source: pipeline::ValueSource| -> Vec<&str> {
+            used.values
+                .iter()
+                .filter(|o| o.from == source)
+                .map(|o| o.field.as_str())
+                .collect()
+        };
+        let _ = writeln!(
+            s,
+            "lab profile: {}, centrifuge {}{}; from the profile: {}",
+            used.file,
+            used.centrifuge,
+            used.probe
+                .as_ref()
+                .map_or_else(String::new, |p| format!(", probe {p}")),
+            from(pipeline::ValueSource::Profile).join(", ")
+        );
+        let own = from(pipeline::ValueSource::Study);
+        if !own.is_empty() {
+            let _ = writeln!(
+                s,
+                "stated by the study over the profile: {}",
+                own.join(", ")
+            );
+        }
+    }
     let _ = writeln!(
         s,
         "centrifuge: R = {} m, g = {} m/s², PIGA k1 = {} rad/(s·g)",
@@ -172,9 +261,31 @@ fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: boo
             pipeline::ProbeDirectionName::AlongO1X1.words()
         )
     } else {
-        config.lever.probe_direction.words().to_owned()
+        match config.lever.probe_direction {
+            Some(d) => d.words().to_owned(),
+            None => format!(
+                "not stated, so the paper's set-up is taken: {}",
+                pipeline::ProbeDirectionName::AgainstO1X1.words()
+            ),
+        }
     };
-    let _ = writeln!(s, "  direction (`lever.probe_direction`): {direction}");
+    // a declaration the lab profile made says so, with the profile's field
+    let from_profile = |field: &str| {
+        used.and_then(|u| u.values.iter().find(|o| o.field == field))
+            .filter(|o| o.from == pipeline::ValueSource::Profile)
+            .map_or_else(String::new, |o| {
+                let at = o
+                    .profile_field
+                    .rsplit_once(": ")
+                    .map_or(o.profile_field.as_str(), |(_, at)| at);
+                format!("; stated by the lab profile (`{at}`)")
+            })
+    };
+    let _ = writeln!(
+        s,
+        "  direction (`lever.probe_direction`): {direction}{}",
+        from_profile("lever.probe_direction")
+    );
     let angle_zero = pipeline::AngleZero {
         angle_zero_deg: config.lever.angle_zero_deg.unwrap_or(0.0),
         stated: config.lever.angle_zero_deg.is_some(),
@@ -187,7 +298,12 @@ fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: boo
             _ => false,
         }),
     };
-    let _ = writeln!(s, "  angle zero: {}", angle_zero.words());
+    let _ = writeln!(
+        s,
+        "  angle zero: {}{}",
+        angle_zero.words(),
+        from_profile("lever.angle_zero_deg")
+    );
     for phase in v["phases"].as_array().into_iter().flatten() {
         let name = phase["name"].as_str().unwrap_or("");
         let points = &phase["points"];
@@ -198,16 +314,36 @@ fn describe(config: &pipeline::StudyConfig, path: &Path, direction_unfilled: boo
         let line = match kind {
             "recordings" => {
                 let files = body["files"].as_array().map_or(0, Vec::len);
-                let rates: Vec<String> = body["files"]
+                let rates: Vec<f64> = body["files"]
                     .as_array()
                     .into_iter()
                     .flatten()
-                    .map(|f| num(f.get("rate_deg_s")))
+                    .map(|f| {
+                        f.get("rate_deg_s")
+                            .and_then(Value::as_f64)
+                            .unwrap_or(f64::NAN)
+                    })
                     .collect();
+                // Every rate of a phase a lab measures (a few dozen at most); a longer list
+                // (issue 32: 10⁵ rates made one 257 kB line) summarised as the first few, the
+                // last and the count.
+                let rates = if rates.len() <= CHECK_RATES_SHOWN {
+                    rates
+                        .iter()
+                        .map(|r| units::Compact(*r).to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                } else {
+                    let series = units::CompactSeries(&rates).to_string();
+                    series
+                        .strip_prefix('[')
+                        .unwrap_or(&series)
+                        .replacen(']', "", 1)
+                };
                 format!(
                     "{files} probe recordings at {} deg/s, read as {}; fitted per revolution \
                      (order {}, drift {})",
-                    rates.join(", "),
+                    rates,
                     format_words(&body["format"]),
                     num(body["fit"].get("order")),
                     if body["fit"]["drift"].as_bool().unwrap_or(true) {

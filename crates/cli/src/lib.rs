@@ -13,6 +13,7 @@ mod certificate;
 mod check;
 mod console;
 mod harmonics;
+mod history;
 mod identify;
 mod init;
 mod paths;
@@ -20,6 +21,7 @@ mod plan;
 mod plan_two_orientation;
 mod problems;
 mod progress;
+mod record;
 mod regress;
 mod simulate;
 mod study;
@@ -72,6 +74,12 @@ enum Command {
     /// Write the calibration certificate (PDF/A) of a study's results folder again, from its
     /// results.json: no browser, no study run.
     Certificate(certificate::Certificate),
+    /// Record a study's outputs (results.json and its certificate) in the records database,
+    /// or a balancing of a centrifuge (docs/RECORDS.md).
+    Record(record::Record),
+    /// A unit's certified coefficients across its certificates (drift, prediction, the
+    /// recommended interval), or a centrifuge's health (--centrifuge), from the records.
+    History(Box<history::History>),
 }
 
 /// Runs the command line as the installed `centrifuge-cal` ([`Places::installed`]).
@@ -127,6 +135,8 @@ where
         Command::Init(c) => c.run(),
         Command::Check(c) => c.run(),
         Command::Certificate(c) => c.run(),
+        Command::Record(c) => c.run(),
+        Command::History(c) => c.run(),
     };
     match outcome {
         Ok(()) => 0,

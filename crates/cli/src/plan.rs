@@ -48,6 +48,15 @@ const LATITUDE_DEG: f64 = 45.0;
 impl PlanCmd {
     pub(crate) fn run(&self, places: &Places) -> anyhow::Result<()> {
         let inputs = load(&self.config)?;
+        if let Some(n) = self.simulate {
+            // Before the search: a count beyond the cap is refused with its cost, at once.
+            let kind = if inputs.two_orientation.is_some() {
+                planning::CampaignKind::TwoOrientations
+            } else {
+                planning::CampaignKind::OneOrientation
+            };
+            planning::check_campaigns(n, kind).with_context(|| format!("--simulate {n}"))?;
+        }
         if inputs.two_orientation.is_some() {
             return self.run_two(&inputs, places);
         }

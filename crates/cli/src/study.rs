@@ -27,6 +27,10 @@ pub(crate) struct Study {
     /// Do not compare with expected values.
     #[arg(long, conflicts_with = "expected")]
     no_compare: bool,
+    /// Record the study in this records database once its outputs are written
+    /// (`centrifuge-cal record`; docs/RECORDS.md). A study that fails records nothing.
+    #[arg(long, value_name = "FILE")]
+    records: Option<PathBuf>,
 }
 
 impl Study {
@@ -122,6 +126,23 @@ impl Study {
         if let Some(xml) = &files.certificate_dcc {
             writeln!(console, "wrote {}", xml.display())?;
         }
+        if let Some(db_path) = &self.records {
+            let recorded = records::Database::open(db_path, records::Access::CreateIfMissing)
+                .map_err(anyhow::Error::new)
+                .and_then(|mut db| {
+                    crate::record::record_dir(&mut db, &out, &crate::record::Extra::default())
+                })
+                .with_context(|| {
+                    format!(
+                        "the study's outputs are written in {}, but recording them failed; \
+                         record them with `centrifuge-cal record {} --records {}`",
+                        out.display(),
+                        out.display(),
+                        db_path.display()
+                    )
+                })?;
+            crate::record::print_outcome(&mut console, db_path, None, &out, &recorded)?;
+        }
         Ok(())
     }
 }
@@ -135,18 +156,16 @@ pub(crate) fn load(config: &Path) -> anyhow::Result<pipeline::Inputs> {
     let text = edge_io::text_from_bytes(config, bytes)?;
     let left = crate::init::config::placeholders(&text);
     if !left.is_empty() {
-        let lines: Vec<String> = left
-            .iter()
-            .map(|(line, code)| format!("line {line}: `{code}`"))
-            .collect();
+        let lines: Vec<String> = left.iter().map(|l| format!("  {}", l.words())).collect();
         anyhow::bail!(
-            "{}: {} value{} not filled in ({}): {}; write them, then `check` lists anything \
-             else",
+            "{}: {} value{} not filled in ({}); answer {}, then `check` lists anything \
+             else:\n{}",
             config.display(),
             left.len(),
             if left.len() == 1 { " is" } else { "s are" },
             crate::init::PLACEHOLDER,
-            lines.join(", ")
+            if left.len() == 1 { "it" } else { "them" },
+            lines.join("\n")
         );
     }
     let study = pipeline::parse_study(&text, config).map_err(|e| match &e {

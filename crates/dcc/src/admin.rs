@@ -224,8 +224,9 @@ fn statements(x: &mut Xml, cert: &CertificateResults) -> Result<()> {
             x,
             "Country of the laboratory",
             &Text::own(format!(
-                "The study does not state the laboratory's country: {UNKNOWN_COUNTRY} (a code \
-                 ISO 3166-1 leaves to users, read as unknown) is written in its place."
+                "The study (and its lab profile, if it names one) does not state the laboratory's \
+                 country: {UNKNOWN_COUNTRY} (a code ISO 3166-1 leaves to users, read as unknown) \
+                 is written in its place."
             )),
         )?;
     }

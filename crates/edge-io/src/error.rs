@@ -55,6 +55,19 @@ pub enum EdgeIoError {
         /// The underlying I/O error.
         source: std::io::Error,
     },
+    /// The path names something other than a regular file (a folder, a FIFO, a device, a
+    /// socket): reading it could block or never end, so it is refused unread.
+    #[error(
+        "{} is {kind}, not a regular file: name a file on disk (a pipe or a device could block \
+         or never end, so it is not read)",
+        path.display()
+    )]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it names, in words ("a named pipe (FIFO)").
+        kind: &'static str,
+    },
     /// The new outputs could not be moved into place; the previous ones are still there.
     #[error("cannot move the new outputs into {}", target.display())]
     Replace {
@@ -63,11 +76,11 @@ pub enum EdgeIoError {
         /// The underlying I/O error.
         source: std::io::Error,
     },
-    /// The output directory holds entries the tool did not write; replacing it would delete
-    /// them.
+    /// The output directory holds entries the tool did not write (or that changed since it
+    /// wrote them); replacing it would delete them.
     #[error(
-        "{} holds {count} entr{} this tool does not write (e.g. `{example}`); refusing to replace \
-         it: name a new or empty output directory, or move them away",
+        "{} holds {count} entr{} this tool did not write (e.g. `{example}`: {why}); refusing to \
+         replace it: name a new or empty output directory, or move them away",
         target.display(),
         if *count == 1 { "y" } else { "ies" }
     )]
@@ -78,6 +91,8 @@ pub enum EdgeIoError {
         count: usize,
         /// The name of one of them.
         example: String,
+        /// Why that one is foreign, in words.
+        why: &'static str,
     },
     /// The output path exists and is not a directory, or names no directory (`/`, `..`).
     #[error("{} is not a directory that outputs can be written into", target.display())]
@@ -156,6 +171,10 @@ impl From<EdgeIoError> for std::io::Error {
                 format!(
                     "line {line}, column {column}: not UTF-8 text (invalid byte at offset {offset})"
                 ),
+            ),
+            EdgeIoError::NotAFile { kind, .. } => Error::new(
+                ErrorKind::InvalidInput,
+                format!("{kind}, not a regular file: not read"),
             ),
             other @ (EdgeIoError::ForeignEntries { .. }
             | EdgeIoError::NotADirectory { .. }

@@ -5,6 +5,9 @@
 //!   make a command read gigabytes before the parser refuses it. A UTF-8 byte-order mark is
 //!   dropped; text that is not UTF-8 is refused naming the line, column and byte offset.
 //!   [`CONFIG_MAX_BYTES`] (16 MiB) is the cap of every such file in the workspace.
+//! - [`open_regular`]: opens a file only if it is a regular file, checked on the open
+//!   handle, never blocking on a FIFO; every reader of the workspace's edges opens through it
+//!   (or the recording crate's copy of it, which cannot depend on this crate).
 //! - [`OutputSet`]: writes a set of output files (a study's `results.json`, `report.md` and
 //!   figures; a simulation's recordings) into a staging directory beside the target and swaps
 //!   it into place, so a run leaves either the complete new set or the previous one untouched.
@@ -25,13 +28,15 @@ mod error;
 #[doc(hidden)]
 pub mod fault;
 mod json;
+mod open;
 mod output;
 mod text;
 mod visible;
 
 pub use error::{EdgeIoError, Result};
 pub use json::{JsonError, NonFiniteValue, check_finite, to_json_pretty};
-pub use output::OutputSet;
+pub use open::{kind_of, open_regular};
+pub use output::{OUTPUT_RECORD, OutputSet};
 pub use text::{CONFIG_MAX_BYTES, read_bytes_capped, read_text_capped, text_from_bytes};
 pub use visible::{HiddenChar, hidden_char, is_hidden, visible, visible_lines};
 

@@ -9,6 +9,16 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use crate::error::{EdgeIoError, Result};
 use crate::fault;
 
+/// The hidden file of a committed output set listing the files it wrote and their sizes
+/// (see [`OutputSet`]): the proof that a later run may replace them.
+pub const OUTPUT_RECORD: &str = ".centrifuge-cal-written";
+
+/// The first line of [`OUTPUT_RECORD`].
+const RECORD_HEADER: &str = "# centrifuge-cal wrote these files (bytes, name); it replaces a folder only if it holds just these";
+
+/// Largest record read, bytes: a record is a line per file written.
+const RECORD_MAX_BYTES: u64 = 16 << 20;
+
 /// Numbers the staging and old directories of this process.
 static SEQUENCE: AtomicUsize = AtomicUsize::new(0);
 
@@ -40,11 +50,19 @@ static SEQUENCE: AtomicUsize = AtomicUsize::new(0);
 /// processes that no longer run (on Linux, where `/proc` tells; elsewhere they are left).
 /// Two processes writing the same target at the same time are not supported.
 ///
-/// # Owned names
+/// # Owned names, and the record of what was written
 /// The caller lists the file names it writes as patterns with at most one `*` (e.g.
-/// `"results.json"`, `"probe_signals_*.svg"`). Every file written must match one, and an
-/// existing target may hold only entries that match one: anything else is a
-/// [`EdgeIoError::ForeignEntries`] and nothing is replaced.
+/// `"results.json"`, `"probe_signals_*.svg"`). Every file written must match one.
+///
+/// A name is not proof of authorship: a lab's own `probe_020deg_s.csv` matches a
+/// simulation's pattern (issue 32: `simulate --out` onto a folder of real recordings
+/// replaced 41 files by 16). So each committed set also holds [`OUTPUT_RECORD`], a hidden
+/// file listing every file the set wrote with its size, and an existing target is replaced
+/// only if every entry it holds is listed there with the same size and matches an owned
+/// pattern. A target holding anything else — a file the record does not list, one whose
+/// size changed since it was written, a folder or a link, or any entry at all when there is
+/// no record — is [`EdgeIoError::ForeignEntries`] and nothing is replaced. An empty folder
+/// is taken.
 #[derive(Debug)]
 pub struct OutputSet {
     /// The target as the caller gave it; returned paths are under it.
@@ -55,8 +73,8 @@ pub struct OutputSet {
     staging: PathBuf,
     /// Patterns of the names this set may write and replace.
     owned: Vec<String>,
-    /// The names written so far.
-    names: Vec<String>,
+    /// The names written so far, with their sizes.
+    names: Vec<(String, u64)>,
     /// Whether the staging directory has become the target.
     committed: bool,
 }
@@ -146,7 +164,8 @@ impl OutputSet {
         }
         let file = out.into_inner().map_err(|e| error(e.into_error()))?;
         file.sync_all().map_err(error)?;
-        self.names.push(name.to_owned());
+        let bytes = file.metadata().map_err(error)?.len();
+        self.names.push((name.to_owned(), bytes));
         Ok(destination)
     }
 
@@ -159,6 +178,17 @@ impl OutputSet {
     /// changed since [`OutputSet::create`]; [`EdgeIoError::Replace`] when a rename fails. In
     /// every case the previous target is left as it was and the staging directory is removed.
     pub fn commit(mut self) -> Result<()> {
+        let mut record = format!("{RECORD_HEADER}\n");
+        for (name, bytes) in &self.names {
+            record.push_str(&format!("{bytes}\t{name}\n"));
+        }
+        let record_path = self.staging.join(OUTPUT_RECORD);
+        fs::write(&record_path, record)
+            .and_then(|()| fs::File::open(&record_path)?.sync_all())
+            .map_err(|source| EdgeIoError::Write {
+                path: self.target.join(OUTPUT_RECORD),
+                source,
+            })?;
         sync_dir(&self.staging).map_err(|source| EdgeIoError::Write {
             path: self.target.clone(),
             source,
@@ -204,7 +234,7 @@ impl OutputSet {
             Some("not a file name")
         } else if name.chars().any(std::path::is_separator) {
             Some("has a path separator")
-        } else if self.names.iter().any(|n| n == name) {
+        } else if self.names.iter().any(|(n, _)| n == name) {
             Some("written twice")
         } else if !self.owned.iter().any(|p| matches_pattern(p, name)) {
             Some("matches none of the names this output set may write")
@@ -348,7 +378,22 @@ fn recover(resolved: &Path, target: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Refuses a target that holds an entry no owned pattern matches.
+/// The files an earlier set recorded in `dir` ([`OUTPUT_RECORD`]), name → size; `None`
+/// when there is no record (or it cannot be read as one).
+fn read_record(dir: &Path) -> Option<std::collections::HashMap<String, u64>> {
+    let bytes = crate::text::read_bytes_capped(&dir.join(OUTPUT_RECORD), RECORD_MAX_BYTES).ok()?;
+    let text = String::from_utf8(bytes).ok()?;
+    let mut lines = text.lines();
+    (lines.next()? == RECORD_HEADER).then_some(())?;
+    lines
+        .map(|line| {
+            let (bytes, name) = line.split_once('\t')?;
+            Some((name.to_owned(), bytes.parse().ok()?))
+        })
+        .collect()
+}
+
+/// Refuses a target that holds an entry an earlier set did not write (see [`OutputSet`]).
 fn check_replaceable(resolved: &Path, target: &Path, owned: &[String]) -> Result<()> {
     let entries = match fs::read_dir(resolved) {
         Ok(entries) => entries,
@@ -360,27 +405,46 @@ fn check_replaceable(resolved: &Path, target: &Path, owned: &[String]) -> Result
             });
         }
     };
-    let mut foreign: Vec<String> = Vec::new();
+    let record = read_record(resolved);
+    let mut foreign: Vec<(String, &'static str)> = Vec::new();
     for entry in entries {
         let entry = entry.map_err(|source| EdgeIoError::Replace {
             target: target.to_owned(),
             source,
         })?;
         let name = entry.file_name();
-        let is_owned = name
-            .to_str()
-            .is_some_and(|n| owned.iter().any(|p| matches_pattern(p, n)));
-        if !is_owned {
-            foreign.push(name.to_string_lossy().into_owned());
+        let text = name.to_string_lossy().into_owned();
+        if text == OUTPUT_RECORD && record.is_some() {
+            continue;
+        }
+        let why = match (&record, name.to_str()) {
+            (_, None) => Some("a name that is not UTF-8"),
+            (_, Some(n)) if !owned.iter().any(|p| matches_pattern(p, n)) => {
+                Some("not a name this tool writes")
+            }
+            (None, _) => Some("no record of what this tool wrote here"),
+            (Some(record), Some(n)) => match (record.get(n), entry.metadata()) {
+                (None, _) => Some("not among the files this tool wrote here"),
+                (Some(_), Ok(m)) if !m.is_file() => Some("not a regular file"),
+                (Some(&bytes), Ok(m)) if m.len() != bytes => {
+                    Some("changed since this tool wrote it (its size differs)")
+                }
+                (Some(_), Ok(_)) => None,
+                (Some(_), Err(_)) => Some("cannot be examined"),
+            },
+        };
+        if let Some(why) = why {
+            foreign.push((text, why));
         }
     }
     foreign.sort();
     match foreign.first() {
         None => Ok(()),
-        Some(example) => Err(EdgeIoError::ForeignEntries {
+        Some((example, why)) => Err(EdgeIoError::ForeignEntries {
             target: target.to_owned(),
             count: foreign.len(),
             example: example.clone(),
+            why,
         }),
     }
 }

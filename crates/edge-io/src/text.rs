@@ -16,14 +16,15 @@ const BOM: &[u8] = b"\xEF\xBB\xBF";
 
 /// Reads a UTF-8 text file of at most `max_bytes` bytes.
 ///
-/// A regular file whose size is above the cap is refused from its metadata, without reading
-/// it; anything else (a pipe, a device, a file that grows) is read through
-/// [`Read::take`](std::io::Read::take) for at most `max_bytes + 1` bytes, so memory stays
-/// bounded by the cap whatever the path names. A leading UTF-8 byte-order mark is dropped.
+/// Only a regular file is read ([`open_regular`](crate::open_regular): a FIFO, a device or a
+/// folder is [`EdgeIoError::NotAFile`], refused without blocking). A file whose size is above
+/// the cap is refused from its metadata, without reading it; a file that grows while read is
+/// read through [`Read::take`](std::io::Read::take) for at most `max_bytes + 1` bytes, so
+/// memory stays bounded by the cap. A leading UTF-8 byte-order mark is dropped.
 ///
 /// # Errors
-/// [`EdgeIoError::Read`] when the file cannot be opened or read;
-/// [`EdgeIoError::TooLarge`] above the cap, naming the file, its size and the limit;
+/// [`EdgeIoError::Read`] when the file cannot be opened or read; [`EdgeIoError::NotAFile`]
+/// for anything but a regular file; [`EdgeIoError::TooLarge`] above the cap, naming the file, its size and the limit;
 /// [`EdgeIoError::InvalidUtf8`] naming the line, column and byte offset of the first byte that
 /// is not UTF-8.
 ///
@@ -59,13 +60,12 @@ pub fn read_bytes_capped(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
         limit_bytes: max_bytes,
         size_bytes,
     };
-    let file = std::fs::File::open(path).map_err(read_error)?;
-    let metadata = file.metadata().map_err(read_error)?;
-    let known_size = metadata.is_file().then_some(metadata.len());
-    if let Some(size) = known_size.filter(|&size| size > max_bytes) {
-        return Err(too_large(Some(size)));
+    let (file, metadata) = crate::open::open_regular(path)?;
+    let known_size = metadata.len();
+    if known_size > max_bytes {
+        return Err(too_large(Some(known_size)));
     }
-    let capacity = known_size.unwrap_or(0).min(max_bytes).saturating_add(1);
+    let capacity = known_size.min(max_bytes).saturating_add(1);
     let mut bytes = Vec::with_capacity(usize::try_from(capacity).unwrap_or(0));
     file.take(max_bytes.saturating_add(1))
         .read_to_end(&mut bytes)
@@ -184,21 +184,44 @@ mod tests {
 
     #[cfg(unix)]
     #[test]
-    fn a_stream_is_read_only_up_to_the_cap() {
-        // /dev/zero never ends and its metadata has no size: only the cap stops the read.
+    fn a_device_or_a_fifo_is_refused_unread_and_without_blocking() {
+        // /dev/zero never ends; before issue 32 it was read up to the cap.
         let e = read_text_capped(Path::new("/dev/zero"), 4096).unwrap_err();
         assert!(
             matches!(
                 e,
-                EdgeIoError::TooLarge {
-                    limit_bytes: 4096,
-                    size_bytes: None,
+                EdgeIoError::NotAFile {
+                    kind: "a character device",
                     ..
                 }
             ),
             "{e:?}"
         );
-        assert!(e.to_string().contains("more than 4096 bytes"), "{e}");
+        assert!(
+            e.to_string().contains("/dev/zero is a character device"),
+            "{e}"
+        );
+        // A FIFO no one writes to: a blocking open would wait forever.
+        let dir = TempDir::new("fifo");
+        let fifo = dir.0.join("study.ron");
+        test_support::hostile::mkfifo(&fifo);
+        let e = test_support::hostile::within(
+            std::time::Duration::from_secs(10),
+            "reading a FIFO",
+            move || read_text_capped(&fifo, 4096),
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                EdgeIoError::NotAFile {
+                    kind: "a named pipe (FIFO)",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("not a regular file"), "{e}");
     }
 
     #[test]

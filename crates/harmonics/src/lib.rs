@@ -38,6 +38,11 @@
 //!   revolution with fewer than [`FitConfig::min_samples`] samples, and aliasing: a rate that
 //!   turns `π/N` or more in the nominal interval, or an angular gap of `π/N` or more inside a
 //!   revolution (including the gap that closes it).
+//! - **Outliers** ([`residual_outliers`], [`alternating_residuals`]): a revolution whose
+//!   residual RMS is more than [`OUTLIER_RMS_RATIO`] times the median of the revolutions',
+//!   with its largest residual, and residuals that alternate in sign from sample to sample
+//!   (every other sample zeroed); [`without_revolutions`] recomputes the statistics without
+//!   the outlying ones. The callers (the recording crate) warn and apply the file's policy.
 //! - **Declared rate** ([`check_encoder_rate`]): with an encoder, its mean rate can be
 //!   compared with the rate a study declares ([`DeclaredRate`], by default within
 //!   [`ENCODER_RATE_TOLERANCE`]).
@@ -71,6 +76,7 @@ mod error;
 mod geometry;
 mod kernel;
 mod noise;
+mod outliers;
 mod pieces;
 mod rate;
 mod signal;
@@ -89,6 +95,11 @@ pub use noise::{
     DriftAcrossRevolutions, FirstHarmonicNoise, SPREAD_WARNING_RATIO, chi_square_ratio_99,
     drift_across_revolutions, drift_inflation, first_harmonic_noise, pooled_residual_rms,
     pooled_residual_variance, revolution_spread, slope_variance_factor,
+};
+pub use outliers::{
+    ALTERNATING_EXCESS_LIMIT, AlternatingResiduals, MIN_REVOLUTIONS_FOR_OUTLIERS,
+    OUTLIER_RMS_RATIO, ResidualOutlier, ResidualOutliers, alternating_residuals, residual_outliers,
+    without_revolutions,
 };
 pub use pieces::{DropBadSamples, PooledAnalysis, analyze_around_bad_samples};
 pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate};

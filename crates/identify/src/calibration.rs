@@ -387,7 +387,9 @@ pub struct CompensatedCalibration {
     pub k1_used_rad_s_g: f64,
     /// The pseudo-second-order error removed, Δk2 = k1·C_r·g/R², with σ from σ(C_r) (eq. 19).
     pub delta_k2: PseudoSecondOrder,
-    /// Compensated k2 (rad/(s·g²)), equal to `compensated.k2_apparent_rad_s_g2`.
+    /// Compensated k2 (rad/(s·g²)): `uncompensated.k2_apparent_rad_s_g2 − delta_k2`, as the
+    /// calibration's measurement model forms it (`compensated.k2_apparent_rad_s_g2` equals it
+    /// but for rounding).
     pub k2_rad_s_g2: f64,
     /// Total standard deviation of the compensated k2: the fit's and σ(C_r)'s contributions, and
     /// for [`K1Source::Fitted`] also k1's, with its correlation with the a² coefficient.
@@ -509,8 +511,12 @@ fn compensate(
         result_finite("k2_sigma_rad_s_g2", f64::NAN, &inputs)?;
     }
     result_finite("k2_sigma_rad_s_g2", k2_sigma_rad_s_g2, &inputs)?;
+    // k2 = c₄ − Δk2, as the calibration's measurement model forms it (`calibration::
+    // CalibrationModel`): the compensated refit's a² coefficient equals it but for rounding
+    // (a few parts in 10⁹ on an ill-conditioned design), and one number is reported
+    // everywhere.
     Ok(CompensatedCalibration {
-        k2_rad_s_g2: compensated.k2_apparent_rad_s_g2,
+        k2_rad_s_g2: uncompensated.k2_apparent_rad_s_g2 - delta_k2.delta_k2_rad_s_g2,
         k2_sigma_rad_s_g2,
         k2_sigma_from_c_r_rad_s_g2: delta_k2.sigma_rad_s_g2,
         uncompensated,

@@ -5,18 +5,21 @@
 //! library types (`harmonics::LeverGeometry`, `harmonics::FitConfig`, `identify::RadiusModel`)
 //! are built there, so renaming a library field cannot change the file format.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use recording::RecordingFormat;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{PipelineError, Result};
-use crate::results::ProbeSign;
 
 mod certificate;
+mod direction;
+mod profile;
 mod table;
 mod two_orientation;
 pub use certificate::*;
+pub use direction::*;
+pub use profile::*;
 pub use table::*;
 pub use two_orientation::*;
 
@@ -27,13 +30,30 @@ pub use two_orientation::*;
 pub struct StudyConfig {
     /// A short name for the study, used in reports.
     pub name: String,
-    /// Static working radius `R` (PIGA centre of mass to spindle axis), m.
-    pub radius_m: f64,
-    /// Gravity used to express specific force in g, m/s².
-    pub g_m_s2: f64,
+    /// The lab profile (`lab.ron`, `docs/PROFILE.md`), relative to the study file's folder:
+    /// what it states (the centrifuge's radius and probe geometry, g, the Type B inputs, the
+    /// certificate's laboratory, equipment, traceability, signatory) the study need not
+    /// repeat; a value the study states overrides it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<PathBuf>,
+    /// The centrifuge used, by its name in the profile (required with a profile).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub centrifuge: Option<String>,
+    /// The probe used, by its name in the profile (default: the one the centrifuge names).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub probe: Option<String>,
+    /// Static working radius `R` (PIGA centre of mass to spindle axis), m (from the profile's
+    /// centrifuge when left out).
+    #[serde(default)]
+    pub radius_m: Option<f64>,
+    /// Gravity used to express specific force in g, m/s² (from the profile when left out).
+    #[serde(default)]
+    pub g_m_s2: Option<f64>,
     /// PIGA scale factor `k1`, rad/(s·g).
     pub k1_rad_s_g: f64,
-    /// Heights that carry the probe's first harmonic to the PIGA plane, and the probe direction.
+    /// Heights that carry the probe's first harmonic to the PIGA plane, and the probe
+    /// direction (each from the profile's centrifuge when left out).
+    #[serde(default)]
     pub lever: LeverConfig,
     /// Model of the radius error against rate (default: the paper's `a + C_r·ω²`).
     #[serde(default)]
@@ -319,59 +339,27 @@ impl StudyConfig {
     }
 }
 
-/// The probe's lever geometry (eq. 22): heights in mm and the measuring direction.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The probe's lever geometry (eq. 22): heights in mm and the measuring direction. Each is
+/// required unless the study's lab profile gives it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct LeverConfig {
     /// Height from the tilt pivot to the probe plane, mm.
-    pub pivot_to_probe_mm: f64,
+    pub pivot_to_probe_mm: Option<f64>,
     /// Height from the probe plane to the PIGA centre-of-mass plane, mm.
-    pub probe_to_piga_mm: f64,
-    /// The probe's measuring direction (default: against O1X1, the paper's set-up: the
-    /// probe's reading falls when the spindle moves towards the PIGA).
-    #[serde(default)]
-    pub probe_direction: ProbeDirectionName,
+    pub probe_to_piga_mm: Option<f64>,
+    /// The probe's measuring direction: against O1X1 (the paper's set-up) when its reading
+    /// falls as the spindle moves towards the PIGA. Default: against O1X1, when neither the
+    /// study nor its lab profile's centrifuge states it.
+    pub probe_direction: Option<ProbeDirectionName>,
     /// The angle zero of eq. 20–21, deg: what the spindle encoder reads (or how far the
     /// spindle has turned past the index pulse's rising edge) when the arm's PIGA end
     /// points at the probe (the arm along O1X1). Measured angles are taken less it before
-    /// the fit. Absent: taken as 0, and `check`, the report and results.json say so
-    /// (`docs/YOUR-DATA.md`). An angle from the declared rate is not moved by it.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// the fit. Absent from the study and its lab profile's centrifuge: taken as 0, and
+    /// `check`, the report and results.json say so (`docs/YOUR-DATA.md`). An angle from the
+    /// declared rate is not moved by it.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub angle_zero_deg: Option<f64>,
-}
-
-/// Direction in which the displacement probe measures, relative to the sleeve axis O1X1:
-/// which way its reading moves when the spindle moves towards the PIGA, the arm at the
-/// angle zero. Each has a name that says it (`reading_falls_towards_piga`,
-/// `reading_rises_towards_piga`) beside the paper's (`against_o1_x1`, `along_o1_x1`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-pub enum ProbeDirectionName {
-    /// Against O1X1 (the paper's set-up, Fig. 3): the reading falls (the gap closes) when
-    /// the spindle moves towards the PIGA.
-    #[default]
-    #[serde(rename = "against_o1_x1", alias = "reading_falls_towards_piga")]
-    AgainstO1X1,
-    /// Along O1X1: the reading rises when the spindle moves towards the PIGA.
-    #[serde(rename = "along_o1_x1", alias = "reading_rises_towards_piga")]
-    AlongO1X1,
-}
-
-impl ProbeDirectionName {
-    /// The direction as results.json and the report state it ([`ProbeSign::words`] are its
-    /// words, the one place they are written).
-    #[must_use]
-    pub const fn sign(self) -> ProbeSign {
-        match self {
-            Self::AgainstO1X1 => ProbeSign::AgainstO1X1,
-            Self::AlongO1X1 => ProbeSign::AlongO1X1,
-        }
-    }
-
-    /// The words a person checks at the machine ([`ProbeSign::words`]).
-    #[must_use]
-    pub const fn words(self) -> &'static str {
-        self.sign().words()
-    }
 }
 
 /// A radius-error model, as the study file and `results.json` name it.
@@ -556,12 +544,17 @@ impl StudyConfig {
     pub fn from_ron(text: &str, path: &Path) -> Result<Self> {
         edge_io::ron_options()
             .from_str(text)
-            .map_err(|e| PipelineError::Parse {
-                path: path.to_owned(),
-                line: e.span.start.line,
-                column: e.span.start.col,
-                message: parse_message(&e.code),
-            })
+            .map_err(|e| parse_error(&e, path))
+    }
+}
+
+/// A RON parser's error as the configuration's own words, located in `path`.
+pub(crate) fn parse_error(e: &ron::error::SpannedError, path: &Path) -> PipelineError {
+    PipelineError::Parse {
+        path: path.to_owned(),
+        line: e.span.start.line,
+        column: e.span.start.col,
+        message: parse_message(&e.code),
     }
 }
 
@@ -629,6 +622,16 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "CertifyName" => "certificate.certify",
         "AuthorisationConfig" => "certificate.authorisation",
         "TwoOrientationConfig" => "two_orientation",
+        // the lab profile (lab.ron)
+        "ProfileConfig" => return None,
+        "ProfileLaboratory" => "laboratory",
+        "PersonConfig" => "signatories[…]",
+        "InstrumentConfig" => "daqs[…]",
+        "CentrifugeConfig" => "centrifuges[…]",
+        "ProfileLever" => "centrifuges[…].lever",
+        "CentrifugeTraceability" => "centrifuges[…].traceability",
+        "ProbeConfig" => "probes[…]",
+        "GravityConfig" => "gravity",
         "OrientationConfig" => "two_orientation.orientations[…]",
         "OrientationName" => "two_orientation.orientations[…].orientation",
         _ => "this section",
@@ -776,7 +779,7 @@ mod tests {
             ("reading_rises_towards_piga", ProbeDirectionName::AlongO1X1),
         ] {
             let config = StudyConfig::from_ron(&study(name), Path::new("s.ron")).unwrap();
-            assert_eq!(config.lever.probe_direction, direction);
+            assert_eq!(config.lever.probe_direction, Some(direction));
         }
     }
 }

@@ -45,6 +45,27 @@ pub enum PipelineError {
         /// The repeated rate.
         rate_deg_s: f64,
     },
+    /// One recording listed twice in a phase (the same file, or the same bytes under two
+    /// names): one recording cannot be two rate points.
+    #[error(
+        "{}: field `{field}`: {} is the same recording as `{first}` ({}): one recording \
+         cannot be two rate points; name the recording of each rate",
+        path.display(),
+        file.display(),
+        if *same_bytes { "the same bytes" } else { "the same file" }
+    )]
+    SameRecording {
+        /// The file concerned (the configuration).
+        path: PathBuf,
+        /// Path of the second occurrence.
+        field: String,
+        /// Path of the first occurrence.
+        first: String,
+        /// The recording.
+        file: PathBuf,
+        /// Whether they are two files with the same bytes (else one file named twice).
+        same_bytes: bool,
+    },
     /// A phase has too few rate points for its radius-error model: a fit needs one more point
     /// than the model has unknowns, to have a standard error.
     #[error("{}: field `{field}`: {got} rate point(s), the {model} model needs at least {need} (one more than its unknowns)", path.display())]
@@ -80,6 +101,16 @@ pub enum PipelineError {
         field: String,
         /// The solver's error.
         source: identify::IdentifyError,
+    },
+    /// The calibration refused its points (`calibration::check_points`).
+    #[error("{}: `{field}`", path.display())]
+    Calibration {
+        /// The file concerned.
+        path: PathBuf,
+        /// The section whose points were refused.
+        field: String,
+        /// The calibration's error.
+        source: ::calibration::CalibrationError,
     },
     /// The uncertainty evaluation failed.
     #[error("{}: `{field}`", path.display())]
@@ -284,6 +315,27 @@ pub enum PipelineError {
         /// The keys it may have.
         known: Vec<String>,
     },
+    /// A date that is not written `YYYY-MM-DD` (ISO 8601), or a day that does not exist.
+    #[error("{}: field `{field}` = {value:?}: not a date written YYYY-MM-DD (hint: {hint})", path.display())]
+    InvalidDate {
+        /// The file concerned.
+        path: PathBuf,
+        /// Path of the field.
+        field: String,
+        /// The text given.
+        value: String,
+        /// The same date written as asked, when it can be told.
+        hint: String,
+    },
+    /// A study names a lab profile that was not read with it (built from values without its
+    /// profile: [`crate::Inputs::with_profile`] takes it).
+    #[error("{}: field `profile` names {}, which was not read with the study (read the study with `load_study` or `parse_study`, or pass the profile to `Inputs::with_profile`)", path.display(), profile.display())]
+    ProfileNotRead {
+        /// The study file.
+        path: PathBuf,
+        /// The profile it names.
+        profile: PathBuf,
+    },
     /// A text field holds a character that hides, reorders or acts instead of showing (a
     /// control character or a bidirectional override).
     #[error("{}: field `{field}` holds the character {hidden}: text that a report or certificate shows must show what it says (control characters and bidirectional overrides can hide, reorder or act on it); write it on one line without them", path.display())]
@@ -365,6 +417,14 @@ pub enum InvalidReason {
     /// A rate must be finite and positive.
     #[error("a rate must be finite and > 0")]
     RateNotPositive,
+    /// A local gravity off the Earth's surface.
+    #[error(
+        "must lie within {}…{} m/s² (the Earth's surface gravity: 9.780 at the equator to \
+         9.832 at the poles, less with altitude); a value in g or another unit is an error",
+        units::Compact(*units::GRAVITY_RANGE_M_S2.start()),
+        units::Compact(*units::GRAVITY_RANGE_M_S2.end())
+    )]
+    GravityImplausible,
     /// Too few Monte Carlo trials for a 95 % interval.
     #[error("must be at least 2000 (JCGM 101 §7.2: 100/(1 − p) for p = 95 %)")]
     TooFewTrials,
@@ -376,9 +436,34 @@ pub enum InvalidReason {
         "a standard uncertainty must be finite and > 0 (a σ of 0 would give the row infinite weight)"
     )]
     SigmaNotPositive,
+    /// A standard uncertainty outside what the fit can weight by.
+    #[error(
+        "a standard uncertainty must lie in [1e-150, 1e150] rad/s (its weight 1/σ² and σ² \
+         itself must be numbers the fit can hold; a point this uncertain carries no \
+         information: leave it out)"
+    )]
+    SigmaOutOfRange,
     /// A harmonic order outside 1 to 8.
     #[error("must be 1 to 8")]
     HarmonicOrder,
+}
+
+impl InvalidReason {
+    /// Why the calibration refused a value of a point (`calibration::check_points`), in the
+    /// words of a table's value: the one mapping the study and `centrifuge-cal identify`
+    /// share.
+    #[must_use]
+    pub fn of_point(point: &::calibration::BadPoint) -> Self {
+        use ::calibration::PointValue;
+        match point.what {
+            PointValue::Rate => Self::RateNotPositive,
+            PointValue::Output => Self::NotFinite,
+            PointValue::Sigma if point.value.is_finite() && point.value > 0.0 => {
+                Self::SigmaOutOfRange
+            }
+            PointValue::Sigma => Self::SigmaNotPositive,
+        }
+    }
 }
 
 /// Why a setting cannot be used with the rest of the configuration or data.

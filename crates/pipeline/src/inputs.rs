@@ -178,13 +178,51 @@ impl Core {
                 hidden,
             });
         }
-        check.positive("radius_m", config.radius_m)?;
-        check.positive("g_m_s2", config.g_m_s2)?;
+        let required = |field: &str, value: Option<f64>, what: &str| -> Result<f64> {
+            value.ok_or_else(|| PipelineError::MissingField {
+                path: source.to_owned(),
+                field: field.to_owned(),
+                hint: format!(
+                    "{what}; or name the lab profile that states it (`profile: \"lab.ron\"`, \
+                     `centrifuge: \"…\"`, docs/PROFILE.md)"
+                ),
+            })
+        };
+        let mut errors = Vec::new();
+        let mut take = |r: Result<f64>| r.map_err(|e| errors.push(e)).unwrap_or(f64::NAN);
+        let radius_m = take(required(
+            "radius_m",
+            config.radius_m,
+            "the static working radius R, m",
+        ));
+        let g_m_s2 = take(required("g_m_s2", config.g_m_s2, "the local gravity, m/s²"));
+        let pivot_to_probe_mm = take(required(
+            "lever.pivot_to_probe_mm",
+            config.lever.pivot_to_probe_mm,
+            "the height from the tilt pivot to the probe plane, mm",
+        ));
+        let probe_to_piga_mm = take(required(
+            "lever.probe_to_piga_mm",
+            config.lever.probe_to_piga_mm,
+            "the height from the probe plane to the PIGA's plane, mm",
+        ));
+        PipelineError::from_list(errors)?;
+        check.positive("radius_m", radius_m)?;
+        check.positive("g_m_s2", g_m_s2)?;
+        // Plausibility (issue 32): a g off the Earth's surface is a typing or unit error, and
+        // one of 1e300 made every bound that scales with it absurd (`[1e198, inf]`).
+        if !units::GRAVITY_RANGE_M_S2.contains(&g_m_s2) {
+            return Err(check.invalid(
+                "g_m_s2".to_owned(),
+                g_m_s2,
+                InvalidReason::GravityImplausible,
+            ));
+        }
         check.positive("k1_rad_s_g", config.k1_rad_s_g)?;
         let lever = LeverGeometry {
-            pivot_to_probe_mm: config.lever.pivot_to_probe_mm,
-            probe_to_piga_mm: config.lever.probe_to_piga_mm,
-            probe_direction: probe_direction(config.lever.probe_direction),
+            pivot_to_probe_mm,
+            probe_to_piga_mm,
+            probe_direction: probe_direction(config.lever.probe_direction.unwrap_or_default()),
         };
         let lever_ratio = lever
             .lever_ratio()
@@ -208,8 +246,8 @@ impl Core {
         Ok(Self {
             source: source.to_owned(),
             name: config.name.clone(),
-            radius_m: config.radius_m,
-            g_m_s2: config.g_m_s2,
+            radius_m,
+            g_m_s2,
             k1_rad_s_g: config.k1_rad_s_g,
             lever,
             lever_ratio,

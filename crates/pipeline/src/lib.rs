@@ -55,11 +55,13 @@
 //! dynamic imbalance of centrifuge", 2025, eq. 16, 19–22 and Table 1.
 
 mod config;
+mod date;
 mod error;
 mod inputs;
 mod intervals;
 mod load;
 mod piga_data;
+mod profile;
 mod results;
 mod sections;
 mod study;
@@ -80,10 +82,15 @@ pub use config::{
     RadiusModelName, RadiusPoint, RecordingPoint, RecordingSet, SIGMA_RATE_TOLERANCE, StudyConfig,
     TableLayoutError, TrialsConfig, UncertaintyConfig, Weighting,
 };
+pub use config::{
+    CentrifugeConfig, CentrifugeTraceability, GravityConfig, InstrumentConfig, PersonConfig,
+    ProbeConfig, ProfileConfig, ProfileLaboratory, ProfileLever,
+};
 pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
 pub use error::{DegenerateInterval, InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
-pub use load::{Files, MAX_STUDY_BYTES, load_study, parse_study};
+pub use load::{Files, MAX_STUDY_BYTES, load_profile, load_study, parse_study};
+pub use profile::Profile;
 /// The size and SHA-256 of a file as a study read it (provenance).
 pub use recording::FileDigest;
 pub use results::{AngleZero, ProbeDeclared};
@@ -102,8 +109,8 @@ pub use results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
     Estimate, FitWeighting, InfiniteDof, LabelSummary, MechanismPhase, MechanismResults, ModelFit,
     MonteCarlo, MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult,
-    PigaResult, PointResult, ProbeTrace, RadiusModel, StudyInputs, StudyResults, Warning,
-    WarningCode, model_name,
+    PigaResult, PointResult, ProbeTrace, ProfileResults, RadiusModel, StudyInputs, StudyResults,
+    ValueOrigin, ValueSource, Warning, WarningCode, model_name,
 };
 pub use results::{
     MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,

@@ -6,6 +6,7 @@ use std::path::Path;
 use crate::config::StudyConfig;
 use crate::error::Result;
 use crate::inputs::{DataSource, Loaded};
+use crate::profile::Profile;
 use crate::study::Inputs;
 
 /// The data files of a study, read from disk.
@@ -74,7 +75,8 @@ pub const MAX_STUDY_BYTES: u64 = edge_io::CONFIG_MAX_BYTES;
 
 /// Reads a study file, validates it and loads the data files it names from disk, keeping
 /// the size and SHA-256 of every file as it was read (the configuration's too:
-/// [`Inputs::config_digest`], [`Inputs::input_files`]).
+/// [`Inputs::config_digest`], [`Inputs::input_files`]; and its lab profile's:
+/// [`Inputs::profile_file`]).
 ///
 /// # Errors
 /// [`PipelineError::File`](crate::PipelineError::File) if the file cannot be read, is above [`MAX_STUDY_BYTES`] or is not
@@ -86,9 +88,30 @@ pub fn load_study(path: &Path) -> Result<Inputs> {
     Ok(parse_study(&text, path)?.with_config_digest(digest))
 }
 
-/// Parses and validates study text, loading the recordings it names from disk (relative to
-/// `path`'s folder); `path` names the source in errors.
+/// Parses and validates study text, loading the lab profile it names and the recordings it
+/// names from disk (relative to `path`'s folder); `path` names the source in errors.
 pub fn parse_study(text: &str, path: &Path) -> Result<Inputs> {
     let config = StudyConfig::from_ron(text.strip_prefix('\u{feff}').unwrap_or(text), path)?;
-    Inputs::new(config, path, &Files)
+    let profile = load_profile(&config, path)?;
+    Inputs::with_profile(config, profile.as_ref(), path, &Files)
+}
+
+/// The lab profile a study names (`profile: "lab.ron"`, relative to the study file `path`'s
+/// folder), read with the study's size cap and RON dialect and kept with its size and
+/// SHA-256; `None` when the study names none. Not validated here: [`Inputs::with_profile`]
+/// validates it.
+///
+/// # Errors
+/// [`PipelineError::File`](crate::PipelineError::File) if the file cannot be read, is too
+/// large or is not UTF-8; [`PipelineError::Parse`](crate::PipelineError::Parse) naming the
+/// profile's line and column.
+pub fn load_profile(config: &StudyConfig, path: &Path) -> Result<Option<Profile>> {
+    let Some(named) = &config.profile else {
+        return Ok(None);
+    };
+    let file = path.parent().unwrap_or_else(|| Path::new(".")).join(named);
+    let bytes = edge_io::read_bytes_capped(&file, MAX_STUDY_BYTES)?;
+    let digest = recording::FileDigest::of(&bytes);
+    let text = edge_io::text_from_bytes(&file, bytes)?;
+    Ok(Some(Profile::from_ron(&text, &file)?.with_digest(digest)))
 }

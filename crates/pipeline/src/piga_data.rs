@@ -277,16 +277,30 @@ pub(crate) fn load_piga_table(
             value,
             reason,
         };
-    if let Some(i) = rates.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
-        return Err(bad(i, &rate_name, rates[i], InvalidReason::RateNotPositive));
-    }
-    if let Some(i) = outputs.iter().position(|y| !y.is_finite()) {
-        return Err(bad(i, &output_name, outputs[i], InvalidReason::NotFinite));
-    }
-    if let (Some(name), Some(sigma)) = (&sigma_name, &sigma)
-        && let Some(i) = sigma.iter().position(|s| !(s.is_finite() && *s > 0.0))
-    {
-        return Err(bad(i, name, sigma[i], InvalidReason::SigmaNotPositive));
+    // the calibration's own check of its points (`centrifuge-cal identify` makes the same),
+    // every refused value at once, each at its line and column
+    let rates_rad_s: Vec<f64> = rates.iter().map(|&r| units::deg_s_to_rad_s(r)).collect();
+    let checked = ::calibration::check_points(&::calibration::Points {
+        rates_rad_s: &rates_rad_s,
+        outputs_rad_s: &outputs,
+        sigma_rad_s: sigma.as_deref(),
+    });
+    if let Err(::calibration::CalibrationError::Points { bad: refused }) = checked {
+        use ::calibration::PointValue;
+        let sigma_name = sigma_name.as_deref().unwrap_or("sigma_rad_s");
+        PipelineError::from_list(
+            refused
+                .iter()
+                .map(|b| {
+                    let reason = InvalidReason::of_point(b);
+                    match b.what {
+                        PointValue::Rate => bad(b.row, &rate_name, rates[b.row], reason),
+                        PointValue::Output => bad(b.row, &output_name, b.value, reason),
+                        PointValue::Sigma => bad(b.row, sigma_name, b.value, reason),
+                    }
+                })
+                .collect(),
+        )?;
     }
     let sigma = match &config.output_sigma_rad_s {
         Some(declared) => Some(declared_sigma(

@@ -3,14 +3,15 @@
 //! (`crate::sections`); this module only says in which order, and what one section hands the
 //! next.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::config::{DeprecatedKey, StudyConfig};
 use crate::error::{PipelineError, Result};
 use recording::FileDigest;
 
 use crate::inputs::{Core, DataSource, InputFile};
-use crate::results::{StudyInputs, StudyResults, Warning};
+use crate::profile::Profile;
+use crate::results::{ProfileResults, StudyInputs, StudyResults, Warning};
 use crate::sections::balance::counterweight::{self, CounterweightInputs};
 use crate::sections::balance::{self, BalanceInputs};
 use crate::sections::calibration::{self, CalibrationInputs, CalibrationMeasurement};
@@ -34,19 +35,81 @@ pub struct Inputs {
     two_orientation: Option<TwoOrientationInputs>,
     /// Sections written under a former name (each a `deprecated_key` warning).
     deprecated: Vec<DeprecatedKey>,
+    /// The lab profile the study named: which values came from it, and the file it was read
+    /// from with its size and SHA-256.
+    profile: Option<(ProfileResults, PathBuf, Option<FileDigest>)>,
 }
 
 impl Inputs {
     /// Validates a configuration read from `source` (named in every error; relative data
     /// paths are resolved against its folder) and loads the data files it names through
-    /// `load`, in parallel.
+    /// `load`, in parallel. A study that names a lab profile is built with
+    /// [`Inputs::with_profile`] ([`crate::load_study`] reads the profile).
     ///
     /// # Errors
     /// The first invalid field in the file's order; for data files, every file that could
     /// not be loaded, in the configuration's order ([`PipelineError::Several`] when more than
     /// one).
-    pub fn new(mut config: StudyConfig, source: &Path, load: &dyn DataSource) -> Result<Self> {
+    pub fn new(config: StudyConfig, source: &Path, load: &dyn DataSource) -> Result<Self> {
+        Self::with_profile(config, None, source, load)
+    }
+
+    /// [`Inputs::new`] for a study with its lab profile (`profile`, read by the edge: the
+    /// file the study's `profile` names). The profile is validated, and what the study leaves
+    /// out is taken from it; the results say which value came from where.
+    ///
+    /// # Errors
+    /// Those of [`Inputs::new`]; the profile's own problems ([`Profile::validate`]); a study
+    /// that names a profile without one given here, or names a centrifuge without a profile;
+    /// a centrifuge, probe or signatory the profile does not have.
+    pub fn with_profile(
+        mut config: StudyConfig,
+        profile: Option<&Profile>,
+        source: &Path,
+        load: &dyn DataSource,
+    ) -> Result<Self> {
         let deprecated = config.take_deprecated_keys(source)?;
+        let profile = match (&config.profile, profile) {
+            (Some(_), Some(p)) => {
+                let used = p.apply(&mut config, source)?;
+                Some((used, p.source().to_owned(), p.digest().cloned()))
+            }
+            (Some(named), None) => {
+                return Err(PipelineError::ProfileNotRead {
+                    path: source.to_owned(),
+                    profile: named.clone(),
+                });
+            }
+            (None, Some(p)) => {
+                return Err(PipelineError::MissingField {
+                    path: source.to_owned(),
+                    field: "profile".to_owned(),
+                    hint: format!(
+                        "a lab profile ({}) was given for a study that names none: name it \
+                         (`profile: \"…\"`)",
+                        p.source().display()
+                    ),
+                });
+            }
+            (None, None) => {
+                for (field, named) in [
+                    ("centrifuge", config.centrifuge.is_some()),
+                    ("probe", config.probe.is_some()),
+                ] {
+                    if named {
+                        return Err(PipelineError::MissingField {
+                            path: source.to_owned(),
+                            field: "profile".to_owned(),
+                            hint: format!(
+                                "`{field}` names an instrument of a lab profile: name the profile \
+                                 too (`profile: \"lab.ron\"`, docs/PROFILE.md)"
+                            ),
+                        });
+                    }
+                }
+                None
+            }
+        };
         let mut core = Core::new(&config, source)?;
         let check = core.check();
         let checked = phases::check(&check, &config)?;
@@ -80,7 +143,7 @@ impl Inputs {
                     b,
                     &config.phases,
                     &names.names,
-                    config.lever.probe_to_piga_mm,
+                    core.lever.probe_to_piga_mm,
                 )
             })
             .transpose()?;
@@ -117,7 +180,32 @@ impl Inputs {
             config_digest: None,
             two_orientation,
             deprecated,
+            profile,
         })
+    }
+
+    /// The lab profile's file and its size and SHA-256 as read (`None`: the study names no
+    /// profile, or it was built from values).
+    pub fn profile_file(&self) -> Option<(&Path, Option<&FileDigest>)> {
+        self.profile
+            .as_ref()
+            .map(|(_, path, digest)| (path.as_path(), digest.as_ref()))
+    }
+
+    /// Which values came from the lab profile and which the study states (`None`: no
+    /// profile).
+    pub fn profile_values(&self) -> Option<&ProfileResults> {
+        self.profile.as_ref().map(|(p, ..)| p)
+    }
+
+    /// What the study can say before it runs that may make a certificate wrong: equipment
+    /// past its calibration due date on the measurement date, or due dates that cannot be
+    /// compared with it. `run` states the same among its warnings.
+    pub fn warnings(&self) -> Vec<Warning> {
+        self.certificate
+            .as_ref()
+            .map(Certificate::warnings)
+            .unwrap_or_default()
     }
 
     /// The inputs, with the size and SHA-256 of the configuration's bytes as the edge read
@@ -201,6 +289,7 @@ pub fn run_with_progress(
         .iter()
         .map(|d| Warning::deprecated_key(d.old, d.new))
         .collect();
+    warnings.extend(inputs.warnings());
     let mut phases = Vec::with_capacity(inputs.phases.list.len());
     // Phases holding a second probe's data are fitted like the others, through the first
     // probe's lever and direction: their C_r is not the PIGA plane's, and they say so.
@@ -282,6 +371,7 @@ pub fn run_with_progress(
         counterweight,
         certificate,
         two_orientation,
+        profile: inputs.profile_values().cloned(),
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {

@@ -151,7 +151,11 @@ pub(crate) fn implausible(check: &Check<'_>, config: &StudyConfig) -> Vec<Pipeli
     let Some(u) = &config.uncertainty else {
         return Vec::new();
     };
-    let mut radii = vec![("radius_m".to_owned(), config.radius_m)];
+    let mut radii: Vec<(String, f64)> = config
+        .radius_m
+        .map(|r| ("radius_m".to_owned(), r))
+        .into_iter()
+        .collect();
     if let Some(t) = &config.two_orientation {
         for (i, o) in t.orientations.iter().enumerate() {
             if let Some(r) = o.radius_m {
@@ -186,7 +190,7 @@ pub(crate) fn implausible(check: &Check<'_>, config: &StudyConfig) -> Vec<Pipeli
     one(
         "g_u_m_s2",
         u.g_u_m_s2,
-        Some(("g_m_s2".to_owned(), config.g_m_s2)),
+        config.g_m_s2.map(|g| ("g_m_s2".to_owned(), g)),
         "m/s²",
     );
     one(
@@ -204,10 +208,10 @@ pub(crate) fn implausible(check: &Check<'_>, config: &StudyConfig) -> Vec<Pipeli
     one(
         "pivot_to_probe_u_mm",
         u.pivot_to_probe_u_mm,
-        Some((
-            "lever.pivot_to_probe_mm".to_owned(),
-            config.lever.pivot_to_probe_mm,
-        )),
+        config
+            .lever
+            .pivot_to_probe_mm
+            .map(|h| ("lever.pivot_to_probe_mm".to_owned(), h)),
         "mm",
     );
     list

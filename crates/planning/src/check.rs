@@ -12,6 +12,59 @@ use crate::plan::Plan;
 /// The least number of simulated campaigns.
 pub const MIN_CAMPAIGNS: usize = 10;
 
+/// The most simulated campaigns a check runs (issue 32: `plan --simulate 1e7` took about
+/// five minutes, 2⁶⁴ − 1 would never end). 10⁶ estimate the ratio of spreads to 0.07 %,
+/// far below anything a plan decides on, in about 30 s of CPU for a one-orientation plan and
+/// 2.5 min for a two-orientation one ([`CampaignKind::seconds_per_campaign`]).
+pub const MAX_CAMPAIGNS: usize = 1_000_000;
+
+/// Which simulation a number of campaigns is asked of: what one campaign costs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CampaignKind {
+    /// [`simulate_plan`]: one weighted eq. 18 fit per campaign.
+    OneOrientation,
+    /// [`simulate_two_orientation_plan`](crate::simulate_two_orientation_plan): one joint
+    /// eq. 23 fit per campaign.
+    TwoOrientations,
+}
+
+impl CampaignKind {
+    /// CPU time of one campaign, s: docs/PERFORMANCE.md's criterion medians of 10⁴
+    /// campaigns (`simulate_10000_campaigns` 0.26–0.31 s, `simulate_two_orientations_10000_campaigns`
+    /// 1.5–2.6 s) rounded up, for the estimate a refusal states.
+    #[must_use]
+    pub const fn seconds_per_campaign(self) -> f64 {
+        match self {
+            Self::OneOrientation => 3.0e-5,
+            Self::TwoOrientations => 1.5e-4,
+        }
+    }
+}
+
+/// Refuses a number of simulated campaigns below [`MIN_CAMPAIGNS`] or above
+/// [`MAX_CAMPAIGNS`], before any work: what `plan --simulate N`, the Python package and the
+/// simulations themselves call.
+///
+/// # Errors
+/// [`PlanningError::TooFewCampaigns`]; [`PlanningError::TooManyCampaigns`] with the CPU time
+/// the campaigns would take.
+pub fn check_campaigns(campaigns: usize, kind: CampaignKind) -> Result<()> {
+    if campaigns < MIN_CAMPAIGNS {
+        return Err(PlanningError::TooFewCampaigns {
+            campaigns,
+            need: MIN_CAMPAIGNS,
+        });
+    }
+    if campaigns > MAX_CAMPAIGNS {
+        return Err(PlanningError::TooManyCampaigns {
+            campaigns,
+            max: MAX_CAMPAIGNS,
+            seconds_per_campaign: kind.seconds_per_campaign(),
+        });
+    }
+    Ok(())
+}
+
 /// The spread of k2 over simulated campaigns against the prediction.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -63,8 +116,8 @@ pub fn expected_outputs(inputs: &PlanInputs, plan: &Plan) -> Vec<f64> {
 /// with the plan's u(k2) of the fit.
 ///
 /// # Errors
-/// [`PlanningError::TooFewCampaigns`], [`PlanningError::OutputCount`], and the solver's
-/// errors.
+/// [`PlanningError::TooFewCampaigns`], [`PlanningError::TooManyCampaigns`] (see
+/// [`check_campaigns`]), [`PlanningError::OutputCount`], and the solver's errors.
 pub fn simulate_plan(
     plan: &Plan,
     noise_free_rad_s: &[f64],
@@ -92,6 +145,7 @@ pub fn simulate_plan(
     };
     spread_of_k2(
         &[(noise_free_rad_s, &sigma)],
+        CampaignKind::OneOrientation,
         campaigns,
         seed,
         plan.u_k2_fit_rad_s_g2,
@@ -117,17 +171,13 @@ pub(crate) fn campaign_rng(seed: u64, c: usize) -> StdRng {
 /// [`simulate_two_orientation_plan`](crate::simulate_two_orientation_plan).
 pub(crate) fn spread_of_k2(
     parts: &[(&[f64], &[f64])],
+    kind: CampaignKind,
     campaigns: usize,
     seed: u64,
     predicted_u_rad_s_g2: f64,
     fit_k2: impl Fn(&[&[f64]]) -> Result<f64> + Sync,
 ) -> Result<SimulationCheck> {
-    if campaigns < MIN_CAMPAIGNS {
-        return Err(PlanningError::TooFewCampaigns {
-            campaigns,
-            need: MIN_CAMPAIGNS,
-        });
-    }
+    check_campaigns(campaigns, kind)?;
     for (noise_free, sigma) in parts {
         if noise_free.len() != sigma.len() {
             return Err(PlanningError::OutputCount {

@@ -6,7 +6,7 @@
 #[non_exhaustive]
 pub enum PlanningError {
     /// A field is not finite or outside its range.
-    #[error("{field} = {value}: {requirement}")]
+    #[error("{field} = {}: {requirement}", units::Compact(*value))]
     InvalidField {
         /// The field's path in the plan, e.g. `piga.noise.sigma_rad_s`.
         field: &'static str,
@@ -17,9 +17,11 @@ pub enum PlanningError {
     },
     /// The highest rate the centrifuge allows lies below the lowest rate asked for.
     #[error(
-        "the maximum rate {max_rate_deg_s} deg/s (from {binding}) is below the minimum rate \
-         {min_rate_deg_s} deg/s, by {} deg/s",
-        min_rate_deg_s - max_rate_deg_s
+        "the maximum rate {} deg/s (from {binding}) is below the minimum rate {} deg/s, by {} \
+         deg/s",
+        units::Compact(*max_rate_deg_s),
+        units::Compact(*min_rate_deg_s),
+        units::Compact(min_rate_deg_s - max_rate_deg_s)
     )]
     RateRange {
         /// `centrifuge.min_rate_deg_s`.
@@ -33,8 +35,10 @@ pub enum PlanningError {
     /// Fewer candidate rates inside the allowed range than the design has unknowns (or, without
     /// repeated rates, than points).
     #[error(
-        "{in_range} candidate rates lie within {min_rate_deg_s}…{max_rate_deg_s} deg/s, \
-         {need} are needed ({reason}): {} short",
+        "{in_range} candidate rates lie within {}…{} deg/s, {need} are needed ({reason}): {} \
+         short",
+        units::Compact(*min_rate_deg_s),
+        units::Compact(*max_rate_deg_s),
         need - in_range
     )]
     TooFewCandidates {
@@ -64,10 +68,13 @@ pub enum PlanningError {
     },
     /// The settling time and the minimum revolutions alone exceed the time budget.
     #[error(
-        "schedule.budget_s = {budget_s} s is shorter than the {needed_s:.1} s that settling \
-         ({settling_s:.1} s) and the minimum revolutions ({minimum_s:.1} s) of {points} points \
-         need, by {:.1} s",
-        needed_s - budget_s
+        "schedule.budget_s = {} s is shorter than the {:.1} s that settling ({:.1} s) and the \
+         minimum revolutions ({:.1} s) of {points} points need, by {:.1} s",
+        units::Compact(*budget_s),
+        units::Compact(*needed_s),
+        units::Compact(*settling_s),
+        units::Compact(*minimum_s),
+        units::Compact(needed_s - budget_s)
     )]
     BudgetTooShort {
         /// The budget, s.
@@ -84,11 +91,15 @@ pub enum PlanningError {
     /// A two-orientation plan's remount, settling and minimum revolutions alone exceed the
     /// time budget.
     #[error(
-        "schedule.budget_s = {budget_s} s is shorter than the {needed_s:.1} s that turning the \
-         PIGA round (two_orientation.remount_s = {remount_s} s), settling ({settling_s:.1} s) \
-         and the minimum revolutions ({minimum_s:.1} s) of {points} points in two mountings \
-         need, by {:.1} s",
-        needed_s - budget_s
+        "schedule.budget_s = {} s is shorter than the {:.1} s that turning the PIGA round \
+         (two_orientation.remount_s = {} s), settling ({:.1} s) and the minimum revolutions \
+         ({:.1} s) of {points} points in two mountings need, by {:.1} s",
+        units::Compact(*budget_s),
+        units::Compact(*needed_s),
+        units::Compact(*remount_s),
+        units::Compact(*settling_s),
+        units::Compact(*minimum_s),
+        units::Compact(needed_s - budget_s)
     )]
     TwoOrientationBudgetTooShort {
         /// The budget, s.
@@ -107,11 +118,11 @@ pub enum PlanningError {
     /// The best plan within the budget misses the target U95(k2).
     #[error(
         "target.u95_k2_rad_s_g2 = {target:.4e} rad/(s·g²) is not reached: the best plan within \
-         schedule.budget_s = {budget_s} s gives U95(k2) = {achieved:.4e} ({:.1} % above the \
-         target); {}",
-        100.0 * (achieved / target - 1.0),
+         schedule.budget_s = {} s gives U95(k2) = {achieved:.4e} ({:.1} % above the target); {}",
+        units::Compact(*budget_s),
+        units::Compact(100.0 * (achieved / target - 1.0)),
         match needed_budget_s {
-            Some(t) => format!("about {t:.0} s of centrifuge time would reach it"),
+            Some(t) => format!("about {:.0} s of centrifuge time would reach it", units::Compact(*t)),
             None => format!(
                 "no budget reaches it: the Type B inputs alone give U95 = {type_b_floor:.4e}"
             ),
@@ -130,7 +141,10 @@ pub enum PlanningError {
         type_b_floor: f64,
     },
     /// A design's information matrix is singular (it cannot separate the eq. 18 terms).
-    #[error("the design of rates {rates_deg_s:?} deg/s cannot separate the six eq. 18 terms")]
+    #[error(
+        "the design of rates {} deg/s cannot separate the six eq. 18 terms",
+        units::CompactSeries(rates_deg_s)
+    )]
     Singular {
         /// The rates, deg/s.
         rates_deg_s: Vec<f64>,
@@ -142,6 +156,23 @@ pub enum PlanningError {
         campaigns: usize,
         /// Least.
         need: usize,
+    },
+    /// More simulated campaigns than [`crate::MAX_CAMPAIGNS`]: refused before any is run,
+    /// with what they would cost.
+    #[error(
+        "campaigns = {campaigns}: at most {max} simulated campaigns are run (about {} s of \
+         CPU at the measured cost of {} ms per 1000 campaigns of this kind of plan; ask for at \
+         most {max})",
+        units::Compact((*campaigns as f64 * seconds_per_campaign).round()),
+        units::Compact((1e6 * seconds_per_campaign).round())
+    )]
+    TooManyCampaigns {
+        /// Asked for.
+        campaigns: usize,
+        /// Most.
+        max: usize,
+        /// The measured CPU time of one campaign of this kind of plan, s (docs/PERFORMANCE.md).
+        seconds_per_campaign: f64,
     },
     /// The noise-free outputs given to the simulation do not match the plan's points.
     #[error("{got} noise-free outputs for a plan of {expected} points")]

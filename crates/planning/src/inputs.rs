@@ -296,6 +296,10 @@ fn field(name: &'static str, value: f64, ok: bool, requirement: &'static str) ->
     }
 }
 
+/// What `centrifuge.g_m_s2` must be: [`units::GRAVITY_RANGE_M_S2`] in words.
+const GRAVITY_REQUIREMENT: &str =
+    "must lie within 9.7…9.9 m/s² (local gravity on the Earth's surface)";
+
 fn positive(name: &'static str, value: f64) -> Result<()> {
     field(name, value, value > 0.0, "must be finite and > 0")
 }
@@ -317,7 +321,13 @@ impl Problem {
     pub(crate) fn new(inputs: &PlanInputs) -> Result<Self> {
         let c = &inputs.centrifuge;
         positive("centrifuge.radius_m", c.radius_m)?;
-        positive("centrifuge.g_m_s2", c.g_m_s2)?;
+        field(
+            "centrifuge.g_m_s2",
+            c.g_m_s2,
+            units::GRAVITY_RANGE_M_S2.contains(&c.g_m_s2),
+            // The words of `units::GRAVITY_RANGE_M_S2` (a test checks they agree).
+            GRAVITY_REQUIREMENT,
+        )?;
         positive("centrifuge.min_rate_deg_s", c.min_rate_deg_s)?;
         positive("centrifuge.max_rate_deg_s", c.max_rate_deg_s)?;
         let mut max_rate = c.max_rate_deg_s;
@@ -467,5 +477,19 @@ impl Problem {
             grid,
             max_rate_deg_s: max_rate,
         })
+    }
+}
+
+#[cfg(test)]
+mod gravity_tests {
+    #[test]
+    fn the_gravity_requirement_states_the_shared_range() {
+        let range = units::GRAVITY_RANGE_M_S2;
+        let words = format!(
+            "{}…{} m/s²",
+            units::Compact(*range.start()),
+            units::Compact(*range.end())
+        );
+        assert!(super::GRAVITY_REQUIREMENT.contains(&words), "{words}");
     }
 }

@@ -87,7 +87,10 @@ mod two_orientation_inputs;
 mod two_orientation_plan;
 mod two_orientation_space;
 
-pub use check::{MIN_CAMPAIGNS, SimulationCheck, expected_outputs, simulate_plan};
+pub use check::{
+    CampaignKind, MAX_CAMPAIGNS, MIN_CAMPAIGNS, SimulationCheck, check_campaigns, expected_outputs,
+    simulate_plan,
+};
 pub use error::{PlanningError, Result};
 pub use inputs::{
     Candidates, CentrifugeSpec, CrSpec, Criterion, K2, NoiseSpec, PigaSpec, PlanInputs, ProbeSpec,

@@ -1,7 +1,7 @@
 //! The two-orientation plan's predicted u(k2) checked against simulated campaigns, each
 //! fitted by the calibration's own joint fit (`calibration::fit_two_orientation`, as the study).
 
-use crate::check::{SimulationCheck, spread_of_k2};
+use crate::check::{CampaignKind, SimulationCheck, spread_of_k2};
 use crate::error::Result;
 use crate::two_orientation_plan::{TwoOrientationPlan, fit_points};
 
@@ -14,6 +14,8 @@ use crate::two_orientation_plan::{TwoOrientationPlan, fit_points};
 ///
 /// # Errors
 /// [`TooFewCampaigns`](crate::PlanningError::TooFewCampaigns),
+/// [`TooManyCampaigns`](crate::PlanningError::TooManyCampaigns) (see
+/// [`check_campaigns`](crate::check_campaigns)),
 /// [`OutputCount`](crate::PlanningError::OutputCount), and
 /// [`TwoOrientation`](crate::PlanningError::TwoOrientation) from the fit.
 pub fn simulate_two_orientation_plan(
@@ -33,6 +35,7 @@ pub fn simulate_two_orientation_plan(
             (noise_free_rad_s[0], &sigma[0]),
             (noise_free_rad_s[1], &sigma[1]),
         ],
+        CampaignKind::TwoOrientations,
         campaigns,
         seed,
         plan.u_k2_rad_s_g2,

@@ -246,6 +246,7 @@ impl Located {
             | E::TooFewPoints { path, field, .. }
             | E::NonFiniteResult { path, field, .. }
             | E::Identify { path, field, .. }
+            | E::Calibration { path, field, .. }
             | E::Uncertainty { path, field, .. }
             | E::Balance { path, field, .. }
             | E::EmptyList { path, field }

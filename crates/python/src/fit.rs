@@ -12,7 +12,7 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use recording::{AngleSourceKind, Diagnostic, LengthUnit};
+use recording::{AngleSourceKind, Diagnostic, LengthUnit, OnOutlier, SampleAt};
 
 use crate::errors::{self, Kind, Located};
 
@@ -236,7 +236,7 @@ pub(crate) fn length_unit(py: Python<'_>, symbol: &str) -> PyResult<LengthUnit> 
 /// is in `gap_unit`, the results in µm.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (time_s, gap, angle_rad, rate_rad_s, start_angle_rad, order, drift, revolutions, max_gap_intervals, probe_along, gap_unit))]
+#[pyo3(signature = (time_s, gap, angle_rad, rate_rad_s, start_angle_rad, order, drift, revolutions, max_gap_intervals, probe_along, gap_unit, on_outlier))]
 pub(crate) fn fit_harmonics<'py>(
     py: Python<'py>,
     time_s: PyReadonlyArray1<'py, f64>,
@@ -250,8 +250,21 @@ pub(crate) fn fit_harmonics<'py>(
     max_gap_intervals: f64,
     probe_along: bool,
     gap_unit: &str,
+    on_outlier: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let unit = length_unit(py, gap_unit)?;
+    // A recording format's `on_outlier`, with the same words and default.
+    let on_outlier = match on_outlier {
+        "drop_revolution" => OnOutlier::DropRevolution,
+        "keep" => OnOutlier::Keep,
+        other => {
+            return Err(errors::input(
+                py,
+                "on_outlier",
+                format!("on_outlier: {other:?} is not a policy (drop_revolution or keep)"),
+            ));
+        }
+    };
     let t = Samples::of(&time_s);
     let g = Samples::of(&gap);
     let a = angle_rad.as_ref().map(Samples::of);
@@ -310,6 +323,10 @@ pub(crate) fn fit_harmonics<'py>(
                 }
                 _ => None,
             };
+        // A revolution that fits far worse than the others (a glitch) warned and, by
+        // default, left out; residuals alternating in sign warned: as the study does.
+        let (analysis, outliers) =
+            recording::outlier_check(&signal, analysis, on_outlier, unit, SampleAt::Sample);
         let mut diagnostics = Vec::new();
         if a.is_none() {
             diagnostics.push(Diagnostic::AngleFromRate {
@@ -325,6 +342,7 @@ pub(crate) fn fit_harmonics<'py>(
                 measured_rad_s: m,
             });
         }
+        diagnostics.extend(outliers);
         // drift not fitted, spread beyond white noise: as for a recording read from a file
         let statistics = recording::revolution_statistics(
             &signal,

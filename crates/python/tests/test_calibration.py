@@ -159,6 +159,61 @@ def test_calibrate_equals_the_same_study_from_files(tmp_path: Path) -> None:
     assert_close(got, json.loads(json.dumps(expected)))
 
 
+def test_calibrate_is_identify_on_a_table_scattering_3_sigma(tmp_path: Path) -> None:
+    """One calibration, one voice (issue 31): a weighted table whose points scatter three
+    times their stated σ gives the same k0…k3, u, Birge ratio, τ and warnings from
+    :func:`calibrate` as from ``centrifuge-cal identify`` (1e-12 relative)."""
+    rates = np.array([20.0, 35.0, 50.0, 65.0, 80.0, 95.0, 110.0, 125.0, 140.0, 155.0, 170.0, 185.0])
+    w = np.radians(rates)
+    a = R_M * w**2 / G
+    sigma = np.full(12, 1e-9)
+    pattern = np.array([3.0, -2.5, 4.5, -3.5, 1.0, -4.0, 2.5, -1.5, 3.5, -3.0, 2.0, -4.0])
+    y = 1e-5 + K1 * a + 5e-7 * a**2 + 2e-8 * a**3 + pattern * sigma
+    err_um = (1.5e-6 - 4e-8 * w**2) * 1e6 + 0.002 * np.sin(np.arange(12.0))
+    spindle = cc.fit_radius_error(rates, err_um)
+    with pytest.warns(cc.CentrifugeCalWarning):
+        cal = cc.calibrate(
+            rates, y, compensate_with=spindle, radius_m=R_M, g_m_s2=G, k1_rad_s_g=K1,
+            pivot_to_probe_mm=700.0, probe_to_piga_mm=510.0, output_sigma_rad_s=sigma,
+            trials=2000,
+        )
+    table = tmp_path / "piga.csv"
+    table.write_text(
+        "rate_deg_s,output_rad_s,sigma_rad_s\n"
+        + "".join(f"{r!r},{o!r},{s!r}\n" for r, o, s in zip(rates.tolist(), y.tolist(), sigma.tolist()))
+    )
+    cli = xtask(
+        "identify", str(table), "--sigma-column", "sigma_rad_s", "--radius-m", "2.5",
+        "--g", "9.8", "--c-r-m-s2", repr(spindle.c_r_m_s2),
+        "--c-r-sigma-m-s2", repr(spindle.c_r_sigma_m_s2), "--json",
+    )
+    assert cli.status == 0, cli.stderr
+    i = json.loads(cli.stdout)
+    c = cal.to_dict()
+
+    def same(what: str, a: float, b: float) -> None:
+        assert a == pytest.approx(b, rel=1e-12), what
+
+    assert 2.0 < i["birge_ratio"] < 4.5
+    same("Birge ratio", i["birge_ratio"], c["birge_ratio"])
+    same("τ", i["excess_u_rad_s"], c["excess_u_rad_s"])
+    for name, v in (
+        ("k0", i["coefficients"]["bias_rad_s"]),
+        ("k1", i["k1_implied_rad_s_g"]),
+        ("k2", i["coefficients"]["k2_apparent_rad_s_g2"]),
+        ("k3", i["coefficients"]["k3_rad_s_g3"]),
+    ):
+        same(name, v["value"], c["uncompensated"][name]["value"])
+        same(f"u({name})", v["sigma"], c["uncompensated"][name]["u"])
+    same("k2", i["compensated"]["k2_rad_s_g2"], c["coefficients"]["k2"]["value"])
+    same("u(k2)", i["compensated"]["k2_sigma_rad_s_g2"], c["coefficients"]["k2"]["u"])
+    same("residual SD", i["residual_sd_rad_s"], c["residual_sd_rad_s"])
+    study_warnings = {(x["code"], x["message"]) for x in cal.study.warnings}
+    assert [x["code"] for x in i["warnings"]] == ["calibration_lack_of_fit"]
+    for x in i["warnings"]:
+        assert (x["code"], x["message"]) in study_warnings
+
+
 def test_calibrate_refuses_bad_arrays() -> None:
     rates, y, sigma, err_um = _campaign_table()
     spindle = cc.fit_radius_error(rates, err_um)

@@ -11,6 +11,7 @@ import threading
 import time
 import warnings
 from collections.abc import Callable, Iterator
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -401,3 +402,33 @@ def test_ctrl_c_stops_a_long_call_within_a_tenth_of_a_second(long_call: Callable
     # the package works on after it
     rates, _, _, err_um = _table()
     assert cc.fit_radius_error(rates, err_um).c_r_m_s2 < 0
+
+
+def test_one_glitch_in_arrays_is_warned_and_dropped_as_the_study_does(tmp_path: Path) -> None:
+    # Issue 32: one glitch sample moved a rate's first harmonic with no warning. The arrays
+    # get the study's outlier check: the same warning, the same revolution left out, the
+    # same numbers as the recording read from a file.
+    d = synthetic(turns=8.3, noise=0.01, seed=3)
+    glitched = d.gap.copy()
+    n_rev = d.time_s.shape[0] / 8.3
+    at = int(3.02 * n_rev)  # near the angle 0: the glitch moves c1 the most
+    glitched[at] += 900.0
+    fit = cc.fit_harmonics(d.time_s, glitched, rate_deg_s=d.rate_deg_s)
+    codes = [w.code for w in fit.warnings]
+    assert "residual_outlier" in codes, codes
+    assert fit.revolutions_used == 7
+    assert fit.mean.c[0] == pytest.approx(d.c[0], abs=0.01)
+    kept = cc.fit_harmonics(d.time_s, glitched, rate_deg_s=d.rate_deg_s, on_outlier="keep")
+    assert "residual_outlier" in [w.code for w in kept.warnings]
+    assert kept.revolutions_used == 8
+    assert abs(kept.mean.c[0] - d.c[0]) > 0.05
+    with pytest.raises(cc.InputError, match="on_outlier") as e:
+        cc.fit_harmonics(d.time_s, glitched, rate_deg_s=d.rate_deg_s, on_outlier="drop")
+    assert e.value.field == "on_outlier"
+    # The same samples in a file, read as the study reads them.
+    path = tmp_path / "glitch.csv"
+    np.savetxt(path, np.column_stack([d.time_s, glitched]), delimiter=",", header="time_s,gap_um",
+               comments="", fmt="%.17g")
+    from_file = cc.read_recording(path).fit_harmonics(rate_deg_s=d.rate_deg_s)
+    assert [w.code for w in from_file.warnings] == codes
+    np.testing.assert_allclose(from_file.mean.c, fit.mean.c, rtol=1e-12)

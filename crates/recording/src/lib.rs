@@ -88,18 +88,20 @@ mod binary;
 mod digest;
 mod error;
 mod lab;
+mod open;
 mod read;
 #[cfg(feature = "synthetic")]
 mod synth;
 mod text;
 
 pub use analysis::diagnostic::{
-    Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
+    Diagnostic, MIN_PLAUSIBLE_GAP_UM, OutlierRevolution, PROBE_RESOLUTION_UM,
+    RATE_WARNING_TOLERANCE, SampleAt, SpreadCause,
 };
 pub use analysis::piga::{PigaOutputRate, reduce_piga_recording};
 pub use analysis::probe::{
-    RecordingAnalysis, RevolutionStatistics, analyze_recording, implausible_gap,
-    revolution_statistics,
+    RecordingAnalysis, RevolutionStatistics, analyze_recording, check_declared_rate,
+    implausible_gap, outlier_check, revolution_statistics,
 };
 pub use binary::mat::{list_mat, load_mat, mat_variable, parse_mat};
 pub use binary::tdms::{list_tdms, load_tdms, parse_tdms, tdms_channel};
@@ -112,7 +114,7 @@ pub use error::{
 /// above which [`Diagnostic::RevolutionSpread`] is raised (`harmonics`' limit).
 pub use harmonics::SPREAD_WARNING_RATIO;
 pub use lab::format::{
-    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples,
+    AngleSource, AngleUnit, Column, DecimalMark, Delimiter, LengthUnit, OnBadSamples, OnOutlier,
     RecordingFormat, TimeUnit,
 };
 pub use lab::piga_recording::{

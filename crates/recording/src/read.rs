@@ -20,7 +20,9 @@ use crate::text::table::{load_table, parse_table};
 /// delimiter, decimal mark and skipped lines do not apply).
 pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording> {
     if let Some(kind) = crate::binary::format_of(path) {
-        return crate::binary::read_with_format(path, None, kind, format);
+        return crate::binary::with_source(path, |source| {
+            crate::binary::read_with_format(path, source, kind, format)
+        });
     }
     text_only(path, format)?;
     let table = load_table(path, &format.table_format()?)?;
@@ -28,16 +30,18 @@ pub fn load_recording(path: &Path, format: &RecordingFormat) -> Result<Recording
 }
 
 /// [`load_recording`], with the size and SHA-256 of the bytes it read, taken as it read them
-/// (the file is read once; a TDMS or MAT file whole, then parsed from memory).
+/// (a text file is read once; a TDMS or MAT file is parsed from the open file by positioned
+/// reads, then the same open file is hashed piece by piece, so memory stays bounded by the
+/// samples and a file without the format's signature is refused before it is hashed).
 pub fn load_recording_digested(
     path: &Path,
     format: &RecordingFormat,
 ) -> Result<(Recording, FileDigest)> {
     if let Some(kind) = crate::binary::format_of(path) {
-        let bytes = crate::binary::read_whole(path)?;
-        let digest = FileDigest::of(&bytes);
-        let rec = crate::binary::read_with_format(path, Some(&bytes), kind, format)?;
-        return Ok((rec, digest));
+        return crate::binary::with_source(path, |source| {
+            let rec = crate::binary::read_with_format(path, source, kind, format)?;
+            Ok((rec, source.digest()?))
+        });
     }
     text_only(path, format)?;
     let (table, digest) = crate::text::table::load_table_digested(path, &format.table_format()?)?;
@@ -48,7 +52,12 @@ pub fn load_recording_digested(
 /// chooses the reader as for [`load_recording`].
 pub fn parse_recording(text: &[u8], path: &Path, format: &RecordingFormat) -> Result<Recording> {
     if let Some(kind) = crate::binary::format_of(path) {
-        return crate::binary::read_with_format(path, Some(text), kind, format);
+        return crate::binary::read_with_format(
+            path,
+            &crate::binary::Source::Bytes(text),
+            kind,
+            format,
+        );
     }
     text_only(path, format)?;
     let table = parse_table(text, path, &format.table_format()?)?;

@@ -75,7 +75,6 @@ pub(crate) fn headlines(c: &CalibrationResults) -> [Headline; 4] {
     ]
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -25,6 +25,9 @@ pub struct Provenance {
     pub version: String,
     /// The study configuration, with its path as the tool was given it.
     pub config: FileRecord,
+    /// The lab profile the study named (`docs/PROFILE.md`), with its path as read.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profile: Option<FileRecord>,
     /// The expected-values file whose published values the report shows, if any.
     pub expected: Option<FileRecord>,
     /// Every data file the study read, in the configuration's order: the phases' probe
@@ -124,6 +127,10 @@ impl Provenance {
             tool: TOOL.to_owned(),
             version: env!("CARGO_PKG_VERSION").to_owned(),
             config: FileRecord::kept_or_read(study.source(), study.config_digest())?,
+            profile: study
+                .profile_file()
+                .map(|(path, digest)| FileRecord::kept_or_read(path, digest))
+                .transpose()?,
             expected: expected.cloned(),
             inputs: study
                 .input_files()

@@ -54,9 +54,7 @@ impl Diagnostic {
         out.file = Some(if is_main {
             template.name.to_owned()
         } else {
-            format!("{:?}", id.get())
-                .trim_matches('"')
-                .to_owned()
+            format!("{:?}", id.get()).trim_matches('"').to_owned()
         });
         if let Some(range) = world.range(d.span) {
             let text = if is_main {
@@ -135,7 +133,9 @@ pub enum TypesetError {
         reason: String,
     },
     /// An asset's path is not one the typesetter can serve.
-    #[error("the asset path {path:?} cannot be served: {reason} (hint: an absolute path such as /figure.svg, each once, not {DATA_PATH})")]
+    #[error(
+        "the asset path {path:?} cannot be served: {reason} (hint: an absolute path such as /figure.svg, each once, not {DATA_PATH})"
+    )]
     AssetPath {
         /// The path.
         path: String,

@@ -50,7 +50,12 @@ fn transformed(ts: Transform, min: Point, max: Point) -> Option<[f64; 4]> {
         Point::new(min.x, max.y),
         Point::new(max.x, max.y),
     ];
-    let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
     for c in corners {
         let p = c.transform(ts);
         let (x, y) = (p.x.to_pt(), p.y.to_pt());
@@ -136,9 +141,7 @@ pub(crate) fn laid_out_texts(doc: &PagedDocument, body: Option<Area>) -> Vec<Str
             let mut items = Vec::new();
             visit(&page.frame, Transform::identity(), &mut items);
             let h = page.frame.size().y.to_pt();
-            let inside = |y: f64| {
-                body.is_none_or(|a| y >= a.top_pt && y <= h - a.bottom_pt)
-            };
+            let inside = |y: f64| body.is_none_or(|a| y >= a.top_pt && y <= h - a.bottom_pt);
             items
                 .into_iter()
                 .filter(|(_, _, baseline)| baseline.is_finite() && inside(*baseline))
@@ -174,7 +177,10 @@ pub(crate) fn page_texts(doc: &PagedDocument) -> Vec<String> {
                 .into_iter()
                 .map(|(_, mut line)| {
                     line.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    line.into_iter().map(|(_, t)| t).collect::<Vec<_>>().join(" ")
+                    line.into_iter()
+                        .map(|(_, t)| t)
+                        .collect::<Vec<_>>()
+                        .join(" ")
                 })
                 .collect::<Vec<_>>()
                 .join("\n")

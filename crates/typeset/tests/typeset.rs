@@ -95,7 +95,10 @@ fn an_asset_is_served_at_its_path_and_only_it() {
         b"{}",
     );
     assert!(
-        matches!(err, Err(TypesetError::AssetPath { .. }) | Err(TypesetError::Compile { .. })),
+        matches!(
+            err,
+            Err(TypesetError::AssetPath { .. }) | Err(TypesetError::Compile { .. })
+        ),
         "{err:?}"
     );
 }
@@ -104,7 +107,10 @@ fn an_asset_is_served_at_its_path_and_only_it() {
 fn a_template_error_is_typed_with_its_place() {
     let err = compile("#let x = \n#data.missing.field", "{}").unwrap_err();
     let text = err.to_string();
-    assert!(text.starts_with("the template test.typ could not be typeset"), "{text}");
+    assert!(
+        text.starts_with("the template test.typ could not be typeset"),
+        "{text}"
+    );
     assert!(text.contains("test.typ:"), "{text}");
     // data that is not JSON: the error is about the data file
     let err = compile("#data", "{not json").unwrap_err();
@@ -119,11 +125,18 @@ fn the_clock_is_not_read() {
 
 #[test]
 fn the_pdf_declares_pdf_a_2b_and_the_pages_render() {
-    let doc = compile("= Heading\nSome text, µg/g², ν#sub[eff], 10⁻⁶, ±, ×, −.", "{}").unwrap();
+    let doc = compile(
+        "= Heading\nSome text, µg/g², ν#sub[eff], 10⁻⁶, ±, ×, −.",
+        "{}",
+    )
+    .unwrap();
     let pdf = doc.pdf().unwrap();
     assert!(pdf.starts_with(b"%PDF-1.7"), "{:?}", &pdf[..8]);
     let text = String::from_utf8_lossy(&pdf);
-    assert!(text.contains("<pdfaid:part>2</pdfaid:part>"), "no PDF/A part in the XMP");
+    assert!(
+        text.contains("<pdfaid:part>2</pdfaid:part>"),
+        "no PDF/A part in the XMP"
+    );
     assert!(text.contains("<pdfaid:conformance>B</pdfaid:conformance>"));
     // the same bytes every time: no clock, no random identifier
     assert_eq!(pdf, doc.pdf().unwrap());
@@ -135,7 +148,10 @@ fn the_pdf_declares_pdf_a_2b_and_the_pages_render() {
     assert!(svg[0].starts_with("<svg"));
     // A4 in points
     let (w, h) = doc.page_size_pt(0).unwrap();
-    assert!((w - 595.28).abs() < 0.01 && (h - 841.89).abs() < 0.01, "{w} × {h}");
+    assert!(
+        (w - 595.28).abs() < 0.01 && (h - 841.89).abs() < 0.01,
+        "{w} × {h}"
+    );
 }
 
 #[test]
@@ -149,8 +165,5 @@ fn a_line_past_the_margin_is_found() {
     let long = "W".repeat(200);
     let doc = compile(&format!("Start {long}"), "{}").unwrap();
     let strays = doc.outside(Area::inset_mm(20.0, 20.0, 20.0, 20.0));
-    assert!(
-        strays.iter().any(|s| s.what.contains("WWWW")),
-        "{strays:?}"
-    );
+    assert!(strays.iter().any(|s| s.what.contains("WWWW")), "{strays:?}");
 }

@@ -259,6 +259,26 @@ pub enum UncertaintyError {
         /// The cap.
         max_trials: u64,
     },
+    /// More Monte Carlo trials than [`crate::MAX_TRIALS`], refused before any is drawn.
+    #[error(
+        "trials = {}: at most {} Monte Carlo trials are drawn; {} would keep {} of model values \
+         (8 bytes per trial and output) and take about {} s of CPU",
+        units::Compact(*trials as f64),
+        units::Compact(*max as f64),
+        units::Compact(*trials as f64),
+        bytes_text(*bytes),
+        units::Compact(seconds.round())
+    )]
+    TooManyTrials {
+        /// Asked for.
+        trials: u64,
+        /// The cap.
+        max: u64,
+        /// The memory the values would take, bytes.
+        bytes: u64,
+        /// The CPU time estimated, s.
+        seconds: f64,
+    },
     /// The evaluation was asked to stop ([`stoppable`](crate::stoppable): an interrupted
     /// caller) before it finished.
     #[error("stopped on request after {trials} trials")]
@@ -311,3 +331,17 @@ pub enum UncertaintyError {
 
 /// `Result` with [`UncertaintyError`].
 pub type Result<T> = std::result::Result<T, UncertaintyError>;
+
+/// A size in bytes as a person reads it: `8e9 bytes (7.5 GiB)`.
+fn bytes_text(bytes: u64) -> String {
+    let gib = bytes as f64 / f64::from(1_u32 << 30);
+    if gib >= 1.0 {
+        format!("{} bytes ({gib:.1} GiB)", units::Compact(bytes as f64))
+    } else {
+        format!(
+            "{} bytes ({:.0} MiB)",
+            units::Compact(bytes as f64),
+            bytes as f64 / f64::from(1_u32 << 20)
+        )
+    }
+}

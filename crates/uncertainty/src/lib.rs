@@ -81,7 +81,10 @@ pub use gum::{Contribution, DofRounding, GumOptions, GumOutput, GumResult, gum};
 pub use input::{InputQuantity, Inputs};
 pub use kind::{Distribution, Dof, Evaluation};
 pub use model::{FnModel, MeasurementModel, model_fn};
-pub use monte_carlo::{MAX_TRIALS, McOptions, McOutput, McResult, Stability, Trials, monte_carlo};
+pub use monte_carlo::{
+    MAX_TRIALS, MC_BYTES_PER_TRIAL_AND_OUTPUT, McOptions, McOutput, McResult, Stability, Trials,
+    check_trials, monte_carlo,
+};
 pub use stop::stoppable;
 pub use student::{coverage_factor, student_t_quantile};
 pub use tolerance::numerical_tolerance;

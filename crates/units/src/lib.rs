@@ -11,11 +11,17 @@ mod compact;
 mod requirement;
 mod seed;
 
-pub use compact::{Compact, CompactList};
+pub use compact::{Compact, CompactList, CompactSeries};
 pub use requirement::{Requirement, Unmet, finite, non_negative, positive, require};
 pub use seed::stream_seed;
 
 use std::f64::consts::PI;
+
+/// The local gravity the tools accept, m/s² (a study's `g_m_s2`, a plan's
+/// `centrifuge.g_m_s2`): the Earth's surface gravity is 9.780 at the equator to 9.832 at the
+/// poles, less by about 3·10⁻⁶ per metre of altitude. A value outside is a typing or unit
+/// error (g = 1 "in g", or 1e300, which made every bound that scales with it absurd).
+pub const GRAVITY_RANGE_M_S2: std::ops::RangeInclusive<f64> = 9.7..=9.9;
 
 /// Degrees per second to radians per second.
 pub const fn deg_s_to_rad_s(rate_deg_s: f64) -> f64 {

@@ -70,6 +70,9 @@ pub enum TwoOrientationError {
     /// The least-squares fit failed.
     #[error("the two-orientation fit: {0}")]
     Fit(#[source] IdentifyError),
+    /// The IA-in data set's own eq. 18 calibration (k2 by the probe method) refused it.
+    #[error("the IA-in data set's calibration: {0}")]
+    Calibration(#[source] crate::CalibrationError),
     /// The uncertainty evaluation failed.
     #[error("the two-orientation uncertainty: {0}")]
     Uncertainty(#[source] UncertaintyError),

@@ -245,7 +245,9 @@ impl MeasurementModel for TwoOrientationModel {
 }
 
 /// The inputs of [`TwoOrientationModel`] for a fit ([`two_orientation_input`]): the ten coefficients as
-/// one Type A group correlated through the fit's covariance (degrees of freedom `n − 10`);
+/// one Type A group correlated through the fit's covariance (degrees of freedom
+/// [`TwoOrientationFit::coefficients_dof`]: infinite for stated σ the residuals stay within,
+/// else `n − 10`);
 /// g, the rate scale and each mounting's radius with the Type B standard uncertainties of
 /// `type_b` (`radius_u_m` applies to each mounting, the two radii independent); with a probe,
 /// its lever heights, gain (`type_b`'s) and C_r (Type A, its own u and degrees of freedom).
@@ -259,7 +261,7 @@ pub fn two_orientation_inputs(
 ) -> Result<uncertainty::Inputs, UncertaintyError> {
     use two_orientation_input as i;
     let f = &fit.fit;
-    let dof = Dof::Finite(f.dof as f64);
+    let dof = fit.coefficients_dof();
     let name = |k: usize| i::NAMES[k - i::G];
     let mut q: Vec<InputQuantity> = TWO_ORIENTATION_TERM_NAMES
         .iter()

@@ -72,6 +72,18 @@ pub struct TwoOrientationFit {
 }
 
 impl TwoOrientationFit {
+    /// Degrees of freedom of the fit's coefficients as an input group, by the one-mounting
+    /// calibration's policy ([`crate::Weighting::group_dof`]): infinite when the points' σ are
+    /// taken as known (a weighted fit whose Birge ratio is at most 1, its covariance
+    /// `(XᵀWX)⁻¹` not scaled by the residuals), else the fit's `n − 10`.
+    #[must_use]
+    pub fn coefficients_dof(&self) -> uncertainty::Dof {
+        match self.birge_ratio {
+            Some(b) if b <= 1.0 => uncertainty::Dof::Infinite,
+            _ => uncertainty::Dof::Finite(self.fit.dof as f64),
+        }
+    }
+
     /// Whether the `s·ω⁴` term (C) can be told apart from k2: fitting it widens u(k2) by no
     /// more than [`K2_INFLATION_LIMIT`](crate::K2_INFLATION_LIMIT). (Until issue 20's review
     /// this was "VIF ≤ 1e4", which no ordinary design meets.)

@@ -9,9 +9,10 @@ use from::FromStudy;
 
 use crate::console::{Console, ConsoleError};
 use anyhow::Context as _;
+use calibration::{Calibrated, CalibrationError, CalibrationWarning, Points, Weighting};
 use identify::{
     Calibration, CompensatedCalibration, Compensation, CrEstimate, Geometry, IdentifyError,
-    K1Source, identify_calibration, identify_compensated,
+    K1Source,
 };
 use pipeline::{PigaTableConfig, TableLayoutError};
 use recording::{Column, DecimalMark, Delimiter, Hint, PigaTable, PigaTableFormat, RateUnit};
@@ -59,6 +60,14 @@ struct RowOutOfRange {
     line: usize,
     column: String,
     value: f64,
+}
+
+/// Values of the table's rows the calibration refuses (`calibration::check_points`, as the
+/// study refuses them), each named by its line in the file, in the study's words.
+#[derive(Debug, thiserror::Error)]
+#[error("{}", lines.join("\n"))]
+struct RefusedRows {
+    lines: Vec<String>,
 }
 
 /// Identify k0…k3 from a PIGA output table, read as a study reads its `calibration.table`.
@@ -254,7 +263,10 @@ impl Identify {
         let rate_deg_s = table.rate_deg_s.clone();
         let output = table.output_rad_s.clone();
         let sigma = table.sigma_rad_s.clone();
-        let rate_rad_s: Vec<f64> = rate_deg_s.iter().map(|d| d.to_radians()).collect();
+        let rate_rad_s: Vec<f64> = rate_deg_s
+            .iter()
+            .map(|&d| units::deg_s_to_rad_s(d))
+            .collect();
         let output_rad_s = &output;
         let context = || format!("identifying {}", self.file.display());
         // An error about a row of the design is an error about a line of the file.
@@ -300,6 +312,44 @@ impl Identify {
                 self.k1,
             ),
         };
+        let points = Points {
+            rates_rad_s: &rate_rad_s,
+            outputs_rad_s: output_rad_s,
+            sigma_rad_s: sigma.as_deref(),
+        };
+        // A refused value is named by its line and column, as the study names it.
+        let refused = |e: CalibrationError| -> anyhow::Error {
+            match e {
+                CalibrationError::Points { bad } => {
+                    let lines = bad
+                        .iter()
+                        .map(|b| {
+                            let (column, value) = match b.what {
+                                calibration::PointValue::Rate => {
+                                    (self.rate_column.as_str(), rate_deg_s[b.row])
+                                }
+                                calibration::PointValue::Output => {
+                                    (self.output_column.as_str(), b.value)
+                                }
+                                calibration::PointValue::Sigma => {
+                                    (self.sigma_column.as_deref().unwrap_or("σ"), b.value)
+                                }
+                            };
+                            format!(
+                                "{}:{}: column `{column}` = {}: {}",
+                                self.file.display(),
+                                table.line_of_row(b.row),
+                                units::Compact(value),
+                                pipeline::InvalidReason::of_point(b)
+                            )
+                        })
+                        .collect();
+                    anyhow::Error::new(RefusedRows { lines })
+                }
+                CalibrationError::Fit(e) => located(e),
+                other => anyhow::Error::new(other).context(context()),
+            }
+        };
         let result = match c_r {
             Some(c_r) => {
                 let compensation = Compensation {
@@ -308,35 +358,16 @@ impl Identify {
                         k1_rad_s_g,
                     }),
                 };
-                let c = match &sigma {
-                    Some(s) => identify::identify_compensated_weighted(
-                        &rate_rad_s,
-                        output_rad_s,
-                        s,
-                        geometry,
-                        &compensation,
-                    ),
-                    None => {
-                        identify_compensated(&rate_rad_s, output_rad_s, geometry, &compensation)
-                    }
-                }
-                .map_err(located)?;
-                (c.uncompensated.clone(), Some(c))
+                Identified::Compensated(Box::new(
+                    calibration::calibrate_compensated(&points, geometry, &compensation)
+                        .map_err(refused)?,
+                ))
             }
-            None => (
-                match &sigma {
-                    Some(s) => identify::identify_calibration_weighted(
-                        &rate_rad_s,
-                        output_rad_s,
-                        s,
-                        geometry,
-                    ),
-                    None => identify_calibration(&rate_rad_s, output_rad_s, geometry),
-                }
-                .map_err(located)?,
-                None,
-            ),
+            None => Identified::Measured(Box::new(
+                calibration::calibrate(&points, geometry).map_err(refused)?,
+            )),
         };
+        let view = result.view()?;
         let k1_words = match (&from, k1) {
             (Some(f), _) => f.k1_words.clone(),
             (None, Some(_)) => "given with --k1".to_owned(),
@@ -348,14 +379,13 @@ impl Identify {
         };
         let mut console = Console::stdout();
         if self.json {
-            let value = to_json(&self.file, &result.0, result.1.as_ref());
+            let value = to_json(&self.file, &view);
             writeln!(console, "{}", edge_io::to_json_pretty(&value)?)?;
         } else {
             print_report(
                 &mut console,
                 &self.file,
-                &result.0,
-                result.1.as_ref(),
+                &view,
                 &Stated {
                     g: &g_words,
                     k1: &k1_words,
@@ -369,6 +399,50 @@ impl Identify {
     }
 }
 
+/// The calibration `identify` made: as measured, or compensated (eq. 19).
+enum Identified {
+    Measured(Box<Calibrated<Calibration>>),
+    Compensated(Box<Calibrated<CompensatedCalibration>>),
+}
+
+/// What the output shows of a calibration, either kind.
+struct View<'a> {
+    cal: &'a Calibration,
+    comp: Option<&'a CompensatedCalibration>,
+    weighting: &'a Weighting,
+    residual_sd_rad_s: f64,
+    warnings: &'a [CalibrationWarning],
+    /// The compensated k2's standard uncertainty as the study's measurement model gives it
+    /// without Type B inputs (`calibration::without_type_b`), rad/(s·g²).
+    k2_u_rad_s_g2: Option<f64>,
+}
+
+impl Identified {
+    fn view(&self) -> anyhow::Result<View<'_>> {
+        Ok(match self {
+            Self::Measured(c) => View {
+                cal: &c.calibration,
+                comp: None,
+                k2_u_rad_s_g2: None,
+                weighting: &c.weighting,
+                residual_sd_rad_s: c.residual_sd_rad_s,
+                warnings: &c.warnings,
+            },
+            Self::Compensated(c) => View {
+                cal: &c.calibration.uncompensated,
+                comp: Some(&c.calibration),
+                weighting: &c.weighting,
+                residual_sd_rad_s: c.residual_sd_rad_s,
+                warnings: &c.warnings,
+                k2_u_rad_s_g2: Some(
+                    calibration::without_type_b(c, None)?.outputs[calibration::output::K2]
+                        .standard_uncertainty,
+                ),
+            },
+        })
+    }
+}
+
 /// Where g, k1 and C_r come from, in words.
 struct Stated<'a> {
     g: &'a str,
@@ -376,24 +450,27 @@ struct Stated<'a> {
     c_r: &'a str,
 }
 
-/// The coverage factor for 95 % with `dof` degrees of freedom (Student t; normal without a
-/// finite number).
-fn k95(dof: f64) -> f64 {
-    let dof = if dof.is_finite() && dof > 0.0 {
-        uncertainty::Dof::Finite(dof)
-    } else {
-        uncertainty::Dof::Infinite
-    };
+/// The coverage factor for 95 % with `dof` degrees of freedom (Student t; normal for
+/// infinitely many).
+fn k95(dof: uncertainty::Dof) -> f64 {
     uncertainty::coverage_factor(0.95, dof).unwrap_or(f64::NAN)
+}
+
+/// The degrees of freedom in words: "12", "infinite".
+fn dof_words(dof: uncertainty::Dof) -> String {
+    match dof {
+        uncertainty::Dof::Finite(nu) => format!("{nu}"),
+        uncertainty::Dof::Infinite => "infinite".to_owned(),
+    }
 }
 
 fn print_report(
     console: &mut Console,
     path: &Path,
-    cal: &Calibration,
-    comp: Option<&CompensatedCalibration>,
+    v: &View<'_>,
     stated: &Stated<'_>,
 ) -> Result<(), ConsoleError> {
+    let cal = v.cal;
     let fit = &cal.fit;
     writeln!(
         console,
@@ -410,15 +487,40 @@ fn print_report(
         "design [1, ω, ω², ω³, a², a³], a = R·ω²/g (eq. 18); condition number of the \
          column-scaled design {:.3e}; residual SD {:.4e} rad/s ({} dof); solver: {}",
         fit.condition_number,
-        fit.residual_sd,
+        v.residual_sd_rad_s,
         fit.dof,
         crate::words::solver(&fit.path)
     )?;
-    for w in &fit.warnings {
-        writeln!(console, "warning: {}", crate::words::fit_warning(w))?;
+    let w = v.weighting;
+    match (w.birge_ratio, w.excess_u_rad_s) {
+        (None, _) => writeln!(
+            console,
+            "unweighted: the coefficients' u come from the residuals"
+        )?,
+        (Some(b), None) if w.tau_not_found => writeln!(
+            console,
+            "weighted by the points' σ: Birge ratio √(χ²/ν) {b:.4} (dimensionless); no common \
+             τ found, the covariance is scaled by the Birge ratio squared"
+        )?,
+        (Some(b), None) => writeln!(
+            console,
+            "weighted by the points' σ: Birge ratio √(χ²/ν) {b:.4} (dimensionless); the σ \
+             taken as known"
+        )?,
+        (Some(b), Some(tau)) => writeln!(
+            console,
+            "weighted by the points' σ: Birge ratio √(χ²/ν) {b:.4} (dimensionless); a \
+             variation τ = {tau:.4e} rad/s common to every point added to each σ \
+             (Paule–Mandel)"
+        )?,
     }
-    #[allow(clippy::cast_precision_loss)]
-    let k = k95(fit.dof as f64);
+    for warning in &fit.warnings {
+        writeln!(console, "warning: {}", crate::words::fit_warning(warning))?;
+    }
+    for warning in v.warnings {
+        writeln!(console, "warning: {warning}")?;
+    }
+    let k = k95(w.group_dof);
     let s = &fit.std_errors;
     let rows = [
         ("1: k0 + k1·Δφ_ys", "rad/s", cal.bias_rad_s, s[0]),
@@ -453,11 +555,12 @@ fn print_report(
     }
     writeln!(
         console,
-        "U95 = k·u with k = {k:.3} (Student t, {} degrees of freedom of the fit); the fit's \
-         uncertainty only: the study adds the Type B inputs",
-        fit.dof
+        "U95 = k·u with k = {k:.3} (Student t, {} degrees of freedom of the fit's \
+         coefficients, as the study takes them); the fit's uncertainty only: the study adds \
+         the Type B inputs",
+        dof_words(w.group_dof)
     )?;
-    if let Some(c) = comp {
+    if let Some(c) = v.comp {
         writeln!(
             console,
             "compensation: C_r = {:.5e} ± {:.3e} m·s² ({}), k1 = {:.8} rad/(s·g) ({})",
@@ -473,7 +576,7 @@ fn print_report(
             "Δk2 = k1·C_r·g/R² (eq. 19)",
             c.delta_k2.delta_k2_rad_s_g2,
             c.delta_k2.sigma_rad_s_g2,
-            k95(f64::INFINITY) * c.delta_k2.sigma_rad_s_g2
+            k95(uncertainty::Dof::Infinite) * c.delta_k2.sigma_rad_s_g2
         )?;
         // The compensated k2's degrees of freedom: the fit's part has the fit's, C_r's part
         // is taken as known (Welch–Satterthwaite).
@@ -481,11 +584,12 @@ fn print_report(
             c.compensated.k2_apparent_sigma_rad_s_g2,
             c.k2_sigma_from_c_r_rad_s_g2,
         );
-        #[allow(clippy::cast_precision_loss)]
-        let nu = if u_fit > 0.0 {
-            c.k2_sigma_rad_s_g2.powi(4) / (u_fit.powi(4) / fit.dof as f64)
-        } else {
-            f64::INFINITY
+        let u_k2 = v.k2_u_rad_s_g2.unwrap_or(c.k2_sigma_rad_s_g2);
+        let nu = match w.group_dof {
+            uncertainty::Dof::Finite(dof) if u_fit > 0.0 => {
+                uncertainty::Dof::Finite(u_k2.powi(4) / (u_fit.powi(4) / dof))
+            }
+            _ => uncertainty::Dof::Infinite,
         };
         writeln!(
             console,
@@ -493,30 +597,26 @@ fn print_report(
              from C_r {u_c:.3e}; ν_eff {})",
             "compensated k2",
             c.k2_rad_s_g2,
-            c.k2_sigma_rad_s_g2,
-            k95(nu) * c.k2_sigma_rad_s_g2,
-            if nu > 1e4 {
-                "above 10⁴".to_owned()
-            } else {
-                format!("{nu:.1}")
+            u_k2,
+            k95(nu) * u_k2,
+            match nu {
+                uncertainty::Dof::Finite(nu) if nu <= 1e4 => format!("{nu:.1}"),
+                _ => "above 10⁴".to_owned(),
             },
         )?;
     }
     Ok(())
 }
 
-fn to_json(
-    path: &Path,
-    cal: &Calibration,
-    comp: Option<&CompensatedCalibration>,
-) -> serde_json::Value {
+fn to_json(path: &Path, v: &View<'_>) -> serde_json::Value {
+    let cal = v.cal;
     let fit = &cal.fit;
     let s = &fit.std_errors;
     let coefficient = |v: f64, sigma: f64| serde_json::json!({ "value": v, "sigma": sigma });
     let covariance: Vec<Vec<f64>> = (0..fit.covariance.nrows())
         .map(|i| fit.covariance.row(i).iter().copied().collect())
         .collect();
-    let compensated = comp.map(|c| {
+    let compensated = v.comp.map(|c| {
         serde_json::json!({
             "c_r_m_s2": c.compensation.c_r.c_r_m_s2,
             "c_r_sigma_m_s2": c.compensation.c_r.c_r_sigma_m_s2,
@@ -525,11 +625,12 @@ fn to_json(
             "delta_k2_rad_s_g2": c.delta_k2.delta_k2_rad_s_g2,
             "delta_k2_sigma_rad_s_g2": c.delta_k2.sigma_rad_s_g2,
             "k2_rad_s_g2": c.k2_rad_s_g2,
-            "k2_sigma_rad_s_g2": c.k2_sigma_rad_s_g2,
+            "k2_sigma_rad_s_g2": v.k2_u_rad_s_g2.unwrap_or(c.k2_sigma_rad_s_g2),
             "k2_sigma_fit_rad_s_g2": c.compensated.k2_apparent_sigma_rad_s_g2,
             "k2_sigma_from_c_r_rad_s_g2": c.k2_sigma_from_c_r_rad_s_g2,
         })
     });
+    let w = v.weighting;
     serde_json::json!({
         "file": path.display().to_string(),
         "points": fit.residuals.len(),
@@ -547,12 +648,24 @@ fn to_json(
         },
         "k1_implied_rad_s_g": coefficient(cal.k1_implied_rad_s_g, cal.k1_implied_sigma_rad_s_g),
         "covariance": covariance,
-        "residuals_rad_s": fit.residuals,
-        "residual_sd_rad_s": fit.residual_sd,
+        "weighted": w.birge_ratio.is_some(),
+        "birge_ratio": w.birge_ratio,
+        "excess_u_rad_s": w.excess_u_rad_s,
+        "sigma_used_rad_s": w.sigma_used,
+        "coefficients_dof": match w.group_dof {
+            uncertainty::Dof::Finite(_) => serde_json::json!(w.noise_dof),
+            uncertainty::Dof::Infinite => serde_json::json!("infinite"),
+        },
+        "residuals_rad_s": cal.residuals_rad_s,
+        "residual_sd_rad_s": v.residual_sd_rad_s,
         "dof": fit.dof,
         "condition_number": fit.condition_number,
         "solver_path": fit.path,
-        "warnings": fit.warnings,
+        "solver_warnings": fit.warnings,
+        "warnings": v.warnings.iter().map(|w| serde_json::json!({
+            "code": w.code(),
+            "message": w.to_string(),
+        })).collect::<Vec<_>>(),
         "compensated": compensated,
     })
 }
@@ -646,9 +759,25 @@ mod tests {
             radius_m: r,
             g_m_s2: g,
         };
-        let c = identify_compensated(&rates, &outputs, geometry, &comp).unwrap();
-        assert!((c.k2_rad_s_g2 - k2).abs() < 1e-3 * k2, "{}", c.k2_rad_s_g2);
-        let json = to_json(&args.file, &c.uncompensated, Some(&c));
+        let c = calibration::calibrate_compensated(
+            &Points {
+                rates_rad_s: &rates,
+                outputs_rad_s: &outputs,
+                sigma_rad_s: None,
+            },
+            geometry,
+            &comp,
+        )
+        .unwrap();
+        assert!(
+            (c.calibration.k2_rad_s_g2 - k2).abs() < 1e-3 * k2,
+            "{}",
+            c.calibration.k2_rad_s_g2
+        );
+        let json = to_json(
+            &args.file,
+            &Identified::Compensated(Box::new(c)).view().unwrap(),
+        );
         assert_eq!(json["distinct_rates"], 8);
         assert!(json["compensated"]["k2_rad_s_g2"].as_f64().is_some());
         args.run().unwrap();

@@ -9,10 +9,12 @@ mod binary;
 mod columns;
 pub(crate) mod config;
 mod file;
+mod orientation;
 mod rate;
 mod setting;
 mod sniff;
 mod table;
+mod walk;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -45,11 +47,41 @@ pub(crate) struct Init {
     /// The study's name. Default: the folder's name.
     #[arg(long)]
     name: Option<String>,
+    /// The lab profile (`lab.ron`, docs/PROFILE.md): with it the whole study is written —
+    /// the centrifuge's geometry, g, the Type B inputs and the certificate section come from
+    /// it, and only what neither the files nor the profile tell is asked.
+    #[arg(long)]
+    profile: Option<PathBuf>,
+    /// The profile's centrifuge used (default: the profile's only one; with several and
+    /// none named, the study asks).
+    #[arg(long, requires = "profile")]
+    centrifuge: Option<String>,
 }
 
 impl Init {
     pub(crate) fn run(&self) -> anyhow::Result<()> {
-        let (paths, skipped) = collect(&self.inputs)?;
+        let profile = self.profile.as_deref().map(read_profile).transpose()?;
+        let centrifuge = match (&profile, &self.centrifuge) {
+            (None, _) => None,
+            (Some(p), Some(name)) => Some(
+                p.centrifuges
+                    .iter()
+                    .position(|c| &c.name == name)
+                    .ok_or_else(|| {
+                        anyhow::anyhow!(
+                            "--centrifuge {name}: the profile has no such centrifuge (it has {})",
+                            p.centrifuges
+                                .iter()
+                                .map(|c| c.name.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        )
+                    })?,
+            ),
+            (Some(p), None) => (p.centrifuges.len() == 1).then_some(0),
+        };
+        let walked = walk::collect(&self.inputs, &DATA_EXTENSIONS)?;
+        let (paths, skipped) = (&walked.files, &walked.other_names);
         let base = match &self.inputs[..] {
             [one] if one.is_dir() => one.clone(),
             _ => self.inputs[0]
@@ -66,31 +98,37 @@ impl Init {
                     .collect::<Vec<_>>()
                     .join(", "),
                 DATA_EXTENSIONS.map(|e| format!(".{e}")).join(" "),
-                if skipped.is_empty() {
+                if skipped.is_empty() && walked.not_read.is_empty() {
                     "nothing".to_owned()
                 } else {
-                    skipped.join(", ")
+                    skipped
+                        .iter()
+                        .cloned()
+                        .chain(
+                            walked
+                                .not_read
+                                .iter()
+                                .map(|s| format!("{} ({})", s.path.display(), s.why)),
+                        )
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 }
             );
         }
-        let findings: Vec<Finding> = paths
-            .iter()
-            .map(|path| match std::fs::read(path) {
-                Ok(bytes) => understand(path, &bytes, &|layout, name| {
-                    read_column(&bytes, path, layout, name)
-                }),
-                Err(e) => {
-                    let mut f = understand(path, b"", &|_, _| Err(String::new()));
-                    f.problems = vec![format!("cannot be read: {e}")];
-                    f
-                }
-            })
-            .collect();
+        let findings: Vec<Finding> = paths.iter().map(|path| read_and_understand(path)).collect();
         let mut console = Console::stdout();
         let shown = |p: &Path| -> String {
             p.strip_prefix(&base)
                 .map_or_else(|_| p.display().to_string(), |r| r.display().to_string())
         };
+        if !walked.not_read.is_empty() {
+            let mut text = String::from("not read:\n");
+            for s in &walked.not_read {
+                let _ = writeln!(text, "  {}: {}", shown(&s.path), s.why);
+            }
+            text.push('\n');
+            console.write_str(&text)?;
+        }
         console.write_str(&table(&findings, &shown))?;
         let mut problems: BTreeMap<String, Vec<String>> = BTreeMap::new();
         for f in &findings {
@@ -98,7 +136,10 @@ impl Init {
                 problems.entry(shown(&f.path)).or_default().push(p.clone());
             }
         }
-        let plan = plan(&findings, &self.name, &base, &shown, &mut problems);
+        let mut plan = plan(&findings, &self.name, &base, &shown, &mut problems);
+        if let Some(orientations) = orientation_lines(&plan) {
+            console.write_str(&orientations)?;
+        }
         if !problems.is_empty() {
             let mut text = String::from("\nnothing written; what stops it, file by file:\n");
             for (file, list) in &problems {
@@ -115,12 +156,8 @@ impl Init {
                 if problems.len() == 1 { "" } else { "s" }
             );
         }
-        if out.exists() && !self.force {
-            bail!(
-                "{} exists: nothing written (--force overwrites it, or --out names another file)",
-                out.display()
-            );
-        }
+        let read: Vec<PathBuf> = paths.iter().chain(&self.inputs).cloned().collect();
+        walk::check_output(&out, &read, self.force)?;
         let folder = out
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
@@ -130,6 +167,13 @@ impl Init {
             let abs = p.canonicalize().unwrap_or_else(|_| p.to_path_buf());
             relative_to(&abs, &folder)
         };
+        if let (Some(config), Some(file)) = (profile, &self.profile) {
+            plan.profile = Some(config::ProfilePlan {
+                file: file.clone(),
+                config,
+                centrifuge,
+            });
+        }
         let text = config::render(&plan, &relative);
         write_whole(&out, text.as_bytes()).with_context(|| format!("writing {}", out.display()))?;
         let left = config::placeholders(&text);
@@ -137,13 +181,14 @@ impl Init {
         if !left.is_empty() {
             let _ = writeln!(
                 summary,
-                "{} value{} to fill in (marked {PLACEHOLDER}), then `centrifuge-cal check {}`:",
+                "{} value{} to fill in (marked {PLACEHOLDER}, each with its question), then \
+                 `centrifuge-cal check {}`:",
                 left.len(),
                 if left.len() == 1 { "" } else { "s" },
                 out.display()
             );
-            for (line, code) in &left {
-                let _ = writeln!(summary, "  line {line}: {code}");
+            for l in &left {
+                let _ = writeln!(summary, "  {}", l.words());
             }
         }
         console.write_str(&summary)?;
@@ -151,48 +196,36 @@ impl Init {
     }
 }
 
-/// The files named, folders expanded (recursively, hidden entries left out), sorted; and
-/// the names of files skipped for their extension.
-fn collect(inputs: &[PathBuf]) -> anyhow::Result<(Vec<PathBuf>, Vec<String>)> {
-    let mut files = Vec::new();
-    let mut skipped = Vec::new();
-    let mut stack: Vec<PathBuf> = Vec::new();
-    for input in inputs {
-        if input.is_dir() {
-            stack.push(input.clone());
-        } else if input.is_file() {
-            files.push(input.clone());
-        } else {
-            bail!("{}: no such file or folder", input.display());
+/// One file read within `init`'s caps ([`walk::read_bounded`]) and understood; a text file
+/// longer than the cap is understood from its first whole lines, and its rate's evidence
+/// says so.
+fn read_and_understand(path: &Path) -> Finding {
+    let bounded = match walk::read_bounded(path) {
+        Ok(b) => b,
+        Err(problem) => {
+            let mut f = Finding::new(path);
+            f.problems = vec![problem];
+            return f;
         }
+    };
+    if let Some(problem) = bounded.problem {
+        let mut f = Finding::new(path);
+        f.problems = vec![problem];
+        return f;
     }
-    while let Some(dir) = stack.pop() {
-        let entries = std::fs::read_dir(&dir)
-            .with_context(|| format!("reading the folder {}", dir.display()))?;
-        for entry in entries {
-            let path = entry
-                .with_context(|| format!("reading the folder {}", dir.display()))?
-                .path();
-            let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-            if name.as_deref().is_some_and(|n| n.starts_with('.')) {
-                continue;
-            }
-            if path.is_dir() {
-                stack.push(path);
-            } else if path
-                .extension()
-                .map(|e| e.to_string_lossy().to_ascii_lowercase())
-                .is_some_and(|e| DATA_EXTENSIONS.contains(&e.as_str()))
-            {
-                files.push(path);
-            } else if let Some(n) = name {
-                skipped.push(n);
-            }
-        }
+    let bytes = bounded.bytes;
+    let mut f = understand(path, &bytes, &|layout, name| {
+        read_column(&bytes, path, layout, name)
+    });
+    if let (Some(size), Some(rate)) = (bounded.prefix_of, f.rate.as_mut()) {
+        let _ = write!(
+            rate.evidence,
+            " (from the file's first {} MiB of {} MiB)",
+            bytes.len() >> 20,
+            size >> 20
+        );
     }
-    files.sort();
-    skipped.sort();
-    Ok((files, skipped))
+    f
 }
 
 /// A whole column of a text file, read by the recording crate's table reader with the
@@ -230,12 +263,54 @@ fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     written
 }
 
-/// `path` relative to `folder` when it lies below it, else absolute.
+/// `path` relative to `folder` (with `..` where it lies beside it), exactly as the file
+/// system names it: a backslash, a quote or a non-ASCII letter in a name is kept (the study
+/// writes it as a RON string that reads back to the same name).
 fn relative_to(path: &Path, folder: &Path) -> String {
-    path.strip_prefix(folder)
-        .unwrap_or(path)
-        .to_string_lossy()
-        .replace('\\', "/")
+    use std::path::Component;
+    let (p, f): (Vec<Component<'_>>, Vec<Component<'_>>) =
+        (path.components().collect(), folder.components().collect());
+    let common = p.iter().zip(&f).take_while(|(a, b)| a == b).count();
+    // Only the root in common: the absolute path says more than `../../..`.
+    if common <= 1 && path.is_absolute() {
+        return path.to_string_lossy().into_owned();
+    }
+    let mut out = std::path::PathBuf::new();
+    for _ in common..f.len() {
+        out.push("..");
+    }
+    for c in &p[common..] {
+        out.push(c.as_os_str());
+    }
+    out.to_string_lossy().into_owned()
+}
+
+/// The lab profile at `path`, read with the study's size cap and validated: every problem
+/// at once, each naming the profile's field.
+fn read_profile(path: &Path) -> anyhow::Result<pipeline::ProfileConfig> {
+    let text = edge_io::read_text_capped(path, pipeline::MAX_STUDY_BYTES)?;
+    let profile = pipeline::Profile::from_ron(&text, path)?;
+    profile.validate().map_err(|e| match &e {
+        pipeline::PipelineError::Several { errors } => anyhow::anyhow!(
+            "the lab profile {} has {} problems:\n{}",
+            path.display(),
+            errors.len(),
+            crate::problems::render(&crate::problems::each(&e)).trim_end()
+        ),
+        _ => anyhow::Error::new(e),
+    })?;
+    Ok(profile.config().clone())
+}
+
+/// The mountings init read from the PIGA files' names, with the evidence, when the files
+/// hold both.
+fn orientation_lines(plan: &config::Plan<'_>) -> Option<String> {
+    plan.mountings.as_ref().map(|m| {
+        format!(
+            "\nIA in and IA out: {m}: a two-orientation section (eq. 23); the calibration takes \
+             the IA-in data\n"
+        )
+    })
 }
 
 /// The table of what was found in each file.
@@ -243,12 +318,17 @@ fn table(findings: &[Finding], shown: &dyn Fn(&Path) -> String) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "{:<32} {:<22} {:<10} {:>5} {:>5} {:<12} {:<30} {:>7}",
+        "{:<32} {:<29} {:<10} {:>5} {:>5} {:<12} {:<30} {:>7}",
         "file", "kind", "delimiter", "comma", "skip", "rate deg/s", "angle reference", "to fill"
     );
     for f in findings {
         let name = shown(&f.path);
-        let kind = f.kind.map_or("not understood", Kind::words);
+        let mut kind = f.kind.map_or("not understood", Kind::words).to_owned();
+        if matches!(f.kind, Some(Kind::PigaTable | Kind::PigaRecording))
+            && let Some((o, _)) = orientation::orientation(Path::new(&name))
+        {
+            kind = format!("{kind}, {}", o.words());
+        }
         let (delimiter, comma, skip) = f.layout.as_ref().map_or_else(
             || ("—".to_owned(), "—".to_owned(), "—".to_owned()),
             |l| {
@@ -278,14 +358,15 @@ fn table(findings: &[Finding], shown: &dyn Fn(&Path) -> String) -> String {
             + usize::from(f.rate.is_none() && f.kind.is_some_and(|k| k != Kind::PigaTable));
         let _ = writeln!(
             t,
-            "{name:<32} {kind:<22} {delimiter:<10} {comma:>5} {skip:>5} {rate:<12} {angle:<30} {left:>7}"
+            "{name:<32} {kind:<29} {delimiter:<10} {comma:>5} {skip:>5} {rate:<12} {angle:<30} {left:>7}"
         );
     }
     t
 }
 
-/// The phases and the calibration from the files; problems found across files (one rate
-/// twice, formats that differ within a set, several tables) are added to `problems`.
+/// The phases, the calibration and the two mountings from the files; problems found across
+/// files (one rate twice, formats that differ within a set, PIGA data that fits no study)
+/// are added to `problems`.
 fn plan<'a>(
     findings: &'a [Finding],
     name: &Option<String>,
@@ -293,14 +374,26 @@ fn plan<'a>(
     shown: &dyn Fn(&Path) -> String,
     problems: &mut BTreeMap<String, Vec<String>>,
 ) -> config::Plan<'a> {
+    use orientation::Orientation;
     let mut phases: BTreeMap<String, Vec<&Finding>> = BTreeMap::new();
-    let mut piga = Vec::new();
-    let mut tables = Vec::new();
+    // PIGA data by the mounting its name states (`None`: it states none).
+    let mut piga: BTreeMap<Option<Orientation>, Vec<&Finding>> = BTreeMap::new();
+    let mut tables: BTreeMap<Option<Orientation>, Vec<&Finding>> = BTreeMap::new();
+    let mut evidence: BTreeMap<Orientation, String> = BTreeMap::new();
     for f in findings.iter().filter(|f| f.problems.is_empty()) {
+        let mut mounting = || {
+            orientation::orientation(Path::new(&shown(&f.path))).map(|(o, words)| {
+                let key = o;
+                evidence
+                    .entry(key)
+                    .or_insert_with(|| format!("{} (`{words}`)", shown(&f.path)));
+                key
+            })
+        };
         match f.kind {
             Some(Kind::Probe) => phases.entry(phase_key(f, base)).or_default().push(f),
-            Some(Kind::PigaRecording) => piga.push(f),
-            Some(Kind::PigaTable) => tables.push(f),
+            Some(Kind::PigaRecording) => piga.entry(mounting()).or_default().push(f),
+            Some(Kind::PigaTable) => tables.entry(mounting()).or_default().push(f),
             None => {}
         }
     }
@@ -311,16 +404,8 @@ fn plan<'a>(
                 .to_owned(),
         );
     }
-    if tables.len() > 1 {
-        for t in &tables {
-            problems.entry(shown(&t.path)).or_default().push(format!(
-                "one of {} PIGA tables: the study takes one (name it with `init FILES`)",
-                tables.len()
-            ));
-        }
-    }
     if !tables.is_empty() && !piga.is_empty() {
-        for t in &tables {
+        for t in tables.values().flatten() {
             problems.entry(shown(&t.path)).or_default().push(
                 "a PIGA table beside raw PIGA output recordings: the study takes one of them"
                     .to_owned(),
@@ -340,13 +425,92 @@ fn plan<'a>(
             g.name = format!("phase_{}", i + 1);
         }
     }
-    let piga = (!piga.is_empty()).then(|| {
-        check_set(&mut piga, shown, problems);
-        config::Group {
-            name: "calibration".to_owned(),
-            files: piga,
+    // The PIGA's data: one set (a table, or recordings), or one per mounting.
+    let keys: Vec<Option<Orientation>> = tables.keys().chain(piga.keys()).copied().collect();
+    let both = keys.contains(&Some(Orientation::In)) && keys.contains(&Some(Orientation::Out));
+    let mut data: BTreeMap<Option<Orientation>, config::PigaData<'a>> = BTreeMap::new();
+    for (key, list) in &tables {
+        if list.len() > 1 {
+            for t in list {
+                problems.entry(shown(&t.path)).or_default().push(format!(
+                    "one of {} PIGA tables{}: the study takes one per mounting (name it with \
+                     `init FILES`, or name the mountings `ia_in` and `ia_out`)",
+                    list.len(),
+                    key.map_or_else(String::new, |k| format!(" for {}", k.words()))
+                ));
+            }
+        } else {
+            data.insert(*key, config::PigaData::Table(list[0]));
         }
-    });
+    }
+    for (key, list) in piga {
+        let mut files = list;
+        check_set(&mut files, shown, problems);
+        data.insert(
+            key,
+            config::PigaData::Recordings(config::Group {
+                name: "calibration".to_owned(),
+                files,
+            }),
+        );
+    }
+    let mut mountings = None;
+    let (calibration, two_orientation) = if both {
+        if let Some(d) = data.get(&None) {
+            for f in piga_files(d) {
+                problems.entry(shown(&f.path)).or_default().push(
+                    "PIGA data whose name states no mounting, beside data named IA in and IA \
+                     out: name it `ia_in` or `ia_out`, or leave it out"
+                        .to_owned(),
+                );
+            }
+        }
+        let ia_in = data.remove(&Some(Orientation::In));
+        let ia_out = data.remove(&Some(Orientation::Out));
+        mountings = Some(format!(
+            "{} and {}",
+            evidence.get(&Orientation::In).cloned().unwrap_or_default(),
+            evidence.get(&Orientation::Out).cloned().unwrap_or_default()
+        ));
+        match (ia_in, ia_out) {
+            (Some(i), Some(o)) => {
+                // The calibration (probe method) reads the IA-in data too.
+                let calibration = match &i {
+                    config::PigaData::Table(t) => config::PigaData::Table(t),
+                    config::PigaData::Recordings(g) => {
+                        config::PigaData::Recordings(config::Group {
+                            name: g.name.clone(),
+                            files: g.files.clone(),
+                        })
+                    }
+                };
+                (Some(calibration), Some((i, o)))
+            }
+            _ => (None, None),
+        }
+    } else {
+        if data.len() > 1 {
+            for f in data.values().flat_map(piga_files) {
+                problems.entry(shown(&f.path)).or_default().push(
+                    "PIGA data of several sets, not named as the two mountings (`ia_in` and \
+                     `ia_out`): the study takes one set (name it with `init FILES`)"
+                        .to_owned(),
+                );
+            }
+        }
+        if let Some(d) = data.get(&Some(Orientation::Out)) {
+            for f in piga_files(d) {
+                problems.entry(shown(&f.path)).or_default().push(
+                    "PIGA data named IA out without IA-in data: the probe method calibrates the \
+                     IA-in mounting; add the IA-in data (a two-orientation study) or pass the \
+                     files without this one"
+                        .to_owned(),
+                );
+            }
+        }
+        let one = data.into_values().next();
+        (one, None)
+    };
     let study_name = name.clone().unwrap_or_else(|| {
         base.canonicalize()
             .ok()
@@ -357,8 +521,18 @@ fn plan<'a>(
         name: study_name,
         source: format!("{} file(s) in {}", findings.len(), base.display()),
         phases: groups,
-        table: tables.first().copied(),
-        piga,
+        calibration,
+        two_orientation,
+        profile: None,
+        mountings,
+    }
+}
+
+/// The files of a set of PIGA data.
+fn piga_files<'a>(d: &config::PigaData<'a>) -> Vec<&'a Finding> {
+    match d {
+        config::PigaData::Table(t) => vec![*t],
+        config::PigaData::Recordings(g) => g.files.clone(),
     }
 }
 

@@ -161,34 +161,45 @@ pub(crate) fn sniff(bytes: &[u8]) -> Result<Layout, LayoutProblem> {
         (Delim::Whitespace, true),
     ];
     // For each candidate, the last block of content lines with the same number of fields,
-    // all numbers (a label column allowed): (numeric lines, fields, first data line).
-    let mut best: Option<(usize, usize, usize, Delim, bool)> = None;
+    // all numbers (a label column allowed), and the header above it. A candidate whose
+    // header splits into as many names as the data lines have fields beats one without
+    // (a `;`-separated table with decimal commas also splits at its commas, into fields of
+    // which one is text: `20,0;0,017` is `20`, `0;0`, `017` at commas); then the one
+    // with fewer text fields per line, then more lines, then more fields.
+    let mut best: Option<(Candidate, (bool, usize, usize, usize))> = None;
     for (delim, comma) in candidates {
-        let Some((count, fields, first)) = data_block(&lines, delim, comma) else {
+        let Some(block) = data_block(&lines, delim, comma) else {
             continue;
         };
-        let better = match best {
-            None => true,
-            Some((c, f, ..)) => count > c || (count == c && fields > f),
-        };
-        if better {
-            best = Some((count, fields, first, delim, comma));
+        let header = header_above(&lines, &block, delim, comma);
+        let score = (
+            header.is_some(),
+            usize::MAX - block.text_fields,
+            block.count,
+            block.fields,
+        );
+        if best.as_ref().is_none_or(|(_, s)| score > *s) {
+            best = Some((
+                Candidate {
+                    delim,
+                    comma,
+                    block,
+                    header,
+                },
+                score,
+            ));
         }
     }
-    let (_, fields, first, delimiter, decimal_comma) = best.ok_or(LayoutProblem::NoNumericRows)?;
-    // The header: the last content line above the data with as many fields, not all numbers.
-    let header_index = (0..first)
-        .rev()
-        .find(|&i| content(lines[i]))
-        .filter(|&i| {
-            let names = delimiter.split(lines[i]);
-            names.len() == fields
-                && names.iter().any(|n| number(n, decimal_comma).is_none())
-                && names.iter().all(|n| !n.is_empty())
-        })
-        .ok_or(LayoutProblem::NoHeader {
-            first_data_line: first + 1,
-        })?;
+    let Candidate {
+        delim: delimiter,
+        comma: decimal_comma,
+        block,
+        header,
+    } = best.ok_or(LayoutProblem::NoNumericRows)?.0;
+    let (fields, first) = (block.fields, block.first);
+    let header_index = header.ok_or(LayoutProblem::NoHeader {
+        first_data_line: first + 1,
+    })?;
     let header: Vec<String> = delimiter
         .split(lines[header_index])
         .into_iter()
@@ -222,17 +233,54 @@ pub(crate) fn sniff(bytes: &[u8]) -> Result<Layout, LayoutProblem> {
     })
 }
 
+/// A delimiter and decimal mark tried, with its block of data lines and header.
+struct Candidate {
+    delim: Delim,
+    comma: bool,
+    block: Block,
+    /// The header line's index, when the line above the data splits into as many names.
+    header: Option<usize>,
+}
+
+/// A block of data lines under one delimiter and decimal mark.
+struct Block {
+    /// How many lines.
+    count: usize,
+    /// Fields per line.
+    fields: usize,
+    /// Index of its first line.
+    first: usize,
+    /// Fields per line that are not numbers (0, or 1: a label).
+    text_fields: usize,
+}
+
+/// The header of a block: the last content line above the data with as many fields, not
+/// all of them numbers, none empty.
+fn header_above(lines: &[&str], block: &Block, delim: Delim, comma: bool) -> Option<usize> {
+    let content = |l: &str| !l.trim().is_empty() && !l.trim_start().starts_with('#');
+    (0..block.first)
+        .rev()
+        .find(|&i| content(lines[i]))
+        .filter(|&i| {
+            let names = delim.split(lines[i]);
+            names.len() == block.fields
+                && names.iter().any(|n| number(n, comma).is_none())
+                && names.iter().all(|n| !n.is_empty())
+        })
+}
+
 /// The block of data lines at the end of the sniffed lines under one delimiter and decimal
-/// mark: (how many, fields per line, index of its first line). A data line has two or more
-/// fields, at least two of them numbers, and at most one that is not (a label).
-fn data_block(lines: &[&str], delim: Delim, comma: bool) -> Option<(usize, usize, usize)> {
+/// mark. A data line has two or more fields, at least two of them numbers, and at most one
+/// that is not (a label).
+fn data_block(lines: &[&str], delim: Delim, comma: bool) -> Option<Block> {
     if comma && delim == Delim::Char(',') {
         return None;
     }
-    let shape = |line: &str| -> Option<usize> {
+    let shape = |line: &str| -> Option<(usize, usize)> {
         let fields = delim.split(line);
         let numbers = fields.iter().filter(|f| number(f, comma).is_some()).count();
-        (fields.len() >= 2 && numbers >= 2 && fields.len() - numbers <= 1).then_some(fields.len())
+        (fields.len() >= 2 && numbers >= 2 && fields.len() - numbers <= 1)
+            .then_some((fields.len(), fields.len() - numbers))
     };
     let content: Vec<usize> = (0..lines.len())
         .filter(|&i| !lines[i].trim().is_empty() && !lines[i].trim_start().starts_with('#'))
@@ -245,11 +293,17 @@ fn data_block(lines: &[&str], delim: Delim, comma: bool) -> Option<(usize, usize
             return None;
         }
     }
-    let fields = shape(lines[content[end.checked_sub(1)?]])?;
+    let (fields, _) = shape(lines[content[end.checked_sub(1)?]])?;
     let mut start = end - 1;
-    while start > 0 && shape(lines[content[start - 1]]) == Some(fields) {
+    let mut text_fields = 0;
+    while start > 0
+        && let Some((f, text)) = shape(lines[content[start - 1]])
+        && f == fields
+    {
+        text_fields = text_fields.max(text);
         start -= 1;
     }
+    text_fields = text_fields.max(shape(lines[content[end - 1]]).map_or(0, |(_, t)| t));
     // With a decimal comma, the numbers must use it (else the point reading is the same).
     if comma
         && !content[start..end]
@@ -258,7 +312,12 @@ fn data_block(lines: &[&str], delim: Delim, comma: bool) -> Option<(usize, usize
     {
         return None;
     }
-    Some((end - start, fields, content[start]))
+    Some(Block {
+        count: end - start,
+        fields,
+        first: content[start],
+        text_fields,
+    })
 }
 
 /// A header name split into its quantity and unit: `Spalt [mm]`, `Time (ms)`, `gap_um`,
@@ -333,6 +392,51 @@ mod tests {
         let l = sniff(b"Time [s]\tGap [um]\tAngle [deg]\n0.0\t1.5\t0.0\n0.01\t1.6\t1.0\n").unwrap();
         assert_eq!(l.delimiter, Delim::Char('\t'));
         assert_eq!(l.header[1], "Gap [um]");
+    }
+
+    /// Two-column tables in every delimiter and decimal mark: a `;` table with decimal
+    /// commas also splits at its commas into three fields (one of them text) and once lost
+    /// to that reading ("no header line above them").
+    #[test]
+    fn two_column_tables_in_any_delimiter_and_decimal_mark() {
+        let rows = [(20.0, 0.017_421), (30.0, 0.039_182), (40.0, 0.069_646)];
+        for (delimiter, comma, expected) in [
+            (";", true, Delim::Char(';')),
+            (";", false, Delim::Char(';')),
+            ("\t", true, Delim::Char('\t')),
+            ("\t", false, Delim::Char('\t')),
+            (",", false, Delim::Char(',')),
+            ("   ", true, Delim::Whitespace),
+            (" ", false, Delim::Whitespace),
+            ("|", true, Delim::Char('|')),
+        ] {
+            let number = |v: f64| {
+                let t = format!("{v}");
+                if comma { t.replace('.', ",") } else { t }
+            };
+            let mut text = format!("Drehrate_deg_s{delimiter}Ausgang_rad_s\r\n");
+            for (r, o) in rows {
+                text += &format!("{}{delimiter}{}\r\n", number(r), number(o));
+            }
+            let l = sniff(text.as_bytes())
+                .unwrap_or_else(|e| panic!("{delimiter:?} comma {comma}: {e}"));
+            assert_eq!(
+                (l.delimiter, l.decimal_comma, l.skip_lines),
+                (expected, comma, 0),
+                "{delimiter:?} comma {comma}"
+            );
+            assert_eq!(l.header, ["Drehrate_deg_s", "Ausgang_rad_s"]);
+            assert_eq!(l.rows[2], [Some(40.0), Some(0.069_646)]);
+        }
+        // The German export's two columns, with units in brackets and metadata above.
+        let text = "Messprogramm: Zentrifuge ZF-2;\nDatum: 24.11.2026;\n;\n\
+                    Drehrate [°/s];Ausgang [rad/s]\n20,0;0,0174\n30,0;0,0391\n40,0;0,0696\n";
+        let l = sniff(text.as_bytes()).unwrap();
+        assert_eq!(
+            (l.delimiter, l.decimal_comma, l.skip_lines),
+            (Delim::Char(';'), true, 3)
+        );
+        assert_eq!(l.header, ["Drehrate [°/s]", "Ausgang [rad/s]"]);
     }
 
     #[test]

@@ -368,7 +368,13 @@ fn a_header_without_units_leaves_placeholders_the_study_refuses() {
     let out = cli(&["init", tmp.0.to_str().unwrap()]);
     assert!(out.status.success());
     let printed = String::from_utf8_lossy(&out.stdout);
-    assert!(printed.contains("unit: FILL_IN"), "{printed}");
+    // Each value to fill in is listed with its field and its question.
+    assert!(
+        printed.contains(
+            "`phases[0].points.format.time.unit`: In which unit is the time column: s, ms, us or ns?"
+        ),
+        "{printed}"
+    );
     let config = tmp.0.join("study.ron");
     let text = std::fs::read_to_string(&config).unwrap();
     assert!(text.contains("has no unit"), "{text}");
@@ -395,6 +401,12 @@ fn a_header_without_units_leaves_placeholders_the_study_refuses() {
     assert!(!study.status.success());
     let err = String::from_utf8_lossy(&study.stderr);
     assert!(err.contains("not filled in"), "{err}");
+    assert!(
+        err.contains(
+            "`phases[0].points.format.gap.unit`: In which unit is the gap column: nm, um, mm or m?"
+        ),
+        "{err}"
+    );
     assert!(!tmp.0.join("out").exists());
 }
 
@@ -446,23 +458,32 @@ fn no_overwrite_without_force() {
         &|_, t, g, a| format!("{t:.9},{g:.9},{a:.9}"),
     );
     assert!(cli(&["init", tmp.0.to_str().unwrap()]).status.success());
-    std::fs::write(tmp.0.join("study.ron"), "my edits").unwrap();
+    let study = tmp.0.join("study.ron");
+    let written = std::fs::read_to_string(&study).unwrap();
+    // The configuration init wrote, edited below its first line.
+    let first_line = written.lines().next().unwrap();
+    let edited = format!("{first_line}\nmy edits\n");
+    std::fs::write(&study, &edited).unwrap();
     let again = cli(&["init", tmp.0.to_str().unwrap()]);
     assert_eq!(again.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
-    assert_eq!(
-        std::fs::read_to_string(tmp.0.join("study.ron")).unwrap(),
-        "my edits"
-    );
+    assert_eq!(std::fs::read_to_string(&study).unwrap(), edited);
     assert!(
         cli(&["init", tmp.0.to_str().unwrap(), "--force"])
             .status
             .success()
     );
-    assert_ne!(
-        std::fs::read_to_string(tmp.0.join("study.ron")).unwrap(),
-        "my edits"
+    assert_eq!(std::fs::read_to_string(&study).unwrap(), written);
+    // A file init did not write is left alone even with --force (issue 32).
+    std::fs::write(&study, "my edits").unwrap();
+    let forced = cli(&["init", tmp.0.to_str().unwrap(), "--force"]);
+    assert_eq!(forced.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&forced.stderr).contains("was not written by init"),
+        "{}",
+        String::from_utf8_lossy(&forced.stderr)
     );
+    assert_eq!(std::fs::read_to_string(&study).unwrap(), "my edits");
 }
 
 /// The simulated campaign's C_r (fixtures/campaign/truth.json), whose probe recordings
@@ -547,11 +568,22 @@ fn a_probe_in_volts_in_tdms_or_mat_asks_for_its_sensitivity() {
         );
         assert!(config.contains(unit), "{config}");
         assert!(config.contains("probe's sensitivity"), "{config}");
-        // `check` names the line left to fill in.
+        // the angle zero, optional, is explained and left out (0 taken, and said)
+        assert!(
+            config.contains("        // angle_zero_deg: 0.0,\n"),
+            "{config}"
+        );
+        // `check` names the field left to fill in and asks for it.
         let check = cli(&["check", out.to_str().unwrap()]);
         assert_eq!(check.status.code(), Some(1));
         let printed = String::from_utf8_lossy(&check.stdout);
-        assert!(printed.contains("sensitivity: FILL_IN"), "{printed}");
+        assert!(
+            printed.contains(
+                "`phases[0].points.format.gap.unit` is not filled in (FILL_IN): What are the \
+                 probe's sensitivity and its standard uncertainty"
+            ),
+            "{printed}"
+        );
         // the direction still to fill in is described by what to check at the machine, not
         // as the stand-in `check` reads in its place
         assert!(
@@ -689,4 +721,74 @@ fn a_german_piga_table_export_is_written_as_its_format_block() {
     assert_eq!(german["points"], reference["points"]);
     assert_eq!(german["coefficients"], reference["coefficients"]);
     assert_eq!(german["delta_k2"], reference["delta_k2"]);
+}
+
+/// File names as labs and their systems write them — a backslash, quotes, non-ASCII letters —
+/// are written into the study exactly (a RON string that reads back to the same name), and
+/// the study reads the same files: `probe\080deg_s.csv` was once written as
+/// `probe/080deg_s.csv`, another file.
+#[test]
+fn file_names_are_written_exactly_and_read_back_to_the_same_files() {
+    let tmp = Scratch::new("cli-init-names");
+    let names = [
+        "probe\\020.1234deg_s.csv",
+        "\"probe\"_040.1234deg_s.csv",
+        "µprobe_080.1234deg_s.csv",
+        "probe°_110.1234deg_s.csv",
+        "probe'_160.1234deg_s.csv",
+        "probe_200.1234deg_s.csv",
+    ];
+    write_variant(
+        &tmp.0,
+        &simulated(),
+        &|k, _| names[k].to_owned(),
+        "time_s,gap_um,angle_deg",
+        "\n",
+        &|_, t, g, a| format!("{t:.9},{g:.9},{a:.9}"),
+    );
+    let (c, s, _) = init_and_study(&tmp.0);
+    assert!((c - c_r_true()).abs() < 3.0 * s, "C_r = {c:e} ± {s:e}");
+    let config = tmp.0.join("study.ron");
+    let text = std::fs::read_to_string(&config).unwrap();
+    assert!(
+        text.contains(r#"file: "probe\\020.1234deg_s.csv""#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"file: "\"probe\"_040.1234deg_s.csv""#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"file: "µprobe_080.1234deg_s.csv""#),
+        "{text}"
+    );
+    // Read back by the study's own reader: the same names, each an existing file.
+    let parsed = pipeline::StudyConfig::from_ron(&text, &config).unwrap();
+    let pipeline::Points::Recordings(set) = &parsed.phases[0].points else {
+        panic!("recordings");
+    };
+    let mut read: Vec<String> = set
+        .files
+        .iter()
+        .map(|f| f.file.to_str().unwrap().to_owned())
+        .collect();
+    read.sort();
+    let mut written: Vec<String> = names.iter().map(|n| (*n).to_owned()).collect();
+    written.sort();
+    assert_eq!(read, written);
+    // The study read those files: their SHA-256 in its provenance.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp.0.join("out/results.json")).unwrap())
+            .unwrap();
+    for record in json["provenance"]["inputs"].as_array().unwrap() {
+        let path = Path::new(record["path"].as_str().unwrap());
+        let bytes = std::fs::read(path).unwrap();
+        assert_eq!(
+            record["sha256"].as_str().unwrap(),
+            pipeline::FileDigest::of(&bytes).sha256,
+            "{}",
+            path.display()
+        );
+        assert!(names.contains(&path.file_name().unwrap().to_str().unwrap()));
+    }
 }

@@ -128,3 +128,82 @@ fn two_orientation_plan_in_words() {
     assert!((ratio - 1.0).abs() < 0.1, "simulated/predicted {ratio}");
     insta::assert_snapshot!("two_orientation_plan", text);
 }
+
+/// Runs `plan` on `config`, killed (and the test failed) after 60 s.
+fn plan_within(config: &Path, extra: &[&str]) -> (Option<i32>, String) {
+    let dir = out_dir(&format!("capped-{}", extra.len()));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
+        .args(["plan", "--config"])
+        .arg(config)
+        .args(extra)
+        .arg("--out")
+        .arg(&dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .current_dir(root())
+        .spawn()
+        .expect("runs");
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("plan {extra:?} did not end within 60 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    (status.code(), stderr)
+}
+
+#[test]
+fn a_simulate_count_beyond_the_cap_is_refused_with_its_cost() {
+    // Issue 32: 1e7 took about five minutes and 2^64 - 1 never ended.
+    for (plan, n, cost) in [
+        ("paper-centrifuge.ron", "10000000", "about 300 s of CPU"),
+        ("paper-centrifuge.ron", "18446744073709551615", "s of CPU"),
+        ("two_orientation.ron", "10000000", "about 1500 s of CPU"),
+    ] {
+        let config = root().join("fixtures/plans").join(plan);
+        let (code, stderr) = plan_within(&config, &["--simulate", n]);
+        assert_eq!(code, Some(1), "{stderr}");
+        assert!(
+            stderr.contains(&format!("--simulate {n}"))
+                && stderr.contains("at most 1000000 simulated campaigns are run")
+                && stderr.contains(cost),
+            "{stderr}"
+        );
+    }
+}
+
+#[test]
+fn huge_numbers_in_a_plan_are_short_in_its_errors() {
+    let text = std::fs::read_to_string(root().join("fixtures/plans/paper-centrifuge.ron")).unwrap();
+    let dir = out_dir("huge");
+    std::fs::create_dir_all(&dir).unwrap();
+    for (from, to, expect) in [
+        (
+            "budget_s: 3600.0",
+            "budget_s: 1e300",
+            "schedule.budget_s = 1e300",
+        ),
+        (
+            "g_m_s2: 9.8",
+            "g_m_s2: 1e300",
+            "centrifuge.g_m_s2 = 1e300: must lie within 9.7…9.9 m/s²",
+        ),
+    ] {
+        let config = dir.join("plan.ron");
+        std::fs::write(&config, text.replace(from, to)).unwrap();
+        let (code, stderr) = plan_within(&config, &[]);
+        assert_eq!(code, Some(1), "{stderr}");
+        assert!(stderr.contains(expect), "{stderr}");
+        assert!(!stderr.contains("0000000000"), "{stderr}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -4,11 +4,11 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use test_support::Scratch;
 
-use edge_io::{EdgeIoError, OutputSet, fault};
+use edge_io::{EdgeIoError, OUTPUT_RECORD, OutputSet, fault};
 
 const OWNED: &[&str] = &["results.json", "report.md", "probe_*.svg"];
 
-/// Every file of a directory tree with its bytes, and the names of the parent's entries.
+/// Every file of a directory with its bytes (the record of what was written included).
 fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     let mut files = BTreeMap::new();
     for entry in std::fs::read_dir(dir).unwrap() {
@@ -19,10 +19,12 @@ fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     files
 }
 
+/// The names of a directory's entries, sorted, without the record of what was written.
 fn entries(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n != OUTPUT_RECORD)
         .collect();
     names.sort();
     names
@@ -49,6 +51,12 @@ fn a_new_directory_gets_exactly_the_set() {
     );
     assert_eq!(entries(&target), ["report.md", "results.json"]);
     assert_eq!(std::fs::read_to_string(&paths[0]).unwrap(), "{}");
+    // the record lists what was written, with the sizes
+    let record = std::fs::read_to_string(target.join(OUTPUT_RECORD)).unwrap();
+    assert!(
+        record.ends_with("\n2\tresults.json\n3\treport.md\n"),
+        "{record}"
+    );
     // nothing is left beside the target
     assert_eq!(entries(&scratch.0.join("nested")), ["study"]);
 }
@@ -66,7 +74,7 @@ fn a_second_run_replaces_the_set_and_drops_files_it_does_not_write() {
     let files = snapshot(&target);
     assert_eq!(
         files.keys().collect::<Vec<_>>(),
-        ["report.md", "results.json"]
+        [OUTPUT_RECORD, "report.md", "results.json"]
     );
     assert_eq!(files["results.json"], b"2");
     assert_eq!(entries(&scratch.0), ["study"]);
@@ -143,10 +151,15 @@ fn a_directory_with_foreign_entries_is_refused_and_left_alone() {
             target: t,
             count,
             example,
+            why,
         }) => {
             assert_eq!(t, target);
-            assert_eq!(count, 2);
-            assert_eq!(example, "notes.txt");
+            // notes.txt and photos by their names; results.json with no record of writing it
+            assert_eq!(count, 3);
+            assert_eq!(
+                (example.as_str(), why),
+                ("notes.txt", "not a name this tool writes")
+            );
         }
         other => panic!("expected ForeignEntries, got {other:?}"),
     }
@@ -219,8 +232,7 @@ fn a_run_killed_between_the_renames_is_restored_by_the_next() {
     let target = scratch.0.join("study");
     // As a kill between the two renames leaves it: no target, the previous set as `old`.
     let old = scratch.0.join("study.old-4000000-7");
-    std::fs::create_dir_all(&old).unwrap();
-    std::fs::write(old.join("results.json"), "previous").unwrap();
+    write_set(&old, &[("results.json", "previous")]).unwrap();
     // and a staging directory of a process that no longer runs (pids stay below 2^22)
     let stale = scratch.0.join("study.tmp-4000001-0");
     std::fs::create_dir_all(&stale).unwrap();
@@ -268,4 +280,78 @@ fn a_symlinked_target_replaces_the_directory_behind_the_link() {
         std::fs::read_to_string(real.join("results.json")).unwrap(),
         "2"
     );
+}
+
+#[test]
+fn a_folder_of_files_with_owned_names_but_no_record_is_refused_and_left_alone() {
+    // A lab's own recordings, named as a simulation names its outputs (issue 32: simulate
+    // onto such a folder replaced 41 files by 16).
+    let scratch = Scratch::new("edge-io-lab-folder");
+    let target = scratch.0.join("lab");
+    std::fs::create_dir_all(&target).unwrap();
+    for name in ["probe_a.svg", "results.json"] {
+        std::fs::write(target.join(name), "the lab's").unwrap();
+    }
+    let before = snapshot(&target);
+    let e = write_set(&target, &[("results.json", "new")]).unwrap_err();
+    match &e {
+        EdgeIoError::ForeignEntries {
+            count,
+            example,
+            why,
+            ..
+        } => {
+            assert_eq!(*count, 2);
+            assert_eq!(
+                (example.as_str(), *why),
+                ("probe_a.svg", "no record of what this tool wrote here")
+            );
+        }
+        other => panic!("expected ForeignEntries, got {other:?}"),
+    }
+    assert!(e.to_string().contains("did not write"), "{e}");
+    assert_eq!(snapshot(&target), before);
+    assert_eq!(entries(&scratch.0), ["lab"]);
+}
+
+#[test]
+fn a_file_changed_or_added_since_the_last_run_is_refused() {
+    let scratch = Scratch::new("edge-io-changed");
+    let target = scratch.0.join("study");
+    write_set(&target, &[("results.json", "1"), ("report.md", "r")]).unwrap();
+    // edited by hand after the run
+    std::fs::write(target.join("report.md"), "my notes").unwrap();
+    match write_set(&target, &[("results.json", "2")]) {
+        Err(EdgeIoError::ForeignEntries { example, why, .. }) => assert_eq!(
+            (example.as_str(), why),
+            (
+                "report.md",
+                "changed since this tool wrote it (its size differs)"
+            )
+        ),
+        other => panic!("expected ForeignEntries, got {other:?}"),
+    }
+    assert_eq!(snapshot(&target)["report.md"], b"my notes");
+    // put back as written, then one with an owned name that the last run did not write
+    std::fs::write(target.join("report.md"), "r").unwrap();
+    std::fs::write(target.join("probe_x.svg"), "<svg/>").unwrap();
+    match write_set(&target, &[("results.json", "2")]) {
+        Err(EdgeIoError::ForeignEntries { example, why, .. }) => assert_eq!(
+            (example.as_str(), why),
+            ("probe_x.svg", "not among the files this tool wrote here")
+        ),
+        other => panic!("expected ForeignEntries, got {other:?}"),
+    }
+    std::fs::remove_file(target.join("probe_x.svg")).unwrap();
+    write_set(&target, &[("results.json", "2")]).unwrap();
+    assert_eq!(entries(&target), ["results.json"]);
+}
+
+#[test]
+fn an_empty_folder_is_taken() {
+    let scratch = Scratch::new("edge-io-empty");
+    let target = scratch.0.join("out");
+    std::fs::create_dir_all(&target).unwrap();
+    write_set(&target, &[("results.json", "1")]).unwrap();
+    assert_eq!(entries(&target), ["results.json"]);
 }

@@ -39,6 +39,9 @@ pub struct CertificateConfig {
     pub limits: Vec<LimitConfig>,
     /// The decision rule for the limits (required with limits).
     pub decision_rule: Option<DecisionRuleName>,
+    /// Where the limits come from (a customer's specification as agreed at contract review,
+    /// a data sheet; ISO/IEC 17025:2017 §7.8.6.2).
+    pub limits_source: Option<String>,
     /// Who authorises the certificate.
     pub authorisation: AuthorisationConfig,
     /// Which method's coefficients the certificate certifies: `auto` (default: the

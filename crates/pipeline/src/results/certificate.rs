@@ -212,6 +212,9 @@ pub struct ConformityStatement {
 pub struct Conformity {
     /// The decision rule.
     pub rule: DecisionRule,
+    /// Where the limits come from (a customer's specification, a data sheet), when stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limits_source: Option<String>,
     /// One statement per limit, in the file's order.
     pub statements: Vec<ConformityStatement>,
 }

@@ -12,6 +12,7 @@ mod common;
 mod declarations;
 mod mechanism;
 mod phases;
+mod profile;
 mod two_orientation;
 mod warning;
 
@@ -22,6 +23,7 @@ pub use common::{DegreesOfFreedom, Estimate, InfiniteDof, OutputCovariance};
 pub use declarations::{AngleZero, ProbeSign};
 pub use mechanism::*;
 pub use phases::*;
+pub use profile::{ProfileResults, ValueOrigin, ValueSource};
 pub use two_orientation::*;
 pub use warning::{ProbeDeclared, Warning, WarningCode};
 
@@ -54,6 +56,9 @@ pub struct StudyResults {
     /// The two-orientation (IA in / IA out) calibration (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub two_orientation: Option<TwoOrientationResults>,
+    /// The lab profile the study named, and which values came from it (absent: none).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub profile: Option<ProfileResults>,
 }
 
 /// Scalar inputs of the study.

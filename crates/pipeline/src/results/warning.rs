@@ -26,6 +26,10 @@ pub enum WarningCode {
     /// A probe signal implausible for its gap column's declared unit (a mean gap below a
     /// micrometre, a first harmonic below a probe's own noise): C_r wrong by the unit's factor.
     ImplausibleGapUnit,
+    /// Revolutions of a recording fit far worse than the others (a glitch or dropout).
+    ResidualOutlier,
+    /// A recording's residuals alternate in sign from sample to sample.
+    AlternatingResiduals,
     /// Another diagnostic of a recording (one this version does not name).
     Recording,
     /// The radius-error residuals exceed their white-noise σ.
@@ -57,6 +61,12 @@ pub enum WarningCode {
     TwoOrientationRatesBunched,
     /// A section of the study file written under a former name, read as the new one.
     DeprecatedKey,
+    /// An instrument of the certificate was past its calibration due date on the
+    /// measurement date.
+    CalibrationOverdue,
+    /// A calibration due date or the measurement date is not written `YYYY-MM-DD`, so the
+    /// two cannot be compared.
+    CalibrationDueUnchecked,
 }
 
 impl WarningCode {
@@ -71,6 +81,8 @@ impl WarningCode {
             Self::DroppedRevolutions => "dropped_revolutions",
             Self::OutputSpread => "output_spread",
             Self::ImplausibleGapUnit => "implausible_gap_unit",
+            Self::ResidualOutlier => "residual_outlier",
+            Self::AlternatingResiduals => "alternating_residuals",
             Self::Recording => "recording",
             Self::LackOfFit => "lack_of_fit",
             Self::SecondProbePhase => "second_probe_phase",
@@ -80,6 +92,8 @@ impl WarningCode {
             Self::RateOutsidePhase => "rate_outside_phase",
             Self::CorrectionUncertain => "correction_uncertain",
             Self::ConeCr => "cone_c_r",
+            Self::CalibrationOverdue => "calibration_overdue",
+            Self::CalibrationDueUnchecked => "calibration_due_unchecked",
             Self::Omega4NotSeparable => "omega4_not_separable",
             Self::ProbeDisagrees => "probe_disagrees",
             Self::DeprecatedKey => "deprecated_key",
@@ -98,6 +112,8 @@ impl WarningCode {
             Self::DroppedRevolutions => "revolutions dropped",
             Self::OutputSpread => "PIGA output varies between revolutions",
             Self::ImplausibleGapUnit => "probe signal implausible for its declared unit",
+            Self::ResidualOutlier => "revolutions that fit far worse than the others",
+            Self::AlternatingResiduals => "residuals alternate from sample to sample",
             Self::Recording => "recording diagnostic",
             Self::LackOfFit => "radius-error fit worse than the noise",
             Self::SecondProbePhase => "phase read with the first probe's lever",
@@ -110,6 +126,8 @@ impl WarningCode {
             Self::Omega4NotSeparable => "ω⁴ term hard to separate in the two-orientation fit",
             Self::ProbeDisagrees => "the PIGA's radius growth and the probe's disagree",
             Self::DeprecatedKey => "a section under a former name",
+            Self::CalibrationOverdue => "equipment past its calibration due date",
+            Self::CalibrationDueUnchecked => "calibration due dates not compared",
             Self::TwoOrientationRatesBunched => "two-orientation rates too bunched for k2 and C",
         }
     }
@@ -161,6 +179,8 @@ impl Warning {
             D::DroppedRevolutions { .. } => WarningCode::DroppedRevolutions,
             D::OutputSpread { .. } => WarningCode::OutputSpread,
             D::ImplausibleGap { .. } => WarningCode::ImplausibleGapUnit,
+            D::ResidualOutlier { .. } => WarningCode::ResidualOutlier,
+            D::AlternatingResiduals { .. } => WarningCode::AlternatingResiduals,
             _ => WarningCode::Recording,
         };
         Self {
@@ -232,17 +252,14 @@ impl Warning {
         }
     }
 
-    /// `calibration_lack_of_fit`: the eq. 18 residuals are `birge` × the points' σ.
+    /// `calibration_lack_of_fit`: the eq. 18 residuals exceed the points' σ, in the
+    /// calibration's own words (`calibration::CalibrationWarning::LackOfFit`, which
+    /// `centrifuge-cal identify` prints too).
     #[must_use]
-    pub fn calibration_lack_of_fit(birge: f64, dof: usize) -> Self {
+    pub fn calibration_lack_of_fit(warning: &::calibration::CalibrationWarning) -> Self {
         Self {
             code: WarningCode::CalibrationLackOfFit,
-            message: format!(
-                "the eq. 18 residuals are {birge:.1}× the points' standard uncertainties \
-                 (√(χ²/ν), {dof} degrees of freedom): the points scatter more than their σ say — \
-                 run-to-run variation the within-run σ do not hold, an unmodelled term, or a \
-                 rate error. The coefficients' σ are enlarged by this ratio"
-            ),
+            message: warning.to_string(),
             location: "calibration".into(),
         }
     }
@@ -270,15 +287,17 @@ impl Warning {
         Self {
             code: WarningCode::RateOutsidePhase,
             message: format!(
-                "{} calibration rate(s) ({}) lie outside {low}–{high} deg/s, the rates at which \
+                "{} calibration rate(s) ({}) lie outside {}–{} deg/s, the rates at which \
                  phase `{phase}` measured C_r: there the compensation extrapolates C_r·ω², which \
                  no probe measurement checks",
                 outside.len(),
-                outside
-                    .iter()
-                    .map(|r| format!("{r}"))
-                    .collect::<Vec<_>>()
-                    .join(", "),
+                // A long list is summarised (issue 32: 1e5 rates made one 257 kB line).
+                units::CompactSeries(outside)
+                    .to_string()
+                    .trim_start_matches('[')
+                    .replacen(']', "", 1),
+                units::Compact(low),
+                units::Compact(high),
             ),
             location: "calibration".into(),
         }
@@ -380,6 +399,42 @@ impl Warning {
                  in the study file (the old name will be refused in a later version)"
             ),
             location: old.into(),
+        }
+    }
+
+    /// `calibration_overdue`: the instrument `role` `identity` was due for calibration on
+    /// `due`, before the measurement's last day `measured`.
+    #[must_use]
+    pub fn calibration_overdue(
+        role: &str,
+        identity: &str,
+        due: &str,
+        measured: &str,
+        location: &str,
+    ) -> Self {
+        Self {
+            code: WarningCode::CalibrationOverdue,
+            message: format!(
+                "the {role} {identity} was due for calibration on {due}, before the \
+                 measurement ({measured}): its calibration had expired when it was used, so the \
+                 certificate's traceability through it does not hold (calibrate it, or state the \
+                 departure from the procedure)"
+            ),
+            location: location.into(),
+        }
+    }
+
+    /// `calibration_due_unchecked`: `what` cannot be compared (a date not written
+    /// `YYYY-MM-DD`).
+    #[must_use]
+    pub fn calibration_due_unchecked(what: &str) -> Self {
+        Self {
+            code: WarningCode::CalibrationDueUnchecked,
+            message: format!(
+                "the equipment's calibration due dates were not compared with the measurement \
+                 date: {what}"
+            ),
+            location: "certificate.equipment".into(),
         }
     }
 
@@ -508,5 +563,29 @@ mod tests {
             assert_eq!(format!("\"{c}\""), serde_json::to_string(&c).unwrap());
             assert!(!c.title().is_empty());
         }
+    }
+
+    #[test]
+    fn a_long_list_of_rates_is_summarised() {
+        // Issue 32: 1e5 calibration rates made one 257 kB warning line.
+        let rates: Vec<f64> = (0..100_000).map(|i| 250.0 + f64::from(i) * 0.5).collect();
+        let w = Warning::rate_outside_phase(&rates, 10.0, 200.1234, "spindle");
+        assert!(w.message.len() < 400, "{} bytes", w.message.len());
+        assert!(
+            w.message.starts_with(
+                "100000 calibration rate(s) (250, 250.5, 251, 251.5, 252, 252.5, …, 50249.5 \
+                 (100000 values)) lie outside 10–200.1234 deg/s"
+            ),
+            "{}",
+            w.message
+        );
+        // A short list is written whole.
+        let w = Warning::rate_outside_phase(&[210.0, 220.5], 10.0, 200.0, "spindle");
+        assert!(
+            w.message
+                .starts_with("2 calibration rate(s) (210, 220.5) lie"),
+            "{}",
+            w.message
+        );
     }
 }

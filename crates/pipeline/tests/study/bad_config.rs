@@ -277,3 +277,133 @@ fn a_radius_whose_square_underflows_is_a_named_error_not_an_infinite_delta_k2() 
     );
     assert!(chain.contains("radius_m = 1e-160"), "{chain}");
 }
+
+/// The study file at `name` under fixtures/studies with `from` replaced by `to`, parsed as if
+/// it were there (its data files resolve).
+fn fixture_with(name: &str, from: &str, to: &str) -> Result<pipeline::Inputs, PipelineError> {
+    let path = super::root().join("fixtures/studies").join(name);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains(from), "{from} not in {name}");
+    pipeline::parse_study(&text.replacen(from, to, 1), &path)
+}
+
+#[test]
+fn a_billion_fixed_trials_is_refused_at_check_with_its_cost() {
+    // Before issue 32 this passed `check` and the study aborted on an 8 GB allocation.
+    for (name, from, field) in [
+        ("campaign.ron", "k1: fitted,", "calibration.trials"),
+        (
+            "two_orientation.ron",
+            "compare_with: \"spindle\",",
+            "two_orientation.trials",
+        ),
+    ] {
+        let to = format!("{from} trials: fixed(1000000000),");
+        let e = fixture_with(name, from, &to).unwrap_err();
+        let text = super::chain(&e);
+        let error = match &e {
+            PipelineError::Several { errors } => errors
+                .iter()
+                .find(|e| matches!(e, PipelineError::Uncertainty { .. }))
+                .unwrap_or_else(|| panic!("{text}")),
+            other => other,
+        };
+        match error {
+            PipelineError::Uncertainty {
+                field: f, source, ..
+            } => {
+                assert_eq!(f, field);
+                assert!(
+                    matches!(
+                        **source,
+                        uncertainty::UncertaintyError::TooManyTrials {
+                            trials: 1_000_000_000,
+                            max: uncertainty::MAX_TRIALS,
+                            ..
+                        }
+                    ),
+                    "{source:?}"
+                );
+            }
+            other => panic!("{name}: {other:?}"),
+        }
+        assert!(
+            text.contains("trials = 1000000000: at most 10000000 Monte Carlo trials are drawn")
+                && text.contains("GiB) of model values")
+                && text.contains("s of CPU"),
+            "{text}"
+        );
+        // At the cap it is accepted (the calibration's 6 outputs keep 480 MB).
+        let to = format!("{from} trials: fixed(10000000),");
+        assert!(fixture_with(name, from, &to).is_ok(), "{name} at the cap");
+    }
+}
+
+#[test]
+fn one_recording_at_two_rates_is_refused_at_check() {
+    // The 20 deg/s recording listed again at 40 deg/s: its encoder says 20.
+    let e = fixture_with(
+        "recordings-small.ron",
+        "probe_040.0000deg_s.csv",
+        "probe_020.0000deg_s.csv",
+    )
+    .unwrap_err();
+    let text = super::chain(&e);
+    assert!(
+        text.contains("phases[0].points.files[1]")
+            && text
+                .contains("is the same recording as `phases[0].points.files[0]` (the same file)"),
+        "{text}"
+    );
+    // Two files with the same bytes under two names: the same.
+    let scratch = test_support::Scratch::new("pipeline-same-bytes");
+    let recordings = super::root().join("fixtures/recordings/pre-balance-small");
+    let copy = scratch.0.join("copy_of_020.csv");
+    std::fs::copy(recordings.join("probe_020.0000deg_s.csv"), &copy).unwrap();
+    let e = fixture_with(
+        "recordings-small.ron",
+        "../recordings/pre-balance-small/probe_040.0000deg_s.csv",
+        copy.to_str().unwrap(),
+    );
+    // Through files on disk the digest tells the same bytes (`parse_study` reads through
+    // `pipeline::Files`); the encoder's rate alone would refuse it too.
+    let text = super::chain(&e.unwrap_err());
+    assert!(
+        text.contains("is the same recording as `phases[0].points.files[0]` (the same bytes)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn an_encoder_that_disagrees_with_the_declared_rate_is_refused_at_check() {
+    // What the analysis found only when the study ran (issue 32), found at loading.
+    let e = fixture_with(
+        "recordings-small.ron",
+        "(rate_deg_s: 40.0,",
+        "(rate_deg_s: 45.0,",
+    )
+    .unwrap_err();
+    let text = super::chain(&e);
+    assert!(
+        text.contains("phases[0].points.files[1]") && text.contains("differs from the encoder"),
+        "{text}"
+    );
+}
+
+#[test]
+fn an_implausible_g_is_refused() {
+    for g in ["1e300", "1.0", "9.81e-3"] {
+        let text = paper_text().replace("g_m_s2: 9.8,", &format!("g_m_s2: {g},"));
+        let e = parse(&text).unwrap_err();
+        match &e {
+            PipelineError::InvalidField { field, .. } => assert_eq!(field, "g_m_s2"),
+            other => panic!("{g}: {other:?}"),
+        }
+        let message = e.to_string();
+        assert!(
+            message.contains("must lie within 9.7…9.9 m/s²"),
+            "{message}"
+        );
+        assert!(!message.contains("0000000000"), "{message}");
+    }
+}

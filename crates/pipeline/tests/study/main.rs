@@ -14,6 +14,7 @@ mod in_memory;
 mod lab_variants;
 mod mechanism;
 mod paper;
+mod profile;
 mod provenance;
 mod recordings;
 mod two_orientation;

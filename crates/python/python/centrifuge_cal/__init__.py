@@ -261,6 +261,7 @@ def fit_harmonics(
     max_gap_intervals: float = _DEFAULT_GAP_INTERVALS,
     probe_along: bool = False,
     gap_unit: Literal["nm", "um", "mm", "m"] = "um",
+    on_outlier: Literal["drop_revolution", "keep"] = "drop_revolution",
 ) -> HarmonicFit:
     """Fits eq. 20, ``gap(θ) = l0 + Σ (c_k cos kθ + s_k sin kθ)``, to every complete
     revolution of a probe recording held in arrays, and averages the coefficients.
@@ -274,7 +275,11 @@ def fit_harmonics(
     ``θ = ω·(t − t₀) + start_angle_deg`` from the declared rate, with the warning
     ``angle_from_rate``. ``probe_along``: the probe measures along O1X1 (sets the sign of
     β). The defaults (``order``, ``drift``, ``revolutions``, ``max_gap_intervals``) are the
-    study's (:data:`STUDY_DEFAULTS`). Warnings are also issued as
+    study's (:data:`STUDY_DEFAULTS`). A revolution that fits far worse than the others (a
+    glitch: residual RMS above 5 times the median) is warned (``residual_outlier``) and, with
+    ``on_outlier="drop_revolution"`` (the study's default), left out of the mean;
+    ``"keep"`` keeps it; residuals alternating in sign are warned
+    (``alternating_residuals``), as the study warns. Warnings are also issued as
     :class:`CentrifugeCalWarning`. The GIL is released during the fit; contiguous float64
     arrays are read in place.
     """
@@ -293,6 +298,7 @@ def fit_harmonics(
         number("max_gap_intervals", max_gap_intervals),
         flag("probe_along", probe_along),
         text("gap_unit", gap_unit),
+        text("on_outlier", on_outlier),
     )
     return _fit_warnings(HarmonicFit._of(d))
 

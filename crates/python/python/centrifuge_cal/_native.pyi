@@ -45,6 +45,7 @@ def fit_harmonics(
     max_gap_intervals: float,
     probe_along: bool,
     gap_unit: str,
+    on_outlier: str,
 ) -> dict[str, Any]: ...
 def read_recording(
     path: str,

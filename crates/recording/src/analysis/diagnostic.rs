@@ -17,6 +17,40 @@ pub const MIN_PLAUSIBLE_GAP_UM: f64 = 1.0;
 /// is below any probe's own noise.
 pub const PROBE_RESOLUTION_UM: f64 = 1e-3;
 
+/// One revolution of [`Diagnostic::ResidualOutlier`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutlierRevolution {
+    /// Its index among the revolutions fitted (0-based).
+    pub revolution: usize,
+    /// The file line of its first sample (0 for a binary file).
+    pub first_line: usize,
+    /// Its residual RMS, gap unit.
+    pub residual_rms: f64,
+    /// Its largest residual, gap unit.
+    pub largest_residual: f64,
+    /// Where: the file line (text) or the sample index (binary file).
+    pub largest_at: SampleAt,
+}
+
+/// A sample's place in its file: the line of a text file, or the index in a binary file's
+/// channel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SampleAt {
+    /// 1-based line.
+    Line(usize),
+    /// 0-based sample index.
+    Sample(usize),
+}
+
+impl fmt::Display for SampleAt {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Line(l) => write!(f, "line {l}"),
+            Self::Sample(i) => write!(f, "sample {i}"),
+        }
+    }
+}
+
 /// The likely cause of a revolution-to-revolution spread.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -106,6 +140,35 @@ pub enum Diagnostic {
         /// The finest first harmonic a probe resolves, µm ([`PROBE_RESOLUTION_UM`]).
         noise_um: f64,
     },
+    /// Revolutions whose residual RMS is far above the median of the revolutions'
+    /// (`harmonics::residual_outliers`): a glitch or a dropout inside them.
+    ResidualOutlier {
+        /// The outlying revolutions: index among those fitted, first line (0 for a binary
+        /// file), residual RMS, largest residual and its line (or sample index for a
+        /// binary file), in the gap unit.
+        revolutions: Vec<OutlierRevolution>,
+        /// The median residual RMS of the revolutions, gap unit.
+        median_rms: f64,
+        /// The gap unit.
+        unit: LengthUnit,
+        /// Whether they were left out of the mean (`on_outlier: drop_revolution`).
+        dropped: bool,
+    },
+    /// The residuals alternate in sign from sample to sample
+    /// (`harmonics::alternating_residuals`): every other sample zeroed or held, or two
+    /// interleaved channels that disagree. The first harmonic is then wrong (halved when
+    /// every other sample is zero) although every revolution looks alike.
+    AlternatingResiduals {
+        /// The residuals' lag-one autocorrelation.
+        lag1: f64,
+        /// What white noise gives after the same fit (anticorrelated itself with few
+        /// samples per revolution).
+        white_noise_lag1: f64,
+        /// Their RMS, gap unit.
+        residual_rms: f64,
+        /// The gap unit.
+        unit: LengthUnit,
+    },
     /// A raw PIGA output recording's per-revolution output rates scatter beyond what the
     /// white noise of the output angle explains.
     OutputSpread {
@@ -128,6 +191,8 @@ impl Diagnostic {
             Self::DroppedRevolutions { .. } => "dropped_revolutions",
             Self::OutputSpread { .. } => "output_spread",
             Self::ImplausibleGap { .. } => "implausible_gap_unit",
+            Self::ResidualOutlier { .. } => "residual_outlier",
+            Self::AlternatingResiduals { .. } => "alternating_residuals",
         }
     }
 }
@@ -234,6 +299,70 @@ impl fmt::Display for Diagnostic {
                      output is centred on zero also has a mean gap near 0)"
                 )
             }
+            Self::ResidualOutlier {
+                revolutions,
+                median_rms,
+                unit,
+                dropped,
+            } => {
+                let symbol = unit.symbol();
+                let shown = 5;
+                write!(
+                    f,
+                    "{} of the revolutions fit far worse than the others (residual RMS more \
+                     than {} × the median {} {symbol}): ",
+                    revolutions.len(),
+                    harmonics::OUTLIER_RMS_RATIO,
+                    units::Compact(round_to(*median_rms, 3)),
+                )?;
+                for (i, r) in revolutions.iter().take(shown).enumerate() {
+                    if i > 0 {
+                        f.write_str("; ")?;
+                    }
+                    write!(
+                        f,
+                        "revolution {} has a residual RMS of {} {symbol} ({}×), its largest \
+                         residual {} {symbol} at {}",
+                        r.revolution + 1,
+                        units::Compact(round_to(r.residual_rms, 3)),
+                        units::Compact(round_to(r.residual_rms / median_rms, 3)),
+                        units::Compact(round_to(r.largest_residual, 3)),
+                        r.largest_at
+                    )?;
+                }
+                if revolutions.len() > shown {
+                    write!(f, "; and {} more", revolutions.len() - shown)?;
+                }
+                if *dropped {
+                    f.write_str(
+                        ". A glitch or dropout there would move the first harmonic: left out \
+                         of the mean (`on_outlier: drop_revolution`, the default; \
+                         `on_outlier: keep` keeps them)",
+                    )
+                } else {
+                    f.write_str(
+                        ". A glitch or dropout there moves the first harmonic: kept in the \
+                         mean as `on_outlier: keep` asks (`drop_revolution` leaves them out)",
+                    )
+                }
+            }
+            Self::AlternatingResiduals {
+                lag1,
+                white_noise_lag1,
+                residual_rms,
+                unit,
+            } => write!(
+                f,
+                "the fit's residuals alternate in sign from one sample to the next \
+                 (lag-one autocorrelation {}, where noise alone would give {}; residual RMS \
+                 {} {}): every other sample zeroed or held, or two interleaved channels that \
+                 disagree; the first harmonic is then wrong (halved when every other sample \
+                 is zero): check the recording",
+                units::Compact(round_to(*lag1, 3)),
+                units::Compact(round_to(*white_noise_lag1, 2)),
+                units::Compact(round_to(*residual_rms, 3)),
+                unit.symbol()
+            ),
             Self::OutputSpread { ratio, revolutions } => write!(
                 f,
                 "the output rate varies from revolution to revolution {ratio:.1}× more than \
@@ -242,5 +371,18 @@ impl fmt::Display for Diagnostic {
                  the point's u is the standard error across revolutions"
             ),
         }
+    }
+}
+
+/// `x` to `digits` significant digits (for a message).
+fn round_to(x: f64, digits: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    if scale.is_finite() && scale != 0.0 {
+        (x * scale).round() / scale
+    } else {
+        x
     }
 }

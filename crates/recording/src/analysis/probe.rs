@@ -8,10 +8,11 @@ use harmonics::{
 };
 
 use super::diagnostic::{
-    Diagnostic, MIN_PLAUSIBLE_GAP_UM, PROBE_RESOLUTION_UM, RATE_WARNING_TOLERANCE, SpreadCause,
+    Diagnostic, MIN_PLAUSIBLE_GAP_UM, OutlierRevolution, PROBE_RESOLUTION_UM,
+    RATE_WARNING_TOLERANCE, SampleAt, SpreadCause,
 };
 use crate::error::{Hint, RecordingError, Result};
-use crate::lab::format::{LengthUnit, OnBadSamples};
+use crate::lab::format::{LengthUnit, OnBadSamples, OnOutlier};
 use crate::lab::probe::{AngleSourceKind, Recording, sample_index};
 
 /// A recording's harmonic analysis with what it rests on.
@@ -62,6 +63,11 @@ impl RecordingAnalysis {
 /// With `on_gap` or `on_non_finite` set to `drop_revolution`, the recording is cut at
 /// each gap and around each non-finite sample, the pieces are fitted apart, and the
 /// revolutions they hold are pooled; the others are counted as dropped.
+///
+/// Revolutions whose residual RMS is more than `harmonics::OUTLIER_RMS_RATIO` times the
+/// median are [`Diagnostic::ResidualOutlier`] and, with `on_outlier: drop_revolution` (the
+/// default), left out of the mean; residuals that alternate in sign from sample to sample
+/// are [`Diagnostic::AlternatingResiduals`].
 pub fn analyze_recording(
     recording: &Recording,
     declared_rate_rad_s: f64,
@@ -81,28 +87,7 @@ pub fn analyze_recording(
         }
     };
     let signal = recording.signal(declared_rate_rad_s);
-    // With every sample finite, harmonics checks the rate itself (one vectorised pass);
-    // with non-finite ones kept, the rate is measured around them.
-    let measured_rate_rad_s = match recording.on_non_finite {
-        OnBadSamples::Error => None,
-        OnBadSamples::DropRevolution => recording.measured_rate_rad_s(),
-    };
-    if recording.angle_rad.is_some() {
-        let angle_ok = measured_rate_rad_s.is_some_and(f64::is_finite);
-        // A recording whose samples are all good is checked by harmonics itself.
-        if angle_ok || recording.on_non_finite == OnBadSamples::Error {
-            let check = match measured_rate_rad_s {
-                Some(m) if angle_ok && recording.on_non_finite != OnBadSamples::Error => {
-                    check_rate(m, declared_rate_rad_s)
-                }
-                _ => harmonics::check_encoder_rate(
-                    &signal,
-                    harmonics::DeclaredRate::new(declared_rate_rad_s),
-                ),
-            };
-            check.map_err(located)?;
-        }
-    }
+    let measured_rate_rad_s = declared_rate_check(recording, declared_rate_rad_s)?;
     let drop = DropBadSamples {
         gaps: recording.on_gap == OnBadSamples::DropRevolution,
         non_finite: recording.on_non_finite == OnBadSamples::DropRevolution,
@@ -135,6 +120,58 @@ pub fn analyze_recording(
         dropped,
         &config,
     ))
+}
+
+/// Checks a recording's measured angle against the rate it is declared at, as
+/// [`analyze_recording`] does first: with an encoder or index pulse, its mean rate must be
+/// within [`harmonics::ENCODER_RATE_TOLERANCE`] (2 %) of the declared one, else
+/// [`HarmonicsError::RateMismatch`] located in the file (one recording listed at two rates,
+/// a file attached to the wrong rate point). A recording whose angle comes from the declared
+/// rate passes. What a study's `check` runs on each recording without fitting it.
+///
+/// # Errors
+/// [`RecordingError::Samples`] holding [`HarmonicsError::RateMismatch`] or the angle's own
+/// error (not increasing, not finite), with the line and hint.
+pub fn check_declared_rate(recording: &Recording, declared_rate_rad_s: f64) -> Result<()> {
+    declared_rate_check(recording, declared_rate_rad_s).map(|_| ())
+}
+
+/// [`check_declared_rate`], returning the rate measured around non-finite samples when the
+/// recording keeps them (`None` otherwise).
+fn declared_rate_check(recording: &Recording, declared_rate_rad_s: f64) -> Result<Option<f64>> {
+    let located = |source: HarmonicsError| {
+        let hint = hint_of(recording, &source);
+        RecordingError::Samples {
+            path: recording.path.clone(),
+            line: sample_index(&source).map(|row| recording.line_of_sample(row)),
+            hint,
+            source,
+        }
+    };
+    let signal = recording.signal(declared_rate_rad_s);
+    // With every sample finite, harmonics checks the rate itself (one vectorised pass);
+    // with non-finite ones kept, the rate is measured around them.
+    let measured_rate_rad_s = match recording.on_non_finite {
+        OnBadSamples::Error => None,
+        OnBadSamples::DropRevolution => recording.measured_rate_rad_s(),
+    };
+    if recording.angle_rad.is_some() {
+        let angle_ok = measured_rate_rad_s.is_some_and(f64::is_finite);
+        // A recording whose samples are all good is checked by harmonics itself.
+        if angle_ok || recording.on_non_finite == OnBadSamples::Error {
+            let check = match measured_rate_rad_s {
+                Some(m) if angle_ok && recording.on_non_finite != OnBadSamples::Error => {
+                    check_rate(m, declared_rate_rad_s)
+                }
+                _ => harmonics::check_encoder_rate(
+                    &signal,
+                    harmonics::DeclaredRate::new(declared_rate_rad_s),
+                ),
+            };
+            check.map_err(located)?;
+        }
+    }
+    Ok(measured_rate_rad_s)
 }
 
 /// The mean rate within 2 % of the declared one.
@@ -266,6 +303,7 @@ fn finish(
     config: &FitConfig,
 ) -> RecordingAnalysis {
     let signal = recording.signal(declared_rate_rad_s);
+    let (analysis, outliers) = outliers(recording, &signal, analysis);
     let statistics = revolution_statistics(
         &signal,
         &analysis,
@@ -288,6 +326,7 @@ fn finish(
             measured_rad_s: m,
         });
     }
+    diagnostics.extend(outliers);
     diagnostics.extend(statistics.diagnostics);
     if let Some(d) = implausible_gap(recording.gap_unit, &analysis) {
         diagnostics.push(d);
@@ -309,6 +348,83 @@ fn finish(
         mean_noise_sigma: statistics.mean_noise_sigma,
         diagnostics,
     }
+}
+
+/// The revolutions that fit far worse than the others, dropped when the recording's policy
+/// says so, and residuals that alternate in sign: the analysis to use and the diagnostics.
+fn outliers(
+    recording: &Recording,
+    signal: &ProbeSignal<'_>,
+    analysis: HarmonicAnalysis,
+) -> (HarmonicAnalysis, Vec<Diagnostic>) {
+    let binary = !recording.is_empty() && recording.line_of_sample(0) == 0;
+    let place = |sample: usize| {
+        if binary {
+            SampleAt::Sample(sample)
+        } else {
+            SampleAt::Line(recording.line_of_sample(sample))
+        }
+    };
+    outlier_check(
+        signal,
+        analysis,
+        recording.on_outlier,
+        recording.gap_unit,
+        place,
+    )
+}
+
+/// The outlier checks of [`analyze_recording`] on any fit of `signal` (a recording's, or
+/// arrays handed over, as the Python package does): revolutions whose residual RMS is more
+/// than `harmonics::OUTLIER_RMS_RATIO` times the median are [`Diagnostic::ResidualOutlier`]
+/// and, with [`OnOutlier::DropRevolution`], left out of the returned analysis; residuals
+/// that alternate in sign are [`Diagnostic::AlternatingResiduals`]. `unit` is the gap's;
+/// `place` names a sample (its file line, or its index).
+pub fn outlier_check(
+    signal: &ProbeSignal<'_>,
+    analysis: HarmonicAnalysis,
+    on_outlier: OnOutlier,
+    unit: LengthUnit,
+    place: impl Fn(usize) -> SampleAt,
+) -> (HarmonicAnalysis, Vec<Diagnostic>) {
+    let mut diagnostics = Vec::new();
+    let mut analysis = analysis;
+    if let Some(found) = harmonics::residual_outliers(signal, &analysis) {
+        let dropped = on_outlier == OnOutlier::DropRevolution;
+        let revolutions = found
+            .revolutions
+            .iter()
+            .map(|o| OutlierRevolution {
+                revolution: o.revolution,
+                first_line: match place(o.first_sample) {
+                    SampleAt::Line(line) => line,
+                    SampleAt::Sample(_) => 0,
+                },
+                residual_rms: o.residual_rms,
+                largest_residual: o.largest_residual,
+                largest_at: place(o.largest_at_sample),
+            })
+            .collect();
+        if dropped {
+            let drop: Vec<usize> = found.revolutions.iter().map(|o| o.revolution).collect();
+            analysis = harmonics::without_revolutions(&analysis, &drop);
+        }
+        diagnostics.push(Diagnostic::ResidualOutlier {
+            revolutions,
+            median_rms: found.median_rms,
+            unit,
+            dropped,
+        });
+    }
+    if let Some(a) = harmonics::alternating_residuals(signal, &analysis) {
+        diagnostics.push(Diagnostic::AlternatingResiduals {
+            lag1: a.lag1,
+            white_noise_lag1: a.white_noise_lag1,
+            residual_rms: a.residual_rms,
+            unit,
+        });
+    }
+    (analysis, diagnostics)
 }
 
 /// [`Diagnostic::ImplausibleGap`] when the mean gap is below a micrometre or the first

@@ -48,7 +48,12 @@ pub fn parse_mat(bytes: &[u8], path: &Path, variables: &BinaryChannels) -> Resul
     read(&Source::Bytes(bytes), path, variables)
 }
 
-fn read(source: &Source<'_>, path: &Path, variables: &BinaryChannels) -> Result<Recording> {
+/// The variables of a probe recording from a MAT file read from `source`.
+pub(crate) fn read(
+    source: &Source<'_>,
+    path: &Path,
+    variables: &BinaryChannels,
+) -> Result<Recording> {
     let place = Place {
         path,
         format: BinaryFormat::Mat,

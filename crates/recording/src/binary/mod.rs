@@ -11,8 +11,11 @@
 //!
 //! # Bounded reading
 //!
-//! The whole file is read into memory (its size is the bound), and every length field is
-//! checked against the bytes that remain before anything is sliced or allocated from it:
+//! Only a regular file is read (a FIFO, a device or a folder is
+//! [`RecordingError::NotAFile`], refused without blocking). The file is read with positioned
+//! reads, only the structures and the samples asked for (a file without the format's
+//! signature is refused after its first bytes, whatever its size), and every length field is
+//! checked against the file's real size before anything is sliced or allocated from it:
 //! a sample vector is allocated only for samples whose bytes are in the file. A compressed
 //! MAT variable grows only with its inflated output, at most 1032 times its compressed size
 //! (DEFLATE's largest ratio).
@@ -25,7 +28,7 @@ mod scaling;
 mod source;
 pub(crate) mod tdms;
 
-pub(crate) use source::read_whole;
+pub(crate) use source::{Source, with_source};
 
 pub use channels::{BinaryChannels, ChannelInfo, MatVariables};
 
@@ -45,13 +48,13 @@ pub(crate) fn format_of(path: &Path) -> Option<BinaryFormat> {
     }
 }
 
-/// A probe recording from a TDMS or MAT file (its `bytes`, or read from `path`) with a
+/// A probe recording from a TDMS or MAT file (read from `source`; `path` names it) with a
 /// [`RecordingFormat`]'s names and units: the time channel (or the waveform timing), the
 /// gap channel and its unit, the angle from an encoder channel, an index-pulse channel or
 /// the declared rate.
 pub(crate) fn read_with_format(
     path: &Path,
-    bytes: Option<&[u8]>,
+    source: &Source<'_>,
     kind: BinaryFormat,
     format: &RecordingFormat,
 ) -> Result<Recording> {
@@ -92,13 +95,12 @@ pub(crate) fn read_with_format(
         on_gap: format.on_gap,
         on_non_finite: format.on_non_finite,
     };
-    let read = |channels: &BinaryChannels| match (kind, bytes) {
-        (BinaryFormat::Tdms, Some(b)) => tdms::parse_tdms(b, path, channels),
-        (BinaryFormat::Tdms, None) => tdms::load_tdms(path, channels),
-        (BinaryFormat::Mat, Some(b)) => mat::parse_mat(b, path, channels),
-        (BinaryFormat::Mat, None) => mat::load_mat(path, channels),
+    let read = |channels: &BinaryChannels| match kind {
+        BinaryFormat::Tdms => tdms::read(source, path, channels),
+        BinaryFormat::Mat => mat::read(source, path, channels),
     };
     let mut rec = read(&channels)?;
+    rec.on_outlier = format.on_outlier;
     // Times in another unit than seconds (a MAT time variable in ms, say).
     let scale = format.time.unit.s_per_unit();
     if !format.waveform_time && scale != 1.0 {

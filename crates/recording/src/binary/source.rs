@@ -4,16 +4,8 @@
 use std::path::Path;
 
 use super::decode::{BLOCK, NumType, decode};
+use crate::digest::{FileDigest, Hasher};
 use crate::error::{RecordingError, Result};
-
-/// The whole file at `path` (a binary recording whose digest is taken, then parsed from
-/// memory).
-pub(crate) fn read_whole(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| RecordingError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
-}
 
 /// Where a reader reads from: bytes in memory, or a regular file read piece by piece with
 /// positioned reads (only the structures and the samples asked for are read, through a
@@ -22,7 +14,6 @@ pub(crate) enum Source<'a> {
     /// Bytes in memory.
     Bytes(&'a [u8]),
     /// A regular file of `len` bytes.
-    #[cfg(unix)]
     File {
         /// The file.
         file: std::fs::File,
@@ -38,7 +29,6 @@ impl Source<'_> {
     pub(crate) fn len(&self) -> usize {
         match self {
             Self::Bytes(b) => b.len(),
-            #[cfg(unix)]
             Self::File { len, .. } => *len,
         }
     }
@@ -54,18 +44,17 @@ impl Source<'_> {
         let offset = offset.min(end);
         match self {
             Self::Bytes(b) => Ok(&b[offset..end]),
-            #[cfg(unix)]
             Self::File { file, path, .. } => {
-                use std::os::unix::fs::FileExt;
                 let n = end - offset;
                 if buf.len() < n {
                     buf.resize(n, 0);
                 }
-                file.read_exact_at(&mut buf[..n], offset as u64)
-                    .map_err(|source| RecordingError::Io {
+                read_exact_at(file, &mut buf[..n], offset as u64).map_err(|source| {
+                    RecordingError::Io {
                         path: path.to_path_buf(),
                         source,
-                    })?;
+                    }
+                })?;
                 Ok(&buf[..n])
             }
         }
@@ -105,24 +94,53 @@ impl Source<'_> {
     }
 }
 
-/// Runs a reader on the file at `path`: a regular file as [`Source::File`] (its size
-/// bounds every allocation), anything else read whole into memory.
+impl Source<'_> {
+    /// The size and SHA-256 of the whole source, a file read piece by piece (a megabyte at a
+    /// time) from the handle the reader used.
+    pub(crate) fn digest(&self) -> Result<FileDigest> {
+        const PIECE: usize = 1 << 20;
+        let mut hasher = Hasher::default();
+        let mut buf = Vec::new();
+        let mut at = 0;
+        while at < self.len() {
+            let n = PIECE.min(self.len() - at);
+            hasher.update(self.read(at, n, &mut buf)?);
+            at += n;
+        }
+        Ok(hasher.finish())
+    }
+}
+
+/// Positioned read of exactly `buf.len()` bytes at `offset`.
+fn read_exact_at(file: &std::fs::File, buf: &mut [u8], offset: u64) -> std::io::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileExt as _;
+        file.read_exact_at(buf, offset)
+    }
+    #[cfg(not(unix))]
+    {
+        use std::io::{Read as _, Seek as _, SeekFrom};
+        let mut file = file;
+        file.seek(SeekFrom::Start(offset))?;
+        file.read_exact(buf)
+    }
+}
+
+/// Runs a reader on the file at `path` as [`Source::File`]: a regular file only (anything
+/// else is [`RecordingError::NotAFile`], refused without blocking), read by positioned reads;
+/// its size, taken from the open handle, bounds every read and allocation.
 pub(crate) fn with_source<T>(
     path: &Path,
     read: impl FnOnce(&Source<'_>) -> Result<T>,
 ) -> Result<T> {
-    let io = |source| RecordingError::Io {
+    let (file, meta) = crate::open::open_regular(path)?;
+    let len = usize::try_from(meta.len()).map_err(|_| RecordingError::Io {
         path: path.to_path_buf(),
-        source,
-    };
-    #[cfg(unix)]
-    {
-        let file = std::fs::File::open(path).map_err(io)?;
-        let meta = file.metadata().map_err(io)?;
-        if let (true, Ok(len)) = (meta.is_file(), usize::try_from(meta.len())) {
-            return read(&Source::File { file, len, path });
-        }
-    }
-    let bytes = std::fs::read(path).map_err(io)?;
-    read(&Source::Bytes(&bytes))
+        source: std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            "larger than this platform's address space",
+        ),
+    })?;
+    read(&Source::File { file, len, path })
 }

@@ -89,6 +89,19 @@ pub enum RecordingError {
         /// The underlying error.
         source: std::io::Error,
     },
+    /// The path names something other than a regular file (a folder, a FIFO, a device, a
+    /// socket): refused unread, since reading it could block or never end.
+    #[error(
+        "{} is {kind}, not a regular file: a recording or table must be a file on disk (a pipe \
+         or a device could block or never end, so it is not read)",
+        path.display()
+    )]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+        /// What it names, in words ("a named pipe (FIFO)").
+        kind: &'static str,
+    },
     /// The delimiter of a format cannot separate numeric fields.
     #[error(
         "format: delimiter {delimiter:?} must be one ASCII character that cannot occur in a \
@@ -548,6 +561,7 @@ impl RecordingError {
                 }
             }
             Self::Io { .. }
+            | Self::NotAFile { .. }
             | Self::InvalidDelimiter { .. }
             | Self::DuplicateColumn { .. }
             | Self::InvalidColumns { .. }

@@ -206,6 +206,19 @@ pub enum OnBadSamples {
     DropRevolution,
 }
 
+/// What to do with a revolution whose residual RMS is far above the others'
+/// (`harmonics::residual_outliers`: a glitch, a dropout to zero).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OnOutlier {
+    /// Leave it out of the mean and say so (the default): one glitch sample otherwise moves
+    /// the rate's first harmonic by its share of the revolution.
+    #[default]
+    DropRevolution,
+    /// Keep it in the mean and say so.
+    Keep,
+}
+
 /// Default name of the time column, s; the writer's header name.
 pub(crate) const TIME_COLUMN: &str = "time_s";
 /// Default name of the gap column, µm; the writer's header name.
@@ -251,6 +264,9 @@ pub struct RecordingFormat {
     /// A NaN or infinite value: refuse the file (default) or drop the revolutions it
     /// touches.
     pub on_non_finite: OnBadSamples,
+    /// A revolution whose residual RMS is far above the others': drop it from the mean
+    /// (default) or keep it; warned either way.
+    pub on_outlier: OnOutlier,
     /// TDMS and MAT files (read by their extension, `.tdms`, `.mat`; the columns above are
     /// then channels or variables): the TDMS group or MAT struct variable holding them
     /// (default: the first group that has them; top-level variables).
@@ -284,6 +300,7 @@ impl Default for RecordingFormat {
             max_gap_intervals: 3.0,
             on_gap: OnBadSamples::Error,
             on_non_finite: OnBadSamples::Error,
+            on_outlier: OnOutlier::DropRevolution,
             group: None,
             waveform_time: false,
         }
@@ -327,6 +344,7 @@ const RECORDING_KEYS: &[&str] = &[
     "skip_lines",
     "on_non_finite",
     "on_gap",
+    "on_outlier",
     "angle",
     "time",
 ];

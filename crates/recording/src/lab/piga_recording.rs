@@ -106,6 +106,7 @@ impl PigaRecordingFormat {
             max_gap_intervals: self.max_gap_intervals,
             on_gap: self.on_gap,
             on_non_finite: self.on_non_finite,
+            on_outlier: crate::lab::format::OnOutlier::default(),
             group: None,
             waveform_time: false,
         })

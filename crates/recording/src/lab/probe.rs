@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 
 use harmonics::{HarmonicsError, ProbeSignal, SpindleAngle};
 
-use super::format::{ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, RecordingFormat};
+use super::format::{
+    ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, OnOutlier, RecordingFormat,
+};
 use super::volts::{GapUnit, ProbeSensitivity, volts_to_um};
 use crate::error::{RecordingError, Result};
 use crate::text::line_table::LineTable;
@@ -67,6 +69,8 @@ pub struct Recording {
     pub on_gap: OnBadSamples,
     /// What a non-finite sample does.
     pub on_non_finite: OnBadSamples,
+    /// What a revolution whose residual RMS is far above the others' does.
+    pub on_outlier: OnOutlier,
     /// The line of each sample in the file.
     lines: LineTable,
 }
@@ -118,6 +122,7 @@ impl Recording {
             max_gap_intervals,
             on_gap,
             on_non_finite,
+            on_outlier: OnOutlier::default(),
             lines: LineTable::default(),
         }
     }
@@ -326,6 +331,7 @@ impl Recording {
             max_gap_intervals: format.max_gap_intervals,
             on_gap: format.on_gap,
             on_non_finite: format.on_non_finite,
+            on_outlier: format.on_outlier,
             lines,
         })
     }

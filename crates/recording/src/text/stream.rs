@@ -22,7 +22,8 @@ pub(crate) trait LineSink {
     fn lines_fed(&self) -> usize;
 }
 
-/// Feeds the file's whole lines to `parser`, a chunk of about a megabyte at a time (a
+/// Feeds the file's whole lines to `parser` (a regular file only: anything else is
+/// [`RecordingError::NotAFile`], refused without blocking), a chunk of about a megabyte at a time (a
 /// partial last line waits for the next read). The buffer grows beyond a chunk only while
 /// one line is longer than that, and never beyond [`MAX_LINE_BYTES`] + 1 bytes: a longer
 /// line is [`RecordingError::LineTooLong`]. Every byte read, as read (a byte-order mark and
@@ -36,7 +37,7 @@ pub(crate) fn stream_file(
         path: path.to_owned(),
         source,
     };
-    let mut file = std::fs::File::open(path).map_err(io)?;
+    let (mut file, _) = crate::open::open_regular(path)?;
     let mut buf: Vec<u8> = Vec::with_capacity(CHUNK_BYTES + 64 * 1024);
     let mut eof = false;
     let mut start = true;

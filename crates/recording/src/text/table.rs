@@ -756,6 +756,18 @@ fn header_hint(names: &[String], column: &str, line: usize, format: &TableFormat
     }
     let numeric = names.iter().all(|n| n.trim().parse::<f64>().is_ok());
     let _ = line;
+    // One name that splits at another separator into several: the header is there, read
+    // with the wrong delimiter (`Drehrate [°/s];Ausgang [rad/s]` read at commas), not below
+    // metadata lines.
+    let filled: Vec<&String> = names.iter().filter(|n| !n.trim().is_empty()).collect();
+    if let [one] = filled.as_slice()
+        && let Some(found) = [';', '\t', ',', '|']
+            .into_iter()
+            .filter(|&c| format.whitespace || c != format.delimiter)
+            .find(|&c| one.split(c).filter(|p| !p.trim().is_empty()).count() >= 2)
+    {
+        return Some(Hint::HeaderDelimiter { found });
+    }
     // A metadata line has one field, or one and empty ones (an export padding every line
     // with delimiters: `Prüfling: PIGA 16;;;`).
     let filled = names.iter().filter(|n| !n.trim().is_empty()).count();

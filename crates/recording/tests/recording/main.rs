@@ -3,6 +3,7 @@
 mod bad_samples;
 mod binary;
 mod daqmx;
+mod hostile;
 mod piga_recording;
 mod piga_table;
 mod probe;

@@ -136,9 +136,11 @@ fn assert_hint_is_a_key(err: &RecordingError) {
     };
     if let Some(h) = hint {
         let probe = format!("({}: ())", h.key());
+        // `()` is a value of some keys (`delimiter: ()` reads as whitespace): a key it reads.
         let e = ron::from_str::<PigaTableFormat>(&probe)
-            .unwrap_err()
-            .to_string();
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
         assert!(
             !e.contains("Unexpected field"),
             "hint {h} names `{}`, which the PIGA table's format refuses: {e}",
@@ -187,6 +189,42 @@ fn hints_name_only_keys_of_the_piga_table_format() {
         "{err:?}"
     );
     assert_hint_is_a_key(&err);
+    // The lines skipped but read at commas (the default): the header is one name that
+    // splits at `;`, so the hint names the delimiter (it once blamed metadata lines).
+    let at_commas = PigaTableFormat {
+        delimiter: recording::Delimiter::Char(','),
+        decimal: recording::DecimalMark::Point,
+        ..german()
+    };
+    let err = parse_piga_table_with(&bytes, &path, &at_commas).unwrap_err();
+    assert!(
+        matches!(
+            &err,
+            RecordingError::MissingColumn {
+                line: 6,
+                hint: Some(Hint::HeaderDelimiter { found: ';' }),
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert_hint_is_a_key(&err);
+    // The same in a two-column export with nothing above its header.
+    let two_columns = "Drehrate [°/s];Ausgang [rad/s]\n20,0;0,0174\n";
+    let err = parse_piga_table_with(
+        two_columns.as_bytes(),
+        "t.csv".as_ref(),
+        &PigaTableFormat {
+            skip_lines: 0,
+            ..at_commas
+        },
+    )
+    .unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("the header looks separated by ';'"),
+        "{err}"
+    );
     // A NaN in a table: a recording's hint would be `on_non_finite`, which a table does not
     // have; no hint is given.
     let text = "rate_deg_s,output_rad_s\n10,NaN\n";

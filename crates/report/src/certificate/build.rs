@@ -13,8 +13,8 @@ use pipeline::{
 
 use super::certified::{self, Certified, Method};
 use super::model::{
-    Authorisation, Budget, CalendarDate, CertificateData, Check, Conformity, DataUsed, Field, Files,
-    Laboratory, Run, Running, Section, Table, Text,
+    Authorisation, Budget, CalendarDate, CertificateData, Check, Conformity, DataUsed, Field,
+    Files, Laboratory, Run, Running, Section, Table, Text,
 };
 use crate::format;
 use crate::headline::headlines;
@@ -26,15 +26,18 @@ fn t(text: impl Into<String>) -> Text {
 }
 
 /// Text written by this tool, with its symbols set as a person writes them: `C_r`, `C_a`,
-/// `ν_eff`, `ω_out`, `R_in` with their subscripts, a name between backticks as code. Never
-/// given text from the study file (whose characters are shown as they are).
+/// `ν_eff`, `ω_out`, `R_in`, `d_c1`, `d_s1` (the gap's first-harmonic coefficients, eq. 20–21)
+/// with their subscripts, a name between backticks as code. Never given text from the study
+/// file (whose characters are shown as they are).
 pub(crate) fn rich(text: &str) -> Text {
-    const SUBSCRIPTED: [(&str, &str, &str); 5] = [
+    const SUBSCRIPTED: [(&str, &str, &str); 7] = [
         ("C_r", "C", "r"),
         ("C_a", "C", "a"),
         ("ν_eff", "ν", "eff"),
         ("ω_out", "ω", "out"),
         ("R_in", "R", "in"),
+        ("d_c1", "d", "c1"),
+        ("d_s1", "d", "s1"),
     ];
     let mut runs = Vec::new();
     let mut plain = String::new();
@@ -109,10 +112,7 @@ fn value_u_expanded(value: f64, u: f64, below: f64, above: f64) -> [String; 3] {
     } else {
         format!(" {}", a.scale)
     };
-    let u_text = format!(
-        "{}{suffix}",
-        format::two_digits(u / 10f64.powi(scale_exp))
-    );
+    let u_text = format!("{}{suffix}", format::two_digits(u / 10f64.powi(scale_exp)));
     let expanded = if a.minus.is_empty() {
         format!("{}{suffix}", a.plus)
     } else {
@@ -182,12 +182,13 @@ pub(crate) fn build(
         results_notes: results_notes(&cert, c),
         compensation: (cert.method == Method::Probe)
             .then(|| compensation(c, &results.inputs.angle_zero)),
-        sign_convention: (cert.method == Method::Probe)
-            .then(|| t(format!("Probe sign convention: {}.", probe_sign_words(c.probe_direction)))),
-        check: results
-            .two_orientation
-            .as_ref()
-            .map(|s| check(s, &cert, c)),
+        sign_convention: (cert.method == Method::Probe).then(|| {
+            t(format!(
+                "Probe sign convention: {}.",
+                probe_sign_words(c.probe_direction)
+            ))
+        }),
+        check: results.two_orientation.as_ref().map(|s| check(s, &cert, c)),
         conformity: conformity(info),
         scope: "The results relate only to the item calibrated, as received, under the \
                 conditions stated. This certificate shall not be reproduced except in full \
@@ -301,10 +302,7 @@ fn identification(info: &CertificateResults) -> Vec<Field> {
         ),
         field(
             "Item",
-            format!(
-                "{}, {} {}",
-                item.description, item.manufacturer, item.model
-            ),
+            format!("{}, {} {}", item.description, item.manufacturer, item.model),
         ),
         field("Serial number", item.serial.clone()),
         field("Condition on receipt", item.condition.clone()),
@@ -337,7 +335,11 @@ fn identification(info: &CertificateResults) -> Vec<Field> {
 
 fn certified_section(cert: &Certified) -> super::model::Certified {
     let name = method_name(cert.method);
-    let mountings: Vec<&str> = cert.validity.iter().map(|v| v.mounting_words.as_str()).collect();
+    let mountings: Vec<&str> = cert
+        .validity
+        .iter()
+        .map(|v| v.mounting_words.as_str())
+        .collect();
     let statement = match cert.method {
         Method::Probe => format!(
             "This certificate states the coefficients of the {name} (Liu et al. 2025): the \
@@ -353,7 +355,9 @@ fn certified_section(cert: &Certified) -> super::model::Certified {
         ),
     };
     let refuted = cert.refuted_by_check.then(|| {
-        let other = cert.check.map_or("the other method", |k| method_name(k.method));
+        let other = cert
+            .check
+            .map_or("the other method", |k| method_name(k.method));
         rich(&format!(
             "The laboratory certifies a value that its own check refutes: the {other} \
              disagrees with the certified k2 beyond its uncertainty (|z| > 3, see the check \
@@ -431,7 +435,11 @@ fn results_table(cert: &Certified) -> Table {
     };
     let label = |c: &certified::Coefficient, suffix: &str| {
         if several && c.mounting.is_some() {
-            format!("{}{suffix} ({})", c.name, mounting_label(c.mounting.as_deref()))
+            format!(
+                "{}{suffix} ({})",
+                c.name,
+                mounting_label(c.mounting.as_deref())
+            )
         } else {
             format!("{}{suffix}", c.name)
         }
@@ -528,7 +536,13 @@ fn compensation(c: &CalibrationResults, angle_zero: &pipeline::AngleZero) -> Tab
         }
     };
     table(
-        &["quantity", "value", "standard uncertainty u", "unit", "what it is"],
+        &[
+            "quantity",
+            "value",
+            "standard uncertainty u",
+            "unit",
+            "what it is",
+        ],
         &[false, true, true, false, false],
         &[6, 5, 5, 4, 14],
         vec![
@@ -540,7 +554,9 @@ fn compensation(c: &CalibrationResults, angle_zero: &pipeline::AngleZero) -> Tab
                 runs(vec![
                     rich("from the displacement probe (phase “"),
                     t(&c.compensate_with),
-                    rich("”); u from the fit, the probe gain, the lever heights and the rate scale"),
+                    rich(
+                        "”); u from the fit, the probe gain, the lever heights and the rate scale",
+                    ),
                 ]),
             ],
             vec![
@@ -622,19 +638,20 @@ fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) ->
         })
         .collect();
     let mut rows = Vec::new();
-    let mut row = |name: &str, cells: [String; 3], k: String, dof: String, unit: &str, from: &str| {
-        let [value, u, expanded] = cells;
-        rows.push(vec![
-            rich(name),
-            t(value),
-            t(u),
-            t(expanded),
-            t(k),
-            t(dof),
-            t(unit),
-            t(from),
-        ]);
-    };
+    let mut row =
+        |name: &str, cells: [String; 3], k: String, dof: String, unit: &str, from: &str| {
+            let [value, u, expanded] = cells;
+            rows.push(vec![
+                rich(name),
+                t(value),
+                t(u),
+                t(expanded),
+                t(k),
+                t(dof),
+                t(unit),
+                t(from),
+            ]);
+        };
     let headline_cells = |h: &pipeline::Headline, u: f64, scale: f64| {
         let (b, a) = h.widths(scale);
         value_u_expanded(h.value * scale, u * scale.abs(), b, a)
@@ -647,10 +664,17 @@ fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) ->
         }
     };
     let probe_is_certified = cert.method == Method::Probe;
+    // the method not certified is marked so on each of its rows: a check, not certified
     let (probe_tag, two_tag) = if probe_is_certified {
-        ("k2, probe method (certified)", "k2, two-orientation method (check)")
+        (
+            "k2, probe method (certified)",
+            "k2, two-orientation method (a check, not certified)",
+        )
     } else {
-        ("k2, probe method (check)", "k2, two-orientation method (certified)")
+        (
+            "k2, probe method (a check, not certified)",
+            "k2, two-orientation method (certified)",
+        )
     };
     // k2 by the probe method: the calibration section's (the certified one when the probe
     // method is certified)
@@ -675,7 +699,14 @@ fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) ->
     );
     let (k, dof) = k_dof(&s.headline.k2, &s.k2);
     let from = interval_from(s.headline.k2.method, s.headline.k2.borderline);
-    row(two_tag, headline_cells(&s.headline.k2, s.k2.u, 1.0), k.clone(), dof.clone(), "rad/(s·g²)", from);
+    row(
+        two_tag,
+        headline_cells(&s.headline.k2, s.k2.u, 1.0),
+        k.clone(),
+        dof.clone(),
+        "rad/(s·g²)",
+        from,
+    );
     row(
         &format!("{two_tag}, relative to k1"),
         headline_cells(&s.headline.k2, s.k2.u, micro),
@@ -748,22 +779,28 @@ fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) ->
                  see (the arm stretching under centrifugal load, a mount that gives) or the \
                  lever heights are wrong. The probe method's k2 is \
                  compensated with the probe's C_r only and keeps k1·(C − C_r)·g/R²: it lies \
-                 {above} the two-orientation k2 by {native} rad/(s·g²) ({relative} µg/g²).",
-                z = signed(p.z)
+                 {above} the two-orientation k2 by {native} rad/(s·g²) ({relative} µg/g²){which}.",
+                z = signed(p.z),
+                which = if probe_is_certified {
+                    "; it is certified only because the laboratory chose the probe method \
+                     explicitly"
+                } else {
+                    "; the two-orientation k2 is the one certified"
+                }
             )
         });
     }
     let heading = if probe_is_certified {
-        "Check by the two-orientation method"
+        "Check by the two-orientation method (not certified)"
     } else {
-        "Check by the probe method"
+        "Check by the probe method (not certified)"
     };
     Check {
         heading: heading.to_owned(),
         intro: rich(&if probe_is_certified {
             format!(
                 "The PIGA was also measured with its input axis turned round — {} — and both \
-                 data sets fitted jointly (eq. 23; Sun et al. 2022). Turning the input axis \
+                 data sets fitted jointly (eq. 23; Sun et al. 2022), as a check, not certified. Turning the input axis \
                  round reverses the sign of the radius growth's term in the output but not that \
                  of k2·a²: the joint fit gives k2 and the total dynamic growth C of the working \
                  radius from the PIGA's own output, without the displacement probe. Sign \
@@ -775,9 +812,10 @@ fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) ->
             format!(
                 "The certified coefficients come from both mountings — {} — fitted jointly \
                  (eq. 23; Sun et al. 2022), which gives k2 and the total dynamic growth C of the \
-                 working radius from the PIGA's own output. The probe method checks them: the \
-                 IA-in data alone, fitted by eq. 18 and compensated for the spindle's radius \
-                 growth C_r measured by a displacement probe (Liu et al. 2025). The two agree \
+                 working radius from the PIGA's own output. The probe method checks them (its \
+                 values below are a check, not certified): the IA-in data alone, fitted by \
+                 eq. 18 and compensated for the spindle's radius growth C_r measured by a \
+                 displacement probe (Liu et al. 2025). The two agree \
                  when the probe sees all the growth, C − C_r = 0. Sign convention: the working \
                  radius is R + C·ω², C and C_r positive when the radius grows with the rate; \
                  C − C_r > 0 when the PIGA sees more growth than the probe.",
@@ -881,7 +919,12 @@ fn conformity(info: &CertificateResults) -> Option<Conformity> {
 
 fn traceability(info: &CertificateResults) -> Table {
     table(
-        &["input quantity", "standard uncertainty u", "unit", "traceability"],
+        &[
+            "input quantity",
+            "standard uncertainty u",
+            "unit",
+            "traceability",
+        ],
         &[false, true, false, false],
         &[5, 3, 2, 9],
         info.traceability
@@ -939,7 +982,10 @@ fn budget(lines: &[pipeline::BudgetLine], k2: &pipeline::Coefficient, heading: &
         .iter()
         .map(|l| {
             let quantity = match &l.note {
-                Some(n) => runs(vec![rich(&l.quantity), Text::Runs(vec![Run::Note(n.clone())])]),
+                Some(n) => runs(vec![
+                    rich(&l.quantity),
+                    Text::Runs(vec![Run::Note(n.clone())]),
+                ]),
                 None => rich(&l.quantity),
             };
             vec![
@@ -1126,7 +1172,11 @@ fn data_used(results: &StudyResults, c: &CalibrationResults) -> DataUsed {
     let mut paragraphs = Vec::new();
     if let Some(p) = results.phase(&c.compensate_with) {
         let revolutions: usize = p.points.iter().filter_map(|q| q.revolutions).sum();
-        let rates: Vec<String> = p.points.iter().map(|q| format::rate(q.rate_deg_s)).collect();
+        let rates: Vec<String> = p
+            .points
+            .iter()
+            .map(|q| format::rate(q.rate_deg_s))
+            .collect();
         paragraphs.push(runs(vec![
             t("Displacement probe (phase “"),
             t(&p.name),
@@ -1274,6 +1324,9 @@ fn files(provenance: Option<&Provenance>, software: &Software) -> Files {
         ]);
     };
     record("study file", &provenance.config);
+    if let Some(p) = &provenance.profile {
+        record("lab profile", p);
+    }
     for f in &provenance.inputs {
         record(role_words(f.role.as_deref()), f);
     }
@@ -1303,7 +1356,11 @@ fn role_words(role: Option<&str>) -> &'static str {
     }
 }
 
-fn method(results: &StudyResults, info: &CertificateResults, cert: &Certified) -> super::model::Method {
+fn method(
+    results: &StudyResults,
+    info: &CertificateResults,
+    cert: &Certified,
+) -> super::model::Method {
     let mut paragraphs = vec![rich(&format!(
         "The PIGA is mounted on the centrifuge arm at the working radius R = {} m with its \
          input axis towards the spindle axis, and calibrated at the rates stated under “What \

@@ -19,8 +19,8 @@ mod certified;
 mod model;
 
 pub use model::{
-    Authorisation, Budget, CalendarDate, CertificateData, Certified, Check, Conformity, DataUsed, Field, Files,
-    Laboratory, Method, Run, Running, Section, Table, Text,
+    Authorisation, Budget, CalendarDate, CertificateData, Certified, Check, Conformity, DataUsed,
+    Field, Files, Laboratory, Method, Run, Running, Section, Table, Text,
 };
 
 use pipeline::StudyResults;
@@ -57,11 +57,10 @@ pub fn certificate_data(
 /// [`ReportError::Serialize`] or [`ReportError::NonFiniteOutput`] (a number of the model is
 /// never a float; this does not happen).
 pub fn certificate_json(data: &CertificateData) -> Result<String> {
-    let mut value =
-        serde_json::to_value(data).map_err(|e| ReportError::Serialize {
-            what: "the certificate's data",
-            message: e.to_string(),
-        })?;
+    let mut value = serde_json::to_value(data).map_err(|e| ReportError::Serialize {
+        what: "the certificate's data",
+        message: e.to_string(),
+    })?;
     printable(&mut value);
     serde_json::to_string_pretty(&value).map_err(|e| ReportError::Serialize {
         what: "the certificate's data",

@@ -25,7 +25,14 @@ fn software() -> Software {
 }
 
 /// The document and its pages' text.
-fn typeset(name: &str) -> (pipeline::StudyResults, Provenance, typeset::Document, Vec<String>) {
+fn typeset(
+    name: &str,
+) -> (
+    pipeline::StudyResults,
+    Provenance,
+    typeset::Document,
+    Vec<String>,
+) {
     let (results, provenance) = study(name);
     let doc = report::certificate_document(&results, Some(&provenance), &software()).unwrap();
     let pages = doc.page_texts();
@@ -88,7 +95,10 @@ fn everything_lies_inside_the_printable_area_of_a4() {
     for name in ["campaign.ron", "two_orientation.ron"] {
         let (_, _, doc, _) = typeset(name);
         let (w, h) = doc.page_size_pt(0).unwrap();
-        assert!((w - 595.28).abs() < 0.01 && (h - 841.89).abs() < 0.01, "A4: {w} × {h}");
+        assert!(
+            (w - 595.28).abs() < 0.01 && (h - 841.89).abs() < 0.01,
+            "A4: {w} × {h}"
+        );
         let strays = doc.outside(typeset::Area::inset_mm(17.0, 8.0, 17.0, 8.0));
         assert!(strays.is_empty(), "{name}: {strays:#?}");
     }
@@ -134,8 +144,16 @@ fn the_certificate_holds_what_iso_17025_asks() {
     let n = doc.page_count();
     assert!((2..=8).contains(&n), "{n} pages");
     for (p, page) in pages.iter().enumerate() {
-        assert!(page.contains(&format!("Certificate {}", info.id)), "page {}", p + 1);
-        assert!(page.contains(&format!("Page {} of {n}", p + 1)), "page {}", p + 1);
+        assert!(
+            page.contains(&format!("Certificate {}", info.id)),
+            "page {}",
+            p + 1
+        );
+        assert!(
+            page.contains(&format!("Page {} of {n}", p + 1)),
+            "page {}",
+            p + 1
+        );
     }
     assert!(pages[n - 1].contains(&format!("End of certificate {}", info.id)));
     // every input file with its digest, the software's version and commit
@@ -155,7 +173,11 @@ fn what_a_customer_asks_is_on_page_1_or_2() {
     let laid_out = doc.laid_out_texts();
     let front = flat(&laid_out[..2]);
     let c = results.calibration.as_ref().unwrap();
-    let low = c.residuals.iter().map(|r| r.rate_deg_s).fold(f64::INFINITY, f64::min);
+    let low = c
+        .residuals
+        .iter()
+        .map(|r| r.rate_deg_s)
+        .fold(f64::INFINITY, f64::min);
     let high = c.residuals.iter().map(|r| r.rate_deg_s).fold(0.0, f64::max);
     // the rates and specific forces of the points fitted, the mounting in words, the method
     // with its references, the certified method and why
@@ -174,7 +196,14 @@ fn what_a_customer_asks_is_on_page_1_or_2() {
         assert!(front.contains(&words), "{words} not in\n{front}");
     }
     let all = flat(&laid_out);
-    for reference in ["Liu Y.", "Sun, Ren, Cao, Huo", "IEEE Std 836", "JCGM 100", "JCGM 101", "ILAC-G8"] {
+    for reference in [
+        "Liu Y.",
+        "Sun, Ren, Cao, Huo",
+        "IEEE Std 836",
+        "JCGM 100",
+        "JCGM 101",
+        "ILAC-G8",
+    ] {
         assert!(all.contains(reference), "{reference}");
     }
 }
@@ -189,10 +218,28 @@ fn no_configuration_or_code_name_is_printed() {
             text = text.replace(&f.path, "");
         }
         for code in [
-            "C_r", "ia_in", "ia_out", "Some(", "None", "k2_probe", "compensate_with",
-            "probe_direction", "study field", "`", "certificate.", "calibration.", "uncertainty.",
-            "lever.", "two_orientation", "_u_", "_m_s2", "_deg_s", "against_o1_x1", "index_pulse",
-            "O1X1", "paper's set-up",
+            "C_r",
+            "ia_in",
+            "ia_out",
+            "Some(",
+            "None",
+            "k2_probe",
+            "compensate_with",
+            "probe_direction",
+            "study field",
+            "`",
+            "certificate.",
+            "calibration.",
+            "uncertainty.",
+            "lever.",
+            "two_orientation",
+            "_u_",
+            "_m_s2",
+            "_deg_s",
+            "against_o1_x1",
+            "index_pulse",
+            "O1X1",
+            "paper's set-up",
         ] {
             // a name ending in `.` is a field path only when a field's name follows it
             let found = text
@@ -208,6 +255,60 @@ fn no_configuration_or_code_name_is_printed() {
                 });
             assert!(found.is_none(), "{name}: `{code}` in {found:?}");
         }
+        // nor any other name joined by an underscore (a field, a variable, a symbol of the
+        // paper written as code, `d_c1`): a file's name is the only word that may hold one
+        // (and a long one is laid out in pieces: a piece of a path is a file's name too)
+        let named: Vec<&str> = text
+            .split_whitespace()
+            .filter(|w| {
+                w.contains('_')
+                    && !provenance
+                        .inputs
+                        .iter()
+                        .chain([&provenance.config])
+                        .any(|f| f.path.contains(w))
+            })
+            .collect();
+        assert!(named.is_empty(), "{name}: {named:?}");
+    }
+}
+
+/// Every row of the uncertainty budget and of the traceability table states its unit, and
+/// so does every row of the results, the check, the conformity and the GUM-against-Monte-Carlo
+/// tables (a "unit" column with no dash in it).
+#[test]
+fn every_table_with_a_unit_column_has_a_unit_in_every_row() {
+    for name in ["campaign.ron", "two_orientation.ron"] {
+        let (results, provenance) = study(name);
+        let data = report::certificate_data(&results, Some(&provenance), &software()).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&report::certificate_json(&data).unwrap()).unwrap();
+        let mut tables = 0;
+        let mut stack = vec![&json];
+        while let Some(v) = stack.pop() {
+            match v {
+                serde_json::Value::Object(o) => {
+                    if let (Some(columns), Some(rows)) = (o.get("columns"), o.get("rows")) {
+                        if let Some(unit) =
+                            columns.as_array().unwrap().iter().position(|c| c == "unit")
+                        {
+                            tables += 1;
+                            for row in rows.as_array().unwrap() {
+                                let cell = &row[unit];
+                                assert!(
+                                    !cell.is_null() && cell != "—" && cell != "",
+                                    "{name}: a row without its unit: {row}"
+                                );
+                            }
+                        }
+                    }
+                    stack.extend(o.values());
+                }
+                serde_json::Value::Array(a) => stack.extend(a),
+                _ => {}
+            }
+        }
+        assert!(tables >= 5, "{name}: {tables} tables with a unit column");
     }
 }
 
@@ -258,10 +359,13 @@ fn the_two_orientation_certificate_states_its_check() {
     // the probe method is its check, and the page says they disagree
     for words in [
         "This certificate states the coefficients of the two-orientation method",
-        "Check by the probe method",
+        "Check by the probe method (not certified)",
+        "its values below are a check, not certified",
         "k2, two-orientation method (certified)",
-        "k2, probe method (check)",
+        "k2, probe method (a check, not certified)",
+        "k2, probe method (a check, not certified), relative to k1",
         "The two methods disagree",
+        "the two-orientation k2 is the one certified",
         "it is not certified",
         "arm stretching",
         "input axis pointing towards the spindle axis",
@@ -270,6 +374,25 @@ fn the_two_orientation_certificate_states_its_check() {
         assert!(text.contains(words), "{words} not in the certificate");
     }
     assert!(!text.contains("certifies a value that its own check refutes"));
+    assert!(
+        !text.contains("probe method (certified)"),
+        "the probe method is not certified"
+    );
+    // what is certified comes first: the method, the mountings in words and each certified
+    // coefficient with its interval (the results table), then the probe method as the check
+    let at = |words: &str| text.find(words).unwrap_or_else(|| panic!("{words}"));
+    let check = at("Check by the probe method (not certified)");
+    for first in [
+        "What is certified",
+        "This certificate states the coefficients of the two-orientation method",
+        "IA out: input axis pointing away from the spindle axis",
+        "k0 (IA in)",
+        "k0 (IA out)",
+        "k2/k1",
+        "k3/k1",
+    ] {
+        assert!(at(first) < check, "{first} is not stated before the check");
+    }
     // a file read by two sections (the IA-in table) is listed once, with its digest
     let ia_in = provenance
         .inputs
@@ -281,11 +404,18 @@ fn the_two_orientation_certificate_states_its_check() {
     // method's that the check refutes
     let certified = &results.certificate.as_ref().unwrap().certified;
     assert_eq!(certified.method, pipeline::CertifiedMethod::TwoOrientation);
-    let k2 = certified.coefficients.iter().find(|c| c.name == "k2").unwrap();
+    let k2 = certified
+        .coefficients
+        .iter()
+        .find(|c| c.name == "k2")
+        .unwrap();
     let micro = k2.relative.as_ref().unwrap();
     let probe = results.calibration.as_ref().unwrap();
     let probe_micro = probe.coefficients.k2.value * 1e6 / probe.coefficients.k1.value;
-    assert!((micro.value - probe_micro).abs() > 10.0 * micro.expanded, "the methods differ");
+    assert!(
+        (micro.value - probe_micro).abs() > 10.0 * micro.expanded,
+        "the methods differ"
+    );
     let data = report::certificate_data(&results, Some(&provenance), &software()).unwrap();
     let json: serde_json::Value =
         serde_json::from_str(&report::certificate_json(&data).unwrap()).unwrap();
@@ -296,7 +426,47 @@ fn the_two_orientation_certificate_states_its_check() {
         .find(|r| r[0] == "k2/k1")
         .expect("a k2/k1 row");
     let stated: f64 = row[1].as_str().unwrap().parse().unwrap();
-    assert!((stated - micro.value).abs() <= micro.expanded / 10.0, "{stated} against {}", micro.value);
+    assert!(
+        (stated - micro.value).abs() <= micro.expanded / 10.0,
+        "{stated} against {}",
+        micro.value
+    );
+}
+
+/// The two-orientation fixture certifying the probe method, which its own check refutes,
+/// because the laboratory says so with its reason: the certificate says so, marked, and calls
+/// the two-orientation method's rows a check, not certified.
+#[test]
+fn a_refuted_probe_method_certified_by_the_laboratorys_choice_says_so() {
+    let path = Path::new("../../fixtures/studies/two_orientation.ron");
+    let text = std::fs::read_to_string(path).unwrap();
+    let edited = text.replacen(
+        "    certificate: (\n",
+        "    certificate: (\n        certify: probe,\n        certify_despite_check: \"the \
+         customer's contract CC-9 asks for the probe method\",\n",
+        1,
+    );
+    assert_ne!(edited, text, "the fixture's certificate section");
+    let study = pipeline::parse_study(&edited, path).unwrap();
+    let results = pipeline::run(&study).unwrap();
+    let provenance = Provenance::of_study(&study, None).unwrap();
+    let doc = report::certificate_document(&results, Some(&provenance), &software()).unwrap();
+    let text = flat(&doc.laid_out_texts());
+    for words in [
+        "This certificate states the coefficients of the probe method",
+        "The laboratory certifies a value that its own check refutes",
+        "the customer's contract CC-9 asks for the probe method",
+        "Check by the two-orientation method (not certified)",
+        "as a check, not certified",
+        "k2, probe method (certified)",
+        "k2, two-orientation method (a check, not certified)",
+        "The two methods disagree",
+        "it is certified only because the laboratory chose the probe method explicitly",
+    ] {
+        assert!(text.contains(words), "{words} not in the certificate");
+    }
+    // the configuration's names are not printed
+    assert!(!text.contains("certify_despite_check"));
 }
 
 #[test]
@@ -306,8 +476,19 @@ fn the_pdf_is_pdf_a_2b_with_nothing_active() {
     let bytes = String::from_utf8_lossy(&pdf);
     assert!(bytes.contains("<pdfaid:part>2</pdfaid:part>"));
     assert!(bytes.contains("<pdfaid:conformance>B</pdfaid:conformance>"));
-    assert!(bytes.contains("Calibration certificate CC-2026-0042"), "the title");
-    for active in ["/JavaScript", "/JS ", "/Launch", "/GoToR", "/URI", "/EmbeddedFile", "/SubmitForm"] {
+    assert!(
+        bytes.contains("Calibration certificate CC-2026-0042"),
+        "the title"
+    );
+    for active in [
+        "/JavaScript",
+        "/JS ",
+        "/Launch",
+        "/GoToR",
+        "/URI",
+        "/EmbeddedFile",
+        "/SubmitForm",
+    ] {
         assert!(!bytes.contains(active), "{active}");
     }
     // the same bytes every time
@@ -374,7 +555,10 @@ fn study_writes_the_certificate_and_it_can_be_written_again_from_results_json() 
     let saved = report::read_results(&out).unwrap();
     // (the numbers are read back as serde_json parses them, not always to the last bit: the
     // certificate written from them is compared below, byte for byte)
-    assert_eq!(saved.results.certificate.map(|c| c.id), Some("CC-2026-0042".to_owned()));
+    assert_eq!(
+        saved.results.certificate.map(|c| c.id),
+        Some("CC-2026-0042".to_owned())
+    );
     assert_eq!(saved.provenance.as_ref(), Some(&provenance));
     let again = report::write_certificate(&out, Some(&dir.0.join("again.pdf"))).unwrap();
     assert_eq!(

@@ -66,7 +66,10 @@ fn fields(c: &mut CertificateResults) -> Vec<(String, &mut String)> {
     }
     // the reason for the certified method: the study's sentence, holding the laboratory's
     // own words when it certifies despite its check (`certify_despite_check`)
-    out.push(("certify_despite_check (in the reason)".into(), &mut c.certified.reason));
+    out.push((
+        "certify_despite_check (in the reason)".into(),
+        &mut c.certified.reason,
+    ));
     if let Some(d) = c.deviations.as_mut() {
         out.push(("deviations".into(), d));
     }
@@ -74,7 +77,10 @@ fn fields(c: &mut CertificateResults) -> Vec<(String, &mut String)> {
         out.push((format!("equipment[{i}].role"), &mut e.role));
         out.push((format!("equipment[{i}].description"), &mut e.description));
         out.push((format!("equipment[{i}].identity"), &mut e.identity));
-        out.push((format!("equipment[{i}].calibration_due"), &mut e.calibration_due));
+        out.push((
+            format!("equipment[{i}].calibration_due"),
+            &mut e.calibration_due,
+        ));
     }
     for (i, x) in c.conditions.iter_mut().enumerate() {
         out.push((format!("conditions[{i}].quantity"), &mut x.quantity));
@@ -174,7 +180,9 @@ fn pdf_names(pdf: &[u8]) -> Vec<String> {
                 }
             }
             b'<' => i += 1,
-            b's' if pdf[i..].starts_with(b"stream") && (i == 0 || !pdf[i - 1].is_ascii_alphanumeric()) => {
+            b's' if pdf[i..].starts_with(b"stream")
+                && (i == 0 || !pdf[i - 1].is_ascii_alphanumeric()) =>
+            {
                 let end = pdf[i..]
                     .windows(9)
                     .position(|w| w == b"endstream")
@@ -203,14 +211,37 @@ fn pdf_names(pdf: &[u8]) -> Vec<String> {
 
 /// What a PDF must not hold: script, actions that run or load something, attachments.
 const ACTIVE: [&str; 15] = [
-    "JavaScript", "JS", "Launch", "GoToR", "GoToE", "URI", "SubmitForm", "ImportData",
-    "EmbeddedFile", "EmbeddedFiles", "RichMedia", "OpenAction", "AA", "Movie", "Sound",
+    "JavaScript",
+    "JS",
+    "Launch",
+    "GoToR",
+    "GoToE",
+    "URI",
+    "SubmitForm",
+    "ImportData",
+    "EmbeddedFile",
+    "EmbeddedFiles",
+    "RichMedia",
+    "OpenAction",
+    "AA",
+    "Movie",
+    "Sound",
 ];
 
-fn assert_shown_and_inert(payload: &Payload, results: &pipeline::StudyResults, provenance: &Provenance, fields: &[String]) {
+fn assert_shown_and_inert(
+    payload: &Payload,
+    results: &pipeline::StudyResults,
+    provenance: &Provenance,
+    fields: &[String],
+) {
     let doc = report::certificate_document(results, Some(provenance), &software())
         .unwrap_or_else(|e| panic!("{}: {e}", payload.name));
-    assert!(doc.denied().is_empty(), "{}: asked for {:?}", payload.name, doc.denied());
+    assert!(
+        doc.denied().is_empty(),
+        "{}: asked for {:?}",
+        payload.name,
+        doc.denied()
+    );
     // the text between the running head and foot (the page's margins, 24 mm and 22 mm), so
     // that a cell broken across pages reads as one; the head and foot state a field cut to
     // 90 characters, the page states it in full
@@ -232,7 +263,11 @@ fn assert_shown_and_inert(payload: &Payload, results: &pipeline::StudyResults, p
             // other cells between its parts, so the text is counted, not matched whole (a
             // repeat cut by a page break is not counted: one a page at most)
             let unit = no_whitespace(unit);
-            assert!(text.contains(&format!("F{n:02}:{unit}")), "{}: field {field}", payload.name);
+            assert!(
+                text.contains(&format!("F{n:02}:{unit}")),
+                "{}: field {field}",
+                payload.name
+            );
             assert!(
                 text.matches(&unit).count() + doc.page_count() >= *times,
                 "{}: field {field} is not shown whole ({} of {times} repeats)",
@@ -253,7 +288,10 @@ fn assert_shown_and_inert(payload: &Payload, results: &pipeline::StudyResults, p
         .pdf()
         .unwrap_or_else(|e| panic!("{}: no PDF/A: {e}", payload.name));
     let names = pdf_names(&pdf);
-    assert!(names.iter().any(|n| n == "Catalog"), "the tokenizer sees the PDF's objects");
+    assert!(
+        names.iter().any(|n| n == "Catalog"),
+        "the tokenizer sees the PDF's objects"
+    );
     for active in ACTIVE {
         assert!(
             !names.iter().any(|n| n == active),
@@ -275,6 +313,22 @@ fn every_payload_in_every_field_is_shown_as_text_and_runs_nothing() {
             names.push(name);
         }
         assert!(names.len() > 30, "{} fields", names.len());
+        // beyond the certificate section: the name of the probe phase the calibration is
+        // compensated with (a study-file string the certificate states twice) and an input
+        // file's path as the study file names it
+        let phase = format!("F{:02}:{}", names.len(), payload.text);
+        let c = hostile.calibration.as_mut().unwrap();
+        let old = std::mem::replace(&mut c.compensate_with, phase.clone());
+        hostile
+            .phases
+            .iter_mut()
+            .find(|p| p.name == old)
+            .expect("the compensating phase")
+            .name = phase;
+        names.push("phases[].name (the compensating phase)".to_owned());
+        let mut provenance = provenance.clone();
+        provenance.inputs[0].path = format!("F{:02}:{}", names.len(), payload.text);
+        names.push("an input file's path".to_owned());
         assert_shown_and_inert(payload, &hostile, &provenance, &names);
     }
 }

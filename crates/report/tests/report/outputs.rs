@@ -50,6 +50,8 @@ fn a_failed_run_leaves_the_previous_outputs_and_a_good_one_replaces_them() {
     assert_eq!(
         before.keys().collect::<Vec<_>>(),
         [
+            // the record of what was written (issue 32), then the files
+            edge_io::OUTPUT_RECORD,
             "probe_signals_pre_balance.svg",
             "radius_error.svg",
             "report.md",
@@ -81,7 +83,12 @@ fn a_failed_run_leaves_the_previous_outputs_and_a_good_one_replaces_them() {
     assert!(files.probe_signals_svg.is_empty());
     assert_eq!(
         names(&out),
-        ["radius_error.svg", "report.md", "results.json"]
+        [
+            edge_io::OUTPUT_RECORD,
+            "radius_error.svg",
+            "report.md",
+            "results.json"
+        ]
     );
     let json: Value =
         serde_json::from_str(&std::fs::read_to_string(files.results_json).unwrap()).unwrap();

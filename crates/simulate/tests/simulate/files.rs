@@ -294,7 +294,9 @@ fn a_failed_write_leaves_the_previous_simulation_and_a_good_one_replaces_it() {
     let first = simulate(&post_balance()).unwrap();
     write_simulation(&dir, &first).unwrap();
     let before = snapshot(&dir);
-    assert_eq!(before.len(), first.recordings.len() + 2);
+    // the recordings, piga.csv, truth.json and the record of what was written (issue 32)
+    assert_eq!(before.len(), first.recordings.len() + 3);
+    assert!(before.contains_key(edge_io::OUTPUT_RECORD));
 
     // a scenario without the first rate, failing at its last file
     let fewer = modified(&post_balance(), |s| {
@@ -314,7 +316,7 @@ fn a_failed_write_leaves_the_previous_simulation_and_a_good_one_replaces_it() {
 
     let files = write_simulation(&dir, &second).unwrap();
     let after = snapshot(&dir);
-    assert_eq!(after.len(), second.recordings.len() + 2);
+    assert_eq!(after.len(), second.recordings.len() + 3);
     assert!(
         !after.contains_key("probe_010.0000deg_s.csv"),
         "the dropped rate's recording is removed"

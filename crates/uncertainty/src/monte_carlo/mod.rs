@@ -24,7 +24,7 @@ use draw::{draws, run_batch};
 use options::check_options;
 use order::coverage_interval;
 
-pub use options::{MAX_TRIALS, McOptions, Trials};
+pub use options::{MAX_TRIALS, MC_BYTES_PER_TRIAL_AND_OUTPUT, McOptions, Trials, check_trials};
 pub use result::{McOutput, McResult, Stability};
 
 /// The Monte Carlo method of JCGM 101:2008 applied to `model` at `inputs`.
@@ -45,7 +45,8 @@ pub use result::{McOutput, McResult, Stability};
 /// coverage interval (§7.7).
 ///
 /// Memory: all model values are kept for the coverage intervals, 8 bytes per output and
-/// trial (80 MB per output at the default cap of 10⁷ trials).
+/// trial (80 MB per output at the cap of 10⁷ trials, [`MAX_TRIALS`]: more trials, fixed or as
+/// the adaptive cap, are refused before any is drawn, [`check_trials`]).
 ///
 /// Errors: invalid options; a correlated input that is not Normal or StudentT (or a group
 /// mixing them); more failed trials than `max_failed_fraction` of all trials (or a batch with
@@ -59,8 +60,8 @@ pub fn monte_carlo<M: MeasurementModel + ?Sized>(
 ) -> Result<McResult> {
     let p = options.coverage_probability;
     let batch_size = ((100.0 / (1.0 - p)).ceil() as u64).max(10_000);
-    check_options(options, batch_size)?;
     let names = checked_output_names(model, inputs.len())?;
+    check_options(options, batch_size, names.len())?;
     let draws = draws(inputs)?;
     let heavy_tailed = has_heavy_tails(inputs);
     let (n, m) = (inputs.len(), names.len());

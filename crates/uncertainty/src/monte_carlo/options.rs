@@ -20,11 +20,6 @@ pub enum Trials {
     Fixed(u64),
 }
 
-/// The most trials the method runs, adaptive or fixed: every model value is kept for the
-/// coverage intervals (8 bytes per output and trial, 80 MB per output here), so a count
-/// beyond it is refused before anything is allocated.
-pub const MAX_TRIALS: u64 = 10_000_000;
-
 /// Options of [`monte_carlo`](fn@crate::monte_carlo).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct McOptions {
@@ -57,12 +52,45 @@ impl Default for McOptions {
     }
 }
 
+/// The most trials a Monte Carlo run draws, fixed or adaptive (`max_trials`): 10⁷, the
+/// adaptive cap's default. Every model value is kept for the coverage intervals
+/// ([`MC_BYTES_PER_TRIAL_AND_OUTPUT`]), so trials cost memory: 80 MB per output at the cap
+/// (issue 32: `trials: fixed(1000000000)` aborted the study on an 8 GB allocation).
+pub const MAX_TRIALS: u64 = 10_000_000;
+
+/// Bytes a Monte Carlo run keeps per trial and output quantity (each model value, `f64`).
+pub const MC_BYTES_PER_TRIAL_AND_OUTPUT: u64 = 8;
+
+/// CPU time per trial used in the estimate a refusal states, s: the calibration model's
+/// measured 10⁷ trials/s on one thread (docs/PERFORMANCE.md); other models are slower.
+const SECONDS_PER_TRIAL: f64 = 1e-7;
+
+/// Refuses a number of trials above [`MAX_TRIALS`] for a model of `outputs` output
+/// quantities, before any is drawn, with the memory and time they would take: what the
+/// study's check, the Python package and [`monte_carlo`](fn@crate::monte_carlo) call.
+///
+/// # Errors
+/// [`UncertaintyError::TooManyTrials`].
+pub fn check_trials(trials: u64, outputs: usize) -> Result<()> {
+    if trials > MAX_TRIALS {
+        return Err(UncertaintyError::TooManyTrials {
+            trials,
+            max: MAX_TRIALS,
+            bytes: trials
+                .saturating_mul(outputs.max(1) as u64)
+                .saturating_mul(MC_BYTES_PER_TRIAL_AND_OUTPUT),
+            seconds: trials as f64 * SECONDS_PER_TRIAL,
+        });
+    }
+    Ok(())
+}
+
 /// The largest coverage probability the Monte Carlo method takes: its batches hold
 /// `100/(1 − p)` trials, 10⁶ here.
 const MAX_COVERAGE_PROBABILITY: f64 = 0.9999;
 
 /// Refuses options the method cannot honour, naming the option and what it must be.
-pub(super) fn check_options(options: &McOptions, batch_size: u64) -> Result<()> {
+pub(super) fn check_options(options: &McOptions, batch_size: u64, outputs: usize) -> Result<()> {
     let invalid = |name, value, requirement| {
         Err(UncertaintyError::InvalidOption {
             name,
@@ -98,21 +126,17 @@ pub(super) fn check_options(options: &McOptions, batch_size: u64) -> Result<()> 
         );
     }
     match options.trials {
+        Trials::Adaptive { max_trials } | Trials::Fixed(max_trials) if max_trials > MAX_TRIALS => {
+            check_trials(max_trials, outputs)
+        }
         Trials::Adaptive { max_trials } if max_trials < 2 * batch_size => invalid(
             "max_trials",
             max_trials as f64,
             // two batches of max(100/(1 - p), 10^4) trials
             Requirement::AtLeast((2 * batch_size) as f64),
         ),
-        Trials::Adaptive { max_trials } if max_trials > MAX_TRIALS => invalid(
-            "max_trials",
-            max_trials as f64,
-            Requirement::InRange {
-                min: (2 * batch_size) as f64,
-                max: MAX_TRIALS as f64,
-            },
-        ),
-        Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 || n > MAX_TRIALS => invalid(
+        // (beyond MAX_TRIALS, refused above with the memory and time it would take)
+        Trials::Fixed(n) if n < (100.0 / (1.0 - p)).ceil() as u64 => invalid(
             "trials",
             n as f64,
             Requirement::InRange {

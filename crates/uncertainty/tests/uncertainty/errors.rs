@@ -323,30 +323,8 @@ fn invalid_options() {
             },
             "trials",
         ),
-        // beyond the cap: refused before the 8 GB of a billion trials' values is asked for
-        (
-            McOptions {
-                trials: Trials::Fixed(1_000_000_000),
-                ..McOptions::default()
-            },
-            "trials",
-        ),
-        (
-            McOptions {
-                trials: Trials::Fixed(uncertainty::MAX_TRIALS + 1),
-                ..McOptions::default()
-            },
-            "trials",
-        ),
-        (
-            McOptions {
-                trials: Trials::Adaptive {
-                    max_trials: u64::MAX,
-                },
-                ..McOptions::default()
-            },
-            "max_trials",
-        ),
+        // beyond the cap: TooManyTrials, with its memory and time
+        // (too_many_trials_are_refused_before_any_is_drawn)
     ] {
         assert!(
             matches!(monte_carlo(&model, &inputs, &options), Err(UncertaintyError::InvalidOption { name: n, .. }) if n == name),
@@ -369,4 +347,55 @@ fn invalid_options() {
         gum(&none, &inputs, &GumOptions::default()).unwrap_err(),
         UncertaintyError::NoOutputs
     );
+}
+
+#[test]
+fn too_many_trials_are_refused_before_any_is_drawn() {
+    // Issue 32: 10⁹ fixed trials aborted the process on an 8 GB allocation. The model counts
+    // its evaluations: none may run.
+    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let inputs = Inputs::new(vec![InputQuantity::normal("a", 1.0, 0.1)]).unwrap();
+    let model = model_fn(["y", "z"], |x, y| {
+        calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        y[0] = x[0];
+        y[1] = 2.0 * x[0];
+        Ok(())
+    });
+    for trials in [
+        Trials::Fixed(1_000_000_000),
+        Trials::Fixed(uncertainty::MAX_TRIALS + 1),
+        Trials::Adaptive {
+            max_trials: u64::MAX,
+        },
+    ] {
+        let options = McOptions {
+            trials,
+            ..McOptions::default()
+        };
+        let e = monte_carlo(&model, &inputs, &options).unwrap_err();
+        match &e {
+            UncertaintyError::TooManyTrials { max, bytes, .. } => {
+                assert_eq!(*max, uncertainty::MAX_TRIALS);
+                assert!(*bytes > 2 * 8 * uncertainty::MAX_TRIALS, "{bytes}");
+            }
+            other => panic!("{other:?}"),
+        }
+        let text = e.to_string();
+        assert!(
+            text.contains("at most 10000000 Monte Carlo trials"),
+            "{text}"
+        );
+        // Short numbers: no 20-digit expansion of the bytes or the trials.
+        assert!(text.len() < 300, "{text}");
+    }
+    assert_eq!(calls.load(std::sync::atomic::Ordering::Relaxed), 0);
+    // The check the study and the Python package call, with the same words.
+    let e = uncertainty::check_trials(1_000_000_000, 6).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "trials = 1000000000: at most 10000000 Monte Carlo trials are drawn; 1000000000 would \
+         keep 48000000000 bytes (44.7 GiB) of model values (8 bytes per trial and output) and \
+         take about 100 s of CPU"
+    );
+    assert!(uncertainty::check_trials(uncertainty::MAX_TRIALS, 6).is_ok());
 }

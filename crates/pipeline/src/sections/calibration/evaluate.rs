@@ -10,7 +10,7 @@
 //! multivariate t). A test checks that the model at the nominal inputs equals
 //! `identify_compensated`'s result.
 
-use ::calibration::{CalibrationModel, Weighting};
+use ::calibration::{CalibrationModel, CalibrationWarning, Weighting};
 use identify::CompensatedCalibration;
 
 use super::validate::{CalibrationInputs, K1Choice, TypeB};
@@ -41,12 +41,16 @@ pub(crate) struct Evaluated {
     /// The inputs of the uncertainty evaluation.
     pub(crate) quantities: Vec<uncertainty::InputQuantity>,
     pub(crate) weighting: Weighting,
+    /// The residuals' standard deviation in rad/s (`calibration::Calibrated`).
+    pub(crate) residual_sd_rad_s: f64,
+    /// What the calibration says of its fit.
+    pub(crate) fit_warnings: Vec<CalibrationWarning>,
 }
 
 /// Where a calibration failed.
 #[derive(Debug)]
 pub(crate) enum CalibrationFailure {
-    Identify(identify::IdentifyError),
+    Calibration(::calibration::CalibrationError),
     Uncertainty(uncertainty::UncertaintyError),
 }
 
@@ -71,6 +75,8 @@ pub(crate) struct Setup {
     pub(crate) set: uncertainty::Inputs,
     pub(crate) options: uncertainty::McOptions,
     pub(crate) weighting: Weighting,
+    pub(crate) residual_sd_rad_s: f64,
+    pub(crate) fit_warnings: Vec<CalibrationWarning>,
 }
 
 /// Fits and builds the measurement model with its input quantities.
@@ -96,17 +102,22 @@ pub(crate) fn setup(
         K1Choice::Given { k1_rad_s_g, .. } => Some(k1_rad_s_g),
     };
     let compensation = ::calibration::compensation(n.c_r_m_s2, sigma_c_r, k1_given);
-    let ::calibration::Fitted {
+    let ::calibration::Calibrated {
         calibration: cal,
         weighting,
-    } = ::calibration::fit(
-        &rates_rad_s,
-        &points.outputs_rad_s,
-        points.sigma_rad_s.as_deref(),
+        residual_sd_rad_s,
+        inflation,
+        warnings: fit_warnings,
+    } = ::calibration::calibrate_compensated(
+        &::calibration::Points {
+            rates_rad_s: &rates_rad_s,
+            outputs_rad_s: &points.outputs_rad_s,
+            sigma_rad_s: points.sigma_rad_s.as_deref(),
+        },
         geometry,
         &compensation,
     )
-    .map_err(CalibrationFailure::Identify)?;
+    .map_err(CalibrationFailure::Calibration)?;
     let nominal = ::calibration::Nominal {
         radius_m: n.radius_m,
         g_m_s2: n.g_m_s2,
@@ -122,14 +133,6 @@ pub(crate) fn setup(
     );
     let vif =
         ::calibration::variance_inflation(&cal, &rates_rad_s, weighting.sigma_used.as_deref());
-    // a design the fit accepted gives these too; should one not, the results say so by
-    // leaving them out
-    let inflation = ::calibration::coefficient_inflation(
-        &rates_rad_s,
-        weighting.sigma_used.as_deref(),
-        geometry,
-    )
-    .ok();
     let type_b = setting.type_b.values;
     let k1 = match inputs.k1 {
         K1Choice::Fitted => ::calibration::K1Input::Fitted,
@@ -171,6 +174,8 @@ pub(crate) fn setup(
         set,
         options,
         weighting,
+        residual_sd_rad_s,
+        fit_warnings,
     })
 }
 
@@ -190,6 +195,8 @@ pub(crate) fn evaluate(
         set,
         options,
         weighting,
+        residual_sd_rad_s,
+        fit_warnings,
     } = setup(inputs, points, setting)?;
     let gum_result =
         gum(&model, &set, &GumOptions::default()).map_err(CalibrationFailure::Uncertainty)?;
@@ -205,6 +212,8 @@ pub(crate) fn evaluate(
         validation,
         quantities,
         weighting,
+        residual_sd_rad_s,
+        fit_warnings,
     })
 }
 

@@ -1,7 +1,7 @@
 //! The calibration's results: the coefficients with their budgets and Monte Carlo check, the
 //! residuals by row and by label, and the warnings about the data.
 
-use ::calibration::{TERM_NAMES, TERMS, input, output};
+use ::calibration::{CalibrationWarning, TERM_NAMES, TERMS, input, output};
 
 use super::evaluate::{Evaluated, Setting};
 use super::validate::{CalibrationInputs, K1Choice};
@@ -115,12 +115,7 @@ pub(crate) fn results(
             },
         })
         .collect();
-    let residual_sd_rad_s = if unc.birge_ratio.is_some() {
-        let ss: f64 = unc.residuals_rad_s.iter().map(|r| r * r).sum();
-        (ss / fit.dof as f64).sqrt()
-    } else {
-        fit.residual_sd
-    };
+    let residual_sd_rad_s = e.residual_sd_rad_s;
     let labels = label_summaries(points, &unc.residuals_rad_s, residual_sd_rad_s);
     let budget_of = |name: &str| {
         budget(
@@ -164,13 +159,17 @@ pub(crate) fn results(
         k3: mc_output("k3"),
     };
     let mut warnings = Vec::new();
-    if let Some(w) = e
-        .inflation
-        .as_ref()
-        .and_then(|i| degraded_warning(i, &points.rates_deg_s))
-    {
-        warnings.push(w);
-    }
+    // the calibration's own words about its fit (`calibration::CalibrationWarning`); its lack
+    // of fit is a coded warning of the study (`data_warnings`)
+    let fit_words = |kind: fn(&CalibrationWarning) -> bool| {
+        e.fit_warnings
+            .iter()
+            .filter(move |w| kind(w))
+            .map(ToString::to_string)
+    };
+    warnings.extend(fit_words(|w| {
+        matches!(w, CalibrationWarning::RatesBunched { .. })
+    }));
     if !inputs.type_b_given {
         warnings.push(
             "the study has no `uncertainty` section: R, g, the rate scale, the lever heights and the probe \
@@ -183,14 +182,7 @@ pub(crate) fn results(
             "the C_r of phase `{phase_name}` has no standard uncertainty (an exact fit); it is taken as exact"
         ));
     }
-    if e.weighting.tau_not_found {
-        warnings.push(
-            "the points scatter more than their σ say (Birge ratio above 1), and no variation \
-             τ common to every point brings χ²/ν to 1: the fit keeps the points' σ as weights \
-             and its covariance is scaled by the Birge ratio"
-                .to_owned(),
-        );
-    }
+    warnings.extend(fit_words(|w| matches!(w, CalibrationWarning::TauNotFound)));
     if e.mc.outputs.iter().any(|o| o.heavy_tailed) {
         warnings.push(format!(
             "a Type A input has ν ≤ 2 degrees of freedom (the eq. 18 fit: {}, points − 6; \
@@ -350,7 +342,7 @@ fn budget(
     let share: f64 = group.iter().map(|c| c.variance_percent).sum();
     let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
     lines.push(BudgetLine {
-        quantity: "PIGA mean outputs: the eq. 18 fit (noise, from its residuals)".to_owned(),
+        quantity: ::calibration::noise_budget_line("the eq. 18 fit", group_dof),
         evaluation: "A".to_owned(),
         value: None,
         u: contribution,
@@ -427,14 +419,16 @@ fn label_summaries(
 /// points' σ (`calibration_lack_of_fit`), a label whose rows sit apart (`label_offset`),
 /// and rates outside the range over which the compensating phase measured C_r
 /// (`rate_outside_phase`).
-pub(crate) fn data_warnings(c: &CalibrationResults, phase_rates_deg_s: &[f64]) -> Vec<Warning> {
-    let mut warnings = Vec::new();
-    if let Some(b) = c.birge_ratio
-        && c.dof > 0
-        && b > ::calibration::lack_of_fit_limit(c.dof)
-    {
-        warnings.push(Warning::calibration_lack_of_fit(b, c.dof));
-    }
+pub(crate) fn data_warnings(
+    c: &CalibrationResults,
+    fit_warnings: &[CalibrationWarning],
+    phase_rates_deg_s: &[f64],
+) -> Vec<Warning> {
+    let mut warnings: Vec<Warning> = fit_warnings
+        .iter()
+        .filter(|w| matches!(w, CalibrationWarning::LackOfFit { .. }))
+        .map(Warning::calibration_lack_of_fit)
+        .collect();
     for l in &c.labels {
         let z = l.mean_residual_rad_s / l.u_rad_s;
         // About 3σ for many rows, wider for few (Student t, 99.73 %).
@@ -487,48 +481,4 @@ fn u_inflation(i: &::calibration::CoefficientInflation) -> UncertaintyInflation 
         limit: ::calibration::INFLATION_LIMIT,
         nuisance: coefficients(i.nuisance),
     }
-}
-
-/// A factor as a person writes it: 2.7, 36, 7139.
-fn times(f: f64) -> String {
-    if f < 10.0 {
-        format!("{f:.1}")
-    } else {
-        format!("{f:.0}")
-    }
-}
-
-/// The warning when the rates make u(k0…k3) more than [`::calibration::INFLATION_LIMIT`]
-/// times what the same number of rates, evenly spread, would give.
-fn degraded_warning(
-    i: &::calibration::CoefficientInflation,
-    rates_deg_s: &[f64],
-) -> Option<String> {
-    if !i.degraded() {
-        return None;
-    }
-    let over: Vec<String> = ::calibration::CoefficientInflation::NAMES
-        .iter()
-        .zip(&i.versus_spread)
-        .filter(|(_, f)| **f > ::calibration::INFLATION_LIMIT)
-        .map(|(n, f)| format!("u({n}) is {} times", times(*f)))
-        .collect();
-    let (lo, hi) = rates_deg_s
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| {
-            (a.min(r), b.max(r))
-        });
-    Some(format!(
-        "the rates cannot separate the coefficients well: {} what the same {} rates spread evenly \
-         from {} to {} deg/s would give (limit {}). Over {}–{} deg/s the a² and a³ terms are hard to \
-         tell apart from the ω and ω³ nuisance terms and from each other; spread the rates over 10–100 % \
-         of the top rate",
-        over.join(", "),
-        rates_deg_s.len(),
-        times(i.reference_rad_s.0.to_degrees()),
-        times(i.reference_rad_s.1.to_degrees()),
-        ::calibration::INFLATION_LIMIT,
-        times(lo),
-        times(hi),
-    ))
 }

@@ -25,7 +25,11 @@ pub(crate) fn run(
     let evaluated = evaluate(c, &points, &setting).map_err(|e| calibration_error(inputs, e))?;
     let results = report::results(c, &points, &setting, &phase.name, &evaluated);
     let phase_rates: Vec<f64> = phase.points.iter().map(|p| p.rate_deg_s).collect();
-    warnings.extend(report::data_warnings(&results, &phase_rates));
+    warnings.extend(report::data_warnings(
+        &results,
+        &evaluated.fit_warnings,
+        &phase_rates,
+    ));
     Ok((results, warnings))
 }
 
@@ -78,7 +82,14 @@ fn setting<'a>(inputs: &Core, c: &'a CalibrationInputs, phase: &PhaseResults) ->
 /// A calibration failure located in the study file.
 fn calibration_error(inputs: &Core, e: CalibrationFailure) -> PipelineError {
     match e {
-        CalibrationFailure::Identify(source) => PipelineError::Identify {
+        CalibrationFailure::Calibration(::calibration::CalibrationError::Fit(source)) => {
+            PipelineError::Identify {
+                path: inputs.source.clone(),
+                field: "calibration".to_owned(),
+                source,
+            }
+        }
+        CalibrationFailure::Calibration(source) => PipelineError::Calibration {
             path: inputs.source.clone(),
             field: "calibration".to_owned(),
             source,

@@ -62,14 +62,22 @@ pub(crate) fn validate(
             reason: UnsupportedReason::SecondProbeData,
         });
     }
-    if let TrialsConfig::Fixed(n) = c.trials
-        && n < MIN_TRIALS
-    {
-        return Err(check.invalid(
-            "calibration.trials".to_owned(),
-            n as f64,
-            InvalidReason::TooFewTrials,
-        ));
+    if let TrialsConfig::Fixed(n) = c.trials {
+        if n < MIN_TRIALS {
+            return Err(check.invalid(
+                "calibration.trials".to_owned(),
+                n as f64,
+                InvalidReason::TooFewTrials,
+            ));
+        }
+        // Refused here, at `check`, with the memory and time it would take (issue 32).
+        uncertainty::check_trials(n, ::calibration::output::NAMES.len()).map_err(|e| {
+            PipelineError::Uncertainty {
+                path: check.path.to_owned(),
+                field: "calibration.trials".to_owned(),
+                source: Box::new(e),
+            }
+        })?;
     }
     let k1 = match c.k1 {
         K1Config::Fitted => K1Choice::Fitted,

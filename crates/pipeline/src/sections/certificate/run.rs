@@ -53,6 +53,7 @@ pub(crate) fn run(
     let mountings = certified.validity.len();
     let conformity = cert.rule.map(|rule| Conformity {
         rule,
+        limits_source: cert.limits_source.clone(),
         statements: cert
             .limits
             .iter()

@@ -4,11 +4,12 @@ use crate::config::{
     CertificateConfig, CertifyName, DecisionRuleName, K1Config, LimitUnitName, StudyConfig,
     TypeBInputName,
 };
+use crate::date::Date;
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::Check;
 use crate::results::{
     Authorisation, CertifyPolicy, Condition, Dates, DecisionRule, Equipment, Item, Laboratory,
-    Party, PreviousCertificate,
+    Party, PreviousCertificate, Warning,
 };
 
 /// A specification limit, validated.
@@ -42,12 +43,54 @@ pub(crate) struct Certificate {
     pub(crate) traceability: Vec<(usize, String)>,
     pub(crate) limits: Vec<Limit>,
     pub(crate) rule: Option<DecisionRule>,
+    pub(crate) limits_source: Option<String>,
     pub(crate) authorisation: Authorisation,
     pub(crate) previous_certificate: Option<PreviousCertificate>,
     /// Which method's coefficients to certify.
     pub(crate) certify: CertifyPolicy,
     /// The laboratory's reason for certifying a value the study's check refutes.
     pub(crate) despite_check: Option<String>,
+}
+
+impl Certificate {
+    /// Equipment past its calibration due date on the last day of the measurement
+    /// (`calibration_overdue`), or due dates that cannot be compared with it
+    /// (`calibration_due_unchecked`: a measurement date or a due date not written
+    /// `YYYY-MM-DD`).
+    pub(crate) fn warnings(&self) -> Vec<Warning> {
+        let Some(measured) = Date::last_of_span(&self.dates.measured) else {
+            return vec![Warning::calibration_due_unchecked(&format!(
+                "the measurement date `{}` (certificate.dates.measured) is not written \
+                 YYYY-MM-DD or YYYY-MM-DD to YYYY-MM-DD",
+                self.dates.measured
+            ))];
+        };
+        let mut warnings = Vec::new();
+        let mut unreadable = Vec::new();
+        for (i, e) in self.equipment.iter().enumerate() {
+            match Date::parse_iso(&e.calibration_due) {
+                Some(due) if due < measured => warnings.push(Warning::calibration_overdue(
+                    &e.role,
+                    &e.identity,
+                    &due.to_string(),
+                    &measured.to_string(),
+                    &format!("certificate.equipment[{i}]"),
+                )),
+                Some(_) => {}
+                None => unreadable.push(format!(
+                    "{} {} (`{}`)",
+                    e.role, e.identity, e.calibration_due
+                )),
+            }
+        }
+        if !unreadable.is_empty() {
+            warnings.push(Warning::calibration_due_unchecked(&format!(
+                "the calibration due date of {} is not written YYYY-MM-DD",
+                unreadable.join(", ")
+            )));
+        }
+        warnings
+    }
 }
 
 /// The input of the calibration model a traceability statement is about.
@@ -415,6 +458,7 @@ pub(crate) fn validate(
         traceability,
         limits,
         rule,
+        limits_source: c.limits_source.clone().filter(|s| !s.trim().is_empty()),
         authorisation,
         previous_certificate,
         certify: match c.certify {

@@ -199,6 +199,13 @@ fn fit_config(fit: FitSettings) -> FitConfig {
     }
 }
 
+/// What makes two listed recordings one: the path, or the bytes' SHA-256.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+enum SameKey {
+    Path(std::path::PathBuf),
+    Bytes(String),
+}
+
 /// A phase whose numbers are valid, before its recordings are loaded.
 enum CheckedData {
     Ready(PhaseData),
@@ -238,20 +245,64 @@ fn load_phases(
         .collect();
     let mut errors = Vec::new();
     let mut files: Vec<Vec<LoadedRecording>> = vec![Vec::new(); configs.len()];
+    // The first file of each phase by its path and by its bytes: one recording at two rates
+    // is refused here, at `check`, not only when its analysis finds the rate wrong.
+    let mut seen: HashMap<(usize, SameKey), usize> = HashMap::new();
     for ((p, i, rate_deg_s, file, _), result) in jobs.iter().zip(loaded) {
-        match result {
-            Ok(read) => files[*p].push(LoadedRecording {
-                rate_deg_s: *rate_deg_s,
-                file: file.clone(),
-                recording: read.value,
-                digest: read.digest,
-            }),
-            Err(error) => errors.push(PipelineError::Recording {
+        let field = format!("phases[{p}].points.files[{i}]");
+        let read = match result {
+            Ok(read) => read,
+            Err(error) => {
+                errors.push(PipelineError::Recording {
+                    path: source.to_owned(),
+                    field,
+                    source: Box::new(error),
+                });
+                continue;
+            }
+        };
+        let keys = [
+            Some(SameKey::Path(file.clone())),
+            read.digest
+                .as_ref()
+                .map(|d| SameKey::Bytes(d.sha256.clone())),
+        ];
+        if let Some((j, same_bytes)) = keys.into_iter().flatten().find_map(|key| {
+            let bytes = matches!(key, SameKey::Bytes(_));
+            seen.get(&(*p, key.clone()))
+                .map(|&j| (j, bytes))
+                .or_else(|| {
+                    seen.insert((*p, key), *i);
+                    None
+                })
+        }) {
+            errors.push(PipelineError::SameRecording {
                 path: source.to_owned(),
-                field: format!("phases[{p}].points.files[{i}]"),
-                source: Box::new(error),
-            }),
+                field,
+                first: format!("phases[{p}].points.files[{j}]"),
+                file: file.clone(),
+                same_bytes,
+            });
+            continue;
         }
+        // What the analysis checks first, checked at loading (so by `check` too): an encoder
+        // or index pulse whose mean rate is not the declared one.
+        if let Err(error) =
+            recording::check_declared_rate(&read.value, units::deg_s_to_rad_s(*rate_deg_s))
+        {
+            errors.push(PipelineError::Recording {
+                path: source.to_owned(),
+                field,
+                source: Box::new(error),
+            });
+            continue;
+        }
+        files[*p].push(LoadedRecording {
+            rate_deg_s: *rate_deg_s,
+            file: file.clone(),
+            recording: read.value,
+            digest: read.digest,
+        });
     }
     PipelineError::from_list(errors)?;
     Ok(configs

@@ -313,14 +313,19 @@ fn probe_k2(
         g_m_s2: core.g_m_s2,
     };
     let compensation = ::calibration::compensation(probe.c_r_m_s2, probe.u_m_s2, None);
-    let fitted = ::calibration::fit(
-        &rates,
-        &points.outputs_rad_s,
-        points.sigma_rad_s.as_deref(),
+    let fitted = ::calibration::calibrate_compensated(
+        &::calibration::Points {
+            rates_rad_s: &rates,
+            outputs_rad_s: &points.outputs_rad_s,
+            sigma_rad_s: points.sigma_rad_s.as_deref(),
+        },
         geometry,
         &compensation,
     )
-    .map_err(TwoOrientationError::Fit)?;
+    .map_err(|e| match e {
+        ::calibration::CalibrationError::Fit(e) => TwoOrientationError::Fit(e),
+        e => TwoOrientationError::Calibration(e),
+    })?;
     let nominal = Nominal {
         radius_m: set.radius_m,
         g_m_s2: core.g_m_s2,
@@ -385,8 +390,7 @@ fn budget(e: &TwoOrientationEvaluation, name: &str, notes: &[(usize, String)]) -
     let share: f64 = group.iter().map(|c| c.variance_percent).sum();
     let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
     let mut lines = vec![BudgetLine {
-        quantity: "PIGA mean outputs: the two-orientation fit (noise, from its residuals)"
-            .to_owned(),
+        quantity: ::calibration::noise_budget_line("the two-orientation fit", quantities[0].dof),
         evaluation: "A".to_owned(),
         value: None,
         u: contribution,

@@ -186,6 +186,16 @@ pub(crate) fn validate(
                     InvalidReason::TooFewTrials,
                 ));
             }
+            // Refused here, at `check`, with the memory and time it would take (issue 32).
+            if let Err(e) =
+                uncertainty::check_trials(n, ::calibration::TWO_ORIENTATION_OUTPUTS.len())
+            {
+                errors.push(PipelineError::Uncertainty {
+                    path: check.path.to_owned(),
+                    field: "two_orientation.trials".to_owned(),
+                    source: Box::new(e),
+                });
+            }
             Some(n)
         }
     };

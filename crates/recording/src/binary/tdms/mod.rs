@@ -140,7 +140,12 @@ pub fn tdms_channel(
     }
 }
 
-fn read(source: &Source<'_>, path: &Path, channels: &BinaryChannels) -> Result<Recording> {
+/// The channels of a probe recording from a TDMS file read from `source`.
+pub(crate) fn read(
+    source: &Source<'_>,
+    path: &Path,
+    channels: &BinaryChannels,
+) -> Result<Recording> {
     let place = Place {
         path,
         format: BinaryFormat::Tdms,
