@@ -52,7 +52,7 @@ pub use calibrate::{
 };
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
-pub use quantities::{CrInput, K1Input, TypeB, measurement_inputs};
+pub use quantities::{AxialEarthRate, CrInput, K1Input, Spin, TypeB, measurement_inputs};
 pub use two_orientation::{
     B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,
     MIN_RATES_PER_ORIENTATION, MountingFit, Orientation, OrientationData, ProbeCr,

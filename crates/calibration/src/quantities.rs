@@ -21,6 +21,77 @@ pub struct TypeB {
     pub probe_to_piga_u_mm: f64,
     /// Relative u of the probe gain.
     pub probe_gain_u_relative: f64,
+    /// The Earth rate about the spindle axis, for the two-orientation fit (eq. 23 has no
+    /// column for the term it makes with k2; the one-mounting fit's free ω³ column takes it).
+    /// The default is exactly zero: no Type B input at all; a study states it or takes it as
+    /// unknown ([`AxialEarthRate::not_stated`]).
+    pub axial_earth_rate: AxialEarthRate,
+}
+
+/// Which way the spindle turns, seen from above, for the rates of the study (positive
+/// numbers).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Spin {
+    /// Counterclockwise seen from above: the Earth's own sense in the northern hemisphere.
+    CounterclockwiseFromAbove,
+    /// Clockwise seen from above.
+    ClockwiseFromAbove,
+}
+
+/// The Earth rate about the spindle axis, `Ω_a = ±Ω·sin L` (the sign: + when the spindle
+/// turns the Earth's way about the local vertical, counterclockwise seen from above in the
+/// northern hemisphere), rad/s, as an input quantity: a value and the half-width of a
+/// rectangular distribution about it.
+///
+/// It enters the specific force along the arm as `R·(ω + Ω_a)²/g`, so `k2·a²` carries
+/// `4·k2·R²·Ω_a·ω³/g²`, the same in both mountings: 0.014 u of k2 on the two-orientation
+/// fixture (k2 = 5e-7 rad/(s·g²)), 0.85 u for a PIGA with k2 = 3e-5 (`earth_rate_tests`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AxialEarthRate {
+    /// Ω_a, rad/s (0 when its sign is not known).
+    pub value_rad_s: f64,
+    /// Half-width of the rectangular distribution about it, rad/s (0: known).
+    pub half_width_rad_s: f64,
+}
+
+impl AxialEarthRate {
+    /// Stated by latitude and spin: `±Ω·sin L`, taken as exact (a latitude known to 0.1°
+    /// moves it by 1e-3 of itself, far below anything else in the budget).
+    #[must_use]
+    pub fn stated(latitude_deg: f64, spin: Spin) -> Self {
+        let sign = match spin {
+            Spin::CounterclockwiseFromAbove => 1.0,
+            Spin::ClockwiseFromAbove => -1.0,
+        };
+        Self {
+            value_rad_s: sign * kinematics::EARTH_RATE_RAD_S * latitude_deg.to_radians().sin(),
+            half_width_rad_s: 0.0,
+        }
+    }
+
+    /// The latitude stated but not the spin: 0 ± `Ω·|sin L|` (rectangular).
+    #[must_use]
+    pub fn latitude_only(latitude_deg: f64) -> Self {
+        Self {
+            value_rad_s: 0.0,
+            half_width_rad_s: kinematics::EARTH_RATE_RAD_S * latitude_deg.to_radians().sin().abs(),
+        }
+    }
+
+    /// Neither stated: 0 ± Ω (rectangular), what any site and spin allow.
+    #[must_use]
+    pub const fn not_stated() -> Self {
+        Self {
+            value_rad_s: 0.0,
+            half_width_rad_s: kinematics::EARTH_RATE_RAD_S,
+        }
+    }
+
+    /// Whether it is an input at all (the default, exactly zero, is not).
+    #[must_use]
+    pub fn is_input(&self) -> bool {
+        self.value_rad_s != 0.0 || self.half_width_rad_s != 0.0
+    }
 }
 
 /// The compensating C_r as an input quantity.

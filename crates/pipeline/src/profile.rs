@@ -420,6 +420,16 @@ impl Validation<'_> {
         if c.radius_ia_out_m.is_some() {
             self.positive(&f("radius_ia_out_m"), c.radius_ia_out_m, "");
         }
+        if let Some(lat) = c.latitude_deg
+            && !(lat.is_finite() && lat.abs() <= 90.0)
+        {
+            self.errors.push(PipelineError::InvalidField {
+                path: self.path.to_owned(),
+                field: f("latitude_deg"),
+                value: lat,
+                reason: InvalidReason::NotALatitude,
+            });
+        }
         self.non_negative(
             &f("rate_u_relative"),
             c.rate_u_relative,
@@ -752,6 +762,18 @@ fn resolve(
     // Two orientations: the IA-in radius is the centrifuge's, the IA-out one its
     // `radius_ia_out_m` when the profile gives it.
     if let Some(two) = config.two_orientation.as_mut() {
+        values.fill(
+            &mut two.latitude_deg,
+            centrifuge.latitude_deg,
+            "two_orientation.latitude_deg",
+            &at("latitude_deg"),
+        );
+        values.fill(
+            &mut two.spin_seen_from_above,
+            centrifuge.spin_seen_from_above,
+            "two_orientation.spin_seen_from_above",
+            &at("spin_seen_from_above"),
+        );
         for (i, o) in two.orientations.iter_mut().enumerate() {
             let (stated, field) = match o.orientation {
                 Some(OrientationName::IaIn) => (centrifuge.radius_m, at("radius_m")),

@@ -137,6 +137,8 @@ pub(crate) fn type_b(
             pivot_to_probe_u_mm: values[3],
             probe_to_piga_u_mm: values[4],
             probe_gain_u_relative: values[5],
+            // the two-orientation section states it (its own latitude and spin)
+            axial_earth_rate: ::calibration::AxialEarthRate::default(),
         },
         g_source: u.g_source.clone(),
         notes,

@@ -62,8 +62,11 @@ pub mod two_orientation_input {
     pub const RADIUS_IN: usize = G + 2;
     /// The IA-out mounting's radius, m (independent of the IA-in one).
     pub const RADIUS_OUT: usize = G + 3;
+    /// The Earth rate about the spindle axis, signed by the spin, rad/s
+    /// ([`AxialEarthRate`](crate::AxialEarthRate)).
+    pub const EARTH_RATE: usize = G + 4;
     /// Inputs without a probe.
-    pub const COUNT_WITHOUT_PROBE: usize = G + 4;
+    pub const COUNT_WITHOUT_PROBE: usize = G + 5;
     /// Pivot-to-probe height, mm.
     pub const PIVOT_TO_PROBE: usize = COUNT_WITHOUT_PROBE;
     /// Probe-to-PIGA height, mm.
@@ -80,6 +83,7 @@ pub mod two_orientation_input {
         "rate scale (common to every rate)",
         "R of the IA-in mounting (independent of the IA-out one)",
         "R of the IA-out mounting (independent of the IA-in one)",
+        "Earth rate about the spindle axis (with k2, a same-sign ω³ term)",
         "pivot-to-probe height",
         "probe-to-PIGA height",
         "probe gain",
@@ -115,6 +119,9 @@ pub struct TwoOrientationModel {
     pub g_m_s2: f64,
     /// The fit's response to a common `ω⁶` ([`TwoOrientationFit::omega6_response`]).
     pub omega6_response: [f64; TWO_ORIENTATION_TERMS],
+    /// The fit's response to the Earth rate's term with k2
+    /// ([`TwoOrientationFit::earth_rate_response`]).
+    pub earth_rate_response: [f64; TWO_ORIENTATION_TERMS],
     /// With a probe: its nominal lever ratio `(h_p + h_a)/h_p` (and `C − C_r` an output).
     pub probe_lever: Option<f64>,
 }
@@ -128,6 +135,7 @@ impl TwoOrientationModel {
             radius_out_m: fit.mountings[1].radius_m,
             g_m_s2: fit.g_m_s2,
             omega6_response: fit.omega6_response,
+            earth_rate_response: fit.earth_rate_response,
             probe_lever: probe
                 .map(|p| (p.pivot_to_probe_mm + p.probe_to_piga_mm) / p.pivot_to_probe_mm),
         }
@@ -162,6 +170,16 @@ impl TwoOrientationModel {
         use two_orientation_input as i;
         let mut c = [0.0; TWO_ORIENTATION_TERMS];
         c.copy_from_slice(&x[..TWO_ORIENTATION_TERMS]);
+        // the data hold β + k2·Ω_a·X⁺v (TwoOrientationFit::earth_rate_response) where the fit
+        // reports β: k2 first (its own response divides it), then the others; at the declared
+        // radii and g, before they are changed below (what that leaves is of second order)
+        let omega_a = x[i::EARTH_RATE];
+        if omega_a != 0.0 {
+            let k2 = c[K2_TERM] / (1.0 + omega_a * self.earth_rate_response[K2_TERM]);
+            for (cj, r) in c.iter_mut().zip(&self.earth_rate_response) {
+                *cj -= k2 * omega_a * r;
+            }
+        }
         let (g, scale) = (x[i::G], x[i::RATE_SCALE]);
         let s2 = scale * scale;
         // a_s at the true inputs over a_s as fitted, per mounting
@@ -295,6 +313,16 @@ pub fn two_orientation_inputs(
         fit.mountings[1].radius_m,
         type_b.radius_u_m,
     ));
+    let earth = type_b.axial_earth_rate;
+    q.push(if earth.half_width_rad_s > 0.0 {
+        InputQuantity::rectangular(
+            name(i::EARTH_RATE),
+            earth.value_rad_s,
+            earth.half_width_rad_s,
+        )
+    } else {
+        InputQuantity::normal(name(i::EARTH_RATE), earth.value_rad_s, 0.0)
+    });
     if let Some(p) = probe {
         q.push(InputQuantity::normal(
             name(i::PIVOT_TO_PROBE),

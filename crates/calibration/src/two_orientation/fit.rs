@@ -66,6 +66,15 @@ pub struct TwoOrientationFit {
     /// radii does to the shared `s·a_s³` column that no rescaling of k3 absorbs
     /// (`docs/theory.md` section 11).
     pub omega6_response: [f64; TWO_ORIENTATION_TERMS],
+    /// The fit's coefficients for the term eq. 23 leaves out where k2 meets the Earth rate:
+    /// the specific force along the arm is `R·(ω + Ω_a)²/g`, with `Ω_a` the Earth rate about
+    /// the spindle axis signed by the spin, so `k2·a_s²` carries `k2·Ω_a·4·R_s²·ω³/g²`, of the
+    /// same sign in both mountings (no column of eq. 23 takes it). This is `X⁺·v`,
+    /// `v = 4·R_s²·ω³/g²`, through the same QR (and weights): the data hold
+    /// `β + k2·Ω_a·X⁺·v` where the fit reports β, and
+    /// [`TwoOrientationModel`](crate::TwoOrientationModel) removes it for the `Ω_a` stated
+    /// (or takes it as an uncertainty when it is not: issue 31).
+    pub earth_rate_response: [f64; TWO_ORIENTATION_TERMS],
     /// The least-squares fit (coefficients in [`TWO_ORIENTATION_TERM_NAMES`](crate::TWO_ORIENTATION_TERM_NAMES)' order; for a weighted
     /// fit the covariance is `(XᵀWX)⁻¹` times the squared Birge ratio when above 1).
     pub fit: Fit,
@@ -246,6 +255,7 @@ pub fn fit_two_orientation(
     let mut y = Vec::with_capacity(rows);
     let mut weights = Vec::with_capacity(rows);
     let mut omega6 = Vec::with_capacity(rows);
+    let mut earth_rate = Vec::with_capacity(rows);
     let mut r = 0;
     for (d, radius) in &sets {
         let o = d.orientation.unwrap_or(Orientation::IaIn);
@@ -262,6 +272,7 @@ pub fn fit_two_orientation(
             y.push(out * wt);
             weights.push(wt);
             omega6.push(w.powi(6) * wt);
+            earth_rate.push(4.0 * radius * radius * w.powi(3) / (g_m_s2 * g_m_s2) * wt);
             r += 1;
         }
     }
@@ -272,6 +283,10 @@ pub fn fit_two_orientation(
     let omega6_response =
         &fit.unscaled_covariance * (x.transpose() * nalgebra::DVector::from_vec(omega6));
     let omega6_response: [f64; TWO_ORIENTATION_TERMS] = std::array::from_fn(|j| omega6_response[j]);
+    let earth_rate_response =
+        &fit.unscaled_covariance * (x.transpose() * nalgebra::DVector::from_vec(earth_rate));
+    let earth_rate_response: [f64; TWO_ORIENTATION_TERMS] =
+        std::array::from_fn(|j| earth_rate_response[j]);
     let birge_ratio = weighted.then(|| {
         let chi2: f64 = fit.residuals.iter().map(|e| e * e).sum();
         (chi2 / fit.dof.max(1) as f64).sqrt()
@@ -356,6 +371,7 @@ pub fn fit_two_orientation(
         residuals_rad_s,
         birge_ratio,
         omega6_response,
+        earth_rate_response,
         fit,
     };
     Ok(result)

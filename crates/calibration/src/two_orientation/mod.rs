@@ -14,6 +14,8 @@
 //! `fit` (the joint fit), `spread` (what the rates cost k2 and C), `evaluate` (its
 //! uncertainty and warnings).
 
+#[cfg(test)]
+mod earth_rate_tests;
 mod error;
 mod evaluate;
 mod fit;

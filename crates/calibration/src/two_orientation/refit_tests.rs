@@ -26,6 +26,24 @@ const K3: f64 = 2e-8;
 const C_M_S2: f64 = 2.08e-6;
 const NOISE_RAD_S: f64 = 1e-9;
 
+/// 12 rates 35–200 deg/s, in rad/s.
+pub(super) fn twelve_rates_rad_s() -> Vec<f64> {
+    (0..12)
+        .map(|i| (35.0 + 15.0 * f64::from(i)).to_radians())
+        .collect()
+}
+
+/// A deterministic noise sequence (xorshift from `seed`), roughly uniform with SD `sd`.
+pub(super) fn xorshift_noise(seed: u64, sd: f64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state as f64 / u64::MAX as f64 - 0.5) * sd * 12f64.sqrt()
+    }
+}
+
 /// The two mountings' data, eq. 23 at the true values with deterministic noise (a fixed
 /// xorshift sequence, roughly uniform with SD `NOISE_RAD_S`), 12 rates 35–200 deg/s.
 struct Campaign {
@@ -35,16 +53,8 @@ struct Campaign {
 }
 
 fn campaign() -> Campaign {
-    let rates_rad_s: Vec<f64> = (0..12)
-        .map(|i| (35.0 + 15.0 * f64::from(i)).to_radians())
-        .collect();
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut noise = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state as f64 / u64::MAX as f64 - 0.5) * NOISE_RAD_S * 12f64.sqrt()
-    };
+    let rates_rad_s = twelve_rates_rad_s();
+    let mut noise = xorshift_noise(0x2545_f491_4f6c_dd1d, NOISE_RAD_S);
     let gamma = K1 * C_M_S2 / G;
     let outputs = [
         (Orientation::IaIn, R_IN, 1e-5),

@@ -109,6 +109,13 @@ pub struct CentrifugeConfig {
     pub radius_ia_out_m: Option<f64>,
     /// Relative standard uncertainty of the rate (a scale error common to every rate).
     pub rate_u_relative: Option<f64>,
+    /// The site's latitude, degrees (north positive): with `spin_seen_from_above`, the Earth
+    /// rate about the spindle axis a two-orientation study corrects k2 for.
+    #[serde(default)]
+    pub latitude_deg: Option<f64>,
+    /// Which way the spindle turns seen from above at positive rates.
+    #[serde(default)]
+    pub spin_seen_from_above: Option<super::two_orientation::SpinName>,
     /// The probe's geometry on this centrifuge.
     pub lever: ProfileLever,
     /// The probe mounted on it, by name (`probes[…].name`); a study may name another

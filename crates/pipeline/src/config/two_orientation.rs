@@ -27,6 +27,46 @@ pub struct TwoOrientationConfig {
     /// Number of Monte Carlo trials: `adaptive` (default) or `fixed(N)` (at least 2000).
     #[serde(default)]
     pub trials: TrialsConfig,
+    /// The site's latitude, degrees (north positive). With `spin_seen_from_above` it gives
+    /// the Earth rate about the spindle axis, whose term with k2 (`4·k2·R²·Ω·sin L·ω³/g²`,
+    /// the same in both mountings) eq. 23 has no column for; not stated, it is an
+    /// uncertainty of k2 (docs/TWO_ORIENTATION.md).
+    #[serde(default)]
+    pub latitude_deg: Option<f64>,
+    /// Which way the spindle turns seen from above at the table's (positive) rates:
+    /// `counterclockwise` or `clockwise`.
+    #[serde(default)]
+    pub spin_seen_from_above: Option<SpinName>,
+}
+
+/// The spin of the spindle seen from above, as the study file names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpinName {
+    /// Counterclockwise seen from above (the Earth's sense in the northern hemisphere).
+    Counterclockwise,
+    /// Clockwise seen from above.
+    Clockwise,
+}
+
+impl SpinName {
+    /// The spin as the calibration takes it.
+    #[must_use]
+    pub const fn spin(self) -> ::calibration::Spin {
+        match self {
+            Self::Counterclockwise => ::calibration::Spin::CounterclockwiseFromAbove,
+            Self::Clockwise => ::calibration::Spin::ClockwiseFromAbove,
+        }
+    }
+
+    /// In words.
+    #[must_use]
+    pub const fn words(self) -> &'static str {
+        match self {
+            Self::Counterclockwise => "counterclockwise seen from above",
+            Self::Clockwise => "clockwise seen from above",
+        }
+    }
 }
 
 const fn default_seed() -> u64 {

@@ -166,6 +166,27 @@ pub struct TwoOrientationResults {
     /// The comparison with the probe phase.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub probe: Option<ProbeComparison>,
+    /// The Earth rate about the spindle axis the fit was corrected for (its term with k2,
+    /// which eq. 23 has no column for), as stated or taken.
+    #[serde(default)]
+    pub earth_rate: AxialEarthRateResult,
+}
+
+/// The Earth rate about the spindle axis as the two-orientation evaluation took it.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct AxialEarthRateResult {
+    /// The latitude stated, degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub latitude_deg: Option<f64>,
+    /// The spin stated, in words.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<String>,
+    /// The value taken, rad/s (signed: + the Earth's sense about the local vertical).
+    pub value_rad_s: f64,
+    /// The half-width of the rectangular distribution about it, rad/s (0: stated).
+    pub half_width_rad_s: f64,
+    /// What the study states, in words (also the budget line's note).
+    pub words: String,
 }
 
 /// What the rates of a two-orientation design cost k2 and C (`calibration::two_orientation_spread`).

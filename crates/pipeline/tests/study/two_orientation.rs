@@ -531,3 +531,55 @@ fn an_inseparable_omega4_term_is_reported() {
     let figure = format!("u(k2) {:.1} times", fit.k2_inflation);
     assert!(words.message.contains(&figure), "{}", words.message);
 }
+
+/// The Earth rate about the spindle axis (issue 31): a latitude beyond ±90° is refused by its
+/// field; stated with the spin, it is the budget's value with u 0; the latitude alone, an
+/// uncertainty of ±Ω·|sin L|; neither, ±Ω.
+#[test]
+fn the_earth_rate_is_stated_in_part_or_not_at_all_and_the_budget_says_which() {
+    let path = root().join("fixtures/studies/two_orientation.ron");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        text.contains("latitude_deg: 39.9,")
+            && text.contains("spin_seen_from_above: counterclockwise,")
+    );
+    let with = |latitude: &str, spin: &str| {
+        let t = text
+            .replace("latitude_deg: 39.9,", latitude)
+            .replace("spin_seen_from_above: counterclockwise,", spin);
+        StudyConfig::from_ron(&t, &path).and_then(|c| Inputs::new(c, &path, &pipeline::Files))
+    };
+    let refused = with("latitude_deg: 95.0,", "").unwrap_err().to_string();
+    assert!(
+        refused.contains("two_orientation.latitude_deg"),
+        "{refused}"
+    );
+    assert!(refused.contains("±90"), "{refused}");
+    let earth = |latitude: &str, spin: &str| {
+        pipeline::run(&with(latitude, spin).unwrap())
+            .unwrap()
+            .two_orientation
+            .unwrap()
+            .earth_rate
+    };
+    let stated = earth("latitude_deg: 39.9,", "spin_seen_from_above: clockwise,");
+    let omega_v = 7.292_115e-5 * 39.9_f64.to_radians().sin();
+    assert!((stated.value_rad_s + omega_v).abs() < 1e-15, "{stated:?}");
+    assert_eq!(stated.half_width_rad_s, 0.0);
+    assert!(
+        stated
+            .words
+            .starts_with("stated: latitude 39.9°, spin clockwise"),
+        "{stated:?}"
+    );
+    let latitude_only = earth("latitude_deg: 39.9,", "");
+    assert_eq!(latitude_only.value_rad_s, 0.0);
+    assert!((latitude_only.half_width_rad_s - omega_v).abs() < 1e-15);
+    assert!(
+        latitude_only.words.contains("spin is not stated"),
+        "{latitude_only:?}"
+    );
+    let neither = earth("", "");
+    assert_eq!(neither.half_width_rad_s, 7.292_115e-5);
+    assert!(neither.words.contains("72.9 µrad/s"), "{neither:?}");
+}

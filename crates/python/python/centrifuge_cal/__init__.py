@@ -644,6 +644,8 @@ def calibrate_two_orientation(
     seed: int = _DEFAULT_SEED,
     trials: Literal["adaptive"] | int = "adaptive",
     probe_along: bool = False,
+    latitude_deg: float | None = None,
+    spin_seen_from_above: Literal["counterclockwise", "clockwise"] | None = None,
 ) -> TwoOrientation:
     """The two-orientation calibration of eq. 23 on arrays: the PIGA's mean outputs with
     its input axis in (towards the spindle axis, at ``radius_in_m``) and out (at
@@ -655,7 +657,10 @@ def calibrate_two_orientation(
     ``radius_in_m``.
 
     ``output_sigma_*_rad_s``: each point's standard uncertainty (weighted fit);
-    ``uncertainty``: the Type B inputs as in :func:`calibrate`. Warnings are also issued as
+    ``uncertainty``: the Type B inputs as in :func:`calibrate`; ``latitude_deg`` and
+    ``spin_seen_from_above``: the Earth rate about the spindle axis, whose term with k2 the
+    fit removes when both are given and otherwise takes as an uncertainty (the study's
+    fields of the same names, docs/TWO_ORIENTATION.md). Warnings are also issued as
     :class:`CentrifugeCalWarning`; the GIL is released, and Ctrl-C stops it.
     """
     table_in, arrays_in, _ = _piga_table(
@@ -695,6 +700,10 @@ def calibrate_two_orientation(
             "trials": _trials(trials),
         },
     }
+    if latitude_deg is not None:
+        config["two_orientation"]["latitude_deg"] = number("latitude_deg", latitude_deg)
+    if spin_seen_from_above is not None:
+        config["two_orientation"]["spin_seen_from_above"] = spin_seen_from_above
     if uncertainty is not None:
         config["uncertainty"] = _dict("uncertainty", uncertainty)
     study = _study_dict(

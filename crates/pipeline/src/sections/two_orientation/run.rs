@@ -248,14 +248,15 @@ pub(crate) fn run(
         u_inflation_by_rates: spread,
         condition_number: fit.fit.condition_number,
         budget: TwoOrientationBudgets {
-            k2: budget(&e, "k2", &s.type_b_notes),
-            c: budget(&e, "C", &s.type_b_notes),
-            difference: Some(budget(&e, "C − C_r", &s.type_b_notes)),
+            k2: budget(&e, "k2", &s.type_b_notes, &s.earth_rate.words),
+            c: budget(&e, "C", &s.type_b_notes, &s.earth_rate.words),
+            difference: Some(budget(&e, "C − C_r", &s.type_b_notes, &s.earth_rate.words)),
         },
         monte_carlo,
         headline,
         covariance: output_covariance(&e.gum, 6),
         probe: Some(comparison),
+        earth_rate: s.earth_rate.clone(),
     };
     warnings.extend(e.warnings.iter().map(|w| match *w {
         TwoOrientationWarning::GammaNotSeparable {
@@ -381,7 +382,12 @@ fn dof_value(dof: Dof) -> DegreesOfFreedom {
 /// mounting's radius; with the probe its lever heights, gain and C_r), each with what the
 /// study says of it (`notes`, by the input of `calibration::input` it is: not stated, the
 /// reason for a zero, where its u comes from).
-fn budget(e: &TwoOrientationEvaluation, name: &str, notes: &[(usize, String)]) -> Vec<BudgetLine> {
+fn budget(
+    e: &TwoOrientationEvaluation,
+    name: &str,
+    notes: &[(usize, String)],
+    earth_rate_words: &str,
+) -> Vec<BudgetLine> {
     use ::calibration::{input, two_orientation_input as si};
     let output = e.gum.output(name).expect("the model names its outputs");
     let quantities = e.inputs.quantities();
@@ -409,7 +415,8 @@ fn budget(e: &TwoOrientationEvaluation, name: &str, notes: &[(usize, String)]) -
     {
         // an input the output does not depend on (C on g: a change of g rescales k1 and
         // γ = k1·C/g alike); a sensitivity of rounding size is no dependence either
-        if (c.sensitivity * q.value).abs() <= 1e-9 * output.estimate.abs() {
+        // (by its contribution too: the Earth rate's value is 0 when it is not stated)
+        if (c.sensitivity * q.value).abs().max(c.uncertainty) <= 1e-9 * output.estimate.abs() {
             continue;
         }
         let study_input = match k {
@@ -421,12 +428,16 @@ fn budget(e: &TwoOrientationEvaluation, name: &str, notes: &[(usize, String)]) -
             si::PROBE_GAIN => Some(input::PROBE_GAIN),
             _ => None,
         };
-        let note = study_input.and_then(|i| {
-            notes
-                .iter()
-                .find(|(index, _)| *index == i)
-                .map(|(_, n)| n.clone())
-        });
+        let note = if k == si::EARTH_RATE {
+            Some(earth_rate_words.to_owned())
+        } else {
+            study_input.and_then(|i| {
+                notes
+                    .iter()
+                    .find(|(index, _)| *index == i)
+                    .map(|(_, n)| n.clone())
+            })
+        };
         lines.push(BudgetLine {
             quantity: q.name.clone(),
             evaluation: match q.kind {
@@ -437,7 +448,8 @@ fn budget(e: &TwoOrientationEvaluation, name: &str, notes: &[(usize, String)]) -
             u: q.standard_uncertainty,
             sensitivity: c.sensitivity,
             contribution: c.uncertainty,
-            percent: c.variance_percent,
+            // (+ 0.0: an input stated exactly contributes −0 % otherwise)
+            percent: c.variance_percent + 0.0,
             dof: dof_value(q.dof),
             note,
         });

@@ -48,6 +48,9 @@ pub(crate) struct TwoOrientationInputs {
     /// study states no Type B input, the reason for a zero, or where the probe gain's
     /// uncertainty comes from.
     pub(crate) type_b_notes: Vec<(usize, String)>,
+    /// The Earth rate about the spindle axis as stated or taken, in results' words (its value
+    /// is `type_b.axial_earth_rate`).
+    pub(crate) earth_rate: crate::results::AxialEarthRateResult,
 }
 
 impl TwoOrientationInputs {
@@ -199,7 +202,12 @@ pub(crate) fn validate(
             Some(n)
         }
     };
-    let (type_b, type_b_notes) = type_b(check, study, phase, &mut errors);
+    let (mut type_b, type_b_notes) = type_b(check, study, phase, &mut errors);
+    let earth_rate = earth_rate(check, config, &mut errors);
+    type_b.axial_earth_rate = ::calibration::AxialEarthRate {
+        value_rad_s: earth_rate.value_rad_s,
+        half_width_rad_s: earth_rate.half_width_rad_s,
+    };
     // the data sets (a table or raw recordings), then their rates
     let mut sets = Vec::with_capacity(config.orientations.len());
     for (i, o) in config.orientations.iter().enumerate() {
@@ -243,7 +251,71 @@ pub(crate) fn validate(
         trials,
         type_b,
         type_b_notes,
+        earth_rate,
     })
+}
+
+/// The Earth rate about the spindle axis from the section's latitude and spin: both stated,
+/// `±Ω·sin L`; the latitude alone, 0 ± `Ω·|sin L|`; else 0 ± Ω (rectangular), what any site
+/// and spin allow — each said in words. A latitude outside ±90° goes to `errors`.
+fn earth_rate(
+    check: &Check<'_>,
+    config: &crate::config::TwoOrientationConfig,
+    errors: &mut Vec<PipelineError>,
+) -> crate::results::AxialEarthRateResult {
+    use ::calibration::AxialEarthRate;
+    let latitude = config.latitude_deg.filter(|lat| {
+        let ok = lat.is_finite() && lat.abs() <= 90.0;
+        if !ok {
+            errors.push(check.invalid(
+                "two_orientation.latitude_deg".to_owned(),
+                *lat,
+                crate::error::InvalidReason::NotALatitude,
+            ));
+        }
+        ok
+    });
+    let spin = config.spin_seen_from_above;
+    // µrad/s to 0.1: what a person compares with Ω = 72.9 µrad/s
+    let micro = |x: f64| format!("{:.1} µrad/s", x * 1e6);
+    let (taken, words) = match (latitude, spin) {
+        (Some(lat), Some(s)) => {
+            let e = AxialEarthRate::stated(lat, s.spin());
+            let words = format!(
+                "stated: latitude {}°, spin {}: Ω·sin L = {}",
+                units::Compact(lat),
+                s.words(),
+                micro(e.value_rad_s)
+            );
+            (e, words)
+        }
+        (Some(lat), None) => {
+            let e = AxialEarthRate::latitude_only(lat);
+            let words = format!(
+                "the spin is not stated: 0 ± {} (rectangular), the Earth rate at latitude {}° \
+                 either way",
+                micro(e.half_width_rad_s),
+                units::Compact(lat)
+            );
+            (e, words)
+        }
+        (None, _) => {
+            let e = AxialEarthRate::not_stated();
+            let words = format!(
+                "the site's latitude and the spin are not stated: 0 ± {} (rectangular), the \
+                 Earth rate at any site, either spin",
+                micro(e.half_width_rad_s)
+            );
+            (e, words)
+        }
+    };
+    crate::results::AxialEarthRateResult {
+        latitude_deg: latitude,
+        spin: spin.map(|s| s.words().to_owned()),
+        value_rad_s: taken.value_rad_s,
+        half_width_rad_s: taken.half_width_rad_s,
+        words,
+    }
 }
 
 /// The field that states the gap unit of phase `phase`, and what it states: a recordings
