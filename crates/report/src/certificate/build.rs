@@ -952,6 +952,8 @@ pub(crate) fn input_unit(quantity: &str) -> Option<&'static str> {
         q if q.starts_with("R of the IA-") => "m",
         "C_r of the compensating phase" => "m·s²",
         "k1 (given)" => "rad/(s·g)",
+        // Ω·sin L, the Earth rate's component along the spindle axis (two orientations)
+        q if q.starts_with("Earth rate about the spindle axis") => "rad/s",
         // the fit's coefficients as one correlated group: its contribution, sensitivity 1
         q if q.starts_with("PIGA mean outputs") => "rad/(s·g²)",
         _ => return None,

@@ -288,18 +288,17 @@ fn every_table_with_a_unit_column_has_a_unit_in_every_row() {
         while let Some(v) = stack.pop() {
             match v {
                 serde_json::Value::Object(o) => {
-                    if let (Some(columns), Some(rows)) = (o.get("columns"), o.get("rows")) {
-                        if let Some(unit) =
+                    if let (Some(columns), Some(rows)) = (o.get("columns"), o.get("rows"))
+                        && let Some(unit) =
                             columns.as_array().unwrap().iter().position(|c| c == "unit")
-                        {
-                            tables += 1;
-                            for row in rows.as_array().unwrap() {
-                                let cell = &row[unit];
-                                assert!(
-                                    !cell.is_null() && cell != "—" && cell != "",
-                                    "{name}: a row without its unit: {row}"
-                                );
-                            }
+                    {
+                        tables += 1;
+                        for row in rows.as_array().unwrap() {
+                            let cell = &row[unit];
+                            assert!(
+                                !cell.is_null() && cell != "—" && cell != "",
+                                "{name}: a row without its unit: {row}"
+                            );
                         }
                     }
                     stack.extend(o.values());
