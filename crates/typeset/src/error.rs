@@ -3,12 +3,11 @@
 
 use std::fmt;
 
-use typst::World as _;
+use typst::World;
 use typst::WorldExt as _;
 use typst::diag::SourceDiagnostic;
 
-use crate::world::Sandbox;
-use crate::{DATA_PATH, Template};
+use crate::template::{DATA_PATH, Template};
 
 /// One message of typst, with its place when it has one.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -45,7 +44,7 @@ impl Diagnostic {
     }
 
     /// A diagnostic of the compilation of `template` in `world`, with its line and column.
-    fn placed(world: &Sandbox, template: &Template<'_>, d: &SourceDiagnostic) -> Self {
+    fn placed(world: &dyn World, template: &Template<'_>, d: &SourceDiagnostic) -> Self {
         let mut out = Self::of(d);
         let Some(id) = d.span.id() else {
             return out;
@@ -146,7 +145,7 @@ pub enum TypesetError {
 
 impl TypesetError {
     pub(crate) fn compile(
-        world: &Sandbox,
+        world: &dyn World,
         template: &Template<'_>,
         errors: &[SourceDiagnostic],
         denied: &[String],

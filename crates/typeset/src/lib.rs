@@ -18,6 +18,7 @@
 
 mod error;
 mod layout;
+mod template;
 mod world;
 
 use typst::foundations::Smart;
@@ -26,34 +27,12 @@ use typst_pdf::{PdfOptions, PdfStandard, PdfStandards};
 
 pub use error::{Diagnostic, TypesetError};
 pub use layout::{Area, Stray};
+pub use template::{Asset, DATA_PATH, Template};
 
 use world::Sandbox;
 
-/// The path at which the template reads its data: `json("/data.json")`.
-pub const DATA_PATH: &str = "/data.json";
-
 /// Result of the typesetter.
 pub type Result<T> = std::result::Result<T, TypesetError>;
-
-/// A file the template may read besides its data (an image), at a virtual path of its own.
-#[derive(Debug, Clone, Copy)]
-pub struct Asset<'a> {
-    /// The path the template names it by (`/residuals.svg`).
-    pub path: &'a str,
-    /// Its contents.
-    pub bytes: &'a [u8],
-}
-
-/// A template: typst markup and the assets it may read.
-#[derive(Debug, Clone, Copy)]
-pub struct Template<'a> {
-    /// Its name, as errors give it (`certificate.typ`).
-    pub name: &'a str,
-    /// Its markup.
-    pub source: &'a str,
-    /// The files it may read besides its data.
-    pub assets: &'a [Asset<'a>],
-}
 
 /// A laid-out document: its pages, ready for PDF, SVG or PNG.
 pub struct Document {

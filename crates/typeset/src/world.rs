@@ -12,7 +12,8 @@ use typst::text::{Font, FontBook};
 use typst::utils::LazyHash;
 use typst::{Library, LibraryExt as _, World};
 
-use crate::{DATA_PATH, Template, TypesetError};
+use crate::error::TypesetError;
+use crate::template::{DATA_PATH, Template};
 
 /// The fonts typst bundles (typst-assets: Libertinus Serif, New Computer Modern and its math,
 /// DejaVu Sans Mono), parsed once per process.
