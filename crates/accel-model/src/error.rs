@@ -34,6 +34,20 @@ pub enum AccelModelError {
         /// The scalar inputs that drove it out of range, by name, with their values.
         inputs: Vec<(&'static str, f64)>,
     },
+    /// A quantity that must be > 0 is not.
+    #[error("{field} must be finite and > 0, got {}", units::Compact(*value))]
+    NotPositive {
+        /// The field.
+        field: &'static str,
+        /// The value that was given.
+        value: f64,
+    },
+    /// A mounting's case axes are not a right-handed orthonormal triad.
+    #[error("the mounting's case axes are not a case frame: {reason}")]
+    NotACaseFrame {
+        /// What failed, in words.
+        reason: &'static str,
+    },
     /// The list of rates is empty.
     #[error("no rate points given")]
     NoRates,

@@ -471,35 +471,39 @@ pub fn calibrate_compensated(
     })
 }
 
-/// The calibration with the fit `fit_with` (given the σ to weight by).
-fn calibrate_with<C: AsMeasured>(
-    points: &Points<'_>,
-    geometry: Geometry,
-    fit_with: impl Fn(Option<&[f64]>) -> Result<C, IdentifyError>,
-) -> Result<Calibrated<C>, CalibrationError> {
-    check_points(points)?;
-    let sigma_rad_s = points.sigma_rad_s;
+/// The weighting policy of every calibration, once: the fit `fit_with` (given the σ to weight
+/// by, `None` unweighted) weighted by the points' σ; when its Birge ratio (`birge`) exceeds 1,
+/// the Paule–Mandel τ common to every point that brings χ²/ν to 1 with σᵢ² + τ² (found by
+/// bisection from the largest residual, `residuals` in the output's unit), or, when none is
+/// found, the points' σ kept (the fit's covariance scaled by the Birge ratio); and the
+/// coefficients' degrees of freedom that follow ([`Weighting::group_dof`]). The eq. 18
+/// calibration and the joint fit over several mountings (`crate::fit_mountings`) both use
+/// it, so the same points get the same weights and ν everywhere.
+///
+/// # Errors
+/// The fit's own.
+pub(crate) fn weigh<T, E>(
+    sigma_rad_s: Option<&[f64]>,
+    fit_with: impl Fn(Option<&[f64]>) -> Result<T, E>,
+    birge: impl Fn(&T) -> Option<f64>,
+    residuals: impl Fn(&T) -> Vec<f64>,
+    dof: impl Fn(&T) -> usize,
+) -> Result<(T, Weighting), E> {
     let mut cal = fit_with(sigma_rad_s)?;
-    let first_birge = cal.as_measured().birge_ratio;
+    let first_birge = birge(&cal);
     let mut excess_u_rad_s = None;
     let mut tau_not_found = false;
     let mut sigma_used = sigma_rad_s.map(<[f64]>::to_vec);
-    if let (Some(sigma), Some(birge)) = (sigma_rad_s, first_birge)
-        && birge > 1.0
+    if let (Some(sigma), Some(b)) = (sigma_rad_s, first_birge)
+        && b > 1.0
     {
         let combined =
             |tau: f64| -> Vec<f64> { sigma.iter().map(|s| s.hypot(tau)).collect::<Vec<_>>() };
-        let birge_at = |tau: f64| {
-            fit_with(Some(&combined(tau)))
-                .ok()
-                .and_then(|c| c.as_measured().birge_ratio)
-        };
+        let birge_at = |tau: f64| fit_with(Some(&combined(tau))).ok().and_then(|c| birge(&c));
         // χ²/ν falls towards 0 as τ grows: double τ from the largest residual until it is
         // below 1 (with few degrees of freedom the largest residual may not be enough).
         let mut low = 0.0;
-        let mut high = cal
-            .as_measured()
-            .residuals_rad_s
+        let mut high = residuals(&cal)
             .iter()
             .fold(0.0_f64, |m, r| m.max(r.abs()))
             .max(f64::MIN_POSITIVE);
@@ -533,16 +537,47 @@ fn calibrate_with<C: AsMeasured>(
             sigma_used = Some(widened);
         }
     }
-    let measured = cal.as_measured();
-    let noise_dof = measured.fit.dof;
+    let noise_dof = dof(&cal);
     // The group's degrees of freedom: the σᵢ taken as known (a weighted fit whose residuals
     // stay within them, its covariance (XᵀWX)⁻¹ not scaled by them) have as many as their
     // own estimates, many; a covariance scaled by the residuals (unweighted, or with τ
-    // estimated from them) has n − 6.
+    // estimated from them) has the fit's n − p.
     let group_dof = match (first_birge, excess_u_rad_s, tau_not_found) {
         (Some(b), None, false) if b <= 1.0 => Dof::Infinite,
         _ => Dof::Finite(noise_dof as f64),
     };
+    Ok((
+        cal,
+        Weighting {
+            noise_dof,
+            group_dof,
+            excess_u_rad_s,
+            tau_not_found,
+            sigma_used,
+            birge_ratio: first_birge,
+        },
+    ))
+}
+
+/// The calibration with the fit `fit_with` (given the σ to weight by).
+fn calibrate_with<C: AsMeasured>(
+    points: &Points<'_>,
+    geometry: Geometry,
+    fit_with: impl Fn(Option<&[f64]>) -> Result<C, IdentifyError>,
+) -> Result<Calibrated<C>, CalibrationError> {
+    check_points(points)?;
+    let (cal, weighting) = weigh(
+        points.sigma_rad_s,
+        fit_with,
+        |c| c.as_measured().birge_ratio,
+        |c| c.as_measured().residuals_rad_s.clone(),
+        |c| c.as_measured().fit.dof,
+    )?;
+    let measured = cal.as_measured();
+    let noise_dof = weighting.noise_dof;
+    let first_birge = weighting.birge_ratio;
+    let tau_not_found = weighting.tau_not_found;
+    let sigma_used = weighting.sigma_used.clone();
     let ss: f64 = measured.residuals_rad_s.iter().map(|r| r * r).sum();
     #[allow(clippy::cast_precision_loss)]
     let residual_sd_rad_s = (ss / noise_dof.max(1) as f64).sqrt();
@@ -577,14 +612,7 @@ fn calibrate_with<C: AsMeasured>(
     }
     Ok(Calibrated {
         calibration: cal,
-        weighting: Weighting {
-            noise_dof,
-            group_dof,
-            excess_u_rad_s,
-            tau_not_found,
-            sigma_used,
-            birge_ratio: first_birge,
-        },
+        weighting,
         residual_sd_rad_s,
         inflation,
         warnings,

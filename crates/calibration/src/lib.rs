@@ -31,6 +31,13 @@
 //!   mountings' ω⁴ coefficients for k2 and γ, and the projection of the ω⁶ term the k3 column
 //!   leaves when the radii err apart ([`TwoOrientationFit::omega6_response`]).
 //!
+//! - [`fit_mountings`] and [`separability`]: the joint fit of the IEEE 836 model over several
+//!   mountings (issue 29, `docs/MODEL.md`: eq. 18 and eq. 23 its special cases, to 1e-12 on
+//!   the fixtures), through `identify`'s QR with column scaling and covariance, weighted by the
+//!   same policy as [`calibrate`], the probe's drift compensated along each mounting's axes,
+//!   the arm stretch fitted where the mountings separate it; and, before it, the rank, the
+//!   terms the mountings cannot separate, their u inflation and the mounting that would.
+//!
 //! Nothing here reads files, knows the study's configuration or writes results.
 //!
 //! # References
@@ -41,6 +48,7 @@
 mod calibrate;
 mod limits;
 mod model;
+mod mountings;
 mod quantities;
 mod two_orientation;
 mod vif;
@@ -52,6 +60,12 @@ pub use calibrate::{
 };
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
+pub use mountings::{
+    ArmStretch, ArmStretchEstimate, Column, Confounded, JointDesign, JointSpec, MountingData,
+    MountingsError, MountingsFit, NuisanceEstimate, Nuisances, PoorlySeparated, ProbeCompensation,
+    RANK_TOLERANCE, Separability, SeparabilityWarning, TermEstimate, fit_mountings, joint_design,
+    separability,
+};
 pub use quantities::{AxialEarthRate, CrInput, K1Input, Spin, TypeB, measurement_inputs};
 pub use two_orientation::{
     B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,

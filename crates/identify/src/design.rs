@@ -50,6 +50,55 @@ impl Design {
         Self::from_dd_fn(x.len(), exponents.len(), |i, j| power(x[i], exponents[j]))
     }
 
+    /// Polynomials of one variable, one per entry: entry (i, j) is `Σ c·x_i^p` over the
+    /// pairs `(c, p)` that `terms(i, j)` gives, each power formed and the sum taken in
+    /// double-double. A design whose columns are polynomials in the rate with coefficients
+    /// that differ between groups of rows (the mountings of a joint fit) is held as exactly
+    /// as [`Design::powers`] holds monomials; a single pair `(c, p)` is
+    /// `Design::powers(x, &[p]).scale_columns(&[c])` bit for bit.
+    ///
+    /// ```
+    /// use identify::Design;
+    /// let d = Design::polynomials(&[2.0, 3.0], 1, |i, _| {
+    ///     if i == 0 { vec![(1.0, 0), (0.5, 2)] } else { vec![(-1.0, 3)] }
+    /// })?;
+    /// assert_eq!(d.to_matrix()[(0, 0)], 3.0);
+    /// assert_eq!(d.to_matrix()[(1, 0)], -27.0);
+    /// # Ok::<(), identify::IdentifyError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`IdentifyError::InvalidParameter`] for a non-finite `x` or coefficient, or an entry
+    /// that overflows (`name: "polynomial"`).
+    pub fn polynomials(
+        x: &[f64],
+        n: usize,
+        terms: impl Fn(usize, usize) -> Vec<(f64, u32)>,
+    ) -> Result<Self> {
+        let mut bad = None;
+        let d = Self::from_dd_fn(x.len(), n, |i, j| {
+            let mut sum = Dd::ZERO;
+            for (c, p) in terms(i, j) {
+                if !(c.is_finite() && x[i].is_finite()) {
+                    bad.get_or_insert(if c.is_finite() { x[i] } else { c });
+                }
+                sum += power(x[i], p).mul_f64(c);
+            }
+            if !sum.hi.is_finite() {
+                bad.get_or_insert(sum.hi);
+            }
+            sum
+        });
+        match bad {
+            None => Ok(d),
+            Some(value) => Err(IdentifyError::InvalidParameter {
+                name: "polynomial",
+                value,
+                requirement: Requirement::Finite,
+            }),
+        }
+    }
+
     /// Multiplies column j by `factors[j]` (in double-double), e.g. to turn a column `ω⁴` into
     /// `(R/g)²·ω⁴`.
     ///
@@ -141,7 +190,7 @@ impl Design {
     }
 
     /// Builds a design from double-double entries.
-    pub(crate) fn from_dd_fn(m: usize, n: usize, f: impl Fn(usize, usize) -> Dd) -> Self {
+    pub(crate) fn from_dd_fn(m: usize, n: usize, mut f: impl FnMut(usize, usize) -> Dd) -> Self {
         let mut hi = vec![0.0; m * n];
         let mut lo = vec![0.0; m * n];
         for j in 0..n {

@@ -423,7 +423,9 @@ def test_one_glitch_in_arrays_is_warned_and_dropped_as_the_study_does(tmp_path: 
     assert kept.revolutions_used == 8
     assert abs(kept.mean.c[0] - d.c[0]) > 0.05
     with pytest.raises(cc.InputError, match="on_outlier") as e:
-        cc.fit_harmonics(d.time_s, glitched, rate_deg_s=d.rate_deg_s, on_outlier="drop")
+        cc.fit_harmonics(
+            d.time_s, glitched, rate_deg_s=d.rate_deg_s, on_outlier="drop"  # type: ignore[arg-type]
+        )
     assert e.value.field == "on_outlier"
     # The same samples in a file, read as the study reads them.
     path = tmp_path / "glitch.csv"

@@ -157,8 +157,15 @@ impl Database {
             path: self.path.clone(),
             reason,
         };
-        let app: i32 = self
+        // The header and the schema read in one read transaction, one snapshot: read apart,
+        // a process creating the database between them showed "application id 0, 41 schema
+        // objects" and the file was refused as another program's (two processes recording
+        // into a new file at once).
+        let snapshot = self
             .conn
+            .unchecked_transaction()
+            .map_err(self.sql("starting to read its header"))?;
+        let app: i32 = snapshot
             .query_row("PRAGMA application_id", [], |r| r.get(0))
             .map_err(|e| match e {
                 rusqlite::Error::SqliteFailure(f, _)
@@ -171,8 +178,7 @@ impl Database {
                 }
                 other => self.sql("reading its header")(other),
             })?;
-        let tables: i64 = self
-            .conn
+        let tables: i64 = snapshot
             .query_row("SELECT count(*) FROM sqlite_schema", [], |r| r.get(0))
             .map_err(|e| match e {
                 rusqlite::Error::SqliteFailure(f, _)
@@ -185,11 +191,13 @@ impl Database {
                 }
                 other => self.sql("reading its schema")(other),
             })?;
+        let version: i64 = snapshot
+            .query_row("PRAGMA user_version", [], |r| r.get(0))
+            .map_err(self.sql("reading its schema version"))?;
+        snapshot
+            .commit()
+            .map_err(self.sql("ending the read of its header"))?;
         if app == APPLICATION_ID {
-            let version: i64 = self
-                .conn
-                .query_row("PRAGMA user_version", [], |r| r.get(0))
-                .map_err(self.sql("reading its schema version"))?;
             if version > SCHEMA_VERSION {
                 return Err(RecordsError::NewerSchema {
                     path: self.path.clone(),

@@ -148,6 +148,14 @@ pub enum SimulateError {
         /// The PIGA model's error.
         source: accel_model::AccelModelError,
     },
+    /// A multi-mounting campaign (held in memory) was refused by the model.
+    #[error("{field}: {source}")]
+    Campaign {
+        /// The field concerned (`mountings[2]`, `rates[4]`).
+        field: String,
+        /// The model's error.
+        source: accel_model::AccelModelError,
+    },
 }
 
 impl SimulateError {

@@ -38,13 +38,21 @@
 //! ([`Mount`], [`mounted_rate_point`], [`piga_table_mounted`]). [`mounted_piga_recording`]
 //! gives one mounting's raw PIGA output recording at a rate on its own (the test planner's
 //! check of a plan's points through the study's reduction).
+//!
+//! **Multi-mounting campaigns** (issue 29, `docs/MODEL.md`): [`MountingCampaign`] mounts a
+//! PIGA or a pendulous accelerometer with the IEEE 836 model's terms several ways on the arm
+//! (true axes, radii and bias shifts), and [`campaign_points`] gives each mounting's mean
+//! outputs over whole revolutions of the exact chain (`accel_model::mounted_point`), with the
+//! spindle's error motion and the arm stretch; [`noisy_outputs`] adds white noise.
 
+mod campaign;
 mod error;
 mod generate;
 mod mounting;
 mod scenario;
 mod write;
 
+pub use campaign::{CampaignMounting, MountingCampaign, campaign_points, noisy_outputs};
 pub use error::{Result, SimulateError};
 pub use generate::{
     MountingRateTruth, MountingTruth, OutputNoise, PigaRow, ProbeTruth, RadiusGrowthTruth,

@@ -1,12 +1,12 @@
 //! The joint least-squares fit of eq. 23 to the two data sets: the checks of the data, the
 //! fit, and the coefficients and C it gives.
 
-use identify::{Fit, LstsqOptions, lstsq_with};
+use identify::{Fit, LstsqOptions};
 
 use super::error::TwoOrientationError;
 use super::terms::{
     B3_TERM, GAMMA_TERM, K2_INFLATION_LIMIT, K2_TERM, K3_TERM, MIN_RATES_PER_ORIENTATION,
-    Orientation, OrientationData, TWO_ORIENTATION_TERMS, distinct, index, two_orientation_row,
+    Orientation, OrientationData, TWO_ORIENTATION_TERMS, distinct, index, two_orientation_terms,
 };
 
 /// One mounting's own coefficients.
@@ -251,32 +251,42 @@ pub fn fit_two_orientation(
     let sets = check(data, list_field)?;
     let weighted = sets.iter().all(|(d, _)| d.sigma_rad_s.is_some());
     let rows: usize = sets.iter().map(|(d, _)| d.rates_rad_s.len()).sum();
-    let mut x = nalgebra::DMatrix::zeros(rows, TWO_ORIENTATION_TERMS);
     let mut y = Vec::with_capacity(rows);
     let mut weights = Vec::with_capacity(rows);
     let mut omega6 = Vec::with_capacity(rows);
     let mut earth_rate = Vec::with_capacity(rows);
-    let mut r = 0;
-    for (d, radius) in &sets {
-        let o = d.orientation.unwrap_or(Orientation::IaIn);
+    let mut rates = Vec::with_capacity(rows);
+    let mut row_set = Vec::with_capacity(rows);
+    for (k, (d, radius)) in sets.iter().enumerate() {
         for (i, (&w, &out)) in d.rates_rad_s.iter().zip(d.output_rad_s).enumerate() {
-            let row = two_orientation_row(o, *radius, g_m_s2, w);
             let wt = if weighted {
                 d.sigma_rad_s.map_or(1.0, |s| 1.0 / s[i])
             } else {
                 1.0
             };
-            for (j, v) in row.iter().enumerate() {
-                x[(r, j)] = v * wt;
-            }
             y.push(out * wt);
             weights.push(wt);
             omega6.push(w.powi(6) * wt);
             earth_rate.push(4.0 * radius * radius * w.powi(3) / (g_m_s2 * g_m_s2) * wt);
-            r += 1;
+            rates.push(w);
+            row_set.push(k);
         }
     }
-    let mut fit = lstsq_with(&x, &y, &LstsqOptions::default()).map_err(TwoOrientationError::Fit)?;
+    // The design of eq. 23 in double-double (`two_orientation_terms`: each entry a power of ω
+    // times a constant, as eq. 18's design and the joint fit over several mountings form
+    // theirs, so that eq. 23 is that fit's special case to the last digit), weighted by 1/σᵢ.
+    let design = identify::Design::polynomials(&rates, TWO_ORIENTATION_TERMS, |r, j| {
+        let (d, radius) = &sets[row_set[r]];
+        let o = d.orientation.unwrap_or(Orientation::IaIn);
+        two_orientation_terms(o, *radius, g_m_s2)[j]
+            .into_iter()
+            .collect()
+    })
+    .and_then(|d| d.scale_rows(&weights))
+    .map_err(TwoOrientationError::Fit)?;
+    let x = design.to_matrix();
+    let mut fit = identify::lstsq_design(&design, &y, &LstsqOptions::default())
+        .map_err(TwoOrientationError::Fit)?;
     // the least-squares projection of ω⁶ on the design, X⁺·ω⁶ = (XᵀX)⁻¹·Xᵀ·ω⁶, from the
     // fit's own (XᵀX)⁻¹ (the QR's, refined): no second factorisation on every fit, which the
     // planner's 10⁴ simulated campaigns paid for
@@ -395,6 +405,8 @@ fn vif(x: &nalgebra::DMatrix<f64>, weights: &[f64], fit: &Fit, j: usize) -> f64 
 #[cfg(test)]
 mod separability {
     use super::*;
+    use crate::two_orientation_row;
+    use identify::lstsq_with;
 
     /// A joint fit of two noise-free data sets at rates `a` (IA in, radius `ra`) and `b`
     /// (IA out, radius `rb`), °/s.

@@ -105,3 +105,28 @@ pub fn two_orientation_row(
     row[GAMMA_TERM] = s * w * w * w * w;
     row
 }
+
+/// Eq. 23's design row at a rate as `(constant, power of ω)` per column (`None`: zero): the
+/// form the fit builds its design from, in double-double. With `k = R/g`: `1`, `s·ω`,
+/// `s·k·ω²` (= s·a), `s·ω³`, `k²·ω⁴` (= a²), `s·k³·ω⁶` (= s·a³), `s·ω⁴`; the constants are
+/// those the joint fit over several mountings forms for IA in and IA out
+/// (`crate::fit_mountings`), bit for bit.
+pub(super) fn two_orientation_terms(
+    o: Orientation,
+    radius_m: f64,
+    g_m_s2: f64,
+) -> [Option<(f64, u32)>; TWO_ORIENTATION_TERMS] {
+    let s = o.sign();
+    let k = radius_m / g_m_s2;
+    let sk = s * k;
+    let mut row = [None; TWO_ORIENTATION_TERMS];
+    let base = 3 * index(o);
+    row[base] = Some((1.0, 0));
+    row[base + 1] = Some((s, 1));
+    row[base + 2] = Some((sk, 2));
+    row[B3_TERM] = Some((s, 3));
+    row[K2_TERM] = Some((sk * sk, 4));
+    row[K3_TERM] = Some((sk * sk * sk, 6));
+    row[GAMMA_TERM] = Some((s, 4));
+    row
+}

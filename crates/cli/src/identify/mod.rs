@@ -134,8 +134,9 @@ pub(crate) struct Identify {
     #[arg(long, requires = "c_r_m_s2")]
     k1: Option<f64>,
     /// Dynamic radius-error coefficient C_r (m·s²) from the probe analysis: enables the
-    /// compensated identification.
-    #[arg(long, requires = "c_r_sigma_m_s2")]
+    /// compensated identification. A negative value (a radius that shrinks with ω²) is read
+    /// as a number: `--c-r-m-s2 -4e-8`.
+    #[arg(long, requires = "c_r_sigma_m_s2", allow_hyphen_values = true)]
     c_r_m_s2: Option<f64>,
     /// Standard deviation of C_r (m·s²).
     #[arg(long, requires = "c_r_m_s2")]

@@ -163,3 +163,19 @@ fn identify_human_output_of_an_export() {
     assert!(text.contains(" u ") && text.contains("U95"), "{text}");
     insta::assert_snapshot!("identify_export", text);
 }
+
+/// A radius that shrinks with ω² has a negative C_r; `--c-r-m-s2 -4e-8` is read as that
+/// number (clap would take `-4e-8` for a flag), and the compensation uses it.
+#[test]
+fn a_negative_c_r_is_read_as_a_number() {
+    let table = root().join("fixtures/campaign/piga.csv");
+    let table = table.to_str().unwrap();
+    let with = |c_r: &str| identify(&[table, "--c-r-m-s2", c_r, "--c-r-sigma-m-s2", "1e-9"]);
+    let negative = with("-4e-8");
+    let positive = with("4e-8");
+    assert_ne!(
+        negative, positive,
+        "the sign of C_r reaches the compensation"
+    );
+    assert!(negative.to_string().contains("-4e-8") || negative.to_string().contains("-4.0e-8"));
+}

@@ -1,0 +1,108 @@
+//! Multi-mounting campaigns (issue 29 part 5, `docs/MODEL.md`): the accelerometer — a PIGA or
+//! a pendulous accelerometer with any of the IEEE 836 model's terms — mounted several ways on
+//! the arm of a spindle with error motion and an arm that stretches, each mounting at its own
+//! true radius, with its true axes (the fixture's index error: they may differ from the
+//! declared ones) and its own bias shift; the noise-free mean outputs over whole revolutions
+//! of the exact chain (`accel_model::mounted_point`), and white noise on them, one
+//! independent stream per (seed, campaign, mounting).
+
+use accel_model::{CaseAxes, ModelCoefficients, MountedPoint, MountedSpindle, mounted_point};
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+use rand_distr::{Distribution, Normal};
+
+use crate::error::{Result, SimulateError};
+
+/// The stream tag of the campaigns' noise (beside the scenario's probe and PIGA streams).
+const CAMPAIGN_STREAM: u64 = 9;
+
+/// One mounting of a simulated campaign, as it truly is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CampaignMounting {
+    /// The true case axes in the spindle frame.
+    pub axes: CaseAxes,
+    /// The true static radius, m.
+    pub radius_m: f64,
+    /// Added to the output in this mounting (remounting shifts the bias), output units.
+    pub bias_shift: f64,
+}
+
+/// A multi-mounting campaign.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MountingCampaign {
+    /// The spindle (site, error motion) and the arm stretch.
+    pub spindle: MountedSpindle,
+    /// The accelerometer's true coefficients (and kind).
+    pub coefficients: ModelCoefficients,
+    /// The mountings.
+    pub mountings: Vec<CampaignMounting>,
+    /// The rates of every mounting, rad/s.
+    pub rates_rad_s: Vec<f64>,
+}
+
+/// The noise-free points of every mounting (mounting by mounting, rate by rate): the mean
+/// output over whole revolutions of the exact chain and the mean inputs.
+///
+/// # Errors
+/// [`SimulateError::Campaign`] naming the mounting and rate the model refused.
+pub fn campaign_points(campaign: &MountingCampaign) -> Result<Vec<Vec<MountedPoint>>> {
+    campaign
+        .mountings
+        .iter()
+        .enumerate()
+        .map(|(m, mounting)| {
+            campaign
+                .rates_rad_s
+                .iter()
+                .enumerate()
+                .map(|(i, &w)| {
+                    mounted_point(
+                        &campaign.spindle,
+                        &campaign.coefficients,
+                        &mounting.axes,
+                        mounting.radius_m,
+                        mounting.bias_shift,
+                        w,
+                    )
+                    .map_err(|source| SimulateError::Campaign {
+                        field: format!("mountings[{m}].rates[{i}]"),
+                        source,
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The outputs of campaign number `campaign` (from 0) of a set seeded by `seed`: each
+/// noise-free output plus N(0, σ²), `sigma` in output units (finite, ≥ 0).
+///
+/// # Errors
+/// [`SimulateError::Campaign`] for a σ that is not
+/// finite and ≥ 0.
+pub fn noisy_outputs(
+    points: &[Vec<MountedPoint>],
+    sigma: f64,
+    seed: u64,
+    campaign: u64,
+) -> Result<Vec<Vec<f64>>> {
+    let normal = Normal::new(0.0, sigma).map_err(|_| SimulateError::Campaign {
+        field: "sigma".to_owned(),
+        source: accel_model::AccelModelError::NonFinite {
+            field: "sigma",
+            value: sigma,
+        },
+    })?;
+    Ok(points
+        .iter()
+        .enumerate()
+        .map(|(m, mounting)| {
+            let key = campaign.wrapping_mul(1 << 16).wrapping_add(m as u64);
+            let mut rng = StdRng::seed_from_u64(units::stream_seed(seed, CAMPAIGN_STREAM, key));
+            mounting
+                .iter()
+                .map(|p| p.output + normal.sample(&mut rng))
+                .collect()
+        })
+        .collect())
+}
