@@ -9,6 +9,7 @@
 //! edge that touches files (`.ci/layering`).
 
 mod accuracy;
+mod certificate;
 mod check;
 mod console;
 mod harmonics;
@@ -70,6 +71,9 @@ enum Command {
     /// Check a study configuration without running it: what the study will do, and every
     /// problem found in it and its files, grouped, with hints.
     Check(check::Check),
+    /// Write the calibration certificate (PDF/A) of a study's results folder again, from its
+    /// results.json: no browser, no study run.
+    Certificate(certificate::Certificate),
     /// Record a study's outputs (results.json and its certificate) in the records database,
     /// or a balancing of a centrifuge (docs/RECORDS.md).
     Record(record::Record),
@@ -130,6 +134,7 @@ where
         Command::Plan(c) => c.run(places),
         Command::Init(c) => c.run(),
         Command::Check(c) => c.run(),
+        Command::Certificate(c) => c.run(),
         Command::Record(c) => c.run(),
         Command::History(c) => c.run(),
     };

@@ -120,8 +120,8 @@ impl Study {
         if let Some(svg) = &files.balance_polar_svg {
             writeln!(console, "wrote {}", svg.display())?;
         }
-        if let Some(html) = &files.certificate_html {
-            writeln!(console, "wrote {}", html.display())?;
+        if let Some(pdf) = &files.certificate_pdf {
+            writeln!(console, "wrote {}", pdf.display())?;
         }
         if let Some(xml) = &files.certificate_dcc {
             writeln!(console, "wrote {}", xml.display())?;

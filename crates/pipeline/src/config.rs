@@ -79,7 +79,7 @@ pub struct StudyConfig {
     /// a `radius_change` phase and a stated radial stiffness; absent: not run).
     #[serde(default)]
     pub counterweight: Option<CounterweightConfig>,
-    /// The calibration certificate's statements (absent: no `certificate.html`; needs a
+    /// The calibration certificate's statements (absent: no `certificate.pdf`; needs a
     /// calibration section; `docs/CERTIFICATE.md`).
     #[serde(default)]
     pub certificate: Option<CertificateConfig>,

@@ -37,6 +37,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::plan, m)?)?;
     m.add_function(wrap_pyfunction!(study::fit_radius_error, m)?)?;
     m.add_function(wrap_pyfunction!(study::delta_k2, m)?)?;
+    m.add_function(wrap_pyfunction!(study::certificate, m)?)?;
     m.add_function(wrap_pyfunction!(cli_main, m)?)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -134,6 +134,23 @@ pub(crate) fn run_study_file(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_
     )
 }
 
+/// Writes the calibration certificate (PDF/A-2b) of a study's results folder (or its
+/// results.json) to `out` (default: certificate.pdf in the folder), as `centrifuge-cal
+/// certificate` does (`report::write_certificate`); returns the path written.
+#[pyfunction]
+#[pyo3(signature = (results, out = None))]
+pub(crate) fn certificate(
+    py: Python<'_>,
+    results: PathBuf,
+    out: Option<PathBuf>,
+) -> PyResult<String> {
+    interruptible(py, move || -> Result<String, Failure> {
+        let written = report::write_certificate(&results, out.as_deref())?;
+        Ok(written.display().to_string())
+    })?
+    .map_err(|e| e.raise(py))
+}
+
 /// The tables of a study given as arrays: `{name: {"columns": {column: array}, "labels":
 /// [str] | None}}`.
 fn array_tables(tables: &Bound<'_, PyDict>) -> PyResult<HashMap<PathBuf, ArrayTable>> {

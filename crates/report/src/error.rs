@@ -88,6 +88,25 @@ pub enum ReportError {
         "a certificate needs a study with a `calibration` and a `certificate` section; this study lacks one"
     )]
     NoCertificate,
+    /// The date of issue is not a calendar date, which a PDF/A document must state.
+    #[error(
+        "the certificate's date of issue {issued:?} is not a calendar date (hint: write `certificate.dates.issued` as ISO 8601 does, `2026-11-24`)"
+    )]
+    IssueDate {
+        /// The date as the study states it.
+        issued: String,
+    },
+    /// The certificate could not be typeset.
+    #[error("typesetting the certificate: {0}")]
+    Typeset(#[from] typeset::TypesetError),
+    /// A results file is not what a study writes.
+    #[error("{}: {message} (hint: give the folder a study wrote, holding its results.json)", path.display())]
+    Results {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
     /// The digital calibration certificate (`certificate.dcc.xml`) cannot be written.
     #[error("certificate.dcc.xml: {0}")]
     Dcc(#[from] dcc::DccError),

@@ -116,6 +116,8 @@ pub(crate) struct Asymmetric {
     pub minus: String,
     /// The common power of ten, empty when none is needed.
     pub scale: String,
+    /// Its exponent (0 when none is needed).
+    pub exponent: i32,
 }
 
 /// A value and an interval about it; symmetric intervals (widths within 5 %) are written as
@@ -148,7 +150,16 @@ pub(crate) fn interval(value: f64, below: f64, above: f64) -> Asymmetric {
         } else {
             format!("× {}", power_of_ten(scale_exp))
         },
+        exponent: scale_exp,
     }
+}
+
+/// `x` with two significant digits and no power of ten (`0.00033`, `12`, `0.87`).
+pub(crate) fn two_digits(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return plain(x);
+    }
+    fixed(x, decimals_for(x))
 }
 
 impl Asymmetric {

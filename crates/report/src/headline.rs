@@ -33,19 +33,6 @@ impl Headline {
         self.stated.method == HeadlineMethod::Gum
     }
 
-    /// The method in words.
-    pub(crate) const fn method_words(&self) -> &'static str {
-        match (self.stated.method, self.stated.borderline) {
-            (HeadlineMethod::Gum, _) => "GUM (JCGM 100), validated by Monte Carlo",
-            (HeadlineMethod::MonteCarlo, false) => {
-                "Monte Carlo (JCGM 101): the GUM interval is not validated (§8)"
-            }
-            (HeadlineMethod::MonteCarlo, true) => {
-                "Monte Carlo (JCGM 101): the GUM validation is borderline (§8)"
-            }
-        }
-    }
-
     /// The method in a few words, for the summary's table.
     pub(crate) const fn method_short(&self) -> &'static str {
         match (self.stated.method, self.stated.borderline) {
@@ -86,11 +73,6 @@ pub(crate) fn headlines(c: &CalibrationResults) -> [Headline; 4] {
             gum: g.k3,
         },
     ]
-}
-
-/// The scale from a coefficient's own unit to µg, µg/g², µg/g³ (relative to k1).
-pub(crate) fn micro_scale(k1: f64) -> f64 {
-    1e6 / k1
 }
 
 #[cfg(test)]
@@ -139,14 +121,14 @@ mod tests {
         let h = of(false, 5e-3, 1e-3);
         assert!(!h.is_gum() && !h.stated.borderline);
         assert_eq!((h.stated.low95, h.stated.high95), (0.79, 1.22));
-        assert!(h.method_words().contains("not validated"));
+        assert!(h.verdict_words().contains("not validated"));
         // within δ/2 of the threshold, on either side: borderline, the Monte Carlo interval
         // stated whichever verdict this run gave
         for (agrees, d) in [(true, 0.9e-3), (false, 1.1e-3)] {
             let h = of(agrees, d, 1e-3);
             assert!(!h.is_gum() && h.stated.borderline);
             assert_eq!((h.stated.low95, h.stated.high95), (0.79, 1.22));
-            assert!(h.method_words().contains("borderline"));
+            assert!(h.verdict_words().contains("borderline"));
         }
     }
 }

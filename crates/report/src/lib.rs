@@ -14,14 +14,11 @@
 mod balance;
 mod calibration;
 mod certificate;
-mod certificate_tables;
-mod certificate_two_orientation;
 mod error;
 mod expected;
 mod format;
 mod headline;
 mod history;
-mod html;
 mod markdown;
 mod output;
 mod plot;
@@ -31,12 +28,25 @@ mod svgplot;
 mod two_orientation;
 
 pub use balance::balance_polar_svg;
-pub use certificate::certificate_html;
+pub use certificate::{
+    CERTIFICATE_TEMPLATE, CertificateData, certificate_data, certificate_document,
+    certificate_json, certificate_pdf,
+};
+/// The parts of [`CertificateData`], the certificate's data as its template reads it.
+pub mod certificate_model {
+    pub use crate::certificate::{
+        Authorisation, Budget, CalendarDate, Certified, Check, Conformity, DataUsed, Field, Files,
+        Laboratory, Method, Run, Running, Section, Table, Text,
+    };
+}
 pub use error::{ReportError, Result};
 pub use expected::{Check, CheckOutcome, Expected};
 pub use history::{health_svg, health_text, history_svg, history_text};
 pub use markdown::render;
-pub use output::{WrittenFiles, results_json, results_json_with_provenance, write_outputs};
+pub use output::{
+    SavedResults, WrittenFiles, read_results, results_json, results_json_with_provenance,
+    write_certificate, write_outputs,
+};
 pub use plot::{calibration_residuals_svg, probe_signals_svg, radius_error_svg};
 pub use provenance::{FileRecord, Provenance, Software, TOOL};
 pub use summary::summary_text;

@@ -20,6 +20,8 @@ const STUDY_FILES: &[&str] = &[
     "probe_signals_*.svg",
     "calibration_residuals.svg",
     "balance_polar.svg",
+    "certificate.pdf",
+    // written by earlier versions: removed when a study writes into the folder again
     "certificate.html",
     dcc::FILE_NAME,
 ];
@@ -40,11 +42,51 @@ pub struct WrittenFiles {
     pub probe_signals_svg: Vec<PathBuf>,
     /// `balance_polar.svg`, when the study has a balance section.
     pub balance_polar_svg: Option<PathBuf>,
-    /// `certificate.html`, when the study has a certificate section.
-    pub certificate_html: Option<PathBuf>,
+    /// `certificate.pdf` (PDF/A-2b), when the study has a certificate section.
+    pub certificate_pdf: Option<PathBuf>,
     /// `certificate.dcc.xml`, the certificate as a DCC, when the study has a certificate
     /// section.
     pub certificate_dcc: Option<PathBuf>,
+}
+
+/// What a study's `results.json` holds: the results and, when recorded, their provenance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SavedResults {
+    /// The results.
+    pub results: StudyResults,
+    /// The provenance record (absent from a `results.json` written without one).
+    pub provenance: Option<Provenance>,
+}
+
+/// The largest `results.json` [`read_results`] reads.
+const RESULTS_MAX_BYTES: u64 = 256 * 1024 * 1024;
+
+/// Reads a study's `results.json`: `path` is the file or the folder holding it.
+///
+/// # Errors
+/// [`ReportError::File`] when it cannot be read (or is larger than 256 MiB, or not UTF-8);
+/// [`ReportError::Results`] naming the file when it is not a study's results.
+pub fn read_results(path: &Path) -> Result<SavedResults> {
+    let file = if path.is_dir() {
+        path.join("results.json")
+    } else {
+        path.to_owned()
+    };
+    let text = edge_io::read_text_capped(&file, RESULTS_MAX_BYTES)?;
+    let bad = |e: serde_json::Error| ReportError::Results {
+        path: file.clone(),
+        message: format!("not a study's results ({e})"),
+    };
+    let mut value: serde_json::Value = serde_json::from_str(&text).map_err(bad)?;
+    let provenance = match value.as_object_mut().and_then(|o| o.remove("provenance")) {
+        Some(p) => Some(serde_json::from_value(p).map_err(bad)?),
+        None => None,
+    };
+    let results = serde_json::from_value(value).map_err(bad)?;
+    Ok(SavedResults {
+        results,
+        provenance,
+    })
 }
 
 /// Serialises results as pretty JSON, without provenance.
@@ -81,8 +123,8 @@ pub fn results_json_with_provenance(
 
 /// Writes `results.json` (with `provenance` when given), `report.md`, `radius_error.svg`,
 /// for phases given as recordings `probe_signals_<phase>.svg`, and for a study with a
-/// certificate section `certificate.html` and `certificate.dcc.xml` (the same certificate as
-/// a DCC; their input files from `provenance`) into `dir`, atomically: every
+/// certificate section `certificate.pdf` (PDF/A-2b) and `certificate.dcc.xml` (the same
+/// certificate as a DCC; their input files from `provenance`) into `dir`, atomically: every
 /// file is rendered first, then written through an [`OutputSet`], so `dir` ends up holding
 /// exactly these files, or, on any error, what it held before, byte for byte. Files of an
 /// earlier study that this one does not write (a probe figure) are removed.
@@ -137,7 +179,7 @@ pub fn write_outputs(
     let certificate = results
         .certificate
         .as_ref()
-        .map(|_| crate::certificate::certificate_html(results, provenance, &Software::this_build()))
+        .map(|_| crate::certificate::certificate_pdf(results, provenance, &Software::this_build()))
         .transpose()?;
 
     let certificate_dcc = results
@@ -165,8 +207,8 @@ pub fn write_outputs(
     let balance_polar_svg = balance_figure
         .map(|svg| set.write("balance_polar.svg", svg.as_bytes()))
         .transpose()?;
-    let certificate_html = certificate
-        .map(|html| set.write("certificate.html", html.as_bytes()))
+    let certificate_pdf = certificate
+        .map(|pdf| set.write("certificate.pdf", &pdf))
         .transpose()?;
     let certificate_dcc = certificate_dcc
         .map(|xml| set.write(dcc::FILE_NAME, xml.as_bytes()))
@@ -179,7 +221,7 @@ pub fn write_outputs(
         probe_signals_svg,
         calibration_residuals_svg,
         balance_polar_svg,
-        certificate_html,
+        certificate_pdf,
         certificate_dcc,
     })
 }
@@ -210,4 +252,59 @@ fn certificate_dcc(results: &StudyResults, provenance: Option<&Provenance>) -> R
         software: &software,
         files: files.as_deref(),
     })?)
+}
+
+/// Re-renders the certificate of a study's results: reads `results` (a study's output folder
+/// or its `results.json`, [`read_results`]) and writes the certificate as PDF/A-2b to `out`
+/// (default: `certificate.pdf` beside `results.json`), through a temporary file in the same
+/// folder renamed into place, so that `out` is never half-written. Returns the path written.
+///
+/// # Errors
+/// As [`read_results`]; [`ReportError::NoCertificate`] when the study had no certificate
+/// section; [`ReportError::Typeset`] when it cannot be typeset; [`ReportError::File`] when
+/// the PDF cannot be written.
+pub fn write_certificate(results: &Path, out: Option<&Path>) -> Result<PathBuf> {
+    let saved = read_results(results)?;
+    let pdf = crate::certificate::certificate_pdf(
+        &saved.results,
+        saved.provenance.as_ref(),
+        &Software::this_build(),
+    )?;
+    let out = match out {
+        Some(o) => o.to_owned(),
+        None if results.is_dir() => results.join("certificate.pdf"),
+        None => results
+            .parent()
+            .unwrap_or_else(|| Path::new("."))
+            .join("certificate.pdf"),
+    };
+    write_file_atomically(&out, &pdf)?;
+    Ok(out)
+}
+
+/// Writes `bytes` to `path` through `<path>.tmp-<pid>` in the same folder, synced, then
+/// renamed over `path`.
+fn write_file_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    use std::io::Write as _;
+    let file_name = path
+        .file_name()
+        .map_or_else(|| "certificate.pdf".into(), std::ffi::OsStr::to_os_string);
+    let mut tmp_name = file_name;
+    tmp_name.push(format!(".tmp-{}", std::process::id()));
+    let tmp = path.with_file_name(tmp_name);
+    let write_error = |source| edge_io::EdgeIoError::Write {
+        path: path.to_owned(),
+        source,
+    };
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(write_error(e).into());
+    }
+    Ok(())
 }

@@ -7,7 +7,7 @@
 use std::io::Read as _;
 use std::path::Path;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use sha2::{Digest as _, Sha256};
 
 use crate::error::Result;
@@ -17,7 +17,7 @@ use pipeline::{FileDigest, Inputs};
 pub const TOOL: &str = "centrifuge-cal";
 
 /// The `provenance` object of `results.json` (see `docs/RESULTS.md`).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Provenance {
     /// Always [`TOOL`].
     pub tool: String,
@@ -38,7 +38,7 @@ pub struct Provenance {
 }
 
 /// A file as it was when a study read it.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct FileRecord {
     /// The path.
     pub path: String,

@@ -313,5 +313,5 @@ fn a_date_that_is_not_iso_is_refused_naming_its_field() {
     assert!(!run.status.success());
     assert!(stderr.contains("certificate.dates.received"), "{stderr}");
     assert_eq!(hidden(&stderr), None);
-    assert!(!out.join("certificate.html").exists());
+    assert!(!out.join("certificate.pdf").exists());
 }

@@ -173,11 +173,15 @@ fn clone_to_certificate(
     );
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
-    let certificate = ["certificate.pdf", "certificate.html"]
-        .iter()
-        .map(|name| out.join(name))
-        .find(|p| p.exists())
-        .expect("the study writes the certificate");
+    // the certificate: a PDF the tool typesets itself (no HTML any more)
+    let certificate = out.join("certificate.pdf");
+    assert!(
+        std::fs::read(&certificate)
+            .expect("the study writes certificate.pdf")
+            .starts_with(b"%PDF-"),
+        "certificate.pdf is a PDF"
+    );
+    assert!(!out.join("certificate.html").exists());
     (json, certificate, printed, edits)
 }
 

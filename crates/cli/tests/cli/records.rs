@@ -80,7 +80,8 @@ fn f(v: &serde_json::Value) -> f64 {
 
 /// Three studies of one simulated unit a year apart, its k2 drifting by a known rate:
 /// `history` recovers the drift within its U95, and from the first two predicts the third's
-/// k2 within the U95 of a calibration on that date.
+/// k2 within the U95 of a calibration on that date; the records hold the SHA-256 of each
+/// study's certificate.pdf and certificate.dcc.xml.
 #[test]
 fn history_recovers_a_known_drift_and_predicts_the_third_study() {
     let scratch = Scratch::new("records-drift");
@@ -89,6 +90,7 @@ fn history_recovers_a_known_drift_and_predicts_the_third_study() {
     let db_two = scratch.path().join("two.sqlite");
     let db_all = scratch.path().join("all.sqlite");
     let mut certified_k2 = Vec::new();
+    let mut written = Vec::new();
     for (y, date) in dates.iter().enumerate() {
         let dir = scratch.path().join(format!("y{y}"));
         let k2 = 5.0e-7 + drift_per_year * y as f64;
@@ -111,6 +113,15 @@ fn history_recovers_a_known_drift_and_predicts_the_third_study() {
         if y < 2 {
             ok(&cli(&["record", s(&out), "--records", s(&db_two)]));
         }
+        // the certificate as the study wrote it: the PDF typeset by the tool and its DCC
+        let pdf = std::fs::read(out.join("certificate.pdf")).unwrap();
+        assert!(pdf.starts_with(b"%PDF-"), "certificate.pdf is a PDF");
+        let dcc = std::fs::read(out.join("certificate.dcc.xml")).unwrap();
+        written.push((
+            format!("CC-Y{y}"),
+            records::sha256_hex(&pdf),
+            records::sha256_hex(&dcc),
+        ));
         let results: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join("results.json")).unwrap()).unwrap();
         let k2 = results["certificate"]["certified"]["coefficients"]
@@ -129,6 +140,17 @@ fn history_recovers_a_known_drift_and_predicts_the_third_study() {
         "--records",
         s(&db_all),
     ]));
+    // the records hold the SHA-256 of the PDF and of the DCC each study wrote
+    let stored = all["certificates"].as_array().unwrap();
+    assert_eq!(stored.len(), written.len());
+    for (id, pdf, dcc) in &written {
+        let c = stored
+            .iter()
+            .find(|c| c["id"] == id.as_str())
+            .unwrap_or_else(|| panic!("{id} not recorded"));
+        assert_eq!(c["pdf_sha256"], pdf.as_str(), "{id}");
+        assert_eq!(c["dcc_sha256"], dcc.as_str(), "{id}");
+    }
     let k2 = term(&all, "k2");
     assert_eq!(k2["points"].as_array().unwrap().len(), 3);
     let drift = &k2["drift"];

@@ -216,7 +216,7 @@ pub enum LimitUnitName {
 }
 
 /// A specification limit (`certificate.limits[…]`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LimitConfig {
     /// The coefficient.
@@ -229,6 +229,10 @@ pub struct LimitConfig {
     /// Upper tolerance limit.
     #[serde(default)]
     pub upper: Option<f64>,
+    /// Where the limit comes from (ISO/IEC 17025 §7.8.6.2): `customer specification`, a
+    /// contract, the manufacturer's data sheet; printed beside it on the certificate.
+    #[serde(default)]
+    pub source: Option<String>,
 }
 
 /// The decision rule (ILAC-G8:09/2019 §4.2).

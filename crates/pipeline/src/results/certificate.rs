@@ -199,6 +199,10 @@ pub struct ConformityStatement {
     /// Upper tolerance limit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub upper: Option<f64>,
+    /// Where the limit comes from (customer specification, contract, data sheet), as the
+    /// study file states it for this limit, else the certificate's `limits_source`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<String>,
     /// The statement.
     pub verdict: Verdict,
 }

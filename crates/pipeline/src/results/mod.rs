@@ -50,7 +50,7 @@ pub struct StudyResults {
     /// The counterweight a published change of radius error stands for (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub counterweight: Option<CounterweightResults>,
-    /// The calibration certificate's statements (when configured; `certificate.html`).
+    /// The calibration certificate's statements (when configured; `certificate.pdf`).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub certificate: Option<CertificateResults>,
     /// The two-orientation (IA in / IA out) calibration (when configured).

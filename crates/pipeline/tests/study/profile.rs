@@ -112,15 +112,24 @@ fn a_study_naming_its_profile_runs_to_the_numbers_of_the_study_stating_everythin
     assert_eq!(cert.location, reference_cert.location);
     assert_eq!(cert.procedure, reference_cert.procedure);
     assert_eq!(cert.authorisation, reference_cert.authorisation);
-    assert_eq!(
-        cert.conformity.as_ref().map(|c| &c.statements),
-        reference_cert.conformity.as_ref().map(|c| &c.statements)
-    );
+    // The same statements; where their limit comes from is the profile's `limits_source`
+    // (the reference states its own for its limit).
+    let source = "the customer's specification, as agreed at contract review";
     assert_eq!(
         cert.conformity
             .as_ref()
             .and_then(|c| c.limits_source.as_deref()),
-        Some("the customer's specification, as agreed at contract review")
+        Some(source)
+    );
+    let mut statements = cert.conformity.as_ref().unwrap().statements.clone();
+    for s in &mut statements {
+        assert_eq!(s.source.as_deref(), Some(source), "{}", s.coefficient);
+        s.source
+            .clone_from(&reference_cert.conformity.as_ref().unwrap().statements[0].source);
+    }
+    assert_eq!(
+        Some(&statements),
+        reference_cert.conformity.as_ref().map(|c| &c.statements)
     );
     // Every Type B input with its standing statement, at the budget's standard uncertainty.
     for t in &reference_cert.traceability {

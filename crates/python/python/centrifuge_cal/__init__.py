@@ -13,7 +13,8 @@ The Rust toolkit behind ``cargo xtask``, with numpy arrays in and typed results 
   calibrated with its input axis in and out (eq. 23), C compared with a probe's C_r;
 - :func:`advise_balance` and :func:`plan`: the balance advisor and the test planner;
 - :func:`run_study`: a whole study from its configuration file or a dict of the same shape,
-  returning what ``results.json`` holds.
+  returning what ``results.json`` holds;
+- :func:`certificate`: the calibration certificate (PDF/A) of a study's results folder.
 
 Units are in the names (``rate_deg_s``, ``radius_error_um``, ``c_r_m_s2``); lengths of a
 probe recording and of its fit are in µm, the study's unit, whatever the file declares (the
@@ -386,6 +387,21 @@ def run_study(
     if isinstance(config, dict):
         return _study_warnings(_study_dict(config, base_dir, {}))
     return _study_warnings(StudyResults._of(_native.run_study_file(_path("config", config))))
+
+
+def certificate(results_dir: PathLike, out: PathLike | None = None) -> str:
+    """Writes the calibration certificate of a study's results folder as PDF/A-2b, as
+    ``centrifuge-cal certificate RESULTS_DIR --out FILE.pdf`` does, and returns the path
+    written.
+
+    ``results_dir`` is the folder a study wrote (holding ``results.json``; the study's
+    configuration needs a ``certificate`` section) or that ``results.json``; ``out`` defaults
+    to ``certificate.pdf`` in that folder. Raises :class:`ComputationError` when the results
+    have no certificate or cannot be read.
+    """
+    return _native.certificate(
+        _path("results_dir", results_dir), None if out is None else _path("out", out)
+    )
 
 
 def _study_dict(
@@ -811,6 +827,7 @@ __all__ = [
     "advise_balance",
     "calibrate",
     "calibrate_two_orientation",
+    "certificate",
     "delta_k2",
     "fit_harmonics",
     "fit_radius_error",

@@ -4,6 +4,7 @@
 
 mod certificate;
 mod expected;
+mod hostile;
 mod outputs;
 mod two_orientation;
 

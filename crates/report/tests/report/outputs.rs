@@ -164,7 +164,7 @@ fn a_study_with_a_certificate_writes_its_dcc_beside_it() {
     let files = report::write_outputs(&out, &results, None, None, Some(&provenance)).unwrap();
     let path = files.certificate_dcc.expect("certificate.dcc.xml");
     assert_eq!(path, out.join("certificate.dcc.xml"));
-    assert!(names(&out).contains(&"certificate.html".to_owned()));
+    assert!(names(&out).contains(&"certificate.pdf".to_owned()));
     let xml = std::fs::read_to_string(&path).unwrap();
     assert!(xml.starts_with("<?xml version=\"1.0\" encoding=\"UTF-8\"?>"));
     assert!(xml.contains("<dcc:uniqueIdentifier>CC-2026-0042</dcc:uniqueIdentifier>"));

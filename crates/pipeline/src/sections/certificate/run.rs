@@ -85,6 +85,9 @@ pub(crate) fn run(
                             high95,
                             lower: l.lower,
                             upper: l.upper,
+                            // the limit's own source, else where the certificate's limits
+                            // come from (`limits_source`, which a lab profile may state)
+                            source: l.source.clone().or_else(|| cert.limits_source.clone()),
                             verdict: Verdict::of(
                                 value,
                                 (value - low95, high95 - value),

@@ -13,7 +13,7 @@ use crate::results::{
 };
 
 /// A specification limit, validated.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Limit {
     /// 0 for k0 … 3 for k3.
     pub(crate) index: usize,
@@ -21,6 +21,8 @@ pub(crate) struct Limit {
     pub(crate) relative: bool,
     pub(crate) lower: Option<f64>,
     pub(crate) upper: Option<f64>,
+    /// Where it comes from (absent or blank: not stated).
+    pub(crate) source: Option<String>,
 }
 
 /// The validated certificate section.
@@ -376,6 +378,7 @@ pub(crate) fn validate(
             relative: matches!(l.unit, LimitUnitName::Micro),
             lower: l.lower,
             upper: l.upper,
+            source: l.source.clone().filter(|s| !s.trim().is_empty()),
         });
     }
     let rule = c.decision_rule.map(|r| match r {
