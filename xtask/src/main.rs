@@ -1,6 +1,9 @@
 //! `cargo xtask`: the centrifuge-cal command line inside the checkout. It runs the `cli`
 //! crate's commands with the workspace's defaults (the paper's study, outputs in `target/`).
 
+// One feature set with the tests' build (crates/workspace-hack).
+use workspace_hack as _;
+
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 

@@ -8,6 +8,9 @@
 //! quiet exit with status 141; never a panic. The commands call the libraries; they are the
 //! edge that touches files (`.ci/layering`).
 
+// One feature set with the tests' build (crates/workspace-hack).
+use workspace_hack as _;
+
 mod accuracy;
 mod certificate;
 mod check;
