@@ -82,6 +82,7 @@ mod rate;
 mod signal;
 mod sincos;
 mod solve;
+mod stream;
 #[cfg(feature = "synthetic")]
 mod synth;
 
@@ -105,5 +106,6 @@ pub use pieces::{DropBadSamples, PooledAnalysis, analyze_around_bad_samples};
 pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate};
 pub use signal::{IncompleteRevolution, ProbeSignal, SpindleAngle, TimeAxis, check_time_axis};
 pub use solve::CONDITION_LIMIT;
+pub use stream::{SampleMark, StreamAngle, StreamError, StreamedAnalysis, StreamingFit};
 #[cfg(feature = "synthetic")]
 pub use synth::{SyntheticRecording, SyntheticSamples};
