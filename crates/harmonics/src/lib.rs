@@ -94,16 +94,18 @@ pub use geometry::{FirstHarmonic, LeverGeometry, PigaPlaneDrift, ProbeDirection}
 pub use kernel::MAX_ORDER;
 pub use noise::{
     DriftAcrossRevolutions, FirstHarmonicNoise, SPREAD_WARNING_RATIO, chi_square_ratio_99,
-    drift_across_revolutions, drift_inflation, first_harmonic_noise, pooled_residual_rms,
-    pooled_residual_variance, revolution_spread, slope_variance_factor,
+    drift_across_revolutions, drift_across_revolutions_with, drift_inflation, first_harmonic_noise,
+    first_harmonic_noise_with, pooled_residual_rms, pooled_residual_variance, revolution_spread,
+    slope_variance_factor,
 };
 pub use outliers::{
     ALTERNATING_EXCESS_LIMIT, AlternatingResiduals, MIN_REVOLUTIONS_FOR_OUTLIERS,
-    OUTLIER_RMS_RATIO, ResidualOutlier, ResidualOutliers, alternating_residuals, residual_outliers,
+    OUTLIER_RMS_RATIO, ResidualOutlier, ResidualOutliers, RevolutionSource, SampleWindow,
+    alternating_residuals, alternating_residuals_in, residual_outliers, residual_outliers_in,
     without_revolutions,
 };
 pub use pieces::{DropBadSamples, PooledAnalysis, analyze_around_bad_samples};
-pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate};
+pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate, check_measured_rate};
 pub use signal::{IncompleteRevolution, ProbeSignal, SpindleAngle, TimeAxis, check_time_axis};
 pub use solve::CONDITION_LIMIT;
 pub use stream::{SampleMark, StreamAngle, StreamError, StreamedAnalysis, StreamingFit};

@@ -59,7 +59,8 @@ pub struct StreamedAnalysis {
     pub analysis: HarmonicAnalysis,
     /// The recording's time axis.
     pub time_axis: TimeAxis,
-    /// The sample at the start of every revolution, and the last sample, in order.
+    /// The first and last samples of every revolution, and the recording's last sample, in
+    /// order.
     pub marks: Vec<SampleMark>,
     /// The sum of the encoder's wrapped steps over the recording, rad (as
     /// [`check_encoder_rate`](crate::check_encoder_rate) forms it; 0 with a rate).
@@ -134,6 +135,8 @@ pub struct StreamingFit {
     span_lanes: [f64; 8],
     span_tail: Vec<f64>,
     wraps: i64,
+    /// `wraps` at the previous sample.
+    prev_wraps: i64,
     /// The next whole turn whose start is looked for (rate).
     next_turn: usize,
     /// The revolution being read: its first sample and its samples.
@@ -184,6 +187,7 @@ impl StreamingFit {
             span_lanes: [0.0; 8],
             span_tail: Vec::new(),
             wraps: 0,
+            prev_wraps: 0,
             next_turn: 0,
             open_start: 0,
             buf_t: Vec::new(),
@@ -291,6 +295,7 @@ impl StreamingFit {
                     self.max_step
                 };
                 let dw = a - self.prev_a;
+                self.prev_wraps = self.wraps;
                 self.wraps += i64::from(dw < -PI) - i64::from(dw > PI);
             }
         }
@@ -328,6 +333,14 @@ impl StreamingFit {
         if starts {
             if encoder {
                 self.crossings += 1;
+            }
+            if !self.doomed && self.marks.last().is_none_or(|l| l.index != i - 1) {
+                // The last sample of the revolution that ends here.
+                let end = SampleMark {
+                    wraps_before: self.prev_wraps,
+                    ..self.mark(i - 1, self.prev_t, self.prev_a)
+                };
+                self.marks.push(end);
             }
             self.close_revolution(false);
             self.open_start = i;

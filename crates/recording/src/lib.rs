@@ -90,6 +90,7 @@ mod error;
 mod lab;
 mod open;
 mod read;
+mod stream;
 #[cfg(feature = "synthetic")]
 mod synth;
 mod text;
@@ -131,6 +132,10 @@ pub use lab::probe::{AngleSourceKind, Recording};
 pub use lab::volts::{GapUnit, ProbeSensitivity, SensitivityUnit};
 pub use lab::write::{ProbeColumns, WriteOptions, write_probe_csv};
 pub use read::{load_recording, load_recording_digested, parse_recording};
+pub use stream::{
+    ReadProgress, ReadStage, STREAM_FROM_BYTES, StreamOptions, StreamedRecording,
+    analyze_recording_file,
+};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 #[doc(hidden)]
