@@ -300,3 +300,116 @@ fn streamed_analysis_refuses_with_the_same_error_and_line() {
         0.0,
     );
 }
+
+/// Environment variable that makes the memory test's child analyse the file it names.
+const CHILD: &str = "CENTRIFUGE_CAL_STREAM_MEMORY_CHILD";
+/// Rows of the memory test's recording: 8 M rows hold 192 MB of samples in memory.
+const BIG_ROWS: usize = 8_000_000;
+/// Peak resident memory the streamed analysis of that recording must stay under.
+const BOUND_KIB: u64 = 64 * 1024;
+
+/// Writes a long recording row by row (30 deg/s, 1 kHz, encoder), never held in memory.
+fn write_big(path: &Path, rows: usize) {
+    use std::io::Write as _;
+    let file = std::fs::File::create(path).unwrap();
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, file);
+    out.write_all(b"time_s,gap_um,angle_deg\n").unwrap();
+    for i in 0..rows {
+        // Angle in thousandths of a degree, gap in thousandths of a micrometre: integers.
+        let milli_deg = (i as u64 * 30) % 360_000;
+        let theta = (milli_deg as f64 / 1000.0).to_radians();
+        let gap = 50_000 + (3_200.0 * theta.cos()) as i64 + ((i * 7919) % 21) as i64 - 10;
+        writeln!(
+            out,
+            "{}.{:03},{}.{:03},{}.{:03}",
+            i / 1000,
+            i % 1000,
+            gap / 1000,
+            gap % 1000,
+            milli_deg / 1000,
+            milli_deg % 1000
+        )
+        .unwrap();
+    }
+    out.flush().unwrap();
+}
+
+/// The peak resident memory of this process, KiB (`VmHWM` of /proc/self/status).
+fn peak_rss_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// The streamed analysis of a recording whose samples would take 192 MB in memory peaks
+/// under 64 MiB: measured in a child process of its own (this test binary run again on
+/// this test alone), whose peak resident memory (`VmHWM`) is the analysis's, not the
+/// writer's or another test's. Not timed: only memory is asserted.
+#[test]
+fn streamed_analysis_holds_bounded_memory() {
+    if let Ok(path) = std::env::var(CHILD) {
+        let format = RecordingFormat::default();
+        let done = analyze_recording_file(
+            Path::new(&path),
+            &format,
+            RATE_DEG_S.to_radians(),
+            &FitConfig::default(),
+            StreamOptions {
+                angle_zero_rad: 0.0,
+                stream_from_bytes: 0,
+            },
+            &mut |_| {},
+        )
+        .unwrap();
+        assert!(done.streamed);
+        assert_eq!(done.samples, BIG_ROWS);
+        println!(
+            "revolutions={} peak_kib={}",
+            done.analysis.analysis.revolutions_used(),
+            peak_rss_kib().unwrap_or(u64::MAX)
+        );
+        return;
+    }
+    if peak_rss_kib().is_none() {
+        eprintln!("no /proc/self/status here: the memory bound is checked on Linux");
+        return;
+    }
+    let path = write("big.csv", b"");
+    write_big(&path, BIG_ROWS);
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args([
+            "stream::streamed_analysis_holds_bounded_memory",
+            "--exact",
+            "--nocapture",
+            "--test-threads=1",
+        ])
+        .env(CHILD, &path)
+        .output()
+        .unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let field = |key: &str| -> u64 {
+        let at = stdout
+            .find(key)
+            .unwrap_or_else(|| panic!("{key} in {stdout}"))
+            + key.len();
+        stdout[at..]
+            .split(|c: char| !c.is_ascii_digit())
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    // 8 M samples at 12,000 a revolution: 666 whole ones.
+    assert_eq!(field("revolutions="), 666);
+    let peak = field("peak_kib=");
+    assert!(
+        peak < BOUND_KIB,
+        "peak resident memory {peak} KiB, bound {BOUND_KIB} KiB (the samples alone are 192 MB)"
+    );
+}
