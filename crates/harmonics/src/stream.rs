@@ -127,6 +127,8 @@ pub struct StreamingFit {
     nominal_k: usize,
     next_nominal: usize,
     intervals: Vec<f64>,
+    /// The place of the next of them (`usize::MAX` past the last).
+    next_place: usize,
     first_non_finite_angle: Option<(usize, f64)>,
     step_back: Option<(usize, f64)>,
     max_step: f64,
@@ -180,6 +182,7 @@ impl StreamingFit {
             nominal_k: m.min(1025),
             next_nominal: 0,
             intervals: Vec::with_capacity(m.min(1025)),
+            next_place: if m > 0 { 0 } else { usize::MAX },
             first_non_finite_angle: None,
             step_back: None,
             max_step: 0.0,
@@ -214,13 +217,33 @@ impl StreamingFit {
     /// Feeds the next samples: times, gaps and (with [`StreamAngle::Encoder`]) angles, of
     /// equal lengths. Samples beyond the number stated are ignored.
     pub fn push(&mut self, time_s: &[f64], gap: &[f64], angle: Option<&[f64]>) {
+        // Compiled for the CPU's instruction set (fused multiply-add and rounding inline,
+        // as in the in-memory passes; the same operations, so the same bits).
+        pulp::Arch::new().dispatch(Push {
+            fit: self,
+            time_s,
+            gap,
+            angle,
+        });
+    }
+
+    #[inline(always)]
+    fn push_samples(&mut self, time_s: &[f64], gap: &[f64], angle: Option<&[f64]>) {
         let len = time_s
             .len()
             .min(gap.len())
             .min(self.n - self.seen.min(self.n));
-        for j in 0..len {
-            let a = angle.map_or(f64::NAN, |a| a[j]);
-            self.sample(time_s[j], gap[j], a);
+        match angle {
+            Some(a) if a.len() >= len => {
+                for j in 0..len {
+                    self.sample(time_s[j], gap[j], a[j]);
+                }
+            }
+            _ => {
+                for j in 0..len {
+                    self.sample(time_s[j], gap[j], f64::NAN);
+                }
+            }
         }
     }
 
@@ -240,10 +263,12 @@ impl StreamingFit {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn sample(&mut self, t: f64, y: f64, a: f64) {
         let i = self.seen;
         let encoder = matches!(self.angle, StreamAngle::Encoder);
+        // The encoder's step from the previous sample (unused before the second sample).
+        let step = encoder_step(self.prev_a, a);
         if i == 0 {
             self.t0 = t;
             self.a0 = a;
@@ -264,10 +289,14 @@ impl StreamingFit {
                 });
             }
             let d = t - prev;
-            if self.next_nominal < self.nominal_k && self.nominal_place(self.next_nominal) == i - 1
-            {
+            if self.next_place == i - 1 {
                 self.intervals.push(d);
                 self.next_nominal += 1;
+                self.next_place = if self.next_nominal < self.nominal_k {
+                    self.nominal_place(self.next_nominal)
+                } else {
+                    usize::MAX
+                };
             }
             if d.is_finite() {
                 if self.record_intervals.last().is_none_or(|r| d > r.1) {
@@ -278,7 +307,6 @@ impl StreamingFit {
                 self.interval_error = Some((i, d));
             }
             if encoder {
-                let step = encoder_step(self.prev_a, a);
                 let pairs = self.n - 1;
                 let body = pairs - pairs % 8;
                 if i - 1 < body {
@@ -314,9 +342,7 @@ impl StreamingFit {
         }
         // Segmentation: does sample i start a revolution?
         let starts = match self.angle {
-            StreamAngle::Encoder => {
-                i > 0 && phase(self.prev_a, self.a0) + encoder_step(self.prev_a, a) >= TAU
-            }
+            StreamAngle::Encoder => i > 0 && phase(self.prev_a, self.a0) + step >= TAU,
             StreamAngle::Rate { rate_rad_s, .. } => {
                 let turn = rate_rad_s * (t - self.t0) / TAU;
                 // The first sample at or past each whole turn starts it (as
@@ -365,6 +391,7 @@ impl StreamingFit {
         }
     }
 
+    #[inline(always)]
     /// Records the revolution held and fits it; the recording's last one, which may be
     /// incomplete, is recorded only (its samples kept), and fitted at the end if complete.
     fn close_revolution(&mut self, last: bool) {
@@ -763,4 +790,21 @@ impl StreamingFit {
 /// `Iterator::sum` of the few tail steps, as `check_encoder_rate` adds them.
 fn tail_sum(v: &[f64]) -> f64 {
     v.iter().copied().sum()
+}
+
+/// [`StreamingFit::push`] as a `pulp` operation.
+struct Push<'a, 'f> {
+    fit: &'f mut StreamingFit,
+    time_s: &'a [f64],
+    gap: &'a [f64],
+    angle: Option<&'a [f64]>,
+}
+
+impl pulp::WithSimd for Push<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        self.fit.push_samples(self.time_s, self.gap, self.angle);
+    }
 }
