@@ -142,20 +142,19 @@ pub fn residual_outliers_in<S: RevolutionSource>(
     let limit = (OUTLIER_RMS_RATIO * median_rms).max(ROUNDING_FLOOR * scale(analysis));
     let mut revolutions: Vec<ResidualOutlier> = Vec::new();
     for (r, f) in fits.iter().enumerate() {
-        if !(f.residual_rms > limit) {
-            continue;
+        if f.residual_rms > limit {
+            let window = source.samples(f.first_sample..f.first_sample + f.samples)?;
+            let (largest_at_sample, largest_residual) = residuals(&window, f)
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+                .unwrap_or((f.first_sample, f64::NAN));
+            revolutions.push(ResidualOutlier {
+                revolution: r,
+                first_sample: f.first_sample,
+                residual_rms: f.residual_rms,
+                largest_residual,
+                largest_at_sample,
+            });
         }
-        let window = source.samples(f.first_sample..f.first_sample + f.samples)?;
-        let (largest_at_sample, largest_residual) = residuals(&window, f)
-            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-            .unwrap_or((f.first_sample, f64::NAN));
-        revolutions.push(ResidualOutlier {
-            revolution: r,
-            first_sample: f.first_sample,
-            residual_rms: f.residual_rms,
-            largest_residual,
-            largest_at_sample,
-        });
     }
     Ok((!revolutions.is_empty()).then_some(ResidualOutliers {
         revolutions,

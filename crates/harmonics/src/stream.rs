@@ -349,7 +349,7 @@ impl StreamingFit {
                 // `partition_point` finds it); a turn with no sample is an empty revolution,
                 // skipped as `segment` skips it. A time that is not finite or goes back
                 // is the time axis's error, reported at the end.
-                let found = turn.is_finite() && turn >= 0.0 && !(turn < self.next_turn as f64);
+                let found = turn.is_finite() && turn >= 0.0 && turn >= self.next_turn as f64;
                 if found {
                     self.next_turn = turn.floor() as usize + 1;
                 }

@@ -105,7 +105,8 @@ fn streamed_fit_equals_analyze_bit_for_bit() {
 #[test]
 fn streamed_fit_refuses_what_analyze_refuses() {
     let s = synthetic(12_000 * 3 + 11_990, 0.0, 0.01);
-    let cases: Vec<(&str, Box<dyn Fn(&mut harmonics::SyntheticSamples)>)> = vec![
+    type Spoil = Box<dyn Fn(&mut harmonics::SyntheticSamples)>;
+    let cases: Vec<(&str, Spoil)> = vec![
         (
             "gap",
             Box::new(|s| s.time_s[20_000..].iter_mut().for_each(|t| *t += 0.01)),

@@ -29,15 +29,15 @@ fn main() -> ExitCode {
         return ExitCode::FAILURE;
     };
     let path = Path::new(file);
-    if let Some(rows) = args
+    let rows = args
         .iter()
         .position(|a| a == "--write")
-        .and_then(|k| args.get(k + 1)?.parse::<usize>().ok())
+        .and_then(|k| args.get(k + 1)?.parse::<usize>().ok());
+    if let Some(rows) = rows
+        && let Err(e) = write_long(path, rows)
     {
-        if let Err(e) = write_long(path, rows) {
-            eprintln!("error: {e}");
-            return ExitCode::FAILURE;
-        }
+        eprintln!("error: {e}");
+        return ExitCode::FAILURE;
     }
     let format = RecordingFormat::default();
     let config = FitConfig::default();

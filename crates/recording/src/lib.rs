@@ -67,6 +67,8 @@
 //!   ([`RecordingFormat`]) and samples ([`Recording`]), the PIGA table, the raw PIGA
 //!   recording, the probe-recording writer.
 //! - `binary`: the TDMS and MAT readers, which build the same [`Recording`].
+//! - `stream`: a text recording analysed as it is read, in bounded memory
+//!   ([`analyze_recording_file`]).
 //! - `analysis`: the harmonic analysis of a loaded recording and the raw PIGA reduction,
 //!   with the diagnostics; the statistics themselves (pooling around bad samples, white
 //!   noise, drift and spread tests, the slope variance) are `harmonics`'.

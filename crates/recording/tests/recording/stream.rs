@@ -217,7 +217,8 @@ fn streamed_analysis_refuses_with_the_same_error_and_line() {
     let n = PER_REV * 4 + 500;
     let format = RecordingFormat::default();
     let config = FitConfig::default();
-    let cases: [(&str, Box<dyn Fn(usize, &mut (f64, f64, f64))>, f64); 6] = [
+    type Spoil = Box<dyn Fn(usize, &mut (f64, f64, f64))>;
+    let cases: [(&str, Spoil, f64); 6] = [
         (
             "back",
             Box::new(|i, row| {
@@ -363,15 +364,19 @@ fn streamed_analysis_holds_bounded_memory() {
         .unwrap();
         assert!(done.streamed);
         assert_eq!(done.samples, BIG_ROWS);
-        println!(
+        // To the parent, which reads this process's standard output.
+        use std::io::Write as _;
+        writeln!(
+            std::io::stdout(),
             "revolutions={} peak_kib={}",
             done.analysis.analysis.revolutions_used(),
             peak_rss_kib().unwrap_or(u64::MAX)
-        );
+        )
+        .unwrap();
         return;
     }
     if peak_rss_kib().is_none() {
-        eprintln!("no /proc/self/status here: the memory bound is checked on Linux");
+        // No /proc/self/status here: the memory bound is checked on Linux.
         return;
     }
     let path = write("big.csv", b"");
