@@ -43,6 +43,12 @@
 //!   with its largest residual, and residuals that alternate in sign from sample to sample
 //!   (every other sample zeroed); [`without_revolutions`] recomputes the statistics without
 //!   the outlying ones. The callers (the recording crate) warn and apply the file's policy.
+//! - **Streaming** ([`StreamingFit`]): the same analysis fed samples a piece at a time, for
+//!   recordings of any size: it holds the revolution being read and what the checks need
+//!   (the intervals of the nominal interval's median, the first offender of each check, each
+//!   revolution's fit), and gives [`analyze`]'s result and errors to the bit. The checks that
+//!   look at residuals after the fit take a [`RevolutionSource`] ([`residual_outliers_in`],
+//!   [`alternating_residuals_in`]).
 //! - **Declared rate** ([`check_encoder_rate`]): with an encoder, its mean rate can be
 //!   compared with the rate a study declares ([`DeclaredRate`], by default within
 //!   [`ENCODER_RATE_TOLERANCE`]).
