@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use anyhow::bail;
 use harmonics::{Coefficients, FitConfig, ProbeDirection};
 use recording::{
-    AngleSource, AngleSourceKind, AngleUnit, Delimiter, Recording, RecordingAnalysis,
-    RecordingFormat,
+    AngleSource, AngleSourceKind, AngleUnit, Delimiter, ReadProgress, RecordingAnalysis,
+    RecordingFormat, StreamOptions, StreamedRecording,
 };
 use serde_json::{Value, json};
 
@@ -181,16 +181,39 @@ impl Harmonics {
         Ok(f)
     }
 
-    /// The recording, read by the reader of its file's extension (`recording`'s
-    /// [`load_recording`](recording::load_recording), as the study reads it: binary files
-    /// with the format's names, units, angle source and bad-sample policies).
-    fn load(&self, format: &RecordingFormat) -> anyhow::Result<Recording> {
+    /// The recording read and analysed by the reader of its file's extension (`recording`'s
+    /// [`analyze_recording_file`](recording::analyze_recording_file), as the study reads
+    /// it: binary files with the format's names, units, angle source and bad-sample
+    /// policies). A long text recording is streamed in bounded memory, with a bar on
+    /// standard error while it is read (when that is a terminal).
+    fn analyze(
+        &self,
+        format: &RecordingFormat,
+        config: &FitConfig,
+        angle_zero_rad: f64,
+    ) -> anyhow::Result<StreamedRecording> {
         let format = RecordingFormat {
             group: self.group.clone().or_else(|| format.group.clone()),
             waveform_time: self.waveform_time || format.waveform_time,
             ..format.clone()
         };
-        recording::load_recording(&self.file, &format).map_err(|e| match e {
+        let rate_rad_s = self.rate_deg_s.to_radians();
+        let options = StreamOptions {
+            angle_zero_rad,
+            ..StreamOptions::default()
+        };
+        let bar = crate::progress::file_bar();
+        let mut progress = |p: ReadProgress| crate::progress::show_read(&bar, p);
+        let result = recording::analyze_recording_file(
+            &self.file,
+            &format,
+            rate_rad_s,
+            config,
+            options,
+            &mut progress,
+        );
+        bar.finish_and_clear();
+        result.map_err(|e| match e {
             // The setting as this command's flag.
             recording::RecordingError::SettingNotForFile {
                 setting,
@@ -212,26 +235,24 @@ impl Harmonics {
             revolutions: self.revolutions,
             max_gap_intervals: format.max_gap_intervals,
         };
-        let mut recording = self.load(&format)?;
-        if let Some(deg) = self.angle_zero_deg {
-            if !deg.is_finite() {
-                bail!("--angle-zero-deg {deg}: must be finite");
-            }
-            recording.shift_angle_zero(deg.to_radians());
-        }
-        let rate_rad_s = self.rate_deg_s.to_radians();
-        let result = recording::analyze_recording(&recording, rate_rad_s, &config)?;
+        let angle_zero_rad = match self.angle_zero_deg {
+            Some(deg) if !deg.is_finite() => bail!("--angle-zero-deg {deg}: must be finite"),
+            Some(deg) => deg.to_radians(),
+            None => 0.0,
+        };
+        let recording = self.analyze(&format, &config, angle_zero_rad)?;
+        let result = &recording.analysis;
         let direction = if self.probe_along {
             ProbeDirection::AlongO1X1
         } else {
             ProbeDirection::AgainstO1X1
         };
         let out = if self.json {
-            let mut s = edge_io::to_json_pretty(&self.to_json(&recording, &result, direction)?)?;
+            let mut s = edge_io::to_json_pretty(&self.to_json(&recording, result, direction)?)?;
             s.push('\n');
             s
         } else {
-            self.table(&recording, &result, direction)?
+            self.table(&recording, result, direction)?
         };
         Console::stdout().write_str(&out)?;
         Ok(())
@@ -239,7 +260,7 @@ impl Harmonics {
 
     fn to_json(
         &self,
-        recording: &Recording,
+        recording: &StreamedRecording,
         result: &RecordingAnalysis,
         direction: ProbeDirection,
     ) -> anyhow::Result<Value> {
@@ -248,7 +269,7 @@ impl Harmonics {
         let coefficients = |c: &Coefficients| json!({ "l0": c.l0, "c": c.c, "s": c.s, "drift_per_s": c.drift_per_s });
         Ok(json!({
             "file": recording.path.display().to_string(),
-            "samples": recording.len(),
+            "samples": recording.samples,
             "gap_unit": recording.gap_unit.symbol(),
             "angle_source": result.angle_source.name(),
             "rate_deg_s": self.rate_deg_s,
@@ -294,7 +315,7 @@ impl Harmonics {
 
     fn table(
         &self,
-        recording: &Recording,
+        recording: &StreamedRecording,
         result: &RecordingAnalysis,
         direction: ProbeDirection,
     ) -> anyhow::Result<String> {
@@ -318,7 +339,7 @@ impl Harmonics {
             t,
             "{}: {} samples, angle from {source}, order {}",
             recording.path.display(),
-            recording.len(),
+            recording.samples,
             fit.order
         )?;
         write!(

@@ -52,3 +52,36 @@ pub(crate) fn to_bar(bar: &ProgressBar, len: u64, what: &str) {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
 }
+
+/// A bar for reading a recording file: hidden until a file of at least
+/// [`recording::STREAM_FROM_BYTES`] is read (a short file is read before a bar would
+/// show), and always hidden when standard error is not a terminal.
+pub(crate) fn file_bar() -> ProgressBar {
+    ProgressBar::hidden()
+}
+
+/// Shows how far a recording is read: the bytes of the file in the current pass.
+pub(crate) fn show_read(bar: &ProgressBar, p: recording::ReadProgress) {
+    if p.bytes_total < recording::STREAM_FROM_BYTES || !shown() {
+        return;
+    }
+    if bar.is_hidden() {
+        bar.set_draw_target(ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{msg} {bar:30} {binary_bytes}/{binary_total_bytes} ({eta})",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+    }
+    let stage = match p.stage {
+        recording::ReadStage::Counting => "counting rows",
+        recording::ReadStage::Fitting => "fitting revolutions",
+        recording::ReadStage::Reading => "reading",
+    };
+    if bar.length() != Some(p.bytes_total) {
+        bar.set_length(p.bytes_total);
+    }
+    bar.set_message(stage);
+    bar.set_position(p.bytes_read);
+}

@@ -134,7 +134,7 @@ impl Coefficients {
     }
 
     /// The first coefficient that is not finite, by field name, with its value.
-    fn first_non_finite(&self) -> Option<(&'static str, f64)> {
+    pub(crate) fn first_non_finite(&self) -> Option<(&'static str, f64)> {
         let fields = std::iter::once(("l0", self.l0))
             .chain(self.c.iter().map(|&v| ("c", v)))
             .chain(self.s.iter().map(|&v| ("s", v)))
@@ -273,31 +273,61 @@ fn fit_revolution(
     r: usize,
     range: Range<usize>,
 ) -> Result<RevolutionFit> {
+    let samples = RevolutionSamples {
+        first_sample: range.start,
+        time_s: &signal.time_s[range.clone()],
+        gap: &signal.gap[range.clone()],
+        x: &x[range],
+    };
+    fit_samples(samples, map, config, r).map_err(|e| match e {
+        FitFailure::NonFiniteGap => {
+            // A non-finite sample (or one beyond ~1e154, which the solution names below):
+            // the recording's first non-finite sample is the error, as before the fit.
+            gap_not_finite(signal.gap).expect("a non-finite sample was seen")
+        }
+        FitFailure::Other(e) => e,
+    })
+}
+
+/// The samples of one revolution: its first sample's index in the recording, its times,
+/// gaps and angle sources (`x`: the encoder angle, or the time with a rate).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RevolutionSamples<'a> {
+    pub(crate) first_sample: usize,
+    pub(crate) time_s: &'a [f64],
+    pub(crate) gap: &'a [f64],
+    pub(crate) x: &'a [f64],
+}
+
+/// Why [`fit_samples`] failed: a non-finite gap sample (which the caller names as the
+/// recording's first), or another error.
+#[derive(Debug)]
+pub(crate) enum FitFailure {
+    NonFiniteGap,
+    Other(HarmonicsError),
+}
+
+/// Fits one revolution held in slices (its sampling already checked): the same operations
+/// whether the recording is in memory or streamed a revolution at a time.
+pub(crate) fn fit_samples(
+    rev: RevolutionSamples<'_>,
+    map: AngleMap,
+    config: &FitConfig,
+    r: usize,
+) -> std::result::Result<RevolutionFit, FitFailure> {
     let order = config.order;
-    let t = &signal.time_s[range.clone()];
+    let t = rev.time_s;
     let (t_first, t_last) = (t[0], t[t.len() - 1]);
     let centre = Centring {
-        y_ref: signal.gap[range.start],
+        y_ref: rev.gap[0],
         t_mid: 0.5 * (t_first + t_last),
         t_inv_half: 2.0 / (t_last - t_first),
     };
-    let sums = accumulate(
-        order,
-        config.drift,
-        &x[range.clone()],
-        &signal.gap[range.clone()],
-        t,
-        map,
-        centre,
-    );
-    if !sums.yy.is_finite() {
-        // A non-finite sample (or one beyond ~1e154, which the solution names below): the
-        // recording's first non-finite sample is the error, as before the fit.
-        if first_non_finite_in(&signal.gap[range.clone()]) {
-            return Err(gap_not_finite(signal.gap).expect("a non-finite sample was seen"));
-        }
+    let sums = accumulate(order, config.drift, rev.x, rev.gap, t, map, centre);
+    if !sums.yy.is_finite() && first_non_finite_in(rev.gap) {
+        return Err(FitFailure::NonFiniteGap);
     }
-    let sol = solve(&sums, order, config.drift, r)?;
+    let sol = solve(&sums, order, config.drift, r).map_err(FitFailure::Other)?;
     let coefficients = Coefficients {
         l0: sol.x[0] + centre.y_ref,
         c: sol.x[1..=order].to_vec(),
@@ -306,33 +336,46 @@ fn fit_revolution(
             .drift
             .then(|| sol.x[2 * order + 1] * centre.t_inv_half),
     };
-    let residual_rms = (sol.rss / range.len() as f64).sqrt();
+    let residual_rms = (sol.rss / t.len() as f64).sqrt();
     let non_finite = match coefficients.first_non_finite() {
         Some((field, value)) => Some(("coefficients", Some(field), value)),
         None if !residual_rms.is_finite() => Some(("residual_rms", None, residual_rms)),
         None => None,
     };
     if let Some((quantity, coefficient, value)) = non_finite {
-        return Err(non_finite_result(
-            signal,
-            Some(r),
-            quantity,
-            coefficient,
+        let (at, largest_gap) = largest_gap(rev.gap);
+        return Err(FitFailure::Other(HarmonicsError::NonFiniteResult {
+            revolution: Some(r),
+            quantity: quantity_name(quantity, coefficient),
             value,
-            range,
-        ));
+            largest_gap,
+            at_sample: rev.first_sample + at,
+        }));
     }
     Ok(RevolutionFit {
-        first_sample: range.start,
-        samples: range.len(),
+        first_sample: rev.first_sample,
+        samples: t.len(),
         coefficients,
         residual_rms,
         condition: sol.condition,
     })
 }
 
+/// The largest gap sample by magnitude (the last of equal ones) and its index in `gap`;
+/// `(0, NaN)` for no samples.
+pub(crate) fn largest_gap(gap: &[f64]) -> (usize, f64) {
+    gap.iter()
+        .copied()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .unwrap_or((0, f64::NAN))
+}
+
 /// `std.c` for the statistic `std` and the coefficient `c` (static names for the error).
-fn quantity_name(quantity: &'static str, coefficient: Option<&'static str>) -> &'static str {
+pub(crate) fn quantity_name(
+    quantity: &'static str,
+    coefficient: Option<&'static str>,
+) -> &'static str {
     match (quantity, coefficient) {
         ("coefficients", Some("l0")) => "coefficients.l0",
         ("coefficients", Some("c")) => "coefficients.c",
@@ -364,12 +407,7 @@ fn non_finite_result(
     samples: Range<usize>,
 ) -> HarmonicsError {
     let start = samples.start;
-    let (at, largest_gap) = signal.gap[samples]
-        .iter()
-        .copied()
-        .enumerate()
-        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-        .unwrap_or((0, f64::NAN));
+    let (at, largest_gap) = largest_gap(&signal.gap[samples]);
     HarmonicsError::NonFiniteResult {
         revolution,
         quantity: quantity_name(quantity, coefficient),

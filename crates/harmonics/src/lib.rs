@@ -43,6 +43,12 @@
 //!   with its largest residual, and residuals that alternate in sign from sample to sample
 //!   (every other sample zeroed); [`without_revolutions`] recomputes the statistics without
 //!   the outlying ones. The callers (the recording crate) warn and apply the file's policy.
+//! - **Streaming** ([`StreamingFit`]): the same analysis fed samples a piece at a time, for
+//!   recordings of any size: it holds the revolution being read and what the checks need
+//!   (the intervals of the nominal interval's median, the first offender of each check, each
+//!   revolution's fit), and gives [`analyze`]'s result and errors to the bit. The checks that
+//!   look at residuals after the fit take a [`RevolutionSource`] ([`residual_outliers_in`],
+//!   [`alternating_residuals_in`]).
 //! - **Declared rate** ([`check_encoder_rate`]): with an encoder, its mean rate can be
 //!   compared with the rate a study declares ([`DeclaredRate`], by default within
 //!   [`ENCODER_RATE_TOLERANCE`]).
@@ -82,6 +88,7 @@ mod rate;
 mod signal;
 mod sincos;
 mod solve;
+mod stream;
 #[cfg(feature = "synthetic")]
 mod synth;
 
@@ -93,17 +100,20 @@ pub use geometry::{FirstHarmonic, LeverGeometry, PigaPlaneDrift, ProbeDirection}
 pub use kernel::MAX_ORDER;
 pub use noise::{
     DriftAcrossRevolutions, FirstHarmonicNoise, SPREAD_WARNING_RATIO, chi_square_ratio_99,
-    drift_across_revolutions, drift_inflation, first_harmonic_noise, pooled_residual_rms,
-    pooled_residual_variance, revolution_spread, slope_variance_factor,
+    drift_across_revolutions, drift_across_revolutions_with, drift_inflation, first_harmonic_noise,
+    first_harmonic_noise_with, pooled_residual_rms, pooled_residual_variance, revolution_spread,
+    slope_variance_factor,
 };
 pub use outliers::{
     ALTERNATING_EXCESS_LIMIT, AlternatingResiduals, MIN_REVOLUTIONS_FOR_OUTLIERS,
-    OUTLIER_RMS_RATIO, ResidualOutlier, ResidualOutliers, alternating_residuals, residual_outliers,
+    OUTLIER_RMS_RATIO, ResidualOutlier, ResidualOutliers, RevolutionSource, SampleWindow,
+    alternating_residuals, alternating_residuals_in, residual_outliers, residual_outliers_in,
     without_revolutions,
 };
 pub use pieces::{DropBadSamples, PooledAnalysis, analyze_around_bad_samples};
-pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate};
+pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate, check_measured_rate};
 pub use signal::{IncompleteRevolution, ProbeSignal, SpindleAngle, TimeAxis, check_time_axis};
 pub use solve::CONDITION_LIMIT;
+pub use stream::{SampleMark, StreamAngle, StreamError, StreamedAnalysis, StreamingFit};
 #[cfg(feature = "synthetic")]
 pub use synth::{SyntheticRecording, SyntheticSamples};

@@ -69,6 +69,17 @@ pub fn first_harmonic_noise(
     signal: &ProbeSignal<'_>,
     config: &FitConfig,
 ) -> FirstHarmonicNoise {
+    first_harmonic_noise_with(analysis, config, |i| angle_at(signal, i))
+}
+
+/// [`first_harmonic_noise`] with the angle of a revolution's first sample given by
+/// `angle_at` (sample index → rad): for a recording streamed from its file, which keeps
+/// the angle where each revolution starts.
+pub fn first_harmonic_noise_with(
+    analysis: &HarmonicAnalysis,
+    config: &FitConfig,
+    angle_at: impl Fn(usize) -> f64,
+) -> FirstHarmonicNoise {
     let revs = &analysis.revolutions;
     let parameters = 2 * config.order + 1 + usize::from(config.drift);
     let pooled = pooled_residual_variance(revs, parameters);
@@ -76,7 +87,7 @@ pub fn first_harmonic_noise(
     let inflation = drift_inflation(config);
     let mut sum_var = [0.0; 2];
     for r in revs {
-        let (sin0, cos0) = angle_at(signal, r.first_sample).sin_cos();
+        let (sin0, cos0) = angle_at(r.first_sample).sin_cos();
         let base = 2.0 * pooled / r.samples as f64;
         sum_var[0] += base * (1.0 + (inflation - 1.0) * sin0 * sin0);
         sum_var[1] += base * (1.0 + (inflation - 1.0) * cos0 * cos0);
@@ -123,13 +134,24 @@ pub fn drift_across_revolutions(
     mean_noise_sigma: f64,
     rate_rad_s: f64,
 ) -> Option<DriftAcrossRevolutions> {
+    drift_across_revolutions_with(|i| time_s[i], revolutions, mean_noise_sigma, rate_rad_s)
+}
+
+/// [`drift_across_revolutions`] with the time of a revolution's first and last samples
+/// given by `time_at` (sample index → s): for a recording streamed from its file, which
+/// keeps the times where each revolution starts and ends.
+pub fn drift_across_revolutions_with(
+    time_at: impl Fn(usize) -> f64,
+    revolutions: &[RevolutionFit],
+    mean_noise_sigma: f64,
+    rate_rad_s: f64,
+) -> Option<DriftAcrossRevolutions> {
     if revolutions.len() < 3 {
         return None;
     }
-    let t = time_s;
     let x: Vec<f64> = revolutions
         .iter()
-        .map(|r| 0.5 * (t[r.first_sample] + t[r.first_sample + r.samples - 1]))
+        .map(|r| 0.5 * (time_at(r.first_sample) + time_at(r.first_sample + r.samples - 1)))
         .collect();
     let y: Vec<f64> = revolutions.iter().map(|r| r.coefficients.l0).collect();
     let k = x.len() as f64;

@@ -7,6 +7,8 @@
 //! recomputes the statistics of the others.
 
 use crate::analysis::{HarmonicAnalysis, RevolutionFit, statistics};
+use std::ops::Range;
+
 use crate::signal::{ProbeSignal, SpindleAngle};
 
 /// A revolution whose residual RMS exceeds this many times the median of the revolutions'
@@ -109,9 +111,25 @@ pub fn residual_outliers(
     signal: &ProbeSignal<'_>,
     analysis: &HarmonicAnalysis,
 ) -> Option<ResidualOutliers> {
+    let mut source = *signal;
+    match residual_outliers_in(&mut source, analysis) {
+        Ok(found) => found,
+        Err(never) => match never {},
+    }
+}
+
+/// [`residual_outliers`] with the outlying revolutions' samples read from `source` (a
+/// recording streamed from its file reads them again; one in memory lends them).
+///
+/// # Errors
+/// The source's, when it cannot give a revolution's samples.
+pub fn residual_outliers_in<S: RevolutionSource>(
+    source: &mut S,
+    analysis: &HarmonicAnalysis,
+) -> Result<Option<ResidualOutliers>, S::Error> {
     let fits = &analysis.revolutions;
     if fits.len() < MIN_REVOLUTIONS_FOR_OUTLIERS {
-        return None;
+        return Ok(None);
     }
     let mut rms: Vec<f64> = fits.iter().map(|f| f.residual_rms).collect();
     rms.sort_by(f64::total_cmp);
@@ -122,28 +140,27 @@ pub fn residual_outliers(
         0.5 * (rms[n / 2 - 1] + rms[n / 2])
     };
     let limit = (OUTLIER_RMS_RATIO * median_rms).max(ROUNDING_FLOOR * scale(analysis));
-    let revolutions: Vec<ResidualOutlier> = fits
-        .iter()
-        .enumerate()
-        .filter(|(_, f)| f.residual_rms > limit)
-        .map(|(r, f)| {
-            let (largest_at_sample, largest_residual) = residuals(signal, f)
+    let mut revolutions: Vec<ResidualOutlier> = Vec::new();
+    for (r, f) in fits.iter().enumerate() {
+        if f.residual_rms > limit {
+            let window = source.samples(f.first_sample..f.first_sample + f.samples)?;
+            let (largest_at_sample, largest_residual) = residuals(&window, f)
                 .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
                 .unwrap_or((f.first_sample, f64::NAN));
-            ResidualOutlier {
+            revolutions.push(ResidualOutlier {
                 revolution: r,
                 first_sample: f.first_sample,
                 residual_rms: f.residual_rms,
                 largest_residual,
                 largest_at_sample,
-            }
-        })
-        .collect();
-    (!revolutions.is_empty()).then_some(ResidualOutliers {
+            });
+        }
+    }
+    Ok((!revolutions.is_empty()).then_some(ResidualOutliers {
         revolutions,
         median_rms,
         compared: n,
-    })
+    }))
 }
 
 /// The analysis without the revolutions listed (indices into its revolutions): the mean,
@@ -202,6 +219,21 @@ pub fn alternating_residuals(
     signal: &ProbeSignal<'_>,
     analysis: &HarmonicAnalysis,
 ) -> Option<AlternatingResiduals> {
+    let mut source = *signal;
+    match alternating_residuals_in(&mut source, analysis) {
+        Ok(found) => found,
+        Err(never) => match never {},
+    }
+}
+
+/// [`alternating_residuals`] with the examined revolutions' samples read from `source`.
+///
+/// # Errors
+/// The source's, when it cannot give a revolution's samples.
+pub fn alternating_residuals_in<S: RevolutionSource>(
+    source: &mut S,
+    analysis: &HarmonicAnalysis,
+) -> Result<Option<AlternatingResiduals>, S::Error> {
     let fits = &analysis.revolutions;
     let step = fits.len().div_ceil(ALTERNATION_REVOLUTIONS).max(1);
     let (mut lagged, mut squares, mut count) = (0.0_f64, 0.0_f64, 0_usize);
@@ -210,6 +242,8 @@ pub fn alternating_residuals(
     let mut examined = 0;
     for fit in fits.iter().step_by(step) {
         examined += 1;
+        let window = source.samples(fit.first_sample..fit.first_sample + fit.samples)?;
+        let signal = &window;
         let (l, q) = white_noise_residual_moments(signal, fit, analysis.order, analysis.drift);
         noise_lagged += l;
         noise_squares += q;
@@ -224,17 +258,17 @@ pub fn alternating_residuals(
         }
     }
     if count < 2 || !(lagged.is_finite() && squares.is_finite()) {
-        return None;
+        return Ok(None);
     }
     let residual_rms = (squares / count as f64).sqrt();
     let lag1 = lagged / squares;
     if noise_squares <= 0.0 {
-        return None;
+        return Ok(None);
     }
     let white_noise_lag1 = (noise_lagged / noise_squares).clamp(-1.0, 1.0);
     let room = 1.0 + white_noise_lag1;
     let excess = (white_noise_lag1 - lag1) / room;
-    (room >= ALTERNATION_MIN_ROOM
+    Ok((room >= ALTERNATION_MIN_ROOM
         && residual_rms > ROUNDING_FLOOR * scale(analysis)
         && excess > ALTERNATING_EXCESS_LIMIT)
         .then_some(AlternatingResiduals {
@@ -242,7 +276,7 @@ pub fn alternating_residuals(
             white_noise_lag1,
             residual_rms,
             revolutions: examined,
-        })
+        }))
 }
 
 /// For white noise of unit variance fitted as `fit` was (order `order`, drift or not), the
@@ -252,7 +286,7 @@ pub fn alternating_residuals(
 /// `H_ij ≈ (1 + 2 Σₖ cos k(θ_j − θ_i)) / n`, with each step's own angle; the drift part
 /// exactly, `d_i d_j / Σ d²` (`d` the time from the revolution's middle).
 fn white_noise_residual_moments(
-    signal: &ProbeSignal<'_>,
+    signal: &SampleWindow<'_>,
     fit: &RevolutionFit,
     order: usize,
     drift: bool,
@@ -262,7 +296,8 @@ fn white_noise_residual_moments(
     if n <= parameters + 1 {
         return (0.0, 0.0);
     }
-    let range = fit.first_sample..fit.first_sample + n;
+    // Indices into the window.
+    let range = fit.first_sample - signal.first_sample..fit.first_sample - signal.first_sample + n;
     let t = &signal.time_s[range.clone()];
     let angle = |i: usize| match signal.angle {
         SpindleAngle::Encoder(a) => a[i],
@@ -288,10 +323,11 @@ fn white_noise_residual_moments(
 
 /// The residuals of one revolution's fit, `(sample, gap − fit)`.
 fn residuals<'a>(
-    signal: &'a ProbeSignal<'_>,
+    signal: &'a SampleWindow<'_>,
     fit: &'a RevolutionFit,
 ) -> impl Iterator<Item = (usize, f64)> + 'a {
-    let range = fit.first_sample..fit.first_sample + fit.samples;
+    let offset = signal.first_sample;
+    let range = fit.first_sample - offset..fit.first_sample - offset + fit.samples;
     let t = &signal.time_s[range.clone()];
     let t_mid = 0.5 * (t[0] + t[t.len() - 1]);
     let k = &fit.coefficients;
@@ -301,11 +337,54 @@ fn residuals<'a>(
             SpindleAngle::Rate {
                 rate_rad_s,
                 start_angle_rad,
-            } => start_angle_rad + rate_rad_s * (signal.time_s[i] - signal.time_s[0]),
+            } => start_angle_rad + rate_rad_s * (signal.time_s[i] - signal.recording_start_s),
         };
         let drift = k
             .drift_per_s
             .map_or(0.0, |b| b * (signal.time_s[i] - t_mid));
-        (i, signal.gap[i] - k.evaluate(theta) - drift)
+        (offset + i, signal.gap[i] - k.evaluate(theta) - drift)
     })
+}
+
+/// Some consecutive samples of a recording, lent for the checks that look at a
+/// revolution's residuals after the fit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampleWindow<'a> {
+    /// Index in the recording of the window's first sample.
+    pub first_sample: usize,
+    /// Time of the recording's first sample, s (where a rate angle starts).
+    pub recording_start_s: f64,
+    /// Times of the window's samples, s.
+    pub time_s: &'a [f64],
+    /// Gaps of the window's samples.
+    pub gap: &'a [f64],
+    /// Angles of the window's samples (an encoder slice of the window), or the recording's
+    /// rate and start angle.
+    pub angle: SpindleAngle<'a>,
+}
+
+/// Where the checks after the fit read a revolution's samples: the recording in memory,
+/// or its file read again (a streamed recording keeps only the fits).
+pub trait RevolutionSource {
+    /// Why samples could not be given (a file that cannot be read again).
+    type Error;
+    /// A window holding at least the samples `range` of the recording.
+    ///
+    /// # Errors
+    /// When the samples cannot be read.
+    fn samples(&mut self, range: Range<usize>) -> Result<SampleWindow<'_>, Self::Error>;
+}
+
+impl RevolutionSource for ProbeSignal<'_> {
+    type Error = std::convert::Infallible;
+
+    fn samples(&mut self, _range: Range<usize>) -> Result<SampleWindow<'_>, Self::Error> {
+        Ok(SampleWindow {
+            first_sample: 0,
+            recording_start_s: self.time_s.first().copied().unwrap_or(0.0),
+            time_s: self.time_s,
+            gap: self.gap,
+            angle: self.angle,
+        })
+    }
 }

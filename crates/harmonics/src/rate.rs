@@ -92,6 +92,42 @@ pub fn check_encoder_rate(signal: &ProbeSignal<'_>, declared: DeclaredRate) -> R
         });
     }
     let encoder_rad_s = unwrapped_span(a) / (t[n - 1] - t[0]);
+    rate_within(encoder_rad_s, declared)
+}
+
+/// [`check_encoder_rate`]'s verdict on an encoder's mean rate already measured (the sum of
+/// its wrapped steps over the time they span, as a streamed analysis forms it:
+/// [`StreamingFit::encoder_rate_rad_s`](crate::StreamingFit::encoder_rate_rad_s)).
+///
+/// # Errors
+/// As [`check_encoder_rate`]: a bad tolerance or declared rate, or a rate outside the
+/// tolerance.
+pub fn check_measured_rate(encoder_rad_s: f64, declared: DeclaredRate) -> Result<()> {
+    let DeclaredRate {
+        rate_rad_s: declared_rate_rad_s,
+        relative_tolerance: tolerance,
+    } = declared;
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(HarmonicsError::InvalidSetting {
+            field: "relative_tolerance",
+            value: tolerance,
+            requirement: Requirement::NonNegative,
+        });
+    }
+    if !(declared_rate_rad_s.is_finite() && declared_rate_rad_s > 0.0) {
+        return Err(HarmonicsError::InvalidRate {
+            rate_rad_s: declared_rate_rad_s,
+        });
+    }
+    rate_within(encoder_rad_s, declared)
+}
+
+/// The measured rate within the declared one's tolerance.
+fn rate_within(encoder_rad_s: f64, declared: DeclaredRate) -> Result<()> {
+    let DeclaredRate {
+        rate_rad_s: declared_rate_rad_s,
+        relative_tolerance: tolerance,
+    } = declared;
     // NaN (a signal `analyze` would refuse) fails too.
     let within = (encoder_rad_s - declared_rate_rad_s).abs() <= tolerance * declared_rate_rad_s;
     if !within {

@@ -461,7 +461,7 @@ pub(crate) fn encoder_step(prev: f64, next: f64) -> f64 {
 
 /// Angle of a reading from the first one, wrapped into `[0, 2π)` (up to rounding).
 #[inline(always)]
-fn phase(a: f64, start: f64) -> f64 {
+pub(crate) fn phase(a: f64, start: f64) -> f64 {
     let x = a - start;
     (-(x * INV_TAU).floor()).mul_add(TAU, x)
 }

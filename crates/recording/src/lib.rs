@@ -67,6 +67,8 @@
 //!   ([`RecordingFormat`]) and samples ([`Recording`]), the PIGA table, the raw PIGA
 //!   recording, the probe-recording writer.
 //! - `binary`: the TDMS and MAT readers, which build the same [`Recording`].
+//! - `stream`: a text recording analysed as it is read, in bounded memory
+//!   ([`analyze_recording_file`]).
 //! - `analysis`: the harmonic analysis of a loaded recording and the raw PIGA reduction,
 //!   with the diagnostics; the statistics themselves (pooling around bad samples, white
 //!   noise, drift and spread tests, the slope variance) are `harmonics`'.
@@ -90,6 +92,7 @@ mod error;
 mod lab;
 mod open;
 mod read;
+mod stream;
 #[cfg(feature = "synthetic")]
 mod synth;
 mod text;
@@ -131,6 +134,10 @@ pub use lab::probe::{AngleSourceKind, Recording};
 pub use lab::volts::{GapUnit, ProbeSensitivity, SensitivityUnit};
 pub use lab::write::{ProbeColumns, WriteOptions, write_probe_csv};
 pub use read::{load_recording, load_recording_digested, parse_recording};
+pub use stream::{
+    ReadProgress, ReadStage, STREAM_FROM_BYTES, StreamOptions, StreamedRecording,
+    analyze_recording_file,
+};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 #[doc(hidden)]

@@ -65,7 +65,7 @@ pub fn parse_recording(text: &[u8], path: &Path, format: &RecordingFormat) -> Re
 }
 
 /// Refuses the settings of binary files for a text file.
-fn text_only(path: &Path, format: &RecordingFormat) -> Result<()> {
+pub(crate) fn text_only(path: &Path, format: &RecordingFormat) -> Result<()> {
     let binary_only = [
         ("group", format.group.is_some(), "TDMS and MAT files"),
         ("waveform_time", format.waveform_time, "TDMS files"),

@@ -5,6 +5,7 @@
 
 use harmonics::{
     DropBadSamples, FitConfig, HarmonicAnalysis, HarmonicsError, PooledAnalysis, ProbeSignal,
+    SpindleAngle,
 };
 
 use super::diagnostic::{
@@ -175,7 +176,7 @@ fn declared_rate_check(recording: &Recording, declared_rate_rad_s: f64) -> Resul
 }
 
 /// The mean rate within 2 % of the declared one.
-fn check_rate(measured: f64, declared: f64) -> harmonics::Result<()> {
+pub(crate) fn check_rate(measured: f64, declared: f64) -> harmonics::Result<()> {
     let tolerance = harmonics::ENCODER_RATE_TOLERANCE;
     if (measured - declared).abs() <= tolerance * declared {
         Ok(())
@@ -190,6 +191,11 @@ fn check_rate(measured: f64, declared: f64) -> harmonics::Result<()> {
 
 /// What a failed analysis probably means for the format.
 fn hint_of(recording: &Recording, error: &HarmonicsError) -> Option<Hint> {
+    hint_for(recording.angle_source, error)
+}
+
+/// [`hint_of`] for a recording whose angle comes from `angle_source`.
+pub(crate) fn hint_for(angle_source: AngleSourceKind, error: &HarmonicsError) -> Option<Hint> {
     match error {
         HarmonicsError::AngleNotIncreasing { .. } => Some(Hint::EncoderCounts),
         HarmonicsError::RateMismatch {
@@ -203,9 +209,7 @@ fn hint_of(recording: &Recording, error: &HarmonicsError) -> Option<Hint> {
                 .any(|r| (ratio / r - 1.0).abs() < 0.05)
             {
                 Some(Hint::TimeUnit)
-            } else if recording.angle_source == AngleSourceKind::Encoder
-                && !(0.0..=100.0).contains(&ratio)
-            {
+            } else if angle_source == AngleSourceKind::Encoder && !(0.0..=100.0).contains(&ratio) {
                 Some(Hint::EncoderCounts)
             } else {
                 None
@@ -242,7 +246,33 @@ pub fn revolution_statistics(
     angle_source: AngleSourceKind,
     rate_rad_s: f64,
 ) -> RevolutionStatistics {
-    let noise = harmonics::first_harmonic_noise(analysis, signal, config);
+    let angle_at = |i: usize| match signal.angle {
+        SpindleAngle::Encoder(a) => a[i],
+        SpindleAngle::Rate {
+            rate_rad_s,
+            start_angle_rad,
+        } => start_angle_rad + rate_rad_s * (signal.time_s[i] - signal.time_s[0]),
+    };
+    revolution_statistics_with(
+        (angle_at, |i: usize| signal.time_s[i]),
+        analysis,
+        config,
+        angle_source,
+        rate_rad_s,
+    )
+}
+
+/// [`revolution_statistics`] with the angle and time of a revolution's first and last
+/// samples given by `(angle_at, time_at)` (sample index → rad, s), for a recording
+/// streamed from its file.
+pub(crate) fn revolution_statistics_with(
+    (angle_at, time_at): (impl Fn(usize) -> f64, impl Fn(usize) -> f64),
+    analysis: &HarmonicAnalysis,
+    config: &FitConfig,
+    angle_source: AngleSourceKind,
+    rate_rad_s: f64,
+) -> RevolutionStatistics {
+    let noise = harmonics::first_harmonic_noise_with(analysis, config, angle_at);
     let mean_noise_sigma = noise.mean_sigma;
     let mut revolution_noise_sigma = noise.revolution_sigma;
     if angle_source == AngleSourceKind::IndexPulse {
@@ -256,8 +286,8 @@ pub fn revolution_statistics(
     let mut diagnostics = Vec::new();
     let drift = (!config.drift)
         .then(|| {
-            harmonics::drift_across_revolutions(
-                signal.time_s,
+            harmonics::drift_across_revolutions_with(
+                time_at,
                 &analysis.revolutions,
                 mean_noise_sigma[0].min(mean_noise_sigma[1]),
                 rate_rad_s,
@@ -302,20 +332,80 @@ fn finish(
     dropped_revolutions: usize,
     config: &FitConfig,
 ) -> RecordingAnalysis {
-    let signal = recording.signal(declared_rate_rad_s);
-    let (analysis, outliers) = outliers(recording, &signal, analysis);
-    let statistics = revolution_statistics(
-        &signal,
+    let mut signal = recording.signal(declared_rate_rad_s);
+    let binary = !recording.is_empty() && recording.line_of_sample(0) == 0;
+    let place = |sample: usize| {
+        if binary {
+            SampleAt::Sample(sample)
+        } else {
+            SampleAt::Line(recording.line_of_sample(sample))
+        }
+    };
+    let time_s = &recording.time_s;
+    let facts = Facts {
+        angle_source: recording.angle_source,
+        unread_columns: &recording.unread_columns,
+        start_angle_rad: recording.start_angle_rad,
+        gap_unit: recording.gap_unit,
+        on_outlier: recording.on_outlier,
+    };
+    let done = finish_with(
+        &facts,
+        &mut signal,
+        place,
+        (
+            |i: usize| recording.angle_at(i, declared_rate_rad_s),
+            |i: usize| time_s[i],
+        ),
+        analysis,
+        (
+            declared_rate_rad_s,
+            measured_rate_rad_s,
+            dropped_revolutions,
+        ),
+        config,
+    );
+    match done {
+        Ok(a) => a,
+        Err(never) => match never {},
+    }
+}
+
+/// What the diagnostics of an analysis say about the recording it came from.
+pub(crate) struct Facts<'a> {
+    pub(crate) angle_source: AngleSourceKind,
+    pub(crate) unread_columns: &'a [String],
+    pub(crate) start_angle_rad: f64,
+    pub(crate) gap_unit: LengthUnit,
+    pub(crate) on_outlier: OnOutlier,
+}
+
+/// The analysis with its noise levels and diagnostics, the revolutions' samples read from
+/// `source` (a recording in memory, or its file read again), a sample placed by `place`,
+/// and the angle and time of a revolution's ends by `ends`.
+pub(crate) fn finish_with<S: harmonics::RevolutionSource>(
+    facts: &Facts<'_>,
+    source: &mut S,
+    place: impl Fn(usize) -> SampleAt,
+    ends: (impl Fn(usize) -> f64, impl Fn(usize) -> f64),
+    analysis: HarmonicAnalysis,
+    (declared_rate_rad_s, measured_rate_rad_s, dropped_revolutions): (f64, Option<f64>, usize),
+    config: &FitConfig,
+) -> std::result::Result<RecordingAnalysis, S::Error> {
+    let (analysis, outliers) =
+        outlier_check_in(source, analysis, facts.on_outlier, facts.gap_unit, place)?;
+    let statistics = revolution_statistics_with(
+        ends,
         &analysis,
         config,
-        recording.angle_source,
+        facts.angle_source,
         measured_rate_rad_s.unwrap_or(declared_rate_rad_s),
     );
     let mut diagnostics = Vec::new();
-    if recording.angle_source == AngleSourceKind::DeclaredRate {
+    if facts.angle_source == AngleSourceKind::DeclaredRate {
         diagnostics.push(Diagnostic::AngleFromRate {
-            unread_columns: recording.unread_columns.clone(),
-            start_angle_deg: recording.start_angle_rad.to_degrees(),
+            unread_columns: facts.unread_columns.to_vec(),
+            start_angle_deg: facts.start_angle_rad.to_degrees(),
         });
     }
     if let Some(m) = measured_rate_rad_s
@@ -328,7 +418,7 @@ fn finish(
     }
     diagnostics.extend(outliers);
     diagnostics.extend(statistics.diagnostics);
-    if let Some(d) = implausible_gap(recording.gap_unit, &analysis) {
+    if let Some(d) = implausible_gap(facts.gap_unit, &analysis) {
         diagnostics.push(d);
     }
     if dropped_revolutions > 0 {
@@ -337,41 +427,17 @@ fn finish(
             used: analysis.revolutions.len(),
         });
     }
-    RecordingAnalysis {
+    Ok(RecordingAnalysis {
         residual_rms: harmonics::pooled_residual_rms(&analysis.revolutions),
         analysis,
-        angle_source: recording.angle_source,
+        angle_source: facts.angle_source,
         declared_rate_rad_s,
         measured_rate_rad_s,
         dropped_revolutions,
         revolution_noise_sigma: statistics.revolution_noise_sigma,
         mean_noise_sigma: statistics.mean_noise_sigma,
         diagnostics,
-    }
-}
-
-/// The revolutions that fit far worse than the others, dropped when the recording's policy
-/// says so, and residuals that alternate in sign: the analysis to use and the diagnostics.
-fn outliers(
-    recording: &Recording,
-    signal: &ProbeSignal<'_>,
-    analysis: HarmonicAnalysis,
-) -> (HarmonicAnalysis, Vec<Diagnostic>) {
-    let binary = !recording.is_empty() && recording.line_of_sample(0) == 0;
-    let place = |sample: usize| {
-        if binary {
-            SampleAt::Sample(sample)
-        } else {
-            SampleAt::Line(recording.line_of_sample(sample))
-        }
-    };
-    outlier_check(
-        signal,
-        analysis,
-        recording.on_outlier,
-        recording.gap_unit,
-        place,
-    )
+    })
 }
 
 /// The outlier checks of [`analyze_recording`] on any fit of `signal` (a recording's, or
@@ -387,9 +453,24 @@ pub fn outlier_check(
     unit: LengthUnit,
     place: impl Fn(usize) -> SampleAt,
 ) -> (HarmonicAnalysis, Vec<Diagnostic>) {
+    let mut source = *signal;
+    match outlier_check_in(&mut source, analysis, on_outlier, unit, place) {
+        Ok(done) => done,
+        Err(never) => match never {},
+    }
+}
+
+/// [`outlier_check`] with the revolutions' samples read from `source`.
+pub(crate) fn outlier_check_in<S: harmonics::RevolutionSource>(
+    source: &mut S,
+    analysis: HarmonicAnalysis,
+    on_outlier: OnOutlier,
+    unit: LengthUnit,
+    place: impl Fn(usize) -> SampleAt,
+) -> std::result::Result<(HarmonicAnalysis, Vec<Diagnostic>), S::Error> {
     let mut diagnostics = Vec::new();
     let mut analysis = analysis;
-    if let Some(found) = harmonics::residual_outliers(signal, &analysis) {
+    if let Some(found) = harmonics::residual_outliers_in(source, &analysis)? {
         let dropped = on_outlier == OnOutlier::DropRevolution;
         let revolutions = found
             .revolutions
@@ -416,7 +497,7 @@ pub fn outlier_check(
             dropped,
         });
     }
-    if let Some(a) = harmonics::alternating_residuals(signal, &analysis) {
+    if let Some(a) = harmonics::alternating_residuals_in(source, &analysis)? {
         diagnostics.push(Diagnostic::AlternatingResiduals {
             lag1: a.lag1,
             white_noise_lag1: a.white_noise_lag1,
@@ -424,7 +505,7 @@ pub fn outlier_check(
             unit,
         });
     }
-    (analysis, diagnostics)
+    Ok((analysis, diagnostics))
 }
 
 /// [`Diagnostic::ImplausibleGap`] when the mean gap is below a micrometre or the first

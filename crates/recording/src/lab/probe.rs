@@ -339,7 +339,7 @@ impl Recording {
 
 /// Refuses a gap column whose header states another unit than the format declares
 /// (`Spalt [mm]` declared `um` would make C_r 1000 times too small).
-fn check_gap_header_unit(
+pub(crate) fn check_gap_header_unit(
     header: &[String],
     path: &Path,
     format: &RecordingFormat,
@@ -403,7 +403,7 @@ pub(crate) fn gap_unit_in_header(header: &str) -> Option<Option<LengthUnit>> {
 }
 
 /// The reader's error for a time axis that [`harmonics::check_time_axis`] refused.
-fn time_axis_error(e: HarmonicsError, path: &Path, lines: &LineTable) -> RecordingError {
+pub(crate) fn time_axis_error(e: HarmonicsError, path: &Path, lines: &LineTable) -> RecordingError {
     let path = path.to_owned();
     let line = |index| lines.line_of(index);
     match e {

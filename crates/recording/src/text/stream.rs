@@ -20,6 +20,23 @@ pub(crate) trait LineSink {
     fn feed(&mut self, text: &[u8]) -> Result<()>;
     /// Lines fed so far.
     fn lines_fed(&self) -> usize;
+    /// The next text fed starts at this byte of the file (after a byte-order mark); called
+    /// before each feed, for a reader that comes back to a place later.
+    fn at_offset(&mut self, _offset: u64) {}
+    /// Whether the parser has read all it wants (the rest of the file is not read).
+    fn done(&self) -> bool {
+        false
+    }
+}
+
+/// Where to start streaming a file: its beginning, or a place recorded by
+/// [`LineSink::at_offset`] earlier (with the line ends then found).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct Resume {
+    /// Byte of the file at which a line starts.
+    pub(crate) offset: u64,
+    /// Whether line ends are lone CRs (`None`: decide from the text, at the beginning).
+    pub(crate) lone_cr: Option<bool>,
 }
 
 /// Feeds the file's whole lines to `parser` (a regular file only: anything else is
@@ -31,21 +48,39 @@ pub(crate) trait LineSink {
 pub(crate) fn stream_file(
     path: &Path,
     parser: &mut impl LineSink,
-    mut hasher: Option<&mut Hasher>,
+    hasher: Option<&mut Hasher>,
 ) -> Result<()> {
+    stream_file_from(path, Resume::default(), parser, hasher).map(|_| ())
+}
+
+/// [`stream_file`] from a place in the file (a line's start, as [`LineSink::at_offset`]
+/// gave it), stopping early when the parser is [`LineSink::done`]. Returns whether line
+/// ends are lone CRs.
+pub(crate) fn stream_file_from(
+    path: &Path,
+    resume: Resume,
+    parser: &mut impl LineSink,
+    mut hasher: Option<&mut Hasher>,
+) -> Result<Option<bool>> {
+    use std::io::{Seek as _, SeekFrom};
     let io = |source| RecordingError::Io {
         path: path.to_owned(),
         source,
     };
     let (mut file, _) = crate::open::open_regular(path)?;
+    if resume.offset > 0 {
+        file.seek(SeekFrom::Start(resume.offset)).map_err(io)?;
+    }
     let mut buf: Vec<u8> = Vec::with_capacity(CHUNK_BYTES + 64 * 1024);
     let mut eof = false;
-    let mut start = true;
+    let mut start = resume.offset == 0;
+    // The file's byte at the buffer's start.
+    let mut offset = resume.offset;
     // Whether line ends are lone CRs (decided at the first line end), and how much of the
     // buffer is known to hold no line end (so that a long line is scanned once).
-    let mut lone_cr = None;
+    let mut lone_cr = resume.lone_cr;
     let mut scanned: usize = 0;
-    while !eof {
+    while !eof && !parser.done() {
         // Top the buffer up to a chunk, or double it while one line is longer than that.
         let target = if scanned > 0 {
             (2 * buf.len()).clamp(CHUNK_BYTES, MAX_LINE_BYTES + 1)
@@ -68,6 +103,7 @@ pub(crate) fn stream_file(
         if start {
             if buf.starts_with(BOM) {
                 buf.drain(..BOM.len());
+                offset += BOM.len() as u64;
             }
             start = false;
         }
@@ -102,9 +138,11 @@ pub(crate) fn stream_file(
                 continue;
             }
         };
+        parser.at_offset(offset);
         parser.feed(&buf[..complete])?;
         buf.drain(..complete);
+        offset += complete as u64;
         scanned = 0;
     }
-    Ok(())
+    Ok(lone_cr)
 }

@@ -392,7 +392,8 @@ pub(crate) fn delimiter_byte(delimiter: char) -> Result<u8, RecordingError> {
 }
 
 /// Where the format's columns are in the header.
-struct Layout {
+#[derive(Debug, Clone)]
+pub(crate) struct Layout {
     /// Format index of each column the header has, in format order; a column's place here
     /// is its slot.
     present: Vec<usize>,
@@ -522,6 +523,49 @@ impl<'a> TableParser<'a> {
             width,
             label_field,
         })
+    }
+
+    /// A parser that continues a file already read once from a line's start: the same
+    /// header (`layout`), the line before it `line` and `rows` rows before it.
+    pub(crate) fn resumed(
+        path: &'a Path,
+        format: &'a TableFormat,
+        layout: Layout,
+        line: usize,
+        rows: usize,
+    ) -> Result<Self> {
+        let mut parser = Self::new(path, format, 0)?;
+        parser.data = layout.present.iter().map(|_| Vec::new()).collect();
+        parser.layout = Some(layout);
+        parser.line = line;
+        parser.rows = rows;
+        Ok(parser)
+    }
+
+    /// The header's layout, once read.
+    pub(crate) fn layout(&self) -> Option<&Layout> {
+        self.layout.as_ref()
+    }
+
+    /// Rows parsed so far.
+    pub(crate) fn rows_read(&self) -> usize {
+        self.rows
+    }
+
+    /// The values parsed since the last call, by format column (`None` for a column the
+    /// header lacks), handed to `f` and then dropped: a streaming reader keeps no rows.
+    pub(crate) fn drain_rows(&mut self, f: impl FnOnce(&[Option<&[f64]>])) {
+        let Some(layout) = &self.layout else {
+            return;
+        };
+        let mut columns: Vec<Option<&[f64]>> = vec![None; self.format.columns.len()];
+        for (&k, values) in layout.present.iter().zip(&self.data) {
+            columns[k] = Some(values);
+        }
+        f(&columns);
+        for values in &mut self.data {
+            values.clear();
+        }
     }
 
     /// Parses whole lines (the text ends at a line end, or is the file's last piece).
@@ -726,7 +770,10 @@ impl LineSink for TableParser<'_> {
 
 /// The first content line after the first `skip` lines of the text (counted from its
 /// first line, so a piece fed later continues the count).
-fn skip_then_next_content<'t>(lines: &mut Lines<'t>, skip: usize) -> Option<(usize, &'t [u8])> {
+pub(crate) fn skip_then_next_content<'t>(
+    lines: &mut Lines<'t>,
+    skip: usize,
+) -> Option<(usize, &'t [u8])> {
     while lines.line < skip {
         lines.next_line()?;
     }

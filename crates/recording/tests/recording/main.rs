@@ -7,5 +7,6 @@ mod hostile;
 mod piga_recording;
 mod piga_table;
 mod probe;
+mod stream;
 mod table;
 mod volts;
