@@ -134,7 +134,7 @@ pub use read::{load_recording, load_recording_digested, parse_recording};
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 #[doc(hidden)]
-pub use text::number::number_paths;
+pub use text::number::{number_paths, parse_number};
 #[doc(hidden)]
 pub use text::table::parse_table_reference;
 pub use text::table::{
