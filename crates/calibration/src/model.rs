@@ -104,7 +104,7 @@ impl CalibrationModel {
         Self {
             k1_fitted: k1 == K1Mode::Fitted,
             radius_over_g_s2: n.radius_m / n.g_m_s2,
-            lever0: (n.pivot_to_probe_mm + n.probe_to_piga_mm) / n.pivot_to_probe_mm,
+            lever0: harmonics::lever_ratio(n.pivot_to_probe_mm, n.probe_to_piga_mm),
         }
     }
 
@@ -139,9 +139,9 @@ impl CalibrationModel {
         } else {
             k1_given
         };
-        let lever = (h_p + h_a) / h_p;
+        let lever = harmonics::lever_ratio(h_p, h_a);
         let c_r_true = c_r * gain * (lever / self.lever0) / (s * s);
-        let delta_k2 = k1 * c_r_true * g / (radius * radius);
+        let delta_k2 = identify::delta_k2_rad_s_g2(k1, c_r_true, radius, g);
         [beta[0], k1, beta[4] - delta_k2, beta[5], beta[4], delta_k2]
     }
 }

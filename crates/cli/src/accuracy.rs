@@ -110,12 +110,7 @@ fn print_table(console: &mut Console, results: &[Scored]) -> Result<(), ConsoleE
         let warn = if a.fit.warnings.is_empty() {
             String::new()
         } else {
-            let words: Vec<String> = a
-                .fit
-                .warnings
-                .iter()
-                .map(crate::words::fit_warning)
-                .collect();
+            let words: Vec<String> = a.fit.warnings.iter().map(ToString::to_string).collect();
             format!("  warning: {}", words.join("; "))
         };
         writeln!(
@@ -127,7 +122,7 @@ fn print_table(console: &mut Console, results: &[Scored]) -> Result<(), ConsoleE
             a.lre_residual_sd,
             a.fit.condition_number,
             a.fit.refinement_iterations,
-            crate::words::solver(&a.fit.path),
+            a.fit.path,
             warn
         )?;
     }

@@ -2,7 +2,7 @@
 //! recording (eq. 20–21).
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::bail;
 use harmonics::{Coefficients, FitConfig, ProbeDirection};
@@ -102,9 +102,8 @@ pub(crate) struct Harmonics {
 /// A RON value of a format field given on the command line, e.g. `mm` or
 /// `counts(per_rev: 4096)`.
 fn ron_value<T: serde::de::DeserializeOwned>(flag: &str, text: &str) -> anyhow::Result<T> {
-    edge_io::ron_options()
-        .from_str(text)
-        .map_err(|e| anyhow::anyhow!("--{flag} {text:?}: {e}"))
+    edge_io::from_ron(text, Path::new(&format!("--{flag} {text:?}")))
+        .map_err(|e| anyhow::anyhow!(e))
 }
 
 impl Harmonics {
@@ -113,9 +112,7 @@ impl Harmonics {
         let mut f = match &self.format {
             Some(path) => {
                 let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES)?;
-                edge_io::ron_options()
-                    .from_str(&text)
-                    .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?
+                edge_io::from_ron(&text, path)?
             }
             None => RecordingFormat::default(),
         };

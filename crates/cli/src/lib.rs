@@ -28,7 +28,6 @@ mod record;
 mod regress;
 mod simulate;
 mod study;
-mod words;
 
 use std::ffi::OsString;
 use std::io::Write as _;
@@ -172,18 +171,8 @@ fn usage_exit(e: &clap::Error) -> u8 {
     }
 }
 
-/// The error and its causes joined by `: `, leaving out a cause whose text the message
-/// before it already contains (the libraries' messages include their source's).
+/// The error and its causes as one line ([`units::ErrorChain`], the one chain printer).
 fn error_chain(e: &anyhow::Error) -> String {
-    let mut out = String::new();
-    for cause in e.chain() {
-        let text = cause.to_string();
-        if !out.contains(&text) {
-            if !out.is_empty() {
-                out.push_str(": ");
-            }
-            out.push_str(&text);
-        }
-    }
-    out
+    let e: &(dyn std::error::Error + 'static) = e.as_ref();
+    units::ErrorChain(e).to_string()
 }

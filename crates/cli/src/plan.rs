@@ -236,15 +236,7 @@ impl PlanCmd {
 /// Reads a plan file (RON, size-capped, the workspace's dialect `edge_io::ron_options`).
 fn load(path: &Path) -> anyhow::Result<PlanInputs> {
     let text = edge_io::read_text_capped(path, edge_io::CONFIG_MAX_BYTES)?;
-    edge_io::ron_options().from_str(&text).map_err(|e| {
-        anyhow::anyhow!(
-            "{}:{}:{}: {}",
-            path.display(),
-            e.span.start.line,
-            e.span.start.col,
-            e.code
-        )
-    })
+    Ok(edge_io::from_ron(&text, path)?)
 }
 
 /// The plan simulated `campaigns` times, its noise-free outputs through the exact chain.
@@ -349,7 +341,7 @@ fn summary(plan: &Plan) -> String {
         plan.points.len(),
         plan.candidates,
         plan.max_rate_deg_s,
-        crate::words::criterion(&plan.criterion),
+        plan.criterion,
         plan.total_time_s,
         plan.budget_s
     );

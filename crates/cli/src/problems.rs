@@ -4,19 +4,9 @@
 use std::error::Error;
 use std::fmt::Write as _;
 
-/// An error and its causes as one line, leaving out a cause whose text is already there.
+/// An error and its causes as one line ([`units::ErrorChain`], the one chain printer).
 pub(crate) fn full_text(e: &(dyn Error + 'static)) -> String {
-    let mut out = e.to_string();
-    let mut source = e.source();
-    while let Some(cause) = source {
-        let text = cause.to_string();
-        if !out.contains(&text) {
-            out.push_str(": ");
-            out.push_str(&text);
-        }
-        source = cause.source();
-    }
-    out
+    units::ErrorChain(e).to_string()
 }
 
 /// The errors of a pipeline error: each of a `Several`, else the one.

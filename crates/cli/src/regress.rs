@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::{Context as _, bail};
 use clap::Args;
 use report::Expected;
+use units::Compact;
 
 use crate::console::Console;
 use crate::paths::Places;
@@ -47,13 +48,17 @@ impl Regress {
                 (true, false) => "FAIL",
             };
             failed += usize::from(!o.passed);
+            // numbers by the one formatter of numbers in messages (units::Compact: the
+            // shortest text that reads back to the same f64, plain between 1e-5 and 1e16)
             let actual = o
                 .actual
-                .map_or_else(|| "missing".to_owned(), |a| format!("{a:e}"));
+                .map_or_else(|| "missing".to_owned(), |a| Compact(a).to_string());
             writeln!(
                 console,
-                "{status:>5}  {:<48} expected {:e} ± {:e}, got {actual}",
-                o.check.path, o.check.value, o.check.tolerance
+                "{status:>5}  {:<48} expected {} ± {}, got {actual}",
+                o.check.path,
+                Compact(o.check.value),
+                Compact(o.check.tolerance)
             )?;
         }
         if failed > 0 {

@@ -224,7 +224,7 @@ fn print_summary(out: &mut Console, results: &StudyResults) -> Result<(), Consol
                 out,
                 "{:<13} {:<18} {:>12.4e} {:>11} {:>14.3e} {:>11}",
                 name,
-                crate::words::radius_model(&fit.model),
+                fit.model.to_string(),
                 fit.c_r_m_s2,
                 e(fit.c_r_sigma_m_s2),
                 fit.delta_k2_rad_s_g2,

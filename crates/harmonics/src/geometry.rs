@@ -97,6 +97,22 @@ pub struct LeverGeometry {
     pub probe_direction: ProbeDirection,
 }
 
+/// The lever ratio of eq. 22, `(h_probe + h_piga)/h_probe`: a drift in the probe plane times
+/// this is the drift in the PIGA plane (1210/700 with the paper's 700 mm and 510 mm). The one
+/// home of the formula: the probe analysis ([`LeverGeometry::lever_ratio`], which validates the
+/// heights first), the calibration's measurement models and the planner call it. The heights
+/// are taken as they are (a zero `pivot_to_probe_mm` gives ±∞ or NaN; validate first where
+/// they come from a person).
+///
+/// ```
+/// approx::assert_relative_eq!(harmonics::lever_ratio(700.0, 510.0), 1210.0 / 700.0, max_relative = 1e-15);
+/// ```
+#[inline]
+#[must_use]
+pub fn lever_ratio(pivot_to_probe_mm: f64, probe_to_piga_mm: f64) -> f64 {
+    (pivot_to_probe_mm + probe_to_piga_mm) / pivot_to_probe_mm
+}
+
 /// The first harmonic carried to the PIGA plane (eq. 22, corrected form of NOTES.md).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -139,7 +155,7 @@ impl LeverGeometry {
     /// ```
     pub fn lever_ratio(&self) -> Result<f64> {
         self.validate()?;
-        Ok((self.pivot_to_probe_mm + self.probe_to_piga_mm) / self.pivot_to_probe_mm)
+        Ok(lever_ratio(self.pivot_to_probe_mm, self.probe_to_piga_mm))
     }
 
     /// Azimuth `β` of the composite imbalance from the first harmonic (eq. 21):

@@ -96,7 +96,7 @@ pub use analysis::{
     Coefficients, DEFAULT_ORDER, FitConfig, HarmonicAnalysis, RevolutionFit, analyze,
 };
 pub use error::{HarmonicsError, Requirement, Result};
-pub use geometry::{FirstHarmonic, LeverGeometry, PigaPlaneDrift, ProbeDirection};
+pub use geometry::{FirstHarmonic, LeverGeometry, PigaPlaneDrift, ProbeDirection, lever_ratio};
 pub use kernel::MAX_ORDER;
 pub use noise::{
     DriftAcrossRevolutions, FirstHarmonicNoise, SPREAD_WARNING_RATIO, chi_square_ratio_99,

@@ -65,6 +65,6 @@ pub use error::{IdentifyError, Requirement, Result};
 pub use geometry::Geometry;
 pub use lstsq::{Fit, FitWarning, LstsqOptions, SolverPath, lstsq, lstsq_design, lstsq_with};
 pub use radius::{
-    CrEstimate, PseudoSecondOrder, RadiusFit, RadiusModel, fit_radius_error,
+    CrEstimate, PseudoSecondOrder, RadiusFit, RadiusModel, delta_k2_rad_s_g2, fit_radius_error,
     fit_radius_error_weighted, pseudo_second_order,
 };

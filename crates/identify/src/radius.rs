@@ -277,10 +277,9 @@ pub fn pseudo_second_order(
     c_r.validate()?;
     geometry.validate()?;
     let Geometry { radius_m, g_m_s2 } = geometry;
-    let factor = k1_rad_s_g * g_m_s2 / (radius_m * radius_m);
     let result = PseudoSecondOrder {
-        delta_k2_rad_s_g2: factor * c_r.c_r_m_s2,
-        sigma_rad_s_g2: factor.abs() * c_r.c_r_sigma_m_s2,
+        delta_k2_rad_s_g2: delta_k2_rad_s_g2(k1_rad_s_g, c_r.c_r_m_s2, radius_m, g_m_s2),
+        sigma_rad_s_g2: delta_k2_rad_s_g2(k1_rad_s_g, c_r.c_r_sigma_m_s2, radius_m, g_m_s2).abs(),
     };
     let inputs = [
         ("k1_rad_s_g", k1_rad_s_g),
@@ -292,6 +291,21 @@ pub fn pseudo_second_order(
     result_finite("delta_k2_rad_s_g2", result.delta_k2_rad_s_g2, &inputs)?;
     result_finite("delta_k2_sigma_rad_s_g2", result.sigma_rad_s_g2, &inputs)?;
     Ok(result)
+}
+
+/// `Δk2 = k1·C_r·g/R²` of eq. 19 on plain values (k1 in rad/(s·g), C_r in m·s², R in m, g in
+/// m/s²; the result in rad/(s·g²)), unchecked: the one home of the formula, which
+/// [`pseudo_second_order`] (validated, with σ) and the measurement models, the planner and the
+/// simulator evaluate. A C_r of several causes (the probe's, the arm's stretch) is their sum.
+///
+/// ```
+/// approx::assert_relative_eq!(identify::delta_k2_rad_s_g2(0.5, 2e-8, 2.0, 10.0),
+///                             0.5 * 2e-8 * 10.0 / 4.0, max_relative = 1e-15);
+/// ```
+#[inline]
+#[must_use]
+pub fn delta_k2_rad_s_g2(k1_rad_s_g: f64, c_r_m_s2: f64, radius_m: f64, g_m_s2: f64) -> f64 {
+    k1_rad_s_g * c_r_m_s2 * g_m_s2 / (radius_m * radius_m)
 }
 
 /// `Ok` when a result is finite, [`IdentifyError::NonFiniteResult`] naming it and the inputs

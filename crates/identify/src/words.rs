@@ -1,5 +1,6 @@
 //! The solver's enums in a person's words (`Display`): what a report or a terminal shows
-//! of them, never the Rust names.
+//! of them, never the Rust names. The one table of these words: the command line prints
+//! these `Display`s.
 
 use std::fmt;
 
@@ -8,9 +9,9 @@ use crate::{FitWarning, RadiusModel, SolverPath};
 impl fmt::Display for SolverPath {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            Self::ScaledColPivQr => "column-scaled, column-pivoted QR",
+            Self::ScaledColPivQr => "column-pivoted QR of the column-scaled design",
             Self::RefinedScaledColPivQr => {
-                "column-scaled, column-pivoted QR with double-double iterative refinement"
+                "column-pivoted QR of the column-scaled design, refined in double-double"
             }
         })
     }
@@ -24,9 +25,9 @@ impl fmt::Display for FitWarning {
                 relative_correction,
             } => write!(
                 f,
-                "iterative refinement did not converge ({iterations} iterations, last relative \
-                 correction {}): the design is too ill-conditioned for its trailing digits to \
-                 be established",
+                "the iterative refinement stopped contracting after {iterations} iterations \
+                 (last relative correction {}): the design is too ill-conditioned for the \
+                 trailing digits to be established",
                 units::Compact(*relative_correction)
             ),
         }

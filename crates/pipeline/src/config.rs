@@ -542,19 +542,17 @@ impl StudyConfig {
     /// source in errors, which name the configuration's own keys (`calibration.table`), never
     /// a type of this crate. Optional sections are written without `Some(...)`.
     pub fn from_ron(text: &str, path: &Path) -> Result<Self> {
-        edge_io::ron_options()
-            .from_str(text)
-            .map_err(|e| parse_error(&e, path))
+        edge_io::from_ron(text, path).map_err(parse_error)
     }
 }
 
 /// A RON parser's error as the configuration's own words, located in `path`.
-pub(crate) fn parse_error(e: &ron::error::SpannedError, path: &Path) -> PipelineError {
+pub(crate) fn parse_error(e: edge_io::RonError) -> PipelineError {
     PipelineError::Parse {
-        path: path.to_owned(),
-        line: e.span.start.line,
-        column: e.span.start.col,
         message: parse_message(&e.code),
+        path: e.path,
+        line: e.line,
+        column: e.column,
     }
 }
 

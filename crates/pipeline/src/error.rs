@@ -581,17 +581,10 @@ impl PipelineError {
 
 /// The errors of a list, in the configuration's order, one per line.
 fn list(errors: &[PipelineError]) -> String {
-    use std::error::Error as _;
     let mut out = String::new();
     for e in errors {
         out.push_str("\n  ");
-        out.push_str(&e.to_string());
-        let mut cause = e.source();
-        while let Some(c) = cause {
-            out.push_str(": ");
-            out.push_str(&c.to_string());
-            cause = c.source();
-        }
+        out.push_str(&units::ErrorChain(e).to_string());
     }
     out
 }

@@ -46,10 +46,7 @@ impl Profile {
     /// # Errors
     /// [`PipelineError::Parse`] for malformed RON, an unknown or a misspelt field.
     pub fn from_ron(text: &str, path: &Path) -> Result<Self> {
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        let config = edge_io::ron_options()
-            .from_str(text)
-            .map_err(|e| crate::config::parse_error(&e, path))?;
+        let config = edge_io::from_ron(text, path).map_err(crate::config::parse_error)?;
         Ok(Self::new(config, path))
     }
 

@@ -71,7 +71,7 @@ pub fn check_campaigns(campaigns: usize, kind: CampaignKind) -> Result<()> {
 pub struct SimulationCheck {
     /// Campaigns simulated.
     pub campaigns: usize,
-    /// Seed of the first campaign (campaign `c` uses `seed + c`).
+    /// The seed of the campaigns (campaign `c` draws the stream `units::stream_seed(seed, …, c)`).
     pub seed: u64,
     /// The predicted u(k2) of the fit, rad/(s·g²).
     pub predicted_u_rad_s_g2: f64,
@@ -110,8 +110,8 @@ pub fn expected_outputs(inputs: &PlanInputs, plan: &Plan) -> Vec<f64> {
 
 /// Simulates the plan's campaign `campaigns` times: each point's mean output is
 /// `noise_free_rad_s[i]` plus a normal draw of the point's σ (fresh per campaign and point;
-/// campaign `c` draws from its own `StdRng` seeded with `seed + c`, in parallel, so the result
-/// does not depend on the number of threads), then fits eq. 18 by weighted least squares
+/// campaign `c` draws from its own stream ([`campaign_rng`]: `units::stream_seed` of the seed and
+/// `c`), in parallel, so the result does not depend on the number of threads), then fits eq. 18 by weighted least squares
 /// (`identify::lstsq` on the rows divided by σ_i) and compares the spread of the apparent k2
 /// with the plan's u(k2) of the fit.
 ///

@@ -231,11 +231,12 @@ pub enum Criterion {
 }
 
 impl std::fmt::Display for Criterion {
-    /// The criterion in words: `c-optimal for k2` or `D-optimal for all six coefficients`.
+    /// The criterion in words, as the command line prints it: `smallest u(k2) (c-optimal)` or
+    /// `largest det(XᵀWX) (D-optimal, all six coefficients)`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
-            Self::K2 => "c-optimal for k2",
-            Self::D => "D-optimal for all six coefficients",
+            Self::K2 => "smallest u(k2) (c-optimal)",
+            Self::D => "largest det(XᵀWX) (D-optimal, all six coefficients)",
         })
     }
 }

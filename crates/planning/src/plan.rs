@@ -222,7 +222,7 @@ fn sigma_mean(p: &Problem, i: usize, revolutions: u32) -> f64 {
 fn sigma_radius(p: &Problem, i: usize, revolutions: u32) -> f64 {
     let pr = &p.inputs.probe;
     let t = f64::from(revolutions) * p.grid.tau_s[i];
-    let lever = (pr.pivot_to_probe_mm + pr.probe_to_piga_mm) / pr.pivot_to_probe_mm;
+    let lever = harmonics::lever_ratio(pr.pivot_to_probe_mm, pr.probe_to_piga_mm);
     lever * pr.noise_um * 1e-6 * (2.0 / (pr.sample_rate_hz * t)).sqrt()
 }
 
@@ -257,7 +257,7 @@ fn gum_k2(p: &Problem, u_fit: f64, fit_dof: usize, u_c_r: Option<(f64, usize)>) 
     let (hp0, ha0) = (pr.pivot_to_probe_mm, pr.probe_to_piga_mm);
     let k1 = inputs.piga.k1_rad_s_g;
     let c_r = inputs.c_r.expected_m_s2;
-    let apparent = inputs.piga.k2_rad_s_g2 + k1 * c_r * g0 / (r0 * r0);
+    let apparent = inputs.piga.k2_rad_s_g2 + identify::delta_k2_rad_s_g2(k1, c_r, r0, g0);
     let name = |i: usize| {
         BUDGET_INPUTS
             .iter()

@@ -7,7 +7,7 @@ use crate::two_orientation_plan::{TwoOrientationPlan, fit_points};
 
 /// Simulates the two-orientation plan's campaign `campaigns` times: each point's mean output
 /// is `noise_free_rad_s[k][i]` (IA in, IA out, in the plan's order) plus a normal draw of the
-/// point's σ (campaign `c` draws from its own `StdRng` seeded with `seed + c`, in parallel,
+/// point's σ (campaign `c` draws from its own stream, `units::stream_seed` of the seed and `c`, in parallel,
 /// so the result does not depend on the number of threads), fitted by
 /// `calibration::fit_two_orientation` with the points' σ — the fit the study makes of a PIGA table
 /// with a σ column — and compares the spread of k2 with the plan's u(k2).

@@ -556,7 +556,12 @@ fn describe(
         probe_over_two_orientations: u_probe / u,
         probe_method: a.probe_method,
         arm_stretch_m_s2: spec.arm_stretch_m_s2,
-        probe_method_arm_stretch_error_rad_s_g2: k1 * spec.arm_stretch_m_s2 * g / (r * r),
+        probe_method_arm_stretch_error_rad_s_g2: identify::delta_k2_rad_s_g2(
+            k1,
+            spec.arm_stretch_m_s2,
+            r,
+            g,
+        ),
         target_u95_rad_s_g2: inputs.target.u95_k2_rad_s_g2,
         target_met: u95 <= inputs.target.u95_k2_rad_s_g2,
         mountings,

@@ -137,22 +137,10 @@ impl Kind {
     }
 }
 
-/// The error and its causes joined by `: `, leaving out a cause whose text the message
-/// before it already holds: the words `cargo xtask` prints after `error: `.
+/// The error and its causes as one line ([`units::ErrorChain`], the one chain printer): the
+/// words `cargo xtask` prints after `error: `.
 pub(crate) fn chain_message(e: &(dyn std::error::Error + 'static)) -> String {
-    let mut out = String::new();
-    let mut next: Option<&(dyn std::error::Error + 'static)> = Some(e);
-    while let Some(cause) = next {
-        let text = cause.to_string();
-        if !out.contains(&text) {
-            if !out.is_empty() {
-                out.push_str(": ");
-            }
-            out.push_str(&text);
-        }
-        next = cause.source();
-    }
-    out
+    units::ErrorChain(e).to_string()
 }
 
 /// What an error locates, from its fields: the innermost file and line, the outermost

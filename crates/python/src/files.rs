@@ -25,15 +25,14 @@ pub(crate) fn format(
     if let Some(path) = ron_path {
         let text = edge_io::read_text_capped(&path, edge_io::CONFIG_MAX_BYTES)
             .map_err(|e| errors::edge(py, &e))?;
-        return edge_io::ron_options().from_str(&text).map_err(|e| {
-            let message = format!("{}: {e}", path.display());
+        return edge_io::from_ron(&text, &path).map_err(|e| {
             errors::raise(
                 py,
                 Kind::Config,
-                message,
+                e.to_string(),
                 Located {
                     file: Some(path.display().to_string()),
-                    line: Some(e.span.start.line),
+                    line: Some(e.line),
                     field: errors::serde_field(&e.code.to_string()),
                     hint: None,
                 },

@@ -240,20 +240,15 @@ pub(crate) fn plan<'py>(
         (Some(path), _) => {
             let text = edge_io::read_text_capped(&path, edge_io::CONFIG_MAX_BYTES)
                 .map_err(|e| errors::edge(py, &e))?;
-            edge_io::ron_options().from_str(&text).map_err(|e| {
+            edge_io::from_ron(&text, &path).map_err(|e| {
                 let code = e.code.to_string();
                 errors::raise(
                     py,
                     Kind::Config,
-                    format!(
-                        "{}:{}:{}: {code}",
-                        path.display(),
-                        e.span.start.line,
-                        e.span.start.col
-                    ),
+                    e.to_string(),
                     Located {
                         file: Some(path.display().to_string()),
-                        line: Some(e.span.start.line),
+                        line: Some(e.line),
                         field: errors::serde_field(&code),
                         hint: None,
                     },

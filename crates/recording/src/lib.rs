@@ -141,7 +141,7 @@ pub use stream::{
 #[cfg(feature = "synthetic")]
 pub use synth::SyntheticSpec;
 #[doc(hidden)]
-pub use text::number::number_paths;
+pub use text::number::{number_paths, parse_number};
 #[doc(hidden)]
 pub use text::table::parse_table_reference;
 pub use text::table::{

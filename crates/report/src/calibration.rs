@@ -2,23 +2,11 @@
 
 use std::fmt::Write as _;
 
-use pipeline::{BudgetLine, CalibrationResults, Coefficient, DegreesOfFreedom};
+use pipeline::{BudgetLine, CalibrationResults, Coefficient};
 
 use crate::format;
 
-/// A rate to six decimals at most, trailing zeros dropped (a measured rate is not exactly
-/// the declared one).
-fn rate(rate_deg_s: f64) -> String {
-    let text = format!("{rate_deg_s:.6}");
-    text.trim_end_matches('0').trim_end_matches('.').to_owned()
-}
-
-fn dof(d: DegreesOfFreedom) -> String {
-    match d {
-        DegreesOfFreedom::Finite(nu) => format!("{nu:.1}"),
-        DegreesOfFreedom::Infinite(_) => "∞".to_owned(),
-    }
-}
+use crate::format::{dof, rate};
 
 fn row(out: &mut String, name: &str, unit: &str, c: &Coefficient) {
     let _ = writeln!(

@@ -86,15 +86,12 @@ impl Expected {
     /// [`ReportError::Parse`] for malformed RON, an unknown or a missing field; otherwise as
     /// [`Expected::validate`].
     pub fn parse(text: &str, path: &Path) -> Result<Self> {
-        let expected: Self =
-            edge_io::ron_options()
-                .from_str(text)
-                .map_err(|e| ReportError::Parse {
-                    path: path.to_owned(),
-                    line: e.span.start.line,
-                    column: e.span.start.col,
-                    message: e.code.to_string(),
-                })?;
+        let expected: Self = edge_io::from_ron(text, path).map_err(|e| ReportError::Parse {
+            line: e.line,
+            column: e.column,
+            message: e.code.to_string(),
+            path: e.path,
+        })?;
         expected.validate(path)?;
         Ok(expected)
     }

@@ -210,15 +210,11 @@ pub(crate) fn plain(x: f64) -> String {
     no_negative_zero(format!("{x}"))
 }
 
-/// Effective degrees of freedom as a person writes them: a whole number up to 1000,
-/// `> 1000` above, `∞` for infinitely many.
+/// Effective degrees of freedom as a person writes them, by the one formatter
+/// (`uncertainty::Dof`'s `Display`): a whole number up to 1000, `> 1000` above, one decimal
+/// for a fraction below 10, `∞` for infinitely many.
 pub(crate) fn dof(d: DegreesOfFreedom) -> String {
-    match d {
-        DegreesOfFreedom::Finite(nu) if nu > 1000.0 => "> 1000".to_owned(),
-        DegreesOfFreedom::Finite(nu) if nu >= 10.0 => format!("{nu:.0}"),
-        DegreesOfFreedom::Finite(nu) => fixed(nu, 1),
-        DegreesOfFreedom::Infinite(_) => "∞".to_owned(),
-    }
+    d.to_string()
 }
 
 /// A share of a variance in percent: one decimal, `< 0.1` for a positive share below it,

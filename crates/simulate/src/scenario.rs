@@ -254,15 +254,12 @@ impl Scenario {
     /// [`SimulateError::Parse`] for malformed RON, an unknown or a missing field; otherwise as
     /// [`Scenario::check`].
     pub fn parse(text: &str, path: &Path) -> Result<LoadedScenario> {
-        let scenario: Self =
-            edge_io::ron_options()
-                .from_str(text)
-                .map_err(|e| SimulateError::Parse {
-                    path: path.to_owned(),
-                    line: e.span.start.line,
-                    column: e.span.start.col,
-                    message: e.code.to_string(),
-                })?;
+        let scenario: Self = edge_io::from_ron(text, path).map_err(|e| SimulateError::Parse {
+            line: e.line,
+            column: e.column,
+            message: e.code.to_string(),
+            path: e.path,
+        })?;
         scenario.check(path)
     }
 

@@ -21,10 +21,25 @@ impl Dof {
     }
 }
 
+/// Degrees of freedom as a person reads them, the one way every output (terminal, report,
+/// certificate) writes them: a whole number from 10 to 1000 (and a count below 10: `7`),
+/// `> 1000` above, one decimal for a fraction below 10 (`2.3`), `∞` for infinitely many.
+///
+/// ```
+/// use uncertainty::Dof;
+/// assert_eq!(Dof::Finite(12.0).to_string(), "12");
+/// assert_eq!(Dof::Finite(23.46).to_string(), "23");
+/// assert_eq!(Dof::Finite(4.0).to_string(), "4");
+/// assert_eq!(Dof::Finite(2.345).to_string(), "2.3");
+/// assert_eq!(Dof::Finite(1.0e6).to_string(), "> 1000");
+/// assert_eq!(Dof::Infinite.to_string(), "∞");
+/// ```
 impl std::fmt::Display for Dof {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Dof::Finite(nu) => write!(f, "{nu}"),
+        match *self {
+            Dof::Finite(nu) if nu > 1000.0 => f.write_str("> 1000"),
+            Dof::Finite(nu) if nu >= 10.0 || nu.fract() == 0.0 => write!(f, "{nu:.0}"),
+            Dof::Finite(nu) => write!(f, "{nu:.1}"),
             Dof::Infinite => f.write_str("∞"),
         }
     }

@@ -1,16 +1,19 @@
 //! The workspace's shared vocabulary of numbers: unit conversions (the one place where deg/s
 //! become rad/s and µm become m), how an error message writes a number ([`Compact`]), what a
 //! number must be ([`Requirement`], checked by [`finite`], [`positive`], [`non_negative`],
-//! [`require`]) and how a seed becomes independent random streams ([`stream_seed`]).
+//! [`require`]), how a seed becomes independent random streams ([`stream_seed`]) and how an
+//! error and its causes become one line ([`ErrorChain`]).
 //!
 //! Every crate that converts a configured or reported quantity calls these `const fn`s, so a
 //! conversion factor exists once in the workspace. [`Compact`] is the one way a quantity is
 //! written into an error message. No dependencies.
 
+mod chain;
 mod compact;
 mod requirement;
 mod seed;
 
+pub use chain::ErrorChain;
 pub use compact::{Compact, CompactList, CompactSeries};
 pub use requirement::{Requirement, Unmet, finite, non_negative, positive, require};
 pub use seed::stream_seed;

@@ -10,6 +10,7 @@ use approx as _;
 use bit_set as _;
 use bit_vec as _;
 use bitflags as _;
+use edge_io as _;
 use either as _;
 use fastrand as _;
 use harmonics as _;

@@ -137,7 +137,7 @@ impl TwoOrientationModel {
             omega6_response: fit.omega6_response,
             earth_rate_response: fit.earth_rate_response,
             probe_lever: probe
-                .map(|p| (p.pivot_to_probe_mm + p.probe_to_piga_mm) / p.pivot_to_probe_mm),
+                .map(|p| harmonics::lever_ratio(p.pivot_to_probe_mm, p.probe_to_piga_mm)),
         }
     }
 
@@ -254,7 +254,7 @@ impl MeasurementModel for TwoOrientationModel {
             // the probe's C_r as CalibrationModel takes it: its gain, its lever, and the
             // rate scale of the probe phase's rates
             let (h_p, h_a) = (x[i::PIVOT_TO_PROBE], x[i::PROBE_TO_PIGA]);
-            let lever = (h_p + h_a) / h_p;
+            let lever = harmonics::lever_ratio(h_p, h_a);
             let c_r = x[i::C_R] * x[i::PROBE_GAIN] * (lever / lever0) / (scale * scale);
             y[8] = c_total - c_r;
         }

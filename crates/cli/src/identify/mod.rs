@@ -457,12 +457,9 @@ fn k95(dof: uncertainty::Dof) -> f64 {
     uncertainty::coverage_factor(0.95, dof).unwrap_or(f64::NAN)
 }
 
-/// The degrees of freedom in words: "12", "infinite".
+/// The degrees of freedom by the one formatter (`uncertainty::Dof`'s `Display`): "12", "∞".
 fn dof_words(dof: uncertainty::Dof) -> String {
-    match dof {
-        uncertainty::Dof::Finite(nu) => format!("{nu}"),
-        uncertainty::Dof::Infinite => "infinite".to_owned(),
-    }
+    dof.to_string()
 }
 
 fn print_report(
@@ -487,10 +484,7 @@ fn print_report(
         console,
         "design [1, ω, ω², ω³, a², a³], a = R·ω²/g (eq. 18); condition number of the \
          column-scaled design {:.3e}; residual SD {:.4e} rad/s ({} dof); solver: {}",
-        fit.condition_number,
-        v.residual_sd_rad_s,
-        fit.dof,
-        crate::words::solver(&fit.path)
+        fit.condition_number, v.residual_sd_rad_s, fit.dof, fit.path
     )?;
     let w = v.weighting;
     match (w.birge_ratio, w.excess_u_rad_s) {
@@ -516,7 +510,7 @@ fn print_report(
         )?,
     }
     for warning in &fit.warnings {
-        writeln!(console, "warning: {}", crate::words::fit_warning(warning))?;
+        writeln!(console, "warning: {warning}")?;
     }
     for warning in v.warnings {
         writeln!(console, "warning: {warning}")?;
@@ -600,10 +594,7 @@ fn print_report(
             c.k2_rad_s_g2,
             u_k2,
             k95(nu) * u_k2,
-            match nu {
-                uncertainty::Dof::Finite(nu) if nu <= 1e4 => format!("{nu:.1}"),
-                _ => "above 10⁴".to_owned(),
-            },
+            nu,
         )?;
     }
     Ok(())

@@ -106,20 +106,15 @@ impl fmt::Display for LayoutProblem {
     }
 }
 
-/// A number as a lab writes it, with a decimal point or comma.
+/// A number as a lab writes it, with a decimal point or comma: the recording readers' own
+/// syntax ([`recording::parse_number`]), so that what init takes for a number is what the
+/// study then reads.
 pub(crate) fn number(field: &str, decimal_comma: bool) -> Option<f64> {
     let field = clean(field);
     if field.is_empty() {
         return None;
     }
-    let parsed = if decimal_comma {
-        if field.contains('.') {
-            return None;
-        }
-        field.replace(',', ".").parse::<f64>().ok()
-    } else {
-        field.parse::<f64>().ok()
-    };
+    let parsed = recording::parse_number(field, decimal_comma);
     // `inf`, `nan` parse as numbers but say nothing about a layout.
     parsed.filter(|v| v.is_finite() || field.eq_ignore_ascii_case("nan"))
 }

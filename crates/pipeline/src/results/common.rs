@@ -14,6 +14,25 @@ pub enum DegreesOfFreedom {
     Infinite(InfiniteDof),
 }
 
+impl DegreesOfFreedom {
+    /// The same as the uncertainty engine's [`uncertainty::Dof`].
+    #[must_use]
+    pub const fn as_dof(self) -> uncertainty::Dof {
+        match self {
+            Self::Finite(nu) => uncertainty::Dof::Finite(nu),
+            Self::Infinite(_) => uncertainty::Dof::Infinite,
+        }
+    }
+}
+
+/// As a person reads them: the one formatter of degrees of freedom ([`uncertainty::Dof`]'s
+/// `Display`: `12`, `4`, `2.3`, `> 1000`, `∞`).
+impl std::fmt::Display for DegreesOfFreedom {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.as_dof().fmt(f)
+    }
+}
+
 /// The marker `"infinite"`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]

@@ -36,6 +36,23 @@ pub(super) fn parse_f64(field: &[u8], comma: bool) -> Option<f64> {
     std::str::from_utf8(f).ok()?.parse().ok()
 }
 
+/// A number field as the lab-file readers read it (the one number syntax of the workspace's lab
+/// files: a decimal point, or with `decimal_comma` a decimal comma and no point; surrounding
+/// blanks allowed; `nan` and `inf` as the standard library reads them). `None` if it is not a
+/// number. `centrifuge-cal init` guesses a file's layout with it, so what init takes for a
+/// number is what the readers then read.
+///
+/// ```
+/// assert_eq!(recording::parse_number("0,05", true), Some(0.05));
+/// assert_eq!(recording::parse_number("0.05", true), None);
+/// assert_eq!(recording::parse_number(" -1.5e3 ", false), Some(-1500.0));
+/// assert_eq!(recording::parse_number("1,5", false), None);
+/// ```
+#[must_use]
+pub fn parse_number(field: &str, decimal_comma: bool) -> Option<f64> {
+    parse_f64(field.as_bytes(), decimal_comma)
+}
+
 /// The decimal parser as the fuzz targets and tests see it: `(parse_f64, fast_f64)` of
 /// `field` with a decimal point, the full parser and its fast path alone (`None` where the
 /// fast path declines). Not part of the crate's interface.

@@ -9,7 +9,7 @@ mod probe;
 mod simulation;
 
 use accel_model::{RatePoint, rate_points};
-use identify::{CrEstimate, Geometry, pseudo_second_order};
+use identify::{CrEstimate, Geometry, delta_k2_rad_s_g2, pseudo_second_order};
 use kinematics::{Centrifuge, Chain};
 use units::m_to_um;
 
@@ -235,7 +235,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
         .delta_k2_rad_s_g2;
     let two_orientation = s.arm_stretch_m_s2 != 0.0 || !s.mountings.is_empty();
     let c_total = c_r + s.arm_stretch_m_s2;
-    let dk2_total = |radius_m: f64| k.k1_rad_s_g * c_total * g / (radius_m * radius_m);
+    let dk2_total = |radius_m: f64| delta_k2_rad_s_g2(k.k1_rad_s_g, c_total, radius_m, g);
     let radius_growth = two_orientation.then(|| RadiusGrowthTruth {
         c_r_m_s2: c_r,
         c_a_m_s2: s.arm_stretch_m_s2,
