@@ -438,6 +438,49 @@ fn describe(
             sets.join(" and ")
         );
     }
+    if let Some(m) = v.get("mountings").filter(|c| !c.is_null()) {
+        let list: Vec<String> = m["list"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|o| {
+                let which = o["label"]
+                    .as_str()
+                    .or_else(|| o["preset"].as_str())
+                    .map_or_else(|| "mounting by angles".to_owned(), ToOwned::to_owned);
+                let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
+                    || "radius not declared".to_owned(),
+                    |r| format!("R = {} m", num(Some(r))),
+                );
+                format!(
+                    "{which} at {radius} from {}",
+                    o["table"]["file"].as_str().unwrap_or("no table")
+                )
+            })
+            .collect();
+        let terms: Vec<&str> = m["terms"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(Value::as_str)
+            .collect();
+        let compensation = if m["compensate"].as_bool() == Some(false) {
+            "the probe's C_r not compensated".to_owned()
+        } else {
+            match m["compensate_with"].as_str() {
+                Some(phase) => format!("phase {phase}'s C_r compensated along each mounting's axes"),
+                None => "the compensating (or first) phase's C_r compensated along each mounting's axes"
+                    .to_owned(),
+            }
+        };
+        let _ = writeln!(
+            s,
+            "mountings: the IEEE 836 model (k0, k1, {}) fitted jointly to {}; {compensation}; \
+             the mountings separate every chosen term (checked before the run)",
+            terms.join(", "),
+            list.join("; ")
+        );
+    }
     match v.get("uncertainty").filter(|u| !u.is_null()) {
         Some(u) => {
             let _ = writeln!(

@@ -14,11 +14,13 @@ use crate::error::{PipelineError, Result};
 
 mod certificate;
 mod direction;
+mod mountings;
 mod profile;
 mod table;
 mod two_orientation;
 pub use certificate::*;
 pub use direction::*;
+pub use mountings::*;
 pub use profile::*;
 pub use table::*;
 pub use two_orientation::*;
@@ -88,6 +90,10 @@ pub struct StudyConfig {
     /// `docs/TWO_ORIENTATION.md`).
     #[serde(default)]
     pub two_orientation: Option<TwoOrientationConfig>,
+    /// The IEEE 836 model identified jointly from several mountings, each with its table
+    /// (absent: not run; `docs/MODEL.md`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mountings: Option<MountingsConfig>,
     /// The former name of `two_orientation` (`symmetric: (...)`), read as it with a
     /// `deprecated_key` warning naming the new key; both at once is an error.
     #[serde(default, rename = "symmetric", skip_serializing_if = "Option::is_none")]

@@ -393,6 +393,26 @@ pub enum PipelineError {
         /// What is wrong.
         source: Box<calibration::TwoOrientationError>,
     },
+    /// The joint fit over several mountings refuses its declaration, data or design (the
+    /// source names the field, or the terms the mountings cannot separate and the mounting
+    /// that would).
+    #[error("{}: the mountings section", path.display())]
+    Mountings {
+        /// The configuration file.
+        path: PathBuf,
+        /// What is wrong.
+        source: Box<calibration::MountingsError>,
+    },
+    /// A field of the mountings section that cannot be used, with what is wrong in words.
+    #[error("{}: field `{field}`: {problem}", path.display())]
+    InvalidMountings {
+        /// The configuration file.
+        path: PathBuf,
+        /// The field.
+        field: String,
+        /// What is wrong, and what to write instead.
+        problem: String,
+    },
     /// Several errors, each complete, in the configuration's order.
     #[error("{} errors:{}", errors.len(), list(errors))]
     Several {

@@ -13,7 +13,10 @@
 //! PIGA's measured outputs — a table, or raw output recordings each reduced to its mean over
 //! whole spindle revolutions — by eq. 18, weighted by each point's σ when there is one,
 //! removes the named phase's Δk2 (eq. 19) and evaluates the coefficients' uncertainty (JCGM
-//! 100 and 101). The `report` crate writes the outputs.
+//! 100 and 101); with a `two_orientation` section, the IA-in and IA-out tables by eq. 23;
+//! with a `mountings` section, the IEEE 836 model from several mountings, each table fitted
+//! jointly with the probe's C_r compensated along each mounting's axes (eq. 15 and 23 as
+//! special cases; `docs/MODEL.md`). The `report` crate writes the outputs.
 //!
 //! Only the `load` module touches files.
 //!
@@ -21,7 +24,8 @@
 //! The configuration's format (`config`, serde DTOs) and the output format (`results`) are
 //! leaves; the core (`inputs`: the data source, the centrifuge's geometry, field checks)
 //! uses only them; `piga_data` (the PIGA's table or raw output recordings, read and reduced
-//! to points) is core shared by the calibration and two-orientation sections; each section (`sections::{phases, mechanism, calibration, balance}`)
+//! to points) is core shared by the calibration and two-orientation sections; each section (`sections::{phases, mechanism, calibration, balance, two_orientation,
+//! mountings, certificate}`)
 //! validates its part of the configuration, runs on values and fills its results, using
 //! only the core and the formats; `study` orders the sections; `load` is the edge.
 //!
@@ -86,6 +90,7 @@ pub use config::{
     CentrifugeConfig, CentrifugeTraceability, GravityConfig, InstrumentConfig, PersonConfig,
     ProbeConfig, ProfileConfig, ProfileLaboratory, ProfileLever,
 };
+pub use config::{ArmStretchName, MountingConfig, MountingsConfig};
 pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
 pub use error::{DegenerateInterval, InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
@@ -115,6 +120,10 @@ pub use results::{
 pub use results::{
     MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,
     TwoOrientationMonteCarlo, TwoOrientationResults,
+};
+pub use results::{
+    ArmStretchResult, MountingFitResult, MountingsProbe, MountingsResults, Normalised,
+    NuisanceResult, TermResult,
 };
 pub use sections::calibration::CalibrationMeasurement;
 pub use sections::phases::Progress;

@@ -17,6 +17,7 @@ use crate::sections::balance::{self, BalanceInputs};
 use crate::sections::calibration::{self, CalibrationInputs, CalibrationMeasurement};
 use crate::sections::certificate::{self, Certificate};
 use crate::sections::mechanism::{self, Mechanism};
+use crate::sections::mountings::{self, MountingsInputs};
 use crate::sections::phases::{self, Phases, Progress};
 use crate::sections::two_orientation::{self, TwoOrientationInputs};
 
@@ -33,6 +34,7 @@ pub struct Inputs {
     /// The configuration file's size and SHA-256 as the edge read it.
     config_digest: Option<FileDigest>,
     two_orientation: Option<TwoOrientationInputs>,
+    mountings: Option<MountingsInputs>,
     /// Sections written under a former name (each a `deprecated_key` warning).
     deprecated: Vec<DeprecatedKey>,
     /// The lab profile the study named: which values came from it, and the file it was read
@@ -162,6 +164,13 @@ impl Inputs {
             .as_ref()
             .map(|s| two_orientation::validate(&check, s, &config, &names, core.base(), load))
             .transpose()?;
+        let mountings = config
+            .mountings
+            .as_ref()
+            .map(|s| {
+                mountings::validate(&check, s, &config, &names, core.base(), load, core.g_m_s2)
+            })
+            .transpose()?;
         let base = core.base().to_owned();
         let phases = checked.load(&config.phases, &base, source, load, &core.angle_zero)?;
         core.angle_zero.measured_angles = phases.measure_angles();
@@ -179,6 +188,7 @@ impl Inputs {
             certificate,
             config_digest: None,
             two_orientation,
+            mountings,
             deprecated,
             profile,
         })
@@ -233,6 +243,9 @@ impl Inputs {
             files.extend(c.input_files());
         }
         if let Some(s) = &self.two_orientation {
+            files.extend(s.input_files());
+        }
+        if let Some(s) = &self.mountings {
             files.extend(s.input_files());
         }
         files
@@ -342,6 +355,14 @@ pub fn run_with_progress(
         }
         None => None,
     };
+    let mountings = match inputs.mountings.as_ref() {
+        Some(s) => {
+            let (results, more) = mountings::run(core, s, &phases)?;
+            warnings.extend(more);
+            Some(results)
+        }
+        None => None,
+    };
     // after the two-orientation section: the certificate may certify its coefficients
     let certificate = match (inputs.certificate.as_ref(), calibration.as_ref()) {
         (Some(cert), Some(c)) => Some(certificate::run(
@@ -371,6 +392,7 @@ pub fn run_with_progress(
         counterweight,
         certificate,
         two_orientation,
+        mountings,
         profile: inputs.profile_values().cloned(),
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.

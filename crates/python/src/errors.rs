@@ -245,6 +245,7 @@ impl Located {
             | E::InvalidName { path, field, .. }
             | E::UnknownPhase { path, field, .. }
             | E::StatedTwice { path, field, .. }
+            | E::InvalidMountings { path, field, .. }
             | E::UnknownKey { path, field, .. } => at(path, field),
             E::File(e) => Self::edge(e),
             E::TwoOrientation { path, source } => Self {

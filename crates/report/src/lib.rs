@@ -25,6 +25,7 @@ mod plot;
 mod provenance;
 mod summary;
 mod svgplot;
+mod mountings;
 mod two_orientation;
 
 pub use balance::balance_polar_svg;

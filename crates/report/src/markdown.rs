@@ -100,6 +100,9 @@ pub fn render(
     if let Some(s) = &results.two_orientation {
         crate::two_orientation::section(&mut out, s);
     }
+    if let Some(s) = &results.mountings {
+        crate::mountings::section(&mut out, s);
+    }
     if let Some(b) = &results.balance {
         crate::balance::section(&mut out, b);
     }

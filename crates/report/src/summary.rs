@@ -111,7 +111,8 @@ fn warnings(results: &StudyResults) -> Vec<String> {
 /// interval; C_r and Δk2; every warning. `None` for a study without a calibration.
 pub fn summary_text(results: &StudyResults) -> Option<String> {
     let Some(c) = results.calibration.as_ref() else {
-        return crate::two_orientation::summary_alone(results);
+        return crate::two_orientation::summary_alone(results)
+            .or_else(|| crate::mountings::summary_alone(results));
     };
     let mut out = String::new();
     let _ = writeln!(
@@ -156,6 +157,7 @@ pub fn summary_text(results: &StudyResults) -> Option<String> {
     let _ = writeln!(out, "  angle zero: {}", results.inputs.angle_zero.words());
     let _ = writeln!(out, "  {dk2}");
     crate::two_orientation::summary_lines(&mut out, results);
+    crate::mountings::summary_lines(&mut out, results);
     if let Some((what, why)) = certified_lines(results) {
         let _ = writeln!(out, "{what}\n  {why}");
     }

@@ -96,6 +96,7 @@ pub(crate) fn summary_alone(results: &StudyResults) -> Option<String> {
     let mut out = String::new();
     let _ = writeln!(out, "Study `{}`", results.study);
     lines(&mut out, s);
+    crate::mountings::summary_lines(&mut out, results);
     if s.probe.is_some() {
         let i = &results.inputs;
         let _ = writeln!(

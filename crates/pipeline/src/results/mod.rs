@@ -11,6 +11,7 @@ mod certificate;
 mod common;
 mod declarations;
 mod mechanism;
+mod mountings;
 mod phases;
 mod profile;
 mod two_orientation;
@@ -22,6 +23,7 @@ pub use certificate::*;
 pub use common::{DegreesOfFreedom, Estimate, InfiniteDof, OutputCovariance};
 pub use declarations::{AngleZero, ProbeSign};
 pub use mechanism::*;
+pub use mountings::*;
 pub use phases::*;
 pub use profile::{ProfileResults, ValueOrigin, ValueSource};
 pub use two_orientation::*;
@@ -56,6 +58,9 @@ pub struct StudyResults {
     /// The two-orientation (IA in / IA out) calibration (when configured).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub two_orientation: Option<TwoOrientationResults>,
+    /// The IEEE 836 model from several mountings (when configured; `docs/MODEL.md`).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub mountings: Option<MountingsResults>,
     /// The lab profile the study named, and which values came from it (absent: none).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub profile: Option<ProfileResults>,

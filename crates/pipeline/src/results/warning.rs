@@ -67,6 +67,12 @@ pub enum WarningCode {
     /// A calibration due date or the measurement date is not written `YYYY-MM-DD`, so the
     /// two cannot be compared.
     CalibrationDueUnchecked,
+    /// The mountings separate a chosen term only poorly (its u inflated), or cannot see the
+    /// arm stretch, which then hides in the even terms.
+    MountingsPoorlySeparated,
+    /// The joint fit over the mountings took a value the study does not state (an angle
+    /// uncertainty, the vertical Earth rate) or leaves an input out of its U95.
+    MountingsAssumed,
 }
 
 impl WarningCode {
@@ -98,6 +104,8 @@ impl WarningCode {
             Self::ProbeDisagrees => "probe_disagrees",
             Self::DeprecatedKey => "deprecated_key",
             Self::TwoOrientationRatesBunched => "two_orientation_rates_bunched",
+            Self::MountingsPoorlySeparated => "mountings_poorly_separated",
+            Self::MountingsAssumed => "mountings_assumed",
         }
     }
 
@@ -129,6 +137,8 @@ impl WarningCode {
             Self::CalibrationOverdue => "equipment past its calibration due date",
             Self::CalibrationDueUnchecked => "calibration due dates not compared",
             Self::TwoOrientationRatesBunched => "two-orientation rates too bunched for k2 and C",
+            Self::MountingsPoorlySeparated => "a term the mountings separate poorly",
+            Self::MountingsAssumed => "the joint fit over the mountings took a value not stated",
         }
     }
 }
@@ -399,6 +409,28 @@ impl Warning {
                  in the study file (the old name will be refused in a later version)"
             ),
             location: old.into(),
+        }
+    }
+
+    /// `mountings_poorly_separated`: what the separability analysis of the mountings says
+    /// (`message`, in words), at `location`.
+    #[must_use]
+    pub fn mountings_poorly_separated(message: String, location: &str) -> Self {
+        Self {
+            code: WarningCode::MountingsPoorlySeparated,
+            message,
+            location: location.into(),
+        }
+    }
+
+    /// `mountings_assumed`: a value the joint fit took or left out (`message`, in words), at
+    /// `location`.
+    #[must_use]
+    pub fn mountings_assumed(message: String, location: &str) -> Self {
+        Self {
+            code: WarningCode::MountingsAssumed,
+            message,
+            location: location.into(),
         }
     }
 

@@ -14,5 +14,6 @@ pub(crate) mod balance;
 pub(crate) mod calibration;
 pub(crate) mod certificate;
 pub(crate) mod mechanism;
+pub(crate) mod mountings;
 pub(crate) mod phases;
 pub(crate) mod two_orientation;

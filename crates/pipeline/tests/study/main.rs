@@ -13,6 +13,7 @@ mod exported_table;
 mod in_memory;
 mod lab_variants;
 mod mechanism;
+mod mountings;
 mod paper;
 mod profile;
 mod provenance;

@@ -1,0 +1,303 @@
+//! The mountings section's run: the probe's C_r compensated along each mounting's axes, the
+//! joint fit (`calibration::fit_mountings`), and its results and warnings.
+
+use ::calibration::{ProbeCompensation, fit_mountings};
+use accel_model::{AccelKind, Term};
+use uncertainty::coverage_factor;
+
+use super::validate::MountingsInputs;
+use crate::error::{PipelineError, Result};
+use crate::inputs::Core;
+use crate::results::{
+    ArmStretchResult, MountingFitResult, MountingsProbe, MountingsResults, Normalised,
+    NuisanceResult, PhaseResults, TermResult, Warning,
+};
+
+/// The unit of a term's coefficient: the output unit per g^n (a misalignment in rad).
+fn term_unit(kind: AccelKind, t: Term) -> String {
+    if t.is_misalignment() {
+        return "rad".to_owned();
+    }
+    let out = kind.output_unit();
+    match t.g_power() {
+        0 => out.to_owned(),
+        1 => format!("{out}/g"),
+        p => format!("{out}/g{}", superscript(p)),
+    }
+}
+
+fn superscript(p: i32) -> &'static str {
+    match p {
+        2 => "²",
+        3 => "³",
+        _ => "⁴",
+    }
+}
+
+/// The unit of a term normalised by k1 (k0: g; k2: 1/g; k3: 1/g²).
+fn normalised_unit(t: Term) -> String {
+    match t.g_power() {
+        0 => "g".to_owned(),
+        2 => "1/g".to_owned(),
+        p => format!("1/g{}", superscript(p - 1)),
+    }
+}
+
+/// Runs the joint fit over the mountings.
+pub(crate) fn run(
+    core: &Core,
+    s: &MountingsInputs,
+    phases: &[PhaseResults],
+) -> Result<(MountingsResults, Vec<Warning>)> {
+    let _span = tracing::info_span!("mountings").entered();
+    let fail = |e: ::calibration::MountingsError| PipelineError::Mountings {
+        path: core.source.clone(),
+        source: Box::new(e),
+    };
+    let probe = s
+        .phase
+        .map(|(p, chosen_by)| {
+            let fit = &phases[p].fit;
+            let across = across_arm(core, &phases[p])?;
+            Ok::<_, PipelineError>((
+                MountingsProbe {
+                    phase: phases[p].name.clone(),
+                    chosen_by: chosen_by.to_owned(),
+                    c_r_m_s2: fit.c_r_m_s2,
+                    c_r_u_m_s2: fit.c_r_sigma_m_s2.unwrap_or(0.0),
+                    across_static_m: across.map(|a| a.0),
+                    c_ry_m_s2: across.map(|a| a.1),
+                },
+                // along the arm: its C_r, as the one-mounting calibration compensates it (the
+                // static offset is in the declared radii and k1); across the arm: the drift
+                // from the probe's sine component, static and ∝ ω² (a tangential axis reads
+                // Δr_y/R of the radial input)
+                ProbeCompensation {
+                    static_m: 0.0,
+                    c_r_m_s2: fit.c_r_m_s2,
+                    static_across_m: across.map_or(0.0, |a| a.0),
+                    c_ry_m_s2: across.map_or(0.0, |a| a.1),
+                    c_r_u_m_s2: fit.c_r_sigma_m_s2.unwrap_or(0.0),
+                },
+            ))
+        })
+        .transpose()?;
+    let rates = s.rates_rad_s();
+    let data = s.data(&rates);
+    let spec = s.spec(core.g_m_s2, probe.as_ref().map(|(_, c)| *c));
+    let fit = fit_mountings(&spec, &data).map_err(fail)?;
+    let dof = fit.weighting.group_dof;
+    let k95 = coverage_factor(0.95, dof).map_err(|e| PipelineError::Uncertainty {
+        path: core.source.clone(),
+        field: "mountings".to_owned(),
+        source: Box::new(e),
+    })?;
+    let terms = fit
+        .terms
+        .iter()
+        .map(|t| TermResult {
+            name: t.term.symbol().to_owned(),
+            tag: t.term.tag().to_owned(),
+            multiplies: t.term.regressor_words().to_owned(),
+            unit: term_unit(s.kind, t.term),
+            value: t.value,
+            u: t.u,
+            k: k95,
+            u95: k95 * t.u,
+            normalised: t.normalised.map(|(value, u)| Normalised {
+                value,
+                u,
+                unit: normalised_unit(t.term),
+            }),
+        })
+        .collect();
+    let mountings = s
+        .sets
+        .iter()
+        .zip(&fit.residuals)
+        .map(|(m, residuals)| {
+            let rates = &m.table.rates_deg_s;
+            let low = rates.iter().copied().fold(f64::INFINITY, f64::min);
+            let high = rates.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let force = |deg_s: f64| {
+                let w = units::deg_s_to_rad_s(deg_s);
+                m.mounting.radius_m * w * w / core.g_m_s2
+            };
+            let rms = (residuals.iter().map(|r| r * r).sum::<f64>()
+                / residuals.len().max(1) as f64)
+                .sqrt();
+            MountingFitResult {
+                name: m.mounting.label.clone(),
+                field: m.field.clone(),
+                axes: [m.mounting.axes.ia, m.mounting.axes.pa, m.mounting.axes.oa],
+                radius_m: m.mounting.radius_m,
+                angle_u_deg: m.mounting.angle_u_deg,
+                table: m.table.file.display().to_string(),
+                points: rates.len(),
+                rate_low_deg_s: low,
+                rate_high_deg_s: high,
+                specific_force_low_g: force(low),
+                specific_force_high_g: force(high),
+                residuals: residuals.clone(),
+                residual_rms: rms,
+            }
+        })
+        .collect();
+    let nuisances = fit
+        .nuisances
+        .iter()
+        .map(|n| NuisanceResult {
+            name: n.label.clone(),
+            value: n.value.0,
+            u: n.value.1,
+        })
+        .collect();
+    let arm_stretch = fit.arm_stretch.map(|a| ArmStretchResult {
+        unseen_m_s2: a.unseen_m_s2.0,
+        unseen_u_m_s2: a.unseen_m_s2.1,
+        total_m_s2: a.total_m_s2.0,
+        total_u_m_s2: a.total_m_s2.1,
+    });
+    let warnings = warnings(s, &fit, probe.is_some());
+    let weighting = match fit.weighting.birge_ratio {
+        Some(_) => "weighted by the tables' σ (the calibration's policy: a common term added \
+                    when the residuals exceed them)"
+            .to_owned(),
+        None => "unweighted (no σ in the tables): u from the residuals".to_owned(),
+    };
+    let earth_rate_words = if s.earth_rate_stated {
+        format!(
+            "stated (latitude and spin): {:.1} µrad/s",
+            s.earth_rate_vertical_rad_s * 1e6
+        )
+    } else {
+        "not stated: taken as 0".to_owned()
+    };
+    let results = MountingsResults {
+        kind: s.kind.words().to_owned(),
+        output_unit: s.kind.output_unit().to_owned(),
+        terms,
+        mountings,
+        nuisances,
+        arm_stretch,
+        arm_stretch_not_separable: fit.arm_stretch_not_separable,
+        probe: probe.map(|(p, _)| p),
+        earth_rate_vertical_rad_s: s.earth_rate_vertical_rad_s,
+        earth_rate_words,
+        weighting,
+        dof: fit.weighting.noise_dof,
+        residual_sd: fit.residual_sd,
+        birge_ratio: fit.weighting.birge_ratio,
+        condition_number: fit.fit.condition_number,
+        separability: s.separability.to_string(),
+        uncertainty_scope: format!(
+            "U95 = k·u with k = {k95:.3} (Student t at {} degrees of freedom) from the joint \
+             fit's covariance; the Type B inputs (the radii, g, the fixtures' angles, the \
+             probe's u(C_r)) are not yet in it",
+            dof
+        ),
+    };
+    Ok((results, warnings))
+}
+
+/// The drift across the arm at the accelerometer from the phase's first-harmonic sine
+/// components (`Δr_y = a_y + C_ry·ω²`, m and m·s², through the lever as the radius error
+/// is): `None` when the phase's points have no sine component (radius errors given).
+fn across_arm(core: &Core, phase: &PhaseResults) -> Result<Option<(f64, f64)>> {
+    let Some(across_m): Option<Vec<f64>> = phase
+        .points
+        .iter()
+        .map(|p| {
+            p.ds1_um
+                .map(|s1| ACROSS_SIGN * direction_sign(core) * s1 * core.lever_ratio * 1e-6)
+        })
+        .collect()
+    else {
+        return Ok(None);
+    };
+    let rates: Vec<f64> = phase.points.iter().map(|p| p.rate_rad_s).collect();
+    let fit = identify::fit_radius_error(&rates, &across_m, identify::RadiusModel::TwoTerm)
+        .map_err(|source| PipelineError::Identify {
+            path: core.source.clone(),
+            field: format!("phases[{}] (the drift across the arm)", phase.name),
+            source,
+        })?;
+    Ok(Some((fit.offset_m, fit.c_r_m_s2)))
+}
+
+/// `+1` for a probe measuring along O1X1, `−1` against it (as the radius error's).
+const fn direction_sign(core: &Core) -> f64 {
+    match core.lever.probe_direction {
+        harmonics::ProbeDirection::AlongO1X1 => 1.0,
+        harmonics::ProbeDirection::AgainstO1X1 => -1.0,
+    }
+}
+
+/// The sign that turns the probe's sine component (in its measuring direction, through the
+/// lever) into the drift across the arm along +Y2 of the mounting frames.
+const ACROSS_SIGN: f64 = 1.0;
+
+/// What may make the joint fit's numbers wrong, in words.
+fn warnings(s: &MountingsInputs, fit: &::calibration::MountingsFit, probe: bool) -> Vec<Warning> {
+    let mut w = Vec::new();
+    for p in s.separability.warnings() {
+        w.push(Warning::mountings_poorly_separated(
+            p.to_string(),
+            "mountings.list",
+        ));
+    }
+    if fit.arm_stretch_not_separable {
+        w.push(Warning::mountings_poorly_separated(
+            "these mountings cannot separate the radius growth the probe does not see (arm \
+             stretch) from the chosen terms: it was not fitted, and any such growth is read as \
+             part of the even terms (k2, k_oq); add a mounting with the input axis the other \
+             way along the arm (IA out) to measure it"
+                .to_owned(),
+            "mountings.arm_stretch",
+        ));
+    }
+    if !probe {
+        w.push(Warning::mountings_assumed(
+            "the probe's C_r is not compensated (`compensate: false`): the spindle's radius \
+             growth C_r·ω² is read as part of k2 (Δk2 = k1·C_r·g/R²)"
+                .to_owned(),
+            "mountings.compensate",
+        ));
+    }
+    let vertical = s.sets.iter().any(|m| m.mounting.axes.ia[2].abs() > 1e-12);
+    if matches!(s.kind, AccelKind::Piga) && vertical && !s.earth_rate_stated {
+        w.push(Warning::mountings_assumed(
+            "a mounting's input axis has a vertical component, so the PIGA reads the vertical \
+             Earth rate (up to 72.9 µrad/s); the site's latitude and the spin are not stated \
+             (`latitude_deg`, `spin_seen_from_above`), so it was taken as 0 and shifts that \
+             mounting's bias"
+                .to_owned(),
+            "mountings.latitude_deg",
+        ));
+    }
+    let unstated: Vec<&str> = s
+        .sets
+        .iter()
+        .filter(|m| !m.angle_u_stated)
+        .map(|m| m.field.as_str())
+        .collect();
+    if !unstated.is_empty() {
+        w.push(Warning::mountings_assumed(
+            format!(
+                "the fixture's angular uncertainty is not stated for {} (`angle_u_deg`): taken \
+                 as 0; an index error leaks the radial input into the cross terms (IEEE Std \
+                 836 §6.2)",
+                unstated.join(", ")
+            ),
+            "mountings.list",
+        ));
+    }
+    w.push(Warning::mountings_assumed(
+        "the expanded uncertainties of the terms come from the joint fit alone: the Type B \
+         inputs (the radii, g, the fixtures' angles, the probe's u(C_r)) are not yet \
+         propagated; do not certify these terms from this section alone"
+            .to_owned(),
+        "mountings",
+    ));
+    w
+}
