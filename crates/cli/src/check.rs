@@ -468,9 +468,13 @@ fn describe(
             "the probe's C_r not compensated".to_owned()
         } else {
             match m["compensate_with"].as_str() {
-                Some(phase) => format!("phase {phase}'s C_r compensated along each mounting's axes"),
-                None => "the compensating (or first) phase's C_r compensated along each mounting's axes"
-                    .to_owned(),
+                Some(phase) => {
+                    format!("phase {phase}'s C_r compensated along each mounting's axes")
+                }
+                None => {
+                    "the compensating (or first) phase's C_r compensated along each mounting's axes"
+                        .to_owned()
+                }
             }
         };
         let _ = writeln!(

@@ -72,6 +72,7 @@ mod study;
 mod type_b;
 
 pub use ::calibration::CalibrationModel;
+pub use config::{ArmStretchName, MountingConfig, MountingsConfig};
 pub use config::{
     AuthorisationConfig, CertificateConfig, CertifyName, CoefficientName, ConditionConfig,
     DatesConfig, DecisionRuleName, EquipmentConfig, ItemConfig, LaboratoryConfig, LimitConfig,
@@ -90,7 +91,6 @@ pub use config::{
     CentrifugeConfig, CentrifugeTraceability, GravityConfig, InstrumentConfig, PersonConfig,
     ProbeConfig, ProfileConfig, ProfileLaboratory, ProfileLever,
 };
-pub use config::{ArmStretchName, MountingConfig, MountingsConfig};
 pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
 pub use error::{DegenerateInterval, InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
@@ -99,6 +99,10 @@ pub use profile::Profile;
 /// The size and SHA-256 of a file as a study read it (provenance).
 pub use recording::FileDigest;
 pub use results::{AngleZero, ProbeDeclared};
+pub use results::{
+    ArmStretchResult, MountingFitResult, MountingsProbe, MountingsResults, Normalised,
+    NuisanceResult, TermResult,
+};
 pub use results::{
     Authorisation, CertificateResults, Certified, CertifiedCoefficient, CertifiedMethod,
     CertifyPolicy, Condition, Conformity, ConformityStatement, Dates, DecisionRule, Equipment,
@@ -120,10 +124,6 @@ pub use results::{
 pub use results::{
     MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,
     TwoOrientationMonteCarlo, TwoOrientationResults,
-};
-pub use results::{
-    ArmStretchResult, MountingFitResult, MountingsProbe, MountingsResults, Normalised,
-    NuisanceResult, TermResult,
 };
 pub use sections::calibration::CalibrationMeasurement;
 pub use sections::phases::Progress;

@@ -20,12 +20,12 @@ mod format;
 mod headline;
 mod history;
 mod markdown;
+mod mountings;
 mod output;
 mod plot;
 mod provenance;
 mod summary;
 mod svgplot;
-mod mountings;
 mod two_orientation;
 
 pub use balance::balance_polar_svg;

@@ -40,7 +40,12 @@ fn lines(out: &mut String, s: &MountingsResults) {
         s.mountings.len(),
         s.kind
     );
-    let width = s.terms.iter().map(|t| t.name.chars().count()).max().unwrap_or(2);
+    let width = s
+        .terms
+        .iter()
+        .map(|t| t.name.chars().count())
+        .max()
+        .unwrap_or(2);
     for t in &s.terms {
         let pad = " ".repeat(width - t.name.chars().count());
         let n = normalised(t);
@@ -154,7 +159,10 @@ pub(crate) fn section(out: &mut String, s: &MountingsResults) {
         );
     }
     if !s.nuisances.is_empty() {
-        let _ = writeln!(out, "\n| nuisance term | value ± u (standard uncertainty) |");
+        let _ = writeln!(
+            out,
+            "\n| nuisance term | value ± u (standard uncertainty) |"
+        );
         let _ = writeln!(out, "|---|---|");
         for n in &s.nuisances {
             let _ = writeln!(

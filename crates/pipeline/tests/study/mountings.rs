@@ -135,7 +135,10 @@ fn the_two_orientation_fixture_through_the_general_model_is_its_own_section() {
 fn mountings_that_cannot_separate_a_term_are_refused_before_the_run_naming_the_fix() {
     let (text, path) = fixture("mountings.ron");
     let two = text
-        .replace(r#""k2", "k3", "k_oq", "k_io", "delta_o", "delta_p""#, r#""k2", "k_ip""#)
+        .replace(
+            r#""k2", "k3", "k_oq", "k_io", "delta_o", "delta_p""#,
+            r#""k2", "k_ip""#,
+        )
         .lines()
         .filter(|l| !(l.contains("ia_45") || l.contains("ia_tangential") || l.contains("ia_axial")))
         .collect::<Vec<_>>()
@@ -153,8 +156,14 @@ fn a_bad_mountings_section_names_every_problem_at_once() {
     let (text, path) = fixture("mountings.ron");
     let bad = text
         .replace(r#""k_oq""#, r#""k_q""#)
-        .replace(r#"(preset: "ia_out", radius_m: 2.54"#, r#"(preset: "ia_sideways", radius_m: 2.54"#)
-        .replace(r#"(preset: "ia_45", radius_m: 2.48"#, r#"(preset: "ia_45", radius_m: -2.48"#)
+        .replace(
+            r#"(preset: "ia_out", radius_m: 2.54"#,
+            r#"(preset: "ia_sideways", radius_m: 2.54"#,
+        )
+        .replace(
+            r#"(preset: "ia_45", radius_m: 2.48"#,
+            r#"(preset: "ia_45", radius_m: -2.48"#,
+        )
         .replace(
             r#"(preset: "ia_in", radius_m: 2.5, angle_u_deg: 0.001"#,
             r#"(preset: "ia_in", radius_m: 2.5, angle_u_deg: 0.001, own_bias: true"#,
@@ -170,5 +179,8 @@ fn a_bad_mountings_section_names_every_problem_at_once() {
         assert!(said.contains(field), "{field} not named in: {said}");
     }
     assert!(said.contains("k_oq"), "the known terms are listed: {said}");
-    assert!(said.contains("ia_tangential"), "the presets are listed: {said}");
+    assert!(
+        said.contains("ia_tangential"),
+        "the presets are listed: {said}"
+    );
 }

@@ -187,24 +187,22 @@ pub(crate) fn validate(
     } else {
         None
     };
-    let (earth_rate_vertical_rad_s, earth_rate_stated) = match (
-        config.latitude_deg,
-        config.spin_seen_from_above,
-    ) {
-        (Some(lat), _) if !(lat.is_finite() && lat.abs() <= 90.0) => {
-            errors.push(check.invalid(
-                "mountings.latitude_deg".to_owned(),
-                lat,
-                InvalidReason::NotALatitude,
-            ));
-            (0.0, false)
-        }
-        (Some(lat), Some(spin)) => (
-            ::calibration::AxialEarthRate::stated(lat, spin.spin()).value_rad_s,
-            true,
-        ),
-        _ => (0.0, false),
-    };
+    let (earth_rate_vertical_rad_s, earth_rate_stated) =
+        match (config.latitude_deg, config.spin_seen_from_above) {
+            (Some(lat), _) if !(lat.is_finite() && lat.abs() <= 90.0) => {
+                errors.push(check.invalid(
+                    "mountings.latitude_deg".to_owned(),
+                    lat,
+                    InvalidReason::NotALatitude,
+                ));
+                (0.0, false)
+            }
+            (Some(lat), Some(spin)) => (
+                ::calibration::AxialEarthRate::stated(lat, spin.spin()).value_rad_s,
+                true,
+            ),
+            _ => (0.0, false),
+        };
     let mut sets = Vec::with_capacity(config.list.len());
     for (i, m) in config.list.iter().enumerate() {
         if let Some(set) = mounting(check, config, i, m, base, load, &mut errors) {
@@ -309,22 +307,14 @@ fn mounting(
             None
         }
         Some(r) if !(r.is_finite() && r > 0.0) => {
-            errors.push(check.invalid(
-                format!("{field}.radius_m"),
-                r,
-                InvalidReason::NotPositive,
-            ));
+            errors.push(check.invalid(format!("{field}.radius_m"), r, InvalidReason::NotPositive));
             None
         }
         Some(r) => Some(r),
     };
     let angle_u_deg = match m.angle_u_deg {
         Some(u) if !(u.is_finite() && u >= 0.0) => {
-            errors.push(check.invalid(
-                format!("{field}.angle_u_deg"),
-                u,
-                InvalidReason::Negative,
-            ));
+            errors.push(check.invalid(format!("{field}.angle_u_deg"), u, InvalidReason::Negative));
             0.0
         }
         Some(u) => u,
@@ -353,8 +343,7 @@ fn mounting(
             None
         }
         Some(t) => {
-            match piga_data::load_piga_table(t, &format!("{field}.table"), base, check.path, load)
-            {
+            match piga_data::load_piga_table(t, &format!("{field}.table"), base, check.path, load) {
                 Ok(rows) => Some(rows),
                 Err(e) => {
                     errors.push(e);
