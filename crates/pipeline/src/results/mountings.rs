@@ -103,6 +103,9 @@ pub struct MountingsProbe {
     pub phase: String,
     /// How it was chosen (`compensate_with`, `calibration.compensate_with`, `first phase`).
     pub chosen_by: String,
+    /// The static radius error at the accelerometer (the radius-error fit at ω = 0), m,
+    /// added to every mounting's declared radius.
+    pub static_m: f64,
     /// Its C_r at the accelerometer, m·s², and its standard uncertainty.
     pub c_r_m_s2: f64,
     /// u(C_r), m·s².

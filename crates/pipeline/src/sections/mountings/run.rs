@@ -3,7 +3,7 @@
 
 use ::calibration::{ProbeCompensation, fit_mountings};
 use accel_model::{AccelKind, Term};
-use uncertainty::coverage_factor;
+use uncertainty::{Dof, coverage_factor};
 
 use super::validate::MountingsInputs;
 use crate::error::{PipelineError, Result};
@@ -60,23 +60,26 @@ pub(crate) fn run(
             let fit = &phases[p].fit;
             let across = across_arm(core, &phases[p])?;
             Ok::<_, PipelineError>((
+                across,
                 MountingsProbe {
                     phase: phases[p].name.clone(),
                     chosen_by: chosen_by.to_owned(),
+                    static_m: fit.offset_um * 1e-6,
                     c_r_m_s2: fit.c_r_m_s2,
                     c_r_u_m_s2: fit.c_r_sigma_m_s2.unwrap_or(0.0),
-                    across_static_m: across.map(|a| a.0),
-                    c_ry_m_s2: across.map(|a| a.1),
+                    across_static_m: across.map(|a| a.static_m),
+                    c_ry_m_s2: across.map(|a| a.c_ry_m_s2),
                 },
-                // along the arm: its C_r, as the one-mounting calibration compensates it (the
-                // static offset is in the declared radii and k1); across the arm: the drift
-                // from the probe's sine component, static and ∝ ω² (a tangential axis reads
-                // Δr_y/R of the radial input)
+                // along the arm: the radius-error fit, static offset and C_r (left out, the
+                // static offset moves the mountings' inputs by s/R at each radius and with
+                // each axis's sign, which no shared k1 absorbs: 4 u of k2 on the fixture);
+                // across the arm: the drift from the probe's sine component, static and ∝ ω²
+                // (a tangential axis reads Δr_y/R of the radial input)
                 ProbeCompensation {
-                    static_m: 0.0,
+                    static_m: fit.offset_um * 1e-6,
                     c_r_m_s2: fit.c_r_m_s2,
-                    static_across_m: across.map_or(0.0, |a| a.0),
-                    c_ry_m_s2: across.map_or(0.0, |a| a.1),
+                    static_across_m: across.map_or(0.0, |a| a.static_m),
+                    c_ry_m_s2: across.map_or(0.0, |a| a.c_ry_m_s2),
                     c_r_u_m_s2: fit.c_r_sigma_m_s2.unwrap_or(0.0),
                 },
             ))
@@ -84,33 +87,63 @@ pub(crate) fn run(
         .transpose()?;
     let rates = s.rates_rad_s();
     let data = s.data(&rates);
-    let spec = s.spec(core.g_m_s2, probe.as_ref().map(|(_, c)| *c));
+    let spec = s.spec(core.g_m_s2, probe.as_ref().map(|(_, _, c)| *c));
     let fit = fit_mountings(&spec, &data).map_err(fail)?;
-    let dof = fit.weighting.group_dof;
-    let k95 = coverage_factor(0.95, dof).map_err(|e| PipelineError::Uncertainty {
-        path: core.source.clone(),
-        field: "mountings".to_owned(),
-        source: Box::new(e),
-    })?;
-    let terms = fit
-        .terms
-        .iter()
-        .map(|t| TermResult {
+    // the probe's inputs in each term's u (Type B of the probe phase)
+    let base: Vec<f64> = fit.terms.iter().map(|t| t.value).collect();
+    let from_probe = match &probe {
+        Some((across, _, c)) => {
+            probe_variances(s, core.g_m_s2, &data, *c, *across, &base).map_err(fail)?
+        }
+        None => vec![0.0; base.len()],
+    };
+    // ν of each term: the fit's, with the probe phase's fit (n − 2) for its share
+    // (Welch–Satterthwaite, JCGM 100 G.4)
+    let probe_dof = s
+        .phase
+        .map_or(f64::INFINITY, |(p, _)| phases[p].fit.dof as f64);
+    let fit_dof = fit.weighting.group_dof;
+    let mut terms = Vec::with_capacity(fit.terms.len());
+    let mut k_lowest = f64::INFINITY;
+    for (t, &probe_var) in fit.terms.iter().zip(&from_probe) {
+        let u = t.u.hypot(probe_var.sqrt());
+        let fit_share = match fit_dof {
+            Dof::Finite(nu) => t.u.powi(4) / nu,
+            Dof::Infinite => 0.0,
+        };
+        let probe_share = if probe_dof.is_finite() && probe_dof > 0.0 {
+            probe_var * probe_var / probe_dof
+        } else {
+            0.0
+        };
+        let nu = if fit_share + probe_share > 0.0 {
+            Dof::Finite(u.powi(4) / (fit_share + probe_share))
+        } else {
+            Dof::Infinite
+        };
+        let k95 = coverage_factor(0.95, nu).map_err(|e| PipelineError::Uncertainty {
+            path: core.source.clone(),
+            field: "mountings".to_owned(),
+            source: Box::new(e),
+        })?;
+        k_lowest = k_lowest.min(k95);
+        terms.push(TermResult {
             name: t.term.symbol().to_owned(),
             tag: t.term.tag().to_owned(),
             multiplies: t.term.regressor_words().to_owned(),
             unit: term_unit(s.kind, t.term),
             value: t.value,
-            u: t.u,
+            u,
             k: k95,
-            u95: k95 * t.u,
-            normalised: t.normalised.map(|(value, u)| Normalised {
+            u95: k95 * u,
+            normalised: t.normalised.map(|(value, u_n)| Normalised {
                 value,
-                u,
+                // the probe's share scales with the term as the fit's does
+                u: if t.u > 0.0 { u_n * u / t.u } else { u_n },
                 unit: normalised_unit(t.term),
             }),
-        })
-        .collect();
+        });
+    }
     let mountings = s
         .sets
         .iter()
@@ -181,7 +214,7 @@ pub(crate) fn run(
         nuisances,
         arm_stretch,
         arm_stretch_not_separable: fit.arm_stretch_not_separable,
-        probe: probe.map(|(p, _)| p),
+        probe: probe.map(|(_, p, _)| p),
         earth_rate_vertical_rad_s: s.earth_rate_vertical_rad_s,
         earth_rate_words,
         weighting,
@@ -190,12 +223,21 @@ pub(crate) fn run(
         birge_ratio: fit.weighting.birge_ratio,
         condition_number: fit.fit.condition_number,
         separability: s.separability.to_string(),
-        uncertainty_scope: format!(
-            "U95 = k·u with k = {k95:.3} (Student t at {} degrees of freedom) from the joint \
-             fit's covariance; the Type B inputs (the radii, g, the fixtures' angles, the \
-             probe's u(C_r)) are not yet in it",
-            dof
-        ),
+        uncertainty_scope: if probe_dof.is_finite() {
+            format!(
+                "U95 = k·u, u from the joint fit's covariance ({fit_dof} degrees of freedom) and the \
+             probe phase's C_r and drift across the arm ({probe_dof} degrees of freedom), k the \
+             Student t at each term's effective degrees of freedom (Welch–Satterthwaite; from \
+             {k_lowest:.2}); the other Type B inputs (the radii, g, the fixtures' angles) are \
+             not yet in it"
+            )
+        } else {
+            format!(
+                "U95 = k·u, u from the joint fit's covariance ({fit_dof} degrees of freedom), k \
+                 the Student t ({k_lowest:.2}); the Type B inputs (the radii, g, the fixtures' \
+                 angles) are not yet in it"
+            )
+        },
     };
     Ok((results, warnings))
 }
@@ -203,7 +245,7 @@ pub(crate) fn run(
 /// The drift across the arm at the accelerometer from the phase's first-harmonic sine
 /// components (`Δr_y = a_y + C_ry·ω²`, m and m·s², through the lever as the radius error
 /// is): `None` when the phase's points have no sine component (radius errors given).
-fn across_arm(core: &Core, phase: &PhaseResults) -> Result<Option<(f64, f64)>> {
+fn across_arm(core: &Core, phase: &PhaseResults) -> Result<Option<Across>> {
     let Some(across_m): Option<Vec<f64>> = phase
         .points
         .iter()
@@ -222,7 +264,102 @@ fn across_arm(core: &Core, phase: &PhaseResults) -> Result<Option<(f64, f64)>> {
             field: format!("phases[{}] (the drift across the arm)", phase.name),
             source,
         })?;
-    Ok(Some((fit.offset_m, fit.c_r_m_s2)))
+    let cov = &fit.fit.covariance;
+    let last = cov.ncols() - 1;
+    Ok(Some(Across {
+        static_m: fit.offset_m,
+        c_ry_m_s2: fit.c_r_m_s2,
+        covariance: [
+            [cov[(0, 0)], cov[(0, last)]],
+            [cov[(last, 0)], cov[(last, last)]],
+        ],
+    }))
+}
+
+/// The drift across the arm fitted to the probe's sine components, with its covariance.
+#[derive(Debug, Clone, Copy)]
+struct Across {
+    static_m: f64,
+    c_ry_m_s2: f64,
+    /// Covariance of (static_m, c_ry_m_s2).
+    covariance: [[f64; 2]; 2],
+}
+
+/// Each chosen term's variance from the probe's inputs (C_r; the drift across the arm, static
+/// and ∝ ω², correlated), by the GUM's law of propagation with sensitivities from refits at
+/// each input moved by its standard uncertainty (the fit is linear in them to far better
+/// than that step).
+fn probe_variances(
+    s: &MountingsInputs,
+    g_m_s2: f64,
+    data: &[::calibration::MountingData<'_>],
+    probe: ProbeCompensation,
+    across: Option<Across>,
+    base: &[f64],
+) -> std::result::Result<Vec<f64>, ::calibration::MountingsError> {
+    let terms =
+        |p: ProbeCompensation| -> std::result::Result<Vec<f64>, ::calibration::MountingsError> {
+            let fit = fit_mountings(&s.spec(g_m_s2, Some(p)), data)?;
+            Ok(fit.terms.iter().map(|t| t.value).collect())
+        };
+    // sensitivities per unit of each input, and the inputs' covariance
+    let mut sens: Vec<Vec<f64>> = Vec::new();
+    let mut cov: Vec<Vec<f64>> = Vec::new();
+    let per_unit = |moved: ProbeCompensation,
+                    h: f64|
+     -> std::result::Result<Vec<f64>, ::calibration::MountingsError> {
+        let v = terms(moved)?;
+        Ok(v.iter().zip(base).map(|(a, b)| (a - b) / h).collect())
+    };
+    let u_c_r = probe.c_r_u_m_s2;
+    if u_c_r > 0.0 {
+        sens.push(per_unit(
+            ProbeCompensation {
+                c_r_m_s2: probe.c_r_m_s2 + u_c_r,
+                ..probe
+            },
+            u_c_r,
+        )?);
+        cov.push(vec![u_c_r * u_c_r]);
+    }
+    let mut across_at = None;
+    if let Some(a) = across {
+        let (u_a, u_c) = (a.covariance[0][0].sqrt(), a.covariance[1][1].sqrt());
+        if u_a > 0.0 && u_c > 0.0 {
+            across_at = Some(sens.len());
+            sens.push(per_unit(
+                ProbeCompensation {
+                    static_across_m: probe.static_across_m + u_a,
+                    ..probe
+                },
+                u_a,
+            )?);
+            sens.push(per_unit(
+                ProbeCompensation {
+                    c_ry_m_s2: probe.c_ry_m_s2 + u_c,
+                    ..probe
+                },
+                u_c,
+            )?);
+        }
+    }
+    let n = base.len();
+    let mut var = vec![0.0; n];
+    for k in 0..n {
+        let mut v = 0.0;
+        if u_c_r > 0.0 {
+            v += sens[0][k] * sens[0][k] * cov[0][0];
+        }
+        if let (Some(j), Some(a)) = (across_at, across) {
+            for p in 0..2 {
+                for q in 0..2 {
+                    v += sens[j + p][k] * sens[j + q][k] * a.covariance[p][q];
+                }
+            }
+        }
+        var[k] = v;
+    }
+    Ok(var)
 }
 
 /// `+1` for a probe measuring along O1X1, `−1` against it (as the radius error's).
@@ -234,8 +371,11 @@ const fn direction_sign(core: &Core) -> f64 {
 }
 
 /// The sign that turns the probe's sine component (in its measuring direction, through the
-/// lever) into the drift across the arm along +Y2 of the mounting frames.
-const ACROSS_SIGN: f64 = 1.0;
+/// lever) into the drift across the arm along +Y2 of the mounting frames: a spindle drifting
+/// towards +Y2 makes the probe's gap fall a quarter turn after it falls for a drift along
+/// +X2 (the five-mounting fixture's test recovers the simulated Δr_ys and C_ry with this sign,
+/// and the opposite one gives them negated).
+const ACROSS_SIGN: f64 = -1.0;
 
 /// What may make the joint fit's numbers wrong, in words.
 fn warnings(s: &MountingsInputs, fit: &::calibration::MountingsFit, probe: bool) -> Vec<Warning> {
@@ -293,9 +433,9 @@ fn warnings(s: &MountingsInputs, fit: &::calibration::MountingsFit, probe: bool)
         ));
     }
     w.push(Warning::mountings_assumed(
-        "the expanded uncertainties of the terms come from the joint fit alone: the Type B \
-         inputs (the radii, g, the fixtures' angles, the probe's u(C_r)) are not yet \
-         propagated; do not certify these terms from this section alone"
+        "the expanded uncertainties of the terms hold the joint fit and the probe phase's C_r \
+         and drift across the arm; the other Type B inputs (the radii, g, the fixtures' \
+         angles) are not yet propagated: do not certify these terms from this section alone"
             .to_owned(),
         "mountings",
     ));
