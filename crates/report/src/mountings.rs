@@ -152,7 +152,7 @@ pub(crate) fn section(out: &mut String, s: &MountingsResults) {
             out,
             "| {} | {} | {} | {} | {} |",
             t.name,
-            t.multiplies,
+            format::md_text(&t.multiplies),
             with_u95(t),
             format::coverage_factor(t.k),
             normalised(t)
