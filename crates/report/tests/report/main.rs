@@ -5,6 +5,7 @@
 mod certificate;
 mod expected;
 mod hostile;
+mod mountings;
 mod outputs;
 mod two_orientation;
 
