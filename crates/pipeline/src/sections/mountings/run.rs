@@ -19,10 +19,15 @@ fn term_unit(kind: AccelKind, t: Term) -> String {
         return "rad".to_owned();
     }
     let out = kind.output_unit();
-    match t.g_power() {
-        0 => out.to_owned(),
-        1 => format!("{out}/g"),
-        p => format!("{out}/g{}", superscript(p)),
+    let per_g = match t.g_power() {
+        0 => return out.to_owned(),
+        1 => "g".to_owned(),
+        p => format!("g{}", superscript(p)),
+    };
+    // rad/s per g as the rest of the toolkit writes it: rad/(s·g²)
+    match out.strip_suffix("/s") {
+        Some(head) if matches!(kind, AccelKind::Piga) => format!("{head}/(s·{per_g})"),
+        _ => format!("{out}/{per_g}"),
     }
 }
 
