@@ -110,7 +110,7 @@ pub fn expected_outputs(inputs: &PlanInputs, plan: &Plan) -> Vec<f64> {
 
 /// Simulates the plan's campaign `campaigns` times: each point's mean output is
 /// `noise_free_rad_s[i]` plus a normal draw of the point's σ (fresh per campaign and point;
-/// campaign `c` draws from its own stream ([`campaign_rng`]: `units::stream_seed` of the seed and
+/// campaign `c` draws from its own stream (`campaign_rng`: `units::stream_seed` of the seed and
 /// `c`), in parallel, so the result does not depend on the number of threads), then fits eq. 18 by weighted least squares
 /// (`identify::lstsq` on the rows divided by σ_i) and compares the spread of the apparent k2
 /// with the plan's u(k2) of the fit.

@@ -113,7 +113,7 @@ pub struct CalendarDate {
 pub struct Running {
     /// Top left: the laboratory.
     pub left: String,
-    /// Top right: "Certificate <id>".
+    /// Top right: `Certificate <id>`.
     pub right: String,
     /// Bottom left: the item.
     pub foot: String,
