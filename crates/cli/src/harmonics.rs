@@ -102,8 +102,11 @@ pub(crate) struct Harmonics {
 /// A RON value of a format field given on the command line, e.g. `mm` or
 /// `counts(per_rev: 4096)`.
 fn ron_value<T: serde::de::DeserializeOwned>(flag: &str, text: &str) -> anyhow::Result<T> {
-    edge_io::from_ron(text, Path::new(&format!("--{flag} {text:?}")))
-        .map_err(|e| anyhow::anyhow!(e))
+    edge_io::from_ron(
+        text,
+        Path::new(&format!("--{flag} “{}”", edge_io::visible(text))),
+    )
+    .map_err(|e| anyhow::anyhow!(e))
 }
 
 impl Harmonics {

@@ -24,7 +24,15 @@ fn the_mountings_report_and_summary_read_as_words() {
     let summary = report::summary_text(&results).expect("a summary of the mountings section");
     insta::assert_snapshot!("mountings_summary", summary);
     for text in [section, summary.as_str()] {
-        for word in ["ia_in", "ia_45", "Some(", "None", "DeltaO", "Koq", "MountingPreset"] {
+        for word in [
+            "ia_in",
+            "ia_45",
+            "Some(",
+            "None",
+            "DeltaO",
+            "Koq",
+            "MountingPreset",
+        ] {
             assert!(!text.contains(word), "`{word}` in:\n{text}");
         }
     }
