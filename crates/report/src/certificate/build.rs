@@ -93,12 +93,44 @@ fn runs(parts: Vec<Text>) -> Text {
     Text::Runs(out)
 }
 
+/// A table; the cells of its numeric columns (numbers this tool wrote) have their minus
+/// signs set as U+2212 ([`format::typographic_minus`]).
 fn table(columns: &[&str], numeric: &[bool], widths: &[u32], rows: Vec<Vec<Text>>) -> Table {
+    let rows = rows
+        .into_iter()
+        .map(|row| {
+            row.into_iter()
+                .enumerate()
+                .map(|(n, cell)| {
+                    if numeric.get(n).copied().unwrap_or(false) {
+                        minus_signs(cell)
+                    } else {
+                        cell
+                    }
+                })
+                .collect()
+        })
+        .collect();
     Table {
         columns: columns.iter().map(|c| rich(c)).collect(),
         numeric: numeric.to_vec(),
         widths: widths.to_vec(),
         rows,
+    }
+}
+
+/// `text` with the minus signs of its numbers set as U+2212.
+fn minus_signs(text: Text) -> Text {
+    match text {
+        Text::Plain(s) => Text::Plain(format::typographic_minus(&s)),
+        Text::Runs(runs) => Text::Runs(
+            runs.into_iter()
+                .map(|r| match r {
+                    Run::Plain(s) => Run::Plain(format::typographic_minus(&s)),
+                    other => other,
+                })
+                .collect(),
+        ),
     }
 }
 
@@ -175,7 +207,7 @@ pub(crate) fn build(
             address: running(&info.laboratory.address),
             accreditation: info.laboratory.accreditation.as_deref().map(running),
         },
-        identification: identification(info),
+        identification: identification(info, &results.study),
         serial: item.serial.clone(),
         certified: certified_section(&cert),
         results: results_table(&cert),
@@ -285,7 +317,9 @@ fn running(text: &str) -> String {
     }
 }
 
-fn identification(info: &CertificateResults) -> Vec<Field> {
+/// The identification fields; `study` is the study's name, the laboratory's reference of the
+/// reduction (results.json holds it).
+fn identification(info: &CertificateResults, study: &str) -> Vec<Field> {
     let item = &info.item;
     let field = |label: &str, value: String| Field {
         label: label.to_owned(),
@@ -315,6 +349,7 @@ fn identification(info: &CertificateResults) -> Vec<Field> {
         field("Date(s) of measurement", info.dates.measured.clone()),
         field("Date of issue", info.dates.issued.clone()),
         field("Procedure", info.procedure.clone()),
+        field("Study (laboratory reference)", study.to_owned()),
         field("Performed by", info.operator.clone()),
         field(
             "Authorised by",
