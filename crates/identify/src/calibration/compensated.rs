@@ -71,8 +71,9 @@ pub struct CompensatedCalibration {
 /// measurement, so it is uncorrelated with the PIGA fit.
 ///
 /// # Errors
-/// Those of [`identify_calibration`](crate::identify_calibration); [`IdentifyError::InvalidParameter`] for a non-finite
-/// C_r or k1 or a negative σ(C_r).
+/// Those of [`identify_calibration`](crate::identify_calibration);
+/// [`IdentifyError::InvalidParameter`](crate::IdentifyError::InvalidParameter) for a
+/// non-finite C_r or k1 or a negative σ(C_r).
 ///
 /// ```
 /// use approx::assert_relative_eq;
