@@ -107,7 +107,8 @@ pub fn identify_compensated(
 /// ([`identify_calibration_weighted`](crate::identify_calibration_weighted)).
 ///
 /// # Errors
-/// Those of [`identify_compensated`] and [`identify_calibration_weighted`](crate::identify_calibration_weighted).
+/// Those of [`identify_compensated`] and
+/// [`identify_calibration_weighted`](crate::identify_calibration_weighted).
 pub fn identify_compensated_weighted(
     rate_rad_s: &[f64],
     output_rad_s: &[f64],
