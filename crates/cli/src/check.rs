@@ -214,32 +214,64 @@ fn describe(
         path.display()
     );
     if let Some(used) = used {
-        let from = |source: pipeline::ValueSource| -> Vec<&str> {
-            used.values
-                .iter()
-                .filter(|o| o.from == source)
-                .map(|o| o.field.as_str())
-                .collect()
-        };
-        let _ = writeln!(
-            s,
-            "lab profile: {}, centrifuge {}{}; from the profile: {}",
-            used.file,
-            used.centrifuge,
-            used.probe
-                .as_ref()
-                .map_or_else(String::new, |p| format!(", probe {p}")),
-            from(pipeline::ValueSource::Profile).join(", ")
-        );
-        let own = from(pipeline::ValueSource::Study);
-        if !own.is_empty() {
-            let _ = writeln!(
-                s,
-                "stated by the study over the profile: {}",
-                own.join(", ")
-            );
+        profile(&mut s, used);
+    }
+    centrifuge_and_probe(&mut s, config, &v, used, direction_unfilled);
+    phases(&mut s, &v);
+    calibration(&mut s, &v);
+    two_orientation(&mut s, &v);
+    mountings(&mut s, &v);
+    type_b(&mut s, &v);
+    for (key, words) in [
+        ("mechanism", "the mechanism simulated with each phase's C_r"),
+        ("balance", "the balance advisor"),
+        ("counterweight", "the counterweight of the published change"),
+    ] {
+        if v.get(key).is_some_and(|x| !x.is_null()) {
+            let _ = writeln!(s, "also: {words}");
         }
     }
+    s
+}
+
+/// The lab profile the study uses and which values came from it.
+fn profile(s: &mut String, used: &pipeline::ProfileResults) {
+    let from = |source: pipeline::ValueSource| -> Vec<&str> {
+        used.values
+            .iter()
+            .filter(|o| o.from == source)
+            .map(|o| o.field.as_str())
+            .collect()
+    };
+    let _ = writeln!(
+        s,
+        "lab profile: {}, centrifuge {}{}; from the profile: {}",
+        used.file,
+        used.centrifuge,
+        used.probe
+            .as_ref()
+            .map_or_else(String::new, |p| format!(", probe {p}")),
+        from(pipeline::ValueSource::Profile).join(", ")
+    );
+    let own = from(pipeline::ValueSource::Study);
+    if !own.is_empty() {
+        let _ = writeln!(
+            s,
+            "stated by the study over the profile: {}",
+            own.join(", ")
+        );
+    }
+}
+
+/// The centrifuge, the probe's lever, its direction and the angle zero (saying what the lab
+/// profile declared).
+fn centrifuge_and_probe(
+    s: &mut String,
+    config: &pipeline::StudyConfig,
+    v: &Value,
+    used: Option<&pipeline::ProfileResults>,
+    direction_unfilled: bool,
+) {
     let _ = writeln!(
         s,
         "centrifuge: R = {} m, g = {} m/s², PIGA k1 = {} rad/(s·g)",
@@ -304,6 +336,10 @@ fn describe(
         angle_zero.words(),
         from_profile("lever.angle_zero_deg")
     );
+}
+
+/// Each probe phase: its data and how it is fitted.
+fn phases(s: &mut String, v: &Value) {
     for phase in v["phases"].as_array().into_iter().flatten() {
         let name = phase["name"].as_str().unwrap_or("");
         let points = &phase["points"];
@@ -370,6 +406,10 @@ fn describe(
             "phase {name}: {line}; C_r and Δk2 from the radius-error fit"
         );
     }
+}
+
+/// The calibration: its data, the compensation and k1.
+fn calibration(s: &mut String, v: &Value) {
     if let Some(cal) = v.get("calibration").filter(|c| !c.is_null()) {
         let data = if cal["table"].is_object() {
             format!(
@@ -396,6 +436,10 @@ fn describe(
             cal["compensate_with"].as_str().unwrap_or("")
         );
     }
+}
+
+/// The two orientations: each data set and what C is compared with.
+fn two_orientation(s: &mut String, v: &Value) {
     if let Some(sym) = v.get("two_orientation").filter(|c| !c.is_null()) {
         let sets: Vec<String> = sym["orientations"]
             .as_array()
@@ -438,6 +482,10 @@ fn describe(
             sets.join(" and ")
         );
     }
+}
+
+/// The IEEE 836 model's mountings, terms and compensation.
+fn mountings(s: &mut String, v: &Value) {
     if let Some(m) = v.get("mountings").filter(|c| !c.is_null()) {
         let list: Vec<String> = m["list"]
             .as_array()
@@ -485,6 +533,10 @@ fn describe(
             list.join("; ")
         );
     }
+}
+
+/// The Type B inputs, or that there are none.
+fn type_b(s: &mut String, v: &Value) {
     match v.get("uncertainty").filter(|u| !u.is_null()) {
         Some(u) => {
             let _ = writeln!(
@@ -507,16 +559,6 @@ fn describe(
             );
         }
     }
-    for (key, words) in [
-        ("mechanism", "the mechanism simulated with each phase's C_r"),
-        ("balance", "the balance advisor"),
-        ("counterweight", "the counterweight of the published change"),
-    ] {
-        if v.get(key).is_some_and(|x| !x.is_null()) {
-            let _ = writeln!(s, "also: {words}");
-        }
-    }
-    s
 }
 
 /// A recording format in words.

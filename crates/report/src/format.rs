@@ -359,6 +359,14 @@ pub(crate) fn md_text(text: &str) -> String {
     out
 }
 
+/// A Markdown table's head: the row of column names as given (`| rate | output |`), then the
+/// `|---|` row under it, one `|---` a column.
+pub(crate) fn table_head(out: &mut String, head: &str) {
+    use std::fmt::Write as _;
+    let _ = writeln!(out, "{head}");
+    let _ = writeln!(out, "{}|", "|---".repeat(head.matches(" | ").count() + 1));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
