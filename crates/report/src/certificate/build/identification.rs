@@ -41,7 +41,7 @@ pub(super) fn identification(info: &CertificateResults, study: &str) -> Vec<Fiel
         field("Date(s) of measurement", info.dates.measured.clone()),
         field("Date of issue", info.dates.issued.clone()),
         field("Procedure", info.procedure.clone()),
-        field("Study (laboratory reference)", study.to_owned()),
+        field("Laboratory reference", study.to_owned()),
         field("Performed by", info.operator.clone()),
         field(
             "Authorised by",
