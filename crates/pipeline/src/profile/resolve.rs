@@ -494,10 +494,10 @@ fn fill_traceability(
                 TypeBInputName::ProbeGain => found
                     .probe
                     .map_or_else(String::new, |(pi, _)| format!("probes[{pi}].traceability")),
-                other => found.at(&format!("traceability.{}", input_key(*other))),
+                other => found.at(&format!("traceability.{}", other.key())),
             };
             values.push(
-                &format!("certificate.traceability ({})", input_key(*input)),
+                &format!("certificate.traceability ({})", input.key()),
                 ValueSource::Profile,
                 &from,
             );
@@ -557,19 +557,6 @@ fn fill_authorisation(
                 known: signers,
             }),
         }
-    }
-}
-
-/// A Type B input as the certificate's traceability names it (`input: radius`).
-const fn input_key(input: TypeBInputName) -> &'static str {
-    match input {
-        TypeBInputName::Radius => "radius",
-        TypeBInputName::G => "g",
-        TypeBInputName::RateScale => "rate_scale",
-        TypeBInputName::PivotToProbe => "pivot_to_probe",
-        TypeBInputName::ProbeToPiga => "probe_to_piga",
-        TypeBInputName::ProbeGain => "probe_gain",
-        TypeBInputName::K1 => "k1",
     }
 }
 

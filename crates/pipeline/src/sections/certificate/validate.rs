@@ -457,7 +457,7 @@ impl Need<'_> {
         }
         for (name, field) in uncertain_inputs(config) {
             if !c.traceability.iter().any(|t| t.input == name) {
-                let key = serde_name(name);
+                let key = name.key();
                 self.need(
                     &format!("traceability (input: {key})"),
                     "",
@@ -598,17 +598,4 @@ fn texts(c: &CertificateConfig) -> Vec<(String, &str)> {
         list.push((format!("traceability[{i}].statement"), &t.statement));
     }
     list
-}
-
-/// The name a traceability entry gives an input in the study file.
-const fn serde_name(name: TypeBInputName) -> &'static str {
-    match name {
-        TypeBInputName::Radius => "radius",
-        TypeBInputName::G => "g",
-        TypeBInputName::RateScale => "rate_scale",
-        TypeBInputName::PivotToProbe => "pivot_to_probe",
-        TypeBInputName::ProbeToPiga => "probe_to_piga",
-        TypeBInputName::ProbeGain => "probe_gain",
-        TypeBInputName::K1 => "k1",
-    }
 }
