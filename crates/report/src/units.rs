@@ -34,8 +34,8 @@ pub(crate) fn units_markdown(out: &mut String, results: &StudyResults) {
             format::md_text(&u.label),
             text(u.item.as_ref()),
             text(u.certificate.as_ref()),
-            format::significant(u.k1_rad_s_g, 6),
-            format::significant(u.radius_m, 6),
+            format::plain(u.k1_rad_s_g),
+            format::plain(u.radius_m),
             text(u.compensate_with.as_ref()),
             u.delta_k2
                 .map_or_else(|| "—".to_owned(), |d| format::pair(d.value, d.u).joined()),
