@@ -301,7 +301,11 @@ pub(crate) fn record_dir(
             format!("recording {}", dir.display())
         }
     })?;
-    Ok(studies.iter().map(|s| s.dir.clone()).zip(outcomes).collect())
+    Ok(studies
+        .iter()
+        .map(|s| s.dir.clone())
+        .zip(outcomes)
+        .collect())
 }
 
 /// Prints what a recording did.

@@ -838,6 +838,12 @@ fn a_folder_with_several_units_tables_becomes_a_units_list() {
         String::from_utf8_lossy(&study.stderr)
     );
     for unit in ["A", "B"] {
-        assert!(results.join("units").join(unit).join("results.json").is_file());
+        assert!(
+            results
+                .join("units")
+                .join(unit)
+                .join("results.json")
+                .is_file()
+        );
     }
 }
