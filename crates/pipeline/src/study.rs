@@ -425,20 +425,20 @@ fn units_problems(config: &StudyConfig, source: &Path) -> Vec<PipelineError> {
                 name: label.clone(),
             });
         }
-        if let Some(id) = unit.certificate.as_ref().map(|c| c.id.trim()) {
-            if let Some(first) = units[..i].iter().position(|u| {
+        if let Some(id) = unit.certificate.as_ref().map(|c| c.id.trim())
+            && let Some(first) = units[..i].iter().position(|u| {
                 u.certificate
                     .as_ref()
                     .is_some_and(|c| !id.is_empty() && c.id.trim() == id)
-            }) {
-                errors.push(PipelineError::UsedTwice {
-                    path: source.to_owned(),
-                    field: format!("units[{i}].certificate.id"),
-                    first: format!("units[{first}].certificate.id"),
-                    value: id.to_owned(),
-                    what: "a certificate's identification (each certificate has its own)",
-                });
-            }
+            })
+        {
+            errors.push(PipelineError::UsedTwice {
+                path: source.to_owned(),
+                field: format!("units[{i}].certificate.id"),
+                first: format!("units[{first}].certificate.id"),
+                value: id.to_owned(),
+                what: "a certificate's identification (each certificate has its own)",
+            });
         }
     }
     errors
