@@ -6,8 +6,13 @@ use uncertainty::{Dof, Evaluation, InputQuantity, UncertaintyError};
 use crate::model::{Nominal, input};
 use crate::{TERM_NAMES, TERMS};
 
-/// Type B standard uncertainties of the model's inputs (each finite and ≥ 0).
+/// Type B standard uncertainties of the model's inputs (each finite and ≥ 0): the one
+/// definition the study, the two-orientation fit and the planner share (the planner's plan
+/// file reads it as the study's `uncertainty` section, docs/CONFIGURATION.md, every input
+/// defaulting to 0; the Earth rate is the study's, not a plan's).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct TypeB {
     /// u(R), m.
     pub radius_u_m: f64,
@@ -25,6 +30,7 @@ pub struct TypeB {
     /// column for the term it makes with k2; the one-mounting fit's free ω³ column takes it).
     /// The default is exactly zero: no Type B input at all; a study states it or takes it as
     /// unknown ([`AxialEarthRate::not_stated`]).
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub axial_earth_rate: AxialEarthRate,
 }
 

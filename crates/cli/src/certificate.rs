@@ -14,7 +14,8 @@ use crate::console::Console;
 pub(crate) struct Certificate {
     /// The folder a study wrote (holding results.json), or its results.json.
     results: PathBuf,
-    /// Where to write the PDF. Default: certificate.pdf in the results folder.
+    /// Where to write the PDF. Default: certificate.pdf in the results folder. A folder that
+    /// does not exist yet is created; an existing folder gets certificate.pdf inside it.
     #[arg(long, value_name = "FILE.pdf")]
     out: Option<PathBuf>,
     /// Also write each page as a PNG image into this folder (certificate-page-1.png, …), as

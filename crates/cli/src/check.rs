@@ -214,32 +214,65 @@ fn describe(
         path.display()
     );
     if let Some(used) = used {
-        let from = |source: pipeline::ValueSource| -> Vec<&str> {
-            used.values
-                .iter()
-                .filter(|o| o.from == source)
-                .map(|o| o.field.as_str())
-                .collect()
-        };
-        let _ = writeln!(
-            s,
-            "lab profile: {}, centrifuge {}{}; from the profile: {}",
-            used.file,
-            used.centrifuge,
-            used.probe
-                .as_ref()
-                .map_or_else(String::new, |p| format!(", probe {p}")),
-            from(pipeline::ValueSource::Profile).join(", ")
-        );
-        let own = from(pipeline::ValueSource::Study);
-        if !own.is_empty() {
-            let _ = writeln!(
-                s,
-                "stated by the study over the profile: {}",
-                own.join(", ")
-            );
+        profile(&mut s, used);
+    }
+    centrifuge_and_probe(&mut s, config, &v, used, direction_unfilled);
+    phases(&mut s, &v);
+    calibration(&mut s, &v);
+    two_orientation(&mut s, &v);
+    units(&mut s, &v);
+    mountings(&mut s, &v);
+    type_b(&mut s, &v);
+    for (key, words) in [
+        ("mechanism", "the mechanism simulated with each phase's C_r"),
+        ("balance", "the balance advisor"),
+        ("counterweight", "the counterweight of the published change"),
+    ] {
+        if v.get(key).is_some_and(|x| !x.is_null()) {
+            let _ = writeln!(s, "also: {words}");
         }
     }
+    s
+}
+
+/// The lab profile the study uses and which values came from it.
+fn profile(s: &mut String, used: &pipeline::ProfileResults) {
+    let from = |source: pipeline::ValueSource| -> Vec<&str> {
+        used.values
+            .iter()
+            .filter(|o| o.from == source)
+            .map(|o| o.field.as_str())
+            .collect()
+    };
+    let _ = writeln!(
+        s,
+        "lab profile: {}, centrifuge {}{}; from the profile: {}",
+        used.file,
+        used.centrifuge,
+        used.probe
+            .as_ref()
+            .map_or_else(String::new, |p| format!(", probe {p}")),
+        from(pipeline::ValueSource::Profile).join(", ")
+    );
+    let own = from(pipeline::ValueSource::Study);
+    if !own.is_empty() {
+        let _ = writeln!(
+            s,
+            "stated by the study over the profile: {}",
+            own.join(", ")
+        );
+    }
+}
+
+/// The centrifuge, the probe's lever, its direction and the angle zero (saying what the lab
+/// profile declared).
+fn centrifuge_and_probe(
+    s: &mut String,
+    config: &pipeline::StudyConfig,
+    v: &Value,
+    used: Option<&pipeline::ProfileResults>,
+    direction_unfilled: bool,
+) {
     let k1_words = if v.get("units").is_some_and(Value::is_array) {
         "the study's k1 (the top summary's Δk2; each unit states its own below)"
     } else {
@@ -309,6 +342,10 @@ fn describe(
         angle_zero.words(),
         from_profile("lever.angle_zero_deg")
     );
+}
+
+/// Each probe phase: its data and how it is fitted.
+fn phases(s: &mut String, v: &Value) {
     for phase in v["phases"].as_array().into_iter().flatten() {
         let name = phase["name"].as_str().unwrap_or("");
         let points = &phase["points"];
@@ -375,12 +412,25 @@ fn describe(
             "phase {name}: {line}; C_r and Δk2 from the radius-error fit"
         );
     }
+}
+
+/// The calibration: its data, the compensation and k1.
+fn calibration(s: &mut String, v: &Value) {
     if let Some(cal) = v.get("calibration").filter(|c| !c.is_null()) {
         let _ = writeln!(s, "calibration: {}", calibration_words(cal));
     }
+}
+
+/// The two orientations: each data set and what C is compared with.
+fn two_orientation(s: &mut String, v: &Value) {
     if let Some(sym) = v.get("two_orientation").filter(|c| !c.is_null()) {
         let _ = writeln!(s, "two orientations: {}", two_orientation_words(sym));
     }
+}
+
+/// The units calibrated from the study's probe phases, each with its k1, radius, calibration
+/// and certificate.
+fn units(s: &mut String, v: &Value) {
     if let Some(units) = v.get("units").and_then(Value::as_array) {
         let _ = writeln!(
             s,
@@ -425,85 +475,6 @@ fn describe(
             }
         }
     }
-    if let Some(m) = v.get("mountings").filter(|c| !c.is_null()) {
-        let list: Vec<String> = m["list"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .map(|o| {
-                let which = o["label"]
-                    .as_str()
-                    .or_else(|| o["preset"].as_str())
-                    .map_or_else(|| "mounting by angles".to_owned(), ToOwned::to_owned);
-                let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
-                    || "radius not declared".to_owned(),
-                    |r| format!("R = {} m", num(Some(r))),
-                );
-                format!(
-                    "{which} at {radius} from {}",
-                    o["table"]["file"].as_str().unwrap_or("no table")
-                )
-            })
-            .collect();
-        let terms: Vec<&str> = m["terms"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .filter_map(Value::as_str)
-            .collect();
-        let compensation = if m["compensate"].as_bool() == Some(false) {
-            "the probe's C_r not compensated".to_owned()
-        } else {
-            match m["compensate_with"].as_str() {
-                Some(phase) => {
-                    format!("phase {phase}'s C_r compensated along each mounting's axes")
-                }
-                None => {
-                    "the compensating (or first) phase's C_r compensated along each mounting's axes"
-                        .to_owned()
-                }
-            }
-        };
-        let _ = writeln!(
-            s,
-            "mountings: the IEEE 836 model (k0, k1, {}) fitted jointly to {}; {compensation}; \
-             the mountings separate every chosen term (checked before the run)",
-            terms.join(", "),
-            list.join("; ")
-        );
-    }
-    match v.get("uncertainty").filter(|u| !u.is_null()) {
-        Some(u) => {
-            let _ = writeln!(
-                s,
-                "Type B inputs: u(R) {} m, u(g) {} m/s² ({}), rate {} (relative), pivot-to-probe \
-                 {} mm, probe-to-PIGA {} mm, probe gain {} (relative)",
-                num(u.get("radius_u_m")),
-                num(u.get("g_u_m_s2")),
-                u["g_source"].as_str().unwrap_or(""),
-                num(u.get("rate_u_relative")),
-                num(u.get("pivot_to_probe_u_mm")),
-                num(u.get("probe_to_piga_u_mm")),
-                num(u.get("probe_gain_u_relative"))
-            );
-        }
-        None => {
-            let _ = writeln!(
-                s,
-                "Type B inputs: none given (the budget takes them as zero and says so)"
-            );
-        }
-    }
-    for (key, words) in [
-        ("mechanism", "the mechanism simulated with each phase's C_r"),
-        ("balance", "the balance advisor"),
-        ("counterweight", "the counterweight of the published change"),
-    ] {
-        if v.get(key).is_some_and(|x| !x.is_null()) {
-            let _ = writeln!(s, "also: {words}");
-        }
-    }
-    s
 }
 
 /// A calibration section in words (`check`).
@@ -574,6 +545,83 @@ fn two_orientation_words(sym: &Value) -> String {
          compared with {compare}; GUM and Monte Carlo uncertainty",
         sets.join(" and ")
     )
+}
+
+/// The IEEE 836 model's mountings, terms and compensation.
+fn mountings(s: &mut String, v: &Value) {
+    if let Some(m) = v.get("mountings").filter(|c| !c.is_null()) {
+        let list: Vec<String> = m["list"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|o| {
+                let which = o["label"]
+                    .as_str()
+                    .or_else(|| o["preset"].as_str())
+                    .map_or_else(|| "mounting by angles".to_owned(), ToOwned::to_owned);
+                let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
+                    || "radius not declared".to_owned(),
+                    |r| format!("R = {} m", num(Some(r))),
+                );
+                format!(
+                    "{which} at {radius} from {}",
+                    o["table"]["file"].as_str().unwrap_or("no table")
+                )
+            })
+            .collect();
+        let terms: Vec<&str> = m["terms"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(Value::as_str)
+            .collect();
+        let compensation = if m["compensate"].as_bool() == Some(false) {
+            "the probe's C_r not compensated".to_owned()
+        } else {
+            match m["compensate_with"].as_str() {
+                Some(phase) => {
+                    format!("phase {phase}'s C_r compensated along each mounting's axes")
+                }
+                None => {
+                    "the compensating (or first) phase's C_r compensated along each mounting's axes"
+                        .to_owned()
+                }
+            }
+        };
+        let _ = writeln!(
+            s,
+            "mountings: the IEEE 836 model (k0, k1, {}) fitted jointly to {}; {compensation}; \
+             the mountings separate every chosen term (checked before the run)",
+            terms.join(", "),
+            list.join("; ")
+        );
+    }
+}
+
+/// The Type B inputs, or that there are none.
+fn type_b(s: &mut String, v: &Value) {
+    match v.get("uncertainty").filter(|u| !u.is_null()) {
+        Some(u) => {
+            let _ = writeln!(
+                s,
+                "Type B inputs: u(R) {} m, u(g) {} m/s² ({}), rate {} (relative), pivot-to-probe \
+                 {} mm, probe-to-PIGA {} mm, probe gain {} (relative)",
+                num(u.get("radius_u_m")),
+                num(u.get("g_u_m_s2")),
+                u["g_source"].as_str().unwrap_or(""),
+                num(u.get("rate_u_relative")),
+                num(u.get("pivot_to_probe_u_mm")),
+                num(u.get("probe_to_piga_u_mm")),
+                num(u.get("probe_gain_u_relative"))
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "Type B inputs: none given (the budget takes them as zero and says so)"
+            );
+        }
+    }
 }
 
 /// A recording format in words.

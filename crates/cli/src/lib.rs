@@ -21,6 +21,7 @@ mod identify;
 mod init;
 mod paths;
 mod plan;
+mod plan_campaign;
 mod plan_two_orientation;
 mod problems;
 mod progress;

@@ -246,25 +246,7 @@ fn simulate_check(
     campaigns: usize,
     seed: u64,
 ) -> anyhow::Result<SimulationCheck> {
-    let centrifuge = kinematics::Centrifuge {
-        radius_m: inputs.centrifuge.radius_m,
-        site: kinematics::Site {
-            latitude_deg: LATITUDE_DEG,
-            earth_rate_rad_s: kinematics::EARTH_RATE_RAD_S,
-            gravity_m_s2: inputs.centrifuge.g_m_s2,
-        },
-        error_motion: kinematics::ErrorMotion {
-            c_r_m_s2: inputs.c_r.expected_m_s2,
-            ..kinematics::ErrorMotion::ZERO
-        },
-    };
-    let p = &inputs.piga;
-    let piga = accel_model::PigaCoefficients {
-        k0_rad_s: p.k0_rad_s,
-        k1_rad_s_g: p.k1_rad_s_g,
-        k2_rad_s_g2: p.k2_rad_s_g2,
-        k3_rad_s_g3: p.k3_rad_s_g3,
-    };
+    let (centrifuge, piga) = crate::plan_campaign::simulated(inputs, LATITUDE_DEG);
     let rates: Vec<f64> = plan.points.iter().map(|q| q.rate_deg_s).collect();
     let table = simulate::piga_table(
         &centrifuge,

@@ -19,25 +19,7 @@ fn exact_outputs(
         .two_orientation
         .as_ref()
         .context("the plan file has no two_orientation section")?;
-    let centrifuge = kinematics::Centrifuge {
-        radius_m: inputs.centrifuge.radius_m,
-        site: kinematics::Site {
-            latitude_deg,
-            earth_rate_rad_s: kinematics::EARTH_RATE_RAD_S,
-            gravity_m_s2: inputs.centrifuge.g_m_s2,
-        },
-        error_motion: kinematics::ErrorMotion {
-            c_r_m_s2: inputs.c_r.expected_m_s2,
-            ..kinematics::ErrorMotion::ZERO
-        },
-    };
-    let p = &inputs.piga;
-    let piga = accel_model::PigaCoefficients {
-        k0_rad_s: p.k0_rad_s,
-        k1_rad_s_g: p.k1_rad_s_g,
-        k2_rad_s_g2: p.k2_rad_s_g2,
-        k3_rad_s_g3: p.k3_rad_s_g3,
-    };
+    let (centrifuge, piga) = crate::plan_campaign::simulated(inputs, latitude_deg);
     let mut out: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
     for (k, m) in plan.mountings.iter().enumerate() {
         let shift = [spec.ia_in, spec.ia_out][k].bias_shift_rad_s;

@@ -386,9 +386,19 @@ pub(crate) fn exchange<const N: usize, S: Space<N>>(
     allocate_final(p, &current.design, criterion).or(Some(current))
 }
 
+/// The label of the random starts' streams (`units::stream_seed`).
+const RESTART_STREAM: u64 = 0x5EA4_C457;
+
+/// The random stream of restart `r` under the search's `seed`: the seed and the restart
+/// through `units::stream_seed`, so that no two (seed, restart) pairs share a stream (with
+/// `seed + r`, seed 1's restart 1 drew seed 2's restart 0).
+fn restart_rng(seed: u64, r: usize) -> StdRng {
+    StdRng::seed_from_u64(units::stream_seed(seed, RESTART_STREAM, r as u64))
+}
+
 /// The best design with `parts[k].1` points in the range `parts[k].0`, over the evenly spread
-/// start and `search.restarts` random starts (seeded `search.seed + r`, in parallel; the
-/// result does not depend on the number of threads).
+/// start and `search.restarts` random starts (restart `r` drawn from its own stream,
+/// [`restart_rng`], in parallel; the result does not depend on the number of threads).
 pub(crate) fn search<const N: usize>(
     p: &impl Space<N>,
     parts: &[(Range<usize>, usize)],
@@ -396,7 +406,7 @@ pub(crate) fn search<const N: usize>(
 ) -> Option<Allocated> {
     let starts: Vec<Vec<usize>> = std::iter::once(spread_start(parts, p.budget().allow_repeats))
         .chain((0..search.restarts).map(|r| {
-            let mut rng = StdRng::seed_from_u64(search.seed.wrapping_add(r as u64));
+            let mut rng = restart_rng(search.seed, r);
             random_start(parts, &mut rng)
         }))
         .collect();
@@ -461,4 +471,24 @@ pub(crate) fn whole_revolutions<const N: usize>(
         }
     }
     revs
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::Rng as _;
+
+    use super::*;
+
+    /// No restart of one seed draws the stream of a restart of a neighbouring seed: seed 1's
+    /// restart 1 is not seed 2's restart 0.
+    #[test]
+    fn restart_streams_do_not_depend_on_the_seed_plus_the_restart() {
+        let first = |seed: u64, r: usize| -> u64 { restart_rng(seed, r).random() };
+        assert_ne!(first(1, 1), first(2, 0));
+        let seed1: Vec<u64> = (1..200).map(|r| first(1, r)).collect();
+        let seed2: Vec<u64> = (0..199).map(|r| first(2, r)).collect();
+        assert!(seed1.iter().all(|x| !seed2.contains(x)));
+        // and the same (seed, restart) gives the same stream
+        assert_eq!(first(7, 3), first(7, 3));
+    }
 }

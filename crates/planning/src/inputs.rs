@@ -153,24 +153,9 @@ pub struct CrSpec {
 }
 
 /// Type B standard uncertainties of the calibration's inputs, as the study's `uncertainty`
-/// section (docs/CONFIGURATION.md). All default to 0.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
-pub struct TypeB {
-    /// u(R), m.
-    pub radius_u_m: f64,
-    /// u(g), m/s².
-    pub g_u_m_s2: f64,
-    /// Relative u of the rate (a scale common to every rate).
-    pub rate_u_relative: f64,
-    /// u of the pivot-to-probe height, mm.
-    pub pivot_to_probe_u_mm: f64,
-    /// u of the probe-to-PIGA height, mm.
-    pub probe_to_piga_u_mm: f64,
-    /// Relative u of the probe gain.
-    pub probe_gain_u_relative: f64,
-}
+/// section (docs/CONFIGURATION.md), all defaulting to 0: the calibration's own
+/// ([`calibration::TypeB`]), one definition for the study and the planner.
+pub use calibration::TypeB;
 
 /// The schedule's limits.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -143,7 +143,6 @@ pub use synth::SyntheticSpec;
 #[doc(hidden)]
 pub use text::number::{number_paths, parse_number};
 #[doc(hidden)]
-pub use text::table::parse_table_reference;
-pub use text::table::{
-    MAX_COLUMNS, Table, TableColumn, TableFormat, load_table, load_table_digested, parse_table,
-};
+pub use text::parser::parse_table_reference;
+pub use text::parser::{load_table, load_table_digested, parse_table};
+pub use text::table::{MAX_COLUMNS, Table, TableColumn, TableFormat};

@@ -8,7 +8,7 @@ use crate::digest::FileDigest;
 use crate::error::{RecordingError, Result};
 use crate::lab::format::RecordingFormat;
 use crate::lab::probe::Recording;
-use crate::text::table::{load_table, parse_table};
+use crate::text::parser::{load_table, parse_table};
 
 /// Reads a probe recording from a file, streaming it through one reused buffer of about a
 /// megabyte (see [`load_table`](crate::load_table); a line longer than 16 MiB is
@@ -44,7 +44,7 @@ pub fn load_recording_digested(
         });
     }
     text_only(path, format)?;
-    let (table, digest) = crate::text::table::load_table_digested(path, &format.table_format()?)?;
+    let (table, digest) = crate::text::parser::load_table_digested(path, &format.table_format()?)?;
     Ok((Recording::from_table(table, format)?, digest))
 }
 

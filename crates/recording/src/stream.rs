@@ -29,8 +29,9 @@ use crate::error::{RecordingError, Result};
 use crate::lab::format::{ANGLE_SLOT, AngleSource, LengthUnit, OnBadSamples, RecordingFormat};
 use crate::lab::probe::{AngleSourceKind, check_gap_header_unit, sample_index, time_axis_error};
 use crate::text::lines::Lines;
+use crate::text::parser::{Layout, TableParser, skip_then_next_content};
 use crate::text::stream::{LineSink, Resume, stream_file, stream_file_from};
-use crate::text::table::{Layout, TableFormat, TableParser, skip_then_next_content};
+use crate::text::table::TableFormat;
 
 /// Files smaller than this are read into memory whole (64 MiB): their samples take less
 /// memory than a revolution of a long one, and one pass is quicker than two.

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use plotters::prelude::*;
 
 use crate::error::{ReportError, Result};
+use crate::format;
 use pipeline::{
     BalanceResults, CorrectionResult, CounterweightResults, PhasorResult, PredictedResult,
     TwoPlaneResults,
@@ -48,11 +49,10 @@ pub(crate) fn section(out: &mut String, b: &BalanceResults) {
          part (eq. 1–2). Magnitudes are at the PIGA plane (× lever ratio, eq. 22); the O2X2 \
          component of D is C_r. Figure: `balance_polar.svg`. Procedure: `docs/BALANCING.md`.\n"
     );
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| phase | static \\|S\\| (µm) | static azimuth (deg) | dynamic \\|D\\| (µm·s²) | dynamic azimuth (deg) | C_r (m·s²) | lack of fit \\|B\\|/σ | √(χ²/dof) |"
+        "| phase | static \\|S\\| (µm) | static azimuth (deg) | dynamic \\|D\\| (µm·s²) | dynamic azimuth (deg) | C_r (m·s²) | lack of fit \\|B\\|/σ | √(χ²/dof) |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
     for p in &b.phases {
         let _ = writeln!(
             out,
@@ -155,8 +155,7 @@ fn two_plane_section(out: &mut String, t: &TwoPlaneResults) {
          (eq. 5), with no cone assumption.\n",
         t.probe_heights_m[0], t.probe_heights_m[1], t.second_probe_phase
     );
-    let _ = writeln!(out, "| quantity | static | dynamic (∝ ω²) |");
-    let _ = writeln!(out, "|---|---|---|");
+    format::table_head(out, "| quantity | static | dynamic (∝ ω²) |");
     let _ = writeln!(
         out,
         "| translation at the PIGA plane | {} | {} |",

@@ -36,9 +36,7 @@ pub(crate) fn budget_table(
     let head = format!(
         "| {quantity_head} | type | value | standard uncertainty | {sensitivity_head} | contribution | {last_head} |"
     );
-    let _ = writeln!(out, "{head}");
-    // One `|---` a column.
-    let _ = writeln!(out, "{}|", "|---".repeat(head.matches(" | ").count() + 1));
+    format::table_head(out, &head);
     for l in lines {
         let _ = writeln!(
             out,
@@ -66,6 +64,25 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         "## PIGA calibration (eq. 18), compensated with phase `{}`\n",
         c.compensate_with
     );
+    summary(out, c);
+    coefficients(out, c);
+    let _ = writeln!(out, "### Uncertainty budget of k2 (JCGM 100)\n");
+    budget_table(
+        out,
+        &c.budget.k2,
+        ["input quantity", "sensitivity ∂k2/∂x"],
+        ("% of u² | dof", |l| {
+            format!("{:.2} | {}", l.percent, dof(l.dof))
+        }),
+    );
+    monte_carlo(out, c);
+    recordings(out, c);
+    residuals(out, c);
+    design_and_warnings(out, c);
+}
+
+/// The data, the fit and the compensation in one paragraph.
+fn summary(out: &mut String, c: &CalibrationResults) {
     let _ = writeln!(
         out,
         "{}: {} points at {} distinct rates, {} residual degrees of freedom, residual SD {:.3e} rad/s{}. \
@@ -107,12 +124,15 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         c.delta_k2.value,
         c.delta_k2.u,
     );
+}
+
+/// The coefficients with their GUM intervals, in the conventional units, and k2 as measured.
+fn coefficients(out: &mut String, c: &CalibrationResults) {
     let _ = writeln!(out, "### Coefficients (GUM, 95 % coverage)\n");
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| coefficient | value | u | k | ν_eff | U95 | interval | unit |"
+        "| coefficient | value | u | k | ν_eff | U95 | interval | unit |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
     row(out, "k0", "rad/s", &c.coefficients.k0);
     row(out, "k1", "rad/(s·g)", &c.coefficients.k1);
     row(out, "k2", "rad/(s·g²)", &c.coefficients.k2);
@@ -135,26 +155,20 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         "Uncompensated (as measured): k2 + Δk2 = {:.6e} ± {:.2e} rad/(s·g²) (fit only).\n",
         c.uncompensated.k2.value, c.uncompensated.k2.u
     );
-    let _ = writeln!(out, "### Uncertainty budget of k2 (JCGM 100)\n");
-    budget_table(
-        out,
-        &c.budget.k2,
-        ["input quantity", "sensitivity ∂k2/∂x"],
-        ("% of u² | dof", |l| {
-            format!("{:.2} | {}", l.percent, dof(l.dof))
-        }),
-    );
+}
+
+/// The GUM against Monte Carlo, coefficient by coefficient.
+fn monte_carlo(out: &mut String, c: &CalibrationResults) {
     let mc = &c.monte_carlo;
     let _ = writeln!(
         out,
         "### GUM and Monte Carlo (JCGM 101), {} trials, seed {}\n",
         mc.trials, mc.seed
     );
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| coefficient | MC mean | MC u | MC 95 % interval | GUM interval | δ | agree |"
+        "| coefficient | MC mean | MC u | MC 95 % interval | GUM interval | δ | agree |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     for (name, m, g) in [
         ("k0", &mc.k0, &c.coefficients.k0),
         ("k1", &mc.k1, &c.coefficients.k1),
@@ -175,13 +189,16 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         );
     }
     let _ = writeln!(out);
+}
+
+/// The raw output recordings and what each was reduced to, when there are any.
+fn recordings(out: &mut String, c: &CalibrationResults) {
     if !c.recordings.is_empty() {
         let _ = writeln!(out, "### Raw output recordings\n");
-        let _ = writeln!(
+        format::table_head(
             out,
-            "| file | declared rate (deg/s) | rate used (deg/s) | angle | revolutions (dropped) | mean output (rad/s) | u (rad/s) | white-noise SE | SE across revolutions |"
+            "| file | declared rate (deg/s) | rate used (deg/s) | angle | revolutions (dropped) | mean output (rad/s) | u (rad/s) | white-noise SE | SE across revolutions |",
         );
-        let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
         for r in &c.recordings {
             let _ = writeln!(
                 out,
@@ -200,12 +217,15 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         }
         let _ = writeln!(out);
     }
+}
+
+/// The residuals by row and by label.
+fn residuals(out: &mut String, c: &CalibrationResults) {
     let _ = writeln!(out, "### Residuals\n");
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| rate (deg/s) | output (rad/s) | u (rad/s) | residual (rad/s) | residual/u | label | from |"
+        "| rate (deg/s) | output (rad/s) | u (rad/s) | residual (rad/s) | residual/u | label | from |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     for r in &c.residuals {
         let _ = writeln!(
             out,
@@ -232,11 +252,10 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
     let _ = writeln!(out);
     if !c.labels.is_empty() {
         let _ = writeln!(out, "Residuals by label (mean ± its standard error):\n");
-        let _ = writeln!(
+        format::table_head(
             out,
-            "| label | rows | mean residual (rad/s) | u (rad/s) | mean/u |"
+            "| label | rows | mean residual (rad/s) | u (rad/s) | mean/u |",
         );
-        let _ = writeln!(out, "|---|---|---|---|---|");
         for l in &c.labels {
             let _ = writeln!(
                 out,
@@ -250,6 +269,10 @@ pub(crate) fn section(out: &mut String, c: &CalibrationResults) {
         }
         let _ = writeln!(out);
     }
+}
+
+/// The design's condition and inflation, then the section's warnings.
+fn design_and_warnings(out: &mut String, c: &CalibrationResults) {
     let _ = writeln!(
         out,
         "Design: condition number {:.3e}; variance inflation of ω, ω², ω³, a², a³: {} \

@@ -205,6 +205,26 @@ pub(crate) fn significant(x: f64, digits: usize) -> String {
     }
 }
 
+/// `text` with each hyphen-minus that starts a number (at the start, or after a space, `(`,
+/// `[`, `/`, `±` or `×`, and followed by a digit or a point) set as the minus sign U+2212, as
+/// a typeset page writes it. Hyphens inside words, dates and identifiers (`SN-12`,
+/// `2026-11-28`) are left. Only for numbers this tool wrote: never for text from a study file.
+pub(crate) fn typographic_minus(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 4);
+    let mut prev: Option<char> = None;
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        let starts_number = c == '-'
+            && prev.is_none_or(|p| p.is_whitespace() || matches!(p, '(' | '[' | '/' | '±' | '×'))
+            && chars
+                .peek()
+                .is_some_and(|n| n.is_ascii_digit() || *n == '.');
+        out.push(if starts_number { '\u{2212}' } else { c });
+        prev = Some(c);
+    }
+    out
+}
+
 /// A number as given, in its shortest exact form (`20`, `-0.5`, `1e-7`), never `-0`.
 pub(crate) fn plain(x: f64) -> String {
     no_negative_zero(format!("{x}"))
@@ -339,10 +359,35 @@ pub(crate) fn md_text(text: &str) -> String {
     out
 }
 
+/// A Markdown table's head: the row of column names as given (`| rate | output |`), then the
+/// `|---|` row under it, one `|---` a column.
+pub(crate) fn table_head(out: &mut String, head: &str) {
+    use std::fmt::Write as _;
+    let _ = writeln!(out, "{head}");
+    let _ = writeln!(out, "{}|", "|---".repeat(head.matches(" | ").count() + 1));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use pipeline::InfiniteDof;
+
+    #[test]
+    fn minus_signs_of_numbers_only() {
+        assert_eq!(
+            typographic_minus("-0.0967 g to 2.36 g"),
+            "\u{2212}0.0967 g to 2.36 g"
+        );
+        assert_eq!(
+            typographic_minus("(-1.5 ± 0.2) × 10⁻⁶ [-3, -.5]"),
+            "(\u{2212}1.5 ± 0.2) × 10⁻⁶ [\u{2212}3, \u{2212}.5]"
+        );
+        assert_eq!(typographic_minus("+0.1 / -0.2"), "+0.1 / \u{2212}0.2");
+        // identifiers, dates, words and a lone dash stay as they are
+        for kept in ["SN-12", "2026-11-28", "IA-in", "-", "—", "a - b", "x-1"] {
+            assert_eq!(typographic_minus(kept), kept);
+        }
+    }
 
     #[test]
     fn markdown_text_is_never_markup() {

@@ -24,6 +24,7 @@ mod mountings;
 mod output;
 mod plot;
 mod provenance;
+mod standalone;
 mod summary;
 mod svgplot;
 mod two_orientation;

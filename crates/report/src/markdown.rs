@@ -113,11 +113,10 @@ pub fn render(
 
     if let Some(outcomes) = outcomes {
         let _ = writeln!(out, "## Regression checks\n");
-        let _ = writeln!(
-            out,
-            "| path | expected | tolerance | computed | status | what |"
+        format::table_head(
+            &mut out,
+            "| path | expected | tolerance | computed | status | what |",
         );
-        let _ = writeln!(out, "|---|---|---|---|---|---|");
         for o in outcomes {
             let _ = writeln!(
                 out,
@@ -152,11 +151,10 @@ fn point_table(
     key: &str,
     published: &dyn Fn(&str) -> Option<f64>,
 ) {
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| rate (deg/s) | d_c1 (µm) | d_s1 (µm) | ΔR1 (µm) | ΔR1 paper | diff | β (deg) | Δr_xd+Δr_xs (µm) | paper | diff |"
+        "| rate (deg/s) | d_c1 (µm) | d_s1 (µm) | ΔR1 (µm) | ΔR1 paper | diff | β (deg) | Δr_xd+Δr_xs (µm) | paper | diff |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|");
     let recorded = phase.points.iter().any(|p| p.revolutions.is_some());
     for (n, p) in phase.points.iter().enumerate() {
         let amp_paper = published(&format!("{key}.points[{n}].amplitude_um"));
@@ -240,11 +238,10 @@ fn fit_table(
     key: &str,
     published: &dyn Fn(&str) -> Option<f64>,
 ) {
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| model | C_r (m·s²) | σ(C_r) | Δk2 (rad/(s·g²)) | σ(Δk2) | residual SD (µm) | dof | paper C_r / σ / Δk2 | cond |"
+        "| model | C_r (m·s²) | σ(C_r) | Δk2 (rad/(s·g²)) | σ(Δk2) | residual SD (µm) | dof | paper C_r / σ / Δk2 | cond |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
     let paper = [
         published(&format!("{key}.c_r_m_s2")),
         published(&format!("{key}.c_r_sigma_m_s2")),
@@ -358,11 +355,10 @@ fn mechanism_table(out: &mut String, m: &MechanismResults) {
         m.latitude_deg,
         m.output_noise_rad_s,
     );
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| phase | C_r (m·s²) | k2 true | k2 uncompensated | k2 compensated (± σ) | Δk2 predicted (eq. 19) | uncompensated − true | compensated − true | cond |"
+        "| phase | C_r (m·s²) | k2 true | k2 uncompensated | k2 compensated (± σ) | Δk2 predicted (eq. 19) | uncompensated − true | compensated − true | cond |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
     for p in &m.phases {
         let _ = writeln!(
             out,

@@ -83,17 +83,7 @@ fn lines(out: &mut String, s: &MountingsResults) {
 /// The summary of a study whose only calibration is the mountings section.
 pub(crate) fn summary_alone(results: &StudyResults) -> Option<String> {
     let s = results.mountings.as_ref()?;
-    let mut out = String::new();
-    let _ = writeln!(out, "Study `{}`", results.study);
-    lines(&mut out, s);
-    if results.warnings.is_empty() {
-        let _ = writeln!(out, "no warnings");
-    } else {
-        for w in &results.warnings {
-            let _ = writeln!(out, "warning: [{}] {}: {}", w.code, w.location, w.message);
-        }
-    }
-    Some(out)
+    Some(crate::standalone::summary(results, |out| lines(out, s)))
 }
 
 /// The mountings lines inside another section's summary (before its warnings).

@@ -337,6 +337,8 @@ pub fn write_certificate(results: &Path, out: Option<&Path>) -> Result<PathBuf> 
         &Software::this_build(),
     )?;
     let out = match out {
+        // an existing folder: the certificate goes into it under its usual name
+        Some(o) if o.is_dir() => o.join("certificate.pdf"),
         Some(o) => o.to_owned(),
         None if results.is_dir() => results.join("certificate.pdf"),
         None => results
@@ -344,6 +346,13 @@ pub fn write_certificate(results: &Path, out: Option<&Path>) -> Result<PathBuf> 
             .unwrap_or_else(|| Path::new("."))
             .join("certificate.pdf"),
     };
+    // a folder named in --out that does not exist yet is created, as `study --out` does
+    if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent).map_err(|source| edge_io::EdgeIoError::Write {
+            path: parent.to_owned(),
+            source,
+        })?;
+    }
     write_file_atomically(&out, &pdf)?;
     Ok(out)
 }

@@ -194,11 +194,10 @@ pub(crate) fn summary_markdown(out: &mut String, results: &StudyResults) {
         "The PIGA's coefficients (eq. 18), k2 compensated for the pseudo-second-order term Δk2; \
          expanded uncertainties U95 for 95 % coverage.\n"
     );
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| coefficient | value ± U95 | relative to k1 ± U95 | k | ν_eff | interval from |"
+        "| coefficient | value ± U95 | relative to k1 ± U95 | k | ν_eff | interval from |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|");
     for l in lines(c) {
         let _ = writeln!(
             out,

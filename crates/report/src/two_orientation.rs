@@ -93,27 +93,19 @@ fn lines(out: &mut String, s: &TwoOrientationResults) {
 /// every warning of the study. `None` without a two-orientation section.
 pub(crate) fn summary_alone(results: &StudyResults) -> Option<String> {
     let s = results.two_orientation.as_ref()?;
-    let mut out = String::new();
-    let _ = writeln!(out, "Study `{}`", results.study);
-    lines(&mut out, s);
-    crate::mountings::summary_lines(&mut out, results);
-    if s.probe.is_some() {
-        let i = &results.inputs;
-        let _ = writeln!(
-            out,
-            "  probe: {}; angle zero: {}",
-            i.probe_direction.words(),
-            i.angle_zero.words()
-        );
-    }
-    if results.warnings.is_empty() {
-        let _ = writeln!(out, "no warnings");
-    } else {
-        for w in &results.warnings {
-            let _ = writeln!(out, "warning: [{}] {}: {}", w.code, w.location, w.message);
+    Some(crate::standalone::summary(results, |out| {
+        lines(out, s);
+        crate::mountings::summary_lines(out, results);
+        if s.probe.is_some() {
+            let i = &results.inputs;
+            let _ = writeln!(
+                out,
+                "  probe: {}; angle zero: {}",
+                i.probe_direction.words(),
+                i.angle_zero.words()
+            );
         }
-    }
-    Some(out)
+    }))
 }
 
 /// The two-orientation lines inside a calibration's summary (before its warnings).
@@ -152,11 +144,10 @@ pub(crate) fn section(out: &mut String, s: &TwoOrientationResults) {
          (spindle and arm) from the PIGA's own output, with no probe. Expanded uncertainties \
          U95 for 95 % coverage.\n"
     );
-    let _ = writeln!(
+    format::table_head(
         out,
-        "| mounting | radius m | data | points | distinct rates | residual SD rad/s |"
+        "| mounting | radius m | data | points | distinct rates | residual SD rad/s |",
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|");
     for m in &s.mountings {
         let _ = writeln!(
             out,
@@ -174,8 +165,7 @@ pub(crate) fn section(out: &mut String, s: &TwoOrientationResults) {
         );
     }
     let _ = writeln!(out);
-    let _ = writeln!(out, "| quantity | value ± U95 | k | ν_eff | unit |");
-    let _ = writeln!(out, "|---|---|---|---|---|");
+    format::table_head(out, "| quantity | value ± U95 | k | ν_eff | unit |");
     for m in &s.mountings {
         let tag = if m.orientation == "ia_in" {
             "IA in"
@@ -253,8 +243,7 @@ pub(crate) fn section(out: &mut String, s: &TwoOrientationResults) {
             p.z,
             verdict(p.z)
         );
-        let _ = writeln!(out, "| k2 by | value ± U95 | unit |");
-        let _ = writeln!(out, "|---|---|---|");
+        format::table_head(out, "| k2 by | value ± U95 | unit |");
         let _ = writeln!(
             out,
             "| the two orientations (no probe) | {} | rad/(s·g²) |",

@@ -287,6 +287,25 @@ impl Scenario {
     /// Checks every field; returns the resolved error motion.
     pub(crate) fn validate(&self, path: &Path) -> Result<ErrorMotion> {
         let v = Validator { path };
+        self.validate_centrifuge(&v)?;
+        let error_motion =
+            self.error_motion
+                .resolve()
+                .map_err(|source| SimulateError::Kinematics {
+                    path: path.to_owned(),
+                    field: "error_motion".to_owned(),
+                    source,
+                })?;
+        self.validate_probe(&v)?;
+        self.validate_piga(&v)?;
+        self.validate_mountings(&v)?;
+        self.validate_rates(&v)?;
+        self.validate_durations(&v)?;
+        Ok(error_motion)
+    }
+
+    /// The centrifuge: its radius and site.
+    fn validate_centrifuge(&self, v: &Validator<'_>) -> Result<()> {
         let c = &self.centrifuge;
         v.positive("centrifuge.radius_m", c.radius_m)?;
         v.finite("centrifuge.site.latitude_deg", c.site.latitude_deg)?;
@@ -299,21 +318,17 @@ impl Scenario {
         }
         v.finite("centrifuge.site.earth_rate_rad_s", c.site.earth_rate_rad_s)?;
         v.positive("centrifuge.site.gravity_m_s2", c.site.gravity_m_s2)?;
+        Ok(())
+    }
 
-        let error_motion =
-            self.error_motion
-                .resolve()
-                .map_err(|source| SimulateError::Kinematics {
-                    path: path.to_owned(),
-                    field: "error_motion".to_owned(),
-                    source,
-                })?;
-
+    /// The probe (its lever, sampling, noise, lengths, sleeve harmonics and speed ripple) and
+    /// the second probe's plane.
+    fn validate_probe(&self, v: &Validator<'_>) -> Result<()> {
         let p = &self.probe;
         p.lever
             .validate()
             .map_err(|source| SimulateError::Harmonics {
-                path: path.to_owned(),
+                path: v.path.to_owned(),
                 field: "probe.lever".to_owned(),
                 source,
             })?;
@@ -362,7 +377,11 @@ impl Scenario {
             }
             v.finite("probe.speed_ripple.phase_deg", r.phase_deg)?;
         }
+        Ok(())
+    }
 
+    /// The PIGA's coefficients, noise and raw recordings.
+    fn validate_piga(&self, v: &Validator<'_>) -> Result<()> {
         let k = &self.piga.coefficients;
         v.finite("piga.coefficients.k0_rad_s", k.k0_rad_s)?;
         v.finite("piga.coefficients.k1_rad_s_g", k.k1_rad_s_g)?;
@@ -374,7 +393,11 @@ impl Scenario {
             v.non_negative("piga.recordings.ripple_rad", r.ripple_rad)?;
             v.finite("piga.recordings.ripple_phase_deg", r.ripple_phase_deg)?;
         }
+        Ok(())
+    }
 
+    /// The arm's stretch and the mountings, one per orientation.
+    fn validate_mountings(&self, v: &Validator<'_>) -> Result<()> {
         v.finite("arm_stretch_m_s2", self.arm_stretch_m_s2)?;
         if self.arm_stretch_m_s2.abs() > MAX_ARM_STRETCH_M_S2 {
             return Err(v.invalid(
@@ -398,10 +421,16 @@ impl Scenario {
                 ));
             }
         }
+        Ok(())
+    }
 
+    /// The rates: at least one, each finite and > 0, slow enough for the order-4 fit, none
+    /// twice and no two sharing a recording's file name.
+    fn validate_rates(&self, v: &Validator<'_>) -> Result<()> {
+        let p = &self.probe;
         if self.rates_deg_s.is_empty() {
             return Err(SimulateError::EmptyList {
-                path: path.to_owned(),
+                path: v.path.to_owned(),
                 field: "rates_deg_s".to_owned(),
             });
         }
@@ -424,7 +453,7 @@ impl Scenario {
             let samples_per_revolution = p.sample_rate_hz * 360.0 / r;
             if samples_per_revolution < min_samples as f64 {
                 return Err(SimulateError::RateTooFast {
-                    path: path.to_owned(),
+                    path: v.path.to_owned(),
                     field,
                     rate_deg_s: r,
                     samples_per_revolution,
@@ -434,7 +463,7 @@ impl Scenario {
             }
             if let Some(&j) = first_of_rate.get(&r.to_bits()) {
                 return Err(SimulateError::DuplicateRate {
-                    path: path.to_owned(),
+                    path: v.path.to_owned(),
                     field,
                     first: format!("rates_deg_s[{j}]"),
                     rate_deg_s: r,
@@ -444,7 +473,7 @@ impl Scenario {
             let name = recording_file_name(r);
             if let Some(&j) = first_of_name.get(&name) {
                 return Err(SimulateError::RecordingNameCollision {
-                    path: path.to_owned(),
+                    path: v.path.to_owned(),
                     field,
                     first: format!("rates_deg_s[{j}]"),
                     rate_deg_s: r,
@@ -454,7 +483,13 @@ impl Scenario {
             }
             first_of_name.insert(name, i);
         }
+        Ok(())
+    }
 
+    /// The revolutions and durations: within bounds, the fastest rate resolving the highest
+    /// sleeve harmonic, the recordings within the total number of samples.
+    fn validate_durations(&self, v: &Validator<'_>) -> Result<()> {
+        let p = &self.probe;
         if self.revolutions == 0 || self.revolutions > MAX_REVOLUTIONS {
             return Err(v.invalid(
                 "revolutions",
@@ -503,7 +538,7 @@ impl Scenario {
                 "the recordings would hold more than 2e8 samples; lower revolutions, min_duration_s or sample_rate_hz",
             ));
         }
-        Ok(error_motion)
+        Ok(())
     }
 
     /// Whole revolutions recorded at `rate_deg_s`: `revolutions`, or more if needed to last

@@ -181,6 +181,22 @@ pub enum TypeBInputName {
     K1,
 }
 
+impl TypeBInputName {
+    /// Its name in a study or profile file (`input: radius`), as serde reads it.
+    #[must_use]
+    pub const fn key(self) -> &'static str {
+        match self {
+            Self::Radius => "radius",
+            Self::G => "g",
+            Self::RateScale => "rate_scale",
+            Self::PivotToProbe => "pivot_to_probe",
+            Self::ProbeToPiga => "probe_to_piga",
+            Self::ProbeGain => "probe_gain",
+            Self::K1 => "k1",
+        }
+    }
+}
+
 /// How one Type B input is traceable (`certificate.traceability[…]`).
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -74,6 +74,56 @@ pub struct BudgetLine {
     pub note: Option<String>,
 }
 
+impl BudgetLine {
+    /// The line of an input quantity `q` in an output's budget, with its contribution `c` to
+    /// the output and what the study says of it (`note`).
+    pub(crate) fn input(
+        q: &uncertainty::InputQuantity,
+        c: &uncertainty::Contribution,
+        note: Option<String>,
+    ) -> Self {
+        Self {
+            quantity: q.name.clone(),
+            evaluation: match q.kind {
+                uncertainty::Evaluation::TypeA => "A".to_owned(),
+                uncertainty::Evaluation::TypeB => "B".to_owned(),
+            },
+            value: Some(q.value),
+            u: q.standard_uncertainty,
+            sensitivity: c.sensitivity,
+            contribution: c.uncertainty,
+            percent: c.variance_percent,
+            dof: DegreesOfFreedom::from_dof(q.dof),
+            note,
+        }
+    }
+
+    /// A fit's coefficients as one line of `output`'s budget (`group`, their contributions):
+    /// their correlated contribution (the shares of the group, which may be negative one by
+    /// one, sum to the group's share), with sensitivity 1 and the fit's ν; `fit` names the
+    /// fit (`the eq. 18 fit`).
+    pub(crate) fn fit_group(
+        output: &uncertainty::GumOutput,
+        group: &[uncertainty::Contribution],
+        fit: &str,
+        dof: uncertainty::Dof,
+    ) -> Self {
+        let share: f64 = group.iter().map(|c| c.variance_percent).sum();
+        let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
+        Self {
+            quantity: ::calibration::noise_budget_line(fit, dof),
+            evaluation: "A".to_owned(),
+            value: None,
+            u: contribution,
+            sensitivity: 1.0,
+            contribution,
+            percent: share,
+            dof: DegreesOfFreedom::from_dof(dof),
+            note: None,
+        }
+    }
+}
+
 /// One row of the calibration table with its fitted value.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CalibrationRow {
@@ -165,6 +215,43 @@ pub struct MonteCarloOutput {
     /// An input is drawn from a t with ν ≤ 2 (no variance): `mean` and `u` are those of the
     /// trials drawn and do not settle; the coverage interval is the result to use.
     pub heavy_tailed: bool,
+}
+
+impl Coefficient {
+    /// A coefficient of `value` with the GUM's uncertainty of its output `o`.
+    pub(crate) const fn of(o: &uncertainty::GumOutput, value: f64) -> Self {
+        Self {
+            value,
+            u: o.standard_uncertainty,
+            u95: o.expanded_uncertainty,
+            k: o.coverage_factor,
+            dof: DegreesOfFreedom::from_dof(o.dof),
+        }
+    }
+}
+
+impl MonteCarloOutput {
+    /// The Monte Carlo result of the model's output `name` with its §8 validation against
+    /// the GUM (`validation`, of the same evaluation).
+    pub(crate) fn of(
+        mc: &uncertainty::McResult,
+        validation: &uncertainty::Validation,
+        name: &str,
+    ) -> Self {
+        let o = mc.output(name).expect("the model names its outputs");
+        let v = validation.output(name).expect("validated per output");
+        Self {
+            mean: o.estimate,
+            u: o.standard_uncertainty,
+            low95: o.coverage_interval.0,
+            high95: o.coverage_interval.1,
+            gum_agrees: v.agrees,
+            tolerance: v.tolerance,
+            d_low: v.d_low,
+            d_high: v.d_high,
+            heavy_tailed: o.heavy_tailed,
+        }
+    }
 }
 
 /// The Monte Carlo evaluation of the calibration's measurement model.

@@ -15,6 +15,15 @@ pub enum DegreesOfFreedom {
 }
 
 impl DegreesOfFreedom {
+    /// The uncertainty engine's [`uncertainty::Dof`] as the results write it.
+    #[must_use]
+    pub const fn from_dof(dof: uncertainty::Dof) -> Self {
+        match dof {
+            uncertainty::Dof::Finite(nu) => Self::Finite(nu),
+            uncertainty::Dof::Infinite => Self::Infinite(InfiniteDof::Infinite),
+        }
+    }
+
     /// The same as the uncertainty engine's [`uncertainty::Dof`].
     #[must_use]
     pub const fn as_dof(self) -> uncertainty::Dof {

@@ -49,6 +49,7 @@ pub(crate) fn inputs(points: usize) -> PlanInputs {
             pivot_to_probe_u_mm: 0.5,
             probe_to_piga_u_mm: 0.5,
             probe_gain_u_relative: 0.01,
+            ..TypeB::default()
         },
         schedule: Schedule {
             points,

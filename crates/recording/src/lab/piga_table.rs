@@ -10,7 +10,8 @@ use serde::{Deserialize, Serialize};
 use super::format::{Column, DecimalMark, Delimiter, header_unit, text_syntax};
 use crate::error::{RecordingError, Result};
 use crate::text::line_table::LineTable;
-use crate::text::table::{Table, TableColumn, TableFormat, load_table, parse_table};
+use crate::text::parser::{load_table, parse_table};
+use crate::text::table::{Table, TableColumn, TableFormat};
 
 /// Header name of a PIGA table's rate column, deg/s.
 pub const PIGA_RATE_COLUMN: &str = "rate_deg_s";

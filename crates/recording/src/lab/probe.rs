@@ -513,7 +513,7 @@ pub fn parse_recording_reference(
     path: &Path,
     format: &RecordingFormat,
 ) -> Result<Recording> {
-    let table = crate::text::table::parse_table_reference(text, path, &format.table_format()?)?;
+    let table = crate::text::parser::parse_table_reference(text, path, &format.table_format()?)?;
     Recording::from_table(table, format)
 }
 

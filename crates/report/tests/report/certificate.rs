@@ -211,12 +211,16 @@ fn what_a_customer_asks_is_on_page_1_or_2() {
 #[test]
 fn no_configuration_or_code_name_is_printed() {
     for name in ["campaign.ron", "two_orientation.ron"] {
-        let (_, provenance, doc, _) = typeset(name);
-        // file paths hold underscores and the input names of the fixtures: take them out
+        let (results, provenance, doc, _) = typeset(name);
+        // file paths hold underscores and the input names of the fixtures: take them out, and
+        // the study's name, the laboratory's own text (the fixture's is `two_orientation`)
         let mut text = flat(&doc.laid_out_texts());
         for f in provenance.inputs.iter().chain([&provenance.config]) {
             text = text.replace(&f.path, "");
         }
+        let study_field = format!("Laboratory reference {}", results.study);
+        assert!(text.contains(&study_field), "{name}: no {study_field:?}");
+        text = text.replace(&study_field, "");
         for code in [
             "C_r",
             "ia_in",

@@ -15,7 +15,7 @@ use units::m_to_um;
 
 use crate::error::{Result, SimulateError};
 use crate::mounting::Mount;
-use crate::scenario::{LoadedScenario, piga_recording_file_name};
+use crate::scenario::{LoadedScenario, Scenario, piga_recording_file_name};
 use noise::{MOUNTING_RECORDING_STREAM, MOUNTING_STREAM, PIGA_RECORDING_STREAM, orientation_index};
 use piga::{mounted_points, record_piga};
 use probe::{Lever, readers, record};
@@ -87,7 +87,63 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
         source,
     })?;
     let lever_ratio = lever.ratio;
+    let (points, mounted) = exact_points(loaded, &centrifuge)?;
+    let recorded = record_rates(loaded, &centrifuge, lever, &points, &mounted)?;
+    let c_r = error_motion.c_r_m_s2;
+    // σ(C_r) = 0: the truth is exact
+    let exact_c_r = CrEstimate {
+        c_r_m_s2: c_r,
+        c_r_sigma_m_s2: 0.0,
+    };
+    let geometry = Geometry {
+        radius_m: radius,
+        g_m_s2: g,
+    };
+    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, exact_c_r, geometry)
+        .map_err(|source| SimulateError::Identify {
+            path: loaded.path.clone(),
+            field: "piga".to_owned(),
+            source,
+        })?
+        .delta_k2_rad_s_g2;
+    let (radius_growth, mounting_truths) =
+        two_orientation_truth(s, c_r, &recorded.mountings, &mounted);
+    let simulation = Simulation {
+        recordings: recorded.recordings,
+        second_recordings: recorded.second_recordings,
+        piga: recorded.piga,
+        piga_recordings: recorded.piga_recordings,
+        mountings: recorded.mountings,
+        truth: Truth {
+            scenario: s.clone(),
+            error_motion,
+            lever_ratio,
+            c_r_m_s2: c_r,
+            delta_k2_predicted_rad_s_g2: delta_k2,
+            k2_apparent_predicted_rad_s_g2: k.k2_rad_s_g2 + delta_k2,
+            rates: recorded.rates,
+            radius_growth,
+            mountings: mounting_truths,
+        },
+    };
+    // Every number the simulation returns is finite (the libraries check their own results;
+    // this catches what is combined here, e.g. `a_nominal_g = R·ω²/g`).
+    edge_io::check_finite(&simulation).map_err(|e| SimulateError::NonFiniteOutput {
+        what: "the simulation",
+        field: e.path,
+        value: e.value,
+    })?;
+    Ok(simulation)
+}
 
+/// The PIGA's noise-free points at each rate on the exact chain: mounted input axis in (with
+/// the arm's stretch when there is one), and at each further mounting of the scenario.
+fn exact_points(
+    loaded: &LoadedScenario,
+    centrifuge: &Centrifuge,
+) -> Result<(Vec<RatePoint>, Vec<Vec<RatePoint>>)> {
+    let s = &loaded.scenario;
+    let k = &s.piga.coefficients;
     let rates_rad_s: Vec<f64> = s.rates_deg_s.iter().map(|d| d.to_radians()).collect();
     let accel_error = |field: &str| {
         let path = loaded.path.clone();
@@ -101,42 +157,68 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     // Without an arm stretch, the paper's chain as `accel_model` evaluates it (the files of
     // scenarios written before issue 20 stay byte for byte); with one, the mounted chain.
     let points = if s.arm_stretch_m_s2 == 0.0 {
-        rate_points(&centrifuge, k, &rates_rad_s).map_err(accel_error("piga"))?
+        rate_points(centrifuge, k, &rates_rad_s).map_err(accel_error("piga"))?
     } else {
         let mount = Mount {
             arm_stretch_m_s2: s.arm_stretch_m_s2,
-            ..Mount::ia_in(radius)
+            ..Mount::ia_in(s.centrifuge.radius_m)
         };
-        mounted_points(&centrifuge, k, &mount, &rates_rad_s).map_err(accel_error("piga"))?
+        mounted_points(centrifuge, k, &mount, &rates_rad_s).map_err(accel_error("piga"))?
     };
     let mounted: Vec<Vec<RatePoint>> = s
         .mountings
         .iter()
         .enumerate()
         .map(|(i, m)| {
-            mounted_points(&centrifuge, k, &m.mount(s.arm_stretch_m_s2), &rates_rad_s)
+            mounted_points(centrifuge, k, &m.mount(s.arm_stretch_m_s2), &rates_rad_s)
                 .map_err(accel_error(&format!("mountings[{i}]")))
         })
         .collect::<Result<_>>()?;
-    let mut mountings: Vec<SimulatedMounting> = s
-        .mountings
-        .iter()
-        .map(|m| SimulatedMounting {
-            orientation: m.orientation,
-            radius_m: m.radius_m,
-            file_name: m.table_file_name(),
-            piga: Vec::with_capacity(points.len()),
-            piga_recordings: Vec::new(),
-        })
-        .collect();
+    Ok((points, mounted))
+}
 
-    let mut recordings = Vec::with_capacity(points.len());
-    let mut piga_recordings = Vec::new();
-    let mut second_recordings = Vec::new();
-    let mut piga = Vec::with_capacity(points.len());
-    let mut rates = Vec::with_capacity(points.len());
+/// What the campaign records, rate by rate, and the truth of each rate.
+struct Recorded {
+    recordings: Vec<SimulatedRecording>,
+    second_recordings: Vec<SimulatedRecording>,
+    piga: Vec<PigaRow>,
+    piga_recordings: Vec<SimulatedPigaRecording>,
+    mountings: Vec<SimulatedMounting>,
+    rates: Vec<TruthRate>,
+}
+
+/// At each rate: the probe recordings (one probe, or two), the PIGA's output with its noise
+/// (and its raw recording when asked for), each further mounting's, and the rate's truth.
+fn record_rates(
+    loaded: &LoadedScenario,
+    centrifuge: &Centrifuge,
+    lever: Lever,
+    points: &[RatePoint],
+    mounted: &[Vec<RatePoint>],
+) -> Result<Recorded> {
+    let s = &loaded.scenario;
+    let g = s.centrifuge.site.gravity_m_s2;
+    let radius = s.centrifuge.radius_m;
+    let mut out = Recorded {
+        recordings: Vec::with_capacity(points.len()),
+        second_recordings: Vec::new(),
+        piga: Vec::with_capacity(points.len()),
+        piga_recordings: Vec::new(),
+        mountings: s
+            .mountings
+            .iter()
+            .map(|m| SimulatedMounting {
+                orientation: m.orientation,
+                radius_m: m.radius_m,
+                file_name: m.table_file_name(),
+                piga: Vec::with_capacity(points.len()),
+                piga_recordings: Vec::new(),
+            })
+            .collect(),
+        rates: Vec::with_capacity(points.len()),
+    };
     for (i, (point, &rate_deg_s)) in points.iter().zip(&s.rates_deg_s).enumerate() {
-        let chain = Chain::new(&centrifuge, point.rate_rad_s).map_err(|source| {
+        let chain = Chain::new(centrifuge, point.rate_rad_s).map_err(|source| {
             SimulateError::Kinematics {
                 path: loaded.path.clone(),
                 field: format!("rates_deg_s[{i}]"),
@@ -147,7 +229,8 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
         let (first, second) = readers(s, lever, chain.offsets(), rate_deg_s);
         let recording = record(s, &first, chain.rate_rad_s(), rate_deg_s);
         let second_probe_first_harmonic = second.map(|reader| {
-            second_recordings.push(record(s, &reader, chain.rate_rad_s(), rate_deg_s));
+            out.second_recordings
+                .push(record(s, &reader, chain.rate_rad_s(), rate_deg_s));
             reader.truth(chain.offsets())
         });
         let noise = OutputNoise {
@@ -155,12 +238,12 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             seed: s.seed,
         };
         let output_rad_s = noise.added_to(point.output_rad_s, rate_deg_s);
-        piga.push(PigaRow {
+        out.piga.push(PigaRow {
             rate_deg_s,
             output_rad_s,
         });
         if let Some(spec) = &s.piga.recordings {
-            piga_recordings.push(record_piga(
+            out.piga_recordings.push(record_piga(
                 s.seed,
                 PIGA_RECORDING_STREAM,
                 spec,
@@ -169,7 +252,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
                 piga_recording_file_name(rate_deg_s),
             ));
         }
-        for (m, points) in mountings.iter_mut().zip(&mounted) {
+        for (m, points) in out.mountings.iter_mut().zip(mounted) {
             let o = orientation_index(m.orientation);
             let output_rad_s =
                 noise.added_to_stream(MOUNTING_STREAM[o], points[i].output_rad_s, rate_deg_s);
@@ -190,7 +273,7 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
         }
         let offsets = *chain.offsets();
         let w = point.rate_rad_s;
-        rates.push(TruthRate {
+        out.rates.push(TruthRate {
             rate_deg_s,
             rate_rad_s: w,
             a_nominal_g: radius * w * w / g,
@@ -209,30 +292,26 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
             recording: recording.file_name.clone(),
             revolutions: s.revolutions_at(rate_deg_s),
             samples: recording.time_s.len(),
-            radius_error_sigma_um: lever_ratio
+            radius_error_sigma_um: lever.ratio
                 * s.probe.noise_um
                 * (2.0 / recording.time_s.len() as f64).sqrt(),
         });
-        recordings.push(recording);
+        out.recordings.push(recording);
     }
+    Ok(out)
+}
 
-    let c_r = error_motion.c_r_m_s2;
-    // σ(C_r) = 0: the truth is exact
-    let exact_c_r = CrEstimate {
-        c_r_m_s2: c_r,
-        c_r_sigma_m_s2: 0.0,
-    };
-    let geometry = Geometry {
-        radius_m: radius,
-        g_m_s2: g,
-    };
-    let delta_k2 = pseudo_second_order(k.k1_rad_s_g, exact_c_r, geometry)
-        .map_err(|source| SimulateError::Identify {
-            path: loaded.path.clone(),
-            field: "piga".to_owned(),
-            source,
-        })?
-        .delta_k2_rad_s_g2;
+/// The truth of a scenario with an arm stretch or mountings: C = C_r + C_a with the total
+/// Δk2 it predicts, and each mounting's coefficients and rates.
+fn two_orientation_truth(
+    s: &Scenario,
+    c_r: f64,
+    mountings: &[SimulatedMounting],
+    mounted: &[Vec<RatePoint>],
+) -> (Option<RadiusGrowthTruth>, Vec<MountingTruth>) {
+    let g = s.centrifuge.site.gravity_m_s2;
+    let radius = s.centrifuge.radius_m;
+    let k = &s.piga.coefficients;
     let two_orientation = s.arm_stretch_m_s2 != 0.0 || !s.mountings.is_empty();
     let c_total = c_r + s.arm_stretch_m_s2;
     let dk2_total = |radius_m: f64| delta_k2_rad_s_g2(k.k1_rad_s_g, c_total, radius_m, g);
@@ -245,8 +324,8 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
     let mounting_truths = s
         .mountings
         .iter()
-        .zip(&mountings)
-        .zip(&mounted)
+        .zip(mountings)
+        .zip(mounted)
         .map(|((spec, sim), points)| MountingTruth {
             orientation: spec.orientation,
             sign: spec.orientation.sign(),
@@ -270,30 +349,5 @@ pub fn simulate(loaded: &LoadedScenario) -> Result<Simulation> {
                 .collect(),
         })
         .collect();
-    let simulation = Simulation {
-        recordings,
-        second_recordings,
-        piga,
-        piga_recordings,
-        mountings,
-        truth: Truth {
-            scenario: s.clone(),
-            error_motion,
-            lever_ratio,
-            c_r_m_s2: c_r,
-            delta_k2_predicted_rad_s_g2: delta_k2,
-            k2_apparent_predicted_rad_s_g2: k.k2_rad_s_g2 + delta_k2,
-            rates,
-            radius_growth,
-            mountings: mounting_truths,
-        },
-    };
-    // Every number the simulation returns is finite (the libraries check their own results;
-    // this catches what is combined here, e.g. `a_nominal_g = R·ω²/g`).
-    edge_io::check_finite(&simulation).map_err(|e| SimulateError::NonFiniteOutput {
-        what: "the simulation",
-        field: e.path,
-        value: e.value,
-    })?;
-    Ok(simulation)
+    (radius_growth, mounting_truths)
 }

@@ -7,9 +7,9 @@ use super::evaluate::{Evaluated, Setting};
 use super::validate::{CalibrationInputs, K1Choice};
 use crate::piga_data::{Origin, PigaPoints};
 use crate::results::{
-    BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
-    Estimate, Headline, InfiniteDof, LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance,
-    PigaCoefficients, UncertaintyInflation, Warning,
+    BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, Estimate, Headline,
+    LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance, PigaCoefficients, UncertaintyInflation,
+    Warning,
 };
 
 /// The results of an evaluated calibration.
@@ -28,93 +28,17 @@ pub(crate) fn results(
             .expect("the model names its outputs")
             .clone()
     };
-    let coefficient = |name: &str, value: f64| {
-        let o = out(name);
-        Coefficient {
-            value,
-            u: o.standard_uncertainty,
-            u95: o.expanded_uncertainty,
-            k: o.coverage_factor,
-            dof: dof_value(o.dof),
-        }
-    };
     let k1_value = e.cal.k1_used_rad_s_g;
     let coefficients = PigaCoefficients {
-        k0: coefficient("k0", out("k0").estimate),
-        k1: coefficient("k1", k1_value),
-        k2: coefficient("k2", out("k2").estimate),
-        k3: coefficient("k3", out("k3").estimate),
+        k0: Coefficient::of(&out("k0"), out("k0").estimate),
+        k1: Coefficient::of(&out("k1"), k1_value),
+        k2: Coefficient::of(&out("k2"), out("k2").estimate),
+        k3: Coefficient::of(&out("k3"), out("k3").estimate),
     };
     let se = &fit.std_errors;
-    let uncompensated = PigaCoefficients {
-        k0: Estimate {
-            value: unc.bias_rad_s,
-            u: se[0],
-        },
-        k1: Estimate {
-            value: unc.k1_implied_rad_s_g,
-            u: unc.k1_implied_sigma_rad_s_g,
-        },
-        k2: Estimate {
-            value: unc.k2_apparent_rad_s_g2,
-            u: se[4],
-        },
-        k3: Estimate {
-            value: unc.k3_rad_s_g3,
-            u: se[5],
-        },
-    };
-    // Ratios to k1 with the GUM covariance of the outputs (k0, k1, k2, k3 are outputs 0–3).
     let m = output::NAMES.len();
     let cov = |i: usize, j: usize| e.gum.covariance[i * m + j];
-    let ratio = |i: usize, value: f64| {
-        let k1 = k1_value;
-        let r = value / k1;
-        let var =
-            cov(i, i) / (k1 * k1) + (r / k1).powi(2) * cov(1, 1) - 2.0 * r / (k1 * k1) * cov(i, 1);
-        Estimate {
-            value: r * 1e6,
-            u: var.max(0.0).sqrt() * 1e6,
-        }
-    };
-    let conventional = Conventional {
-        g_m_s2: setting.nominal.g_m_s2,
-        k0_ug: ratio(0, coefficients.k0.value),
-        k2_ug_per_g2: ratio(2, coefficients.k2.value),
-        k3_ug_per_g3: ratio(3, coefficients.k3.value),
-    };
-    let correlation = (0..TERMS)
-        .map(|i| {
-            (0..TERMS)
-                .map(|j| {
-                    let d = (fit.covariance[(i, i)] * fit.covariance[(j, j)]).sqrt();
-                    if d > 0.0 {
-                        fit.covariance[(i, j)] / d
-                    } else {
-                        0.0
-                    }
-                })
-                .collect()
-        })
-        .collect();
-    let residuals = (0..points.rates_deg_s.len())
-        .map(|i| CalibrationRow {
-            rate_deg_s: points.rates_deg_s[i],
-            output_rad_s: points.outputs_rad_s[i],
-            residual_rad_s: unc.residuals_rad_s[i],
-            // The σ the fit used: the point's own, with τ when one was added.
-            u_rad_s: e.weighting.sigma_used.as_ref().map(|s| s[i]),
-            label: points.labels.as_ref().map(|l| l[i].clone()),
-            line: match &points.origins[i] {
-                Origin::Line(l) => Some(*l),
-                Origin::File(_) => None,
-            },
-            file: match &points.origins[i] {
-                Origin::Line(_) => None,
-                Origin::File(f) => Some(f.display().to_string()),
-            },
-        })
-        .collect();
+    let conventional = conventional(e, setting, &coefficients);
     let residual_sd_rad_s = e.residual_sd_rad_s;
     let labels = label_summaries(points, &unc.residuals_rad_s, residual_sd_rad_s);
     let budget_of = |name: &str| {
@@ -132,24 +56,175 @@ pub(crate) fn results(
         k2: budget_of("k2"),
         k3: budget_of("k3"),
     };
-    let mc_output = |name: &str| {
-        let o = e.mc.output(name).expect("the model names its outputs");
-        let v = e.validation.output(name).expect("validated per output");
-        MonteCarloOutput {
-            mean: o.estimate,
-            u: o.standard_uncertainty,
-            low95: o.coverage_interval.0,
-            high95: o.coverage_interval.1,
-            gum_agrees: v.agrees,
-            tolerance: v.tolerance,
-            d_low: v.d_low,
-            d_high: v.d_high,
-            heavy_tailed: o.heavy_tailed,
+    let monte_carlo = monte_carlo(e, inputs.seed);
+    let warnings = warnings(inputs, setting, phase_name, e, &monte_carlo);
+    let headline = PigaCoefficients {
+        k0: Headline::of(&coefficients.k0, &monte_carlo.k0),
+        k1: Headline::of(&coefficients.k1, &monte_carlo.k1),
+        k2: Headline::of(&coefficients.k2, &monte_carlo.k2),
+        k3: Headline::of(&coefficients.k3, &monte_carlo.k3),
+    };
+    CalibrationResults {
+        table: points.table.as_ref().map(|t| t.display().to_string()),
+        recordings: points.recordings.clone(),
+        weighted: points.sigma_rad_s.is_some(),
+        birge_ratio: e.weighting.birge_ratio,
+        excess_u_rad_s: e.weighting.excess_u_rad_s,
+        compensate_with: phase_name.to_owned(),
+        k1_source: match inputs.k1 {
+            K1Choice::Fitted => "fitted".to_owned(),
+            K1Choice::Given { .. } => "given".to_owned(),
+        },
+        g_m_s2: setting.nominal.g_m_s2,
+        g_source: setting.type_b.g_source.clone(),
+        points: points.rates_deg_s.len(),
+        distinct_rates: unc.distinct_rates,
+        dof: fit.dof,
+        coefficients,
+        uncompensated: uncompensated(e),
+        delta_k2: Estimate {
+            value: e.cal.delta_k2.delta_k2_rad_s_g2,
+            u: out("delta_k2").standard_uncertainty,
+        },
+        c_r_m_s2: Estimate {
+            value: setting.nominal.c_r_m_s2,
+            u: setting.c_r_sigma.map_or(0.0, |(s, _)| s),
+        },
+        c_r_combined_m_s2: c_r_combined(setting),
+        conventional,
+        nuisance: Nuisance {
+            omega: Estimate {
+                value: unc.omega_coeff,
+                u: se[1],
+            },
+            omega3_s2: Estimate {
+                value: unc.omega3_coeff_s2,
+                u: se[3],
+            },
+        },
+        // The fit's own residual SD is in units of the points' σ when it is weighted.
+        residual_sd_rad_s,
+        residuals: residual_rows(points, e),
+        labels,
+        correlation: correlation(fit),
+        covariance: crate::results::OutputCovariance {
+            outputs: output::NAMES[..4].iter().map(|n| (*n).to_owned()).collect(),
+            matrix: (0..4)
+                .map(|i| (0..4).map(|j| cov(i, j)).collect())
+                .collect(),
+        },
+        terms: TERM_NAMES.iter().map(|t| (*t).to_owned()).collect(),
+        variance_inflation: e.vif.to_vec(),
+        u_inflation: e.inflation.as_ref().map(u_inflation),
+        condition_number: fit.condition_number,
+        budget,
+        monte_carlo,
+        probe_direction: crate::inputs::probe_sign(setting.probe_direction),
+        headline,
+        warnings,
+    }
+}
+
+/// The uncompensated fit's coefficients: k0, k1 implied by the fit, the apparent k2 and k3
+/// with their standard errors.
+fn uncompensated(e: &Evaluated) -> PigaCoefficients<Estimate> {
+    let unc = &e.cal.uncompensated;
+    let se = &unc.fit.std_errors;
+    PigaCoefficients {
+        k0: Estimate {
+            value: unc.bias_rad_s,
+            u: se[0],
+        },
+        k1: Estimate {
+            value: unc.k1_implied_rad_s_g,
+            u: unc.k1_implied_sigma_rad_s_g,
+        },
+        k2: Estimate {
+            value: unc.k2_apparent_rad_s_g2,
+            u: se[4],
+        },
+        k3: Estimate {
+            value: unc.k3_rad_s_g3,
+            u: se[5],
+        },
+    }
+}
+
+/// The coefficients in the conventional units, as ratios to k1 (µg, µg/g², µg/g³) with the
+/// GUM covariance of the outputs (k0, k1, k2, k3 are outputs 0–3).
+fn conventional(
+    e: &Evaluated,
+    setting: &Setting<'_>,
+    coefficients: &PigaCoefficients<Coefficient>,
+) -> Conventional {
+    let m = output::NAMES.len();
+    let cov = |i: usize, j: usize| e.gum.covariance[i * m + j];
+    let k1_value = e.cal.k1_used_rad_s_g;
+    let ratio = |i: usize, value: f64| {
+        let k1 = k1_value;
+        let r = value / k1;
+        let var =
+            cov(i, i) / (k1 * k1) + (r / k1).powi(2) * cov(1, 1) - 2.0 * r / (k1 * k1) * cov(i, 1);
+        Estimate {
+            value: r * 1e6,
+            u: var.max(0.0).sqrt() * 1e6,
         }
     };
-    let monte_carlo = MonteCarlo {
+    Conventional {
+        g_m_s2: setting.nominal.g_m_s2,
+        k0_ug: ratio(0, coefficients.k0.value),
+        k2_ug_per_g2: ratio(2, coefficients.k2.value),
+        k3_ug_per_g3: ratio(3, coefficients.k3.value),
+    }
+}
+
+/// The correlation matrix of the fit's six coefficients.
+fn correlation(fit: &identify::Fit) -> Vec<Vec<f64>> {
+    (0..TERMS)
+        .map(|i| {
+            (0..TERMS)
+                .map(|j| {
+                    let d = (fit.covariance[(i, i)] * fit.covariance[(j, j)]).sqrt();
+                    if d > 0.0 {
+                        fit.covariance[(i, j)] / d
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Each point with its residual, the σ the fit used, its label and where it came from.
+fn residual_rows(points: &PigaPoints, e: &Evaluated) -> Vec<CalibrationRow> {
+    let unc = &e.cal.uncompensated;
+    (0..points.rates_deg_s.len())
+        .map(|i| CalibrationRow {
+            rate_deg_s: points.rates_deg_s[i],
+            output_rad_s: points.outputs_rad_s[i],
+            residual_rad_s: unc.residuals_rad_s[i],
+            // The σ the fit used: the point's own, with τ when one was added.
+            u_rad_s: e.weighting.sigma_used.as_ref().map(|s| s[i]),
+            label: points.labels.as_ref().map(|l| l[i].clone()),
+            line: match &points.origins[i] {
+                Origin::Line(l) => Some(*l),
+                Origin::File(_) => None,
+            },
+            file: match &points.origins[i] {
+                Origin::Line(_) => None,
+                Origin::File(f) => Some(f.display().to_string()),
+            },
+        })
+        .collect()
+}
+
+/// The Monte Carlo results of k0…k3 with their §8 validation.
+fn monte_carlo(e: &Evaluated, seed: u64) -> MonteCarlo {
+    let mc_output = |name: &str| MonteCarloOutput::of(&e.mc, &e.validation, name);
+    MonteCarlo {
         trials: e.mc.trials,
-        seed: inputs.seed,
+        seed,
         gum_agrees: ["k0", "k1", "k2", "k3"]
             .iter()
             .all(|n| e.validation.output(n).is_some_and(|v| v.agrees)),
@@ -157,10 +232,20 @@ pub(crate) fn results(
         k1: mc_output("k1"),
         k2: mc_output("k2"),
         k3: mc_output("k3"),
-    };
+    }
+}
+
+/// The calibration's warnings in words: its own about its fit (`CalibrationWarning`; its
+/// lack of fit is a coded warning of the study, `data_warnings`), Type B inputs taken as
+/// exact, an exact C_r, a heavy-tailed Type A input, the GUM disagreeing with Monte Carlo.
+fn warnings(
+    inputs: &CalibrationInputs,
+    setting: &Setting<'_>,
+    phase_name: &str,
+    e: &Evaluated,
+    monte_carlo: &MonteCarlo,
+) -> Vec<String> {
     let mut warnings = Vec::new();
-    // the calibration's own words about its fit (`calibration::CalibrationWarning`); its lack
-    // of fit is a coded warning of the study (`data_warnings`)
     let fit_words = |kind: fn(&CalibrationWarning) -> bool| {
         e.fit_warnings
             .iter()
@@ -203,71 +288,7 @@ pub(crate) fn results(
                 .to_owned(),
         );
     }
-    let headline = PigaCoefficients {
-        k0: Headline::of(&coefficients.k0, &monte_carlo.k0),
-        k1: Headline::of(&coefficients.k1, &monte_carlo.k1),
-        k2: Headline::of(&coefficients.k2, &monte_carlo.k2),
-        k3: Headline::of(&coefficients.k3, &monte_carlo.k3),
-    };
-    CalibrationResults {
-        table: points.table.as_ref().map(|t| t.display().to_string()),
-        recordings: points.recordings.clone(),
-        weighted: points.sigma_rad_s.is_some(),
-        birge_ratio: e.weighting.birge_ratio,
-        excess_u_rad_s: e.weighting.excess_u_rad_s,
-        compensate_with: phase_name.to_owned(),
-        k1_source: match inputs.k1 {
-            K1Choice::Fitted => "fitted".to_owned(),
-            K1Choice::Given { .. } => "given".to_owned(),
-        },
-        g_m_s2: setting.nominal.g_m_s2,
-        g_source: setting.type_b.g_source.clone(),
-        points: points.rates_deg_s.len(),
-        distinct_rates: unc.distinct_rates,
-        dof: fit.dof,
-        coefficients,
-        uncompensated,
-        delta_k2: Estimate {
-            value: e.cal.delta_k2.delta_k2_rad_s_g2,
-            u: out("delta_k2").standard_uncertainty,
-        },
-        c_r_m_s2: Estimate {
-            value: setting.nominal.c_r_m_s2,
-            u: setting.c_r_sigma.map_or(0.0, |(s, _)| s),
-        },
-        c_r_combined_m_s2: c_r_combined(setting),
-        conventional,
-        nuisance: Nuisance {
-            omega: Estimate {
-                value: unc.omega_coeff,
-                u: se[1],
-            },
-            omega3_s2: Estimate {
-                value: unc.omega3_coeff_s2,
-                u: se[3],
-            },
-        },
-        // The fit's own residual SD is in units of the points' σ when it is weighted.
-        residual_sd_rad_s,
-        residuals,
-        labels,
-        correlation,
-        covariance: crate::results::OutputCovariance {
-            outputs: output::NAMES[..4].iter().map(|n| (*n).to_owned()).collect(),
-            matrix: (0..4)
-                .map(|i| (0..4).map(|j| cov(i, j)).collect())
-                .collect(),
-        },
-        terms: TERM_NAMES.iter().map(|t| (*t).to_owned()).collect(),
-        variance_inflation: e.vif.to_vec(),
-        u_inflation: e.inflation.as_ref().map(u_inflation),
-        condition_number: fit.condition_number,
-        budget,
-        monte_carlo,
-        probe_direction: crate::inputs::probe_sign(setting.probe_direction),
-        headline,
-        warnings,
-    }
+    warnings
 }
 
 /// C_r with its combined standard uncertainty through the inputs of the measurement model
@@ -292,13 +313,6 @@ fn c_r_combined(setting: &Setting<'_>) -> Estimate {
     }
 }
 
-fn dof_value(dof: uncertainty::Dof) -> DegreesOfFreedom {
-    match dof {
-        uncertainty::Dof::Finite(nu) => DegreesOfFreedom::Finite(nu),
-        uncertainty::Dof::Infinite => DegreesOfFreedom::Infinite(InfiniteDof::Infinite),
-    }
-}
-
 /// One output's budget: the named inputs that apply, and the mean outputs' noise as one line.
 fn budget(
     output: &uncertainty::GumOutput,
@@ -318,40 +332,19 @@ fn budget(
         if i == input::K1_GIVEN && k1 == K1Choice::Fitted {
             continue;
         }
-        lines.push(BudgetLine {
-            quantity: q.name.clone(),
-            evaluation: match q.kind {
-                uncertainty::Evaluation::TypeA => "A".to_owned(),
-                uncertainty::Evaluation::TypeB => "B".to_owned(),
-            },
-            value: Some(q.value),
-            u: q.standard_uncertainty,
-            sensitivity: c.sensitivity,
-            contribution: c.uncertainty,
-            percent: c.variance_percent,
-            dof: dof_value(q.dof),
-            note: notes
-                .iter()
-                .find(|(index, _)| *index == i)
-                .map(|(_, note)| note.clone()),
-        });
+        let note = notes
+            .iter()
+            .find(|(index, _)| *index == i)
+            .map(|(_, note)| note.clone());
+        lines.push(BudgetLine::input(q, c, note));
     }
-    // The fit's coefficients as one line: their correlated contribution (the shares of the
-    // group, which may be negative one by one, sum to the group's share).
-    let group = &output.contributions[input::FIRST_COEFFICIENT..];
-    let share: f64 = group.iter().map(|c| c.variance_percent).sum();
-    let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
-    lines.push(BudgetLine {
-        quantity: ::calibration::noise_budget_line("the eq. 18 fit", group_dof),
-        evaluation: "A".to_owned(),
-        value: None,
-        u: contribution,
-        sensitivity: 1.0,
-        contribution,
-        percent: share,
-        dof: dof_value(group_dof),
-        note: None,
-    });
+    // The fit's coefficients as one line.
+    lines.push(BudgetLine::fit_group(
+        output,
+        &output.contributions[input::FIRST_COEFFICIENT..],
+        "the eq. 18 fit",
+        group_dof,
+    ));
     lines
 }
 

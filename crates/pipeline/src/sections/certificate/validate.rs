@@ -179,6 +179,84 @@ pub(crate) fn validate(
             reason: UnsupportedReason::CertificateNeedsCalibration,
         });
     }
+    let mut n = Need {
+        path: check.path,
+        errors: section_problems(check, c, config),
+    };
+    let id = n.need("id", &c.id, "the certificate's unique identification");
+    let (laboratory, location, customer, item) = n.parties(c);
+    let equipment = n.equipment(c);
+    let dates = Dates {
+        received: n.need("dates.received", &c.dates.received, "receipt of the item"),
+        measured: n.need("dates.measured", &c.dates.measured, "the measurement"),
+        issued: n.need("dates.issued", &c.dates.issued, "issue of the certificate"),
+    };
+    let operator = n.need("operator", &c.operator, "who performed the calibration");
+    let conditions = n.conditions(c);
+    let procedure = n.need(
+        "procedure",
+        &c.procedure,
+        "the procedure's reference and title",
+    );
+    let traceability = n.traceability(c, config);
+    let (limits, rule) = n.limits(c);
+    let authorisation = Authorisation {
+        name: n.need(
+            "authorisation.name",
+            &c.authorisation.name,
+            "who authorises the certificate",
+        ),
+        role: n.need(
+            "authorisation.role",
+            &c.authorisation.role,
+            "the role of who authorises it",
+        ),
+    };
+    let previous_certificate = n.previous_certificate(c);
+    n.formats(c);
+    PipelineError::from_list(n.errors)?;
+    for (i, l) in limits.iter().enumerate() {
+        for (end, v) in [("lower", l.lower), ("upper", l.upper)] {
+            if let Some(v) = v {
+                check.finite(format!("certificate.limits[{i}].{end}"), v)?;
+            }
+        }
+    }
+    Ok(Certificate {
+        id,
+        laboratory,
+        location,
+        customer,
+        item,
+        equipment,
+        dates,
+        operator,
+        conditions,
+        procedure,
+        deviations: c.deviations.clone(),
+        traceability,
+        limits,
+        rule,
+        limits_source: c.limits_source.clone().filter(|s| !s.trim().is_empty()),
+        authorisation,
+        previous_certificate,
+        certify: match c.certify {
+            CertifyName::Auto => CertifyPolicy::Auto,
+            CertifyName::Probe => CertifyPolicy::Probe,
+            CertifyName::TwoOrientation => CertifyPolicy::TwoOrientation,
+        },
+        despite_check: c.certify_despite_check.clone(),
+    })
+}
+
+/// The problems of the section as a whole, before its fields: the `uncertainty` section it
+/// needs, a hidden character in any of its texts, the `two_orientation` section a
+/// two-orientation certificate needs, a blank reason to certify despite the check.
+fn section_problems(
+    check: &Check<'_>,
+    c: &CertificateConfig,
+    config: &StudyConfig,
+) -> Vec<PipelineError> {
     let mut errors = Vec::new();
     if config.uncertainty.is_none() {
         errors.push(PipelineError::MissingField {
@@ -223,251 +301,244 @@ pub(crate) fn validate(
                 .to_owned(),
         });
     }
-    let mut need = |field: &str, value: &str, hint: &str| {
+    errors
+}
+
+/// The section's fields as they are checked: the study file and the problems found so far,
+/// in the order of the fields.
+struct Need<'a> {
+    path: &'a std::path::Path,
+    errors: Vec<PipelineError>,
+}
+
+impl Need<'_> {
+    /// A required text: a problem when it is blank; the text.
+    fn need(&mut self, field: &str, value: &str, hint: &str) -> String {
         if value.trim().is_empty() {
-            errors.push(PipelineError::MissingField {
-                path: check.path.to_owned(),
+            self.errors.push(PipelineError::MissingField {
+                path: self.path.to_owned(),
                 field: format!("certificate.{field}"),
                 hint: hint.to_owned(),
             });
         }
         value.to_owned()
-    };
-    let id = need("id", &c.id, "the certificate's unique identification");
-    let laboratory = Laboratory {
-        name: need(
-            "laboratory.name",
-            &c.laboratory.name,
-            "the issuing laboratory",
-        ),
-        address: need(
-            "laboratory.address",
-            &c.laboratory.address,
-            "the laboratory's address",
-        ),
-        accreditation: c.laboratory.accreditation.clone(),
-        country: c.laboratory.country.clone(),
-    };
-    let location = need(
-        "location",
-        &c.location,
-        "where the calibration was performed",
-    );
-    let customer = Party {
-        name: need("customer.name", &c.customer.name, "the customer"),
-        address: need(
-            "customer.address",
-            &c.customer.address,
-            "the customer's address",
-        ),
-    };
-    let item = Item {
-        description: need("item.description", &c.item.description, "what the item is"),
-        manufacturer: need(
-            "item.manufacturer",
-            &c.item.manufacturer,
-            "the item's manufacturer",
-        ),
-        model: need("item.model", &c.item.model, "the item's model"),
-        serial: need("item.serial", &c.item.serial, "the item's serial number"),
-        condition: need(
-            "item.condition",
-            &c.item.condition,
-            "the item's condition on receipt",
-        ),
-    };
-    let equipment: Vec<Equipment> = c
-        .equipment
-        .iter()
-        .enumerate()
-        .map(|(i, e)| Equipment {
-            role: need(
-                &format!("equipment[{i}].role"),
-                &e.role,
-                "the instrument's role",
-            ),
-            description: need(
-                &format!("equipment[{i}].description"),
-                &e.description,
-                "make and model",
-            ),
-            identity: need(
-                &format!("equipment[{i}].identity"),
-                &e.identity,
-                "serial or asset number",
-            ),
-            calibration_due: need(
-                &format!("equipment[{i}].calibration_due"),
-                &e.calibration_due,
-                "when its calibration falls due",
-            ),
-        })
-        .collect();
-    if equipment.is_empty() {
-        need(
-            "equipment",
-            "",
-            "the centrifuge, the probe and the data acquisition, each with its identity and calibration due date",
-        );
     }
-    let dates = Dates {
-        received: need("dates.received", &c.dates.received, "receipt of the item"),
-        measured: need("dates.measured", &c.dates.measured, "the measurement"),
-        issued: need("dates.issued", &c.dates.issued, "issue of the certificate"),
-    };
-    let operator = need("operator", &c.operator, "who performed the calibration");
-    let conditions: Vec<Condition> = c
-        .conditions
-        .iter()
-        .enumerate()
-        .map(|(i, cnd)| Condition {
-            quantity: need(
-                &format!("conditions[{i}].quantity"),
-                &cnd.quantity,
-                "the quantity",
+
+    /// The issuing laboratory, where it calibrated, the customer and the item.
+    fn parties(&mut self, c: &CertificateConfig) -> (Laboratory, String, Party, Item) {
+        let laboratory = Laboratory {
+            name: self.need(
+                "laboratory.name",
+                &c.laboratory.name,
+                "the issuing laboratory",
             ),
-            value: need(
-                &format!("conditions[{i}].value"),
-                &cnd.value,
-                "its value with unit and range",
+            address: self.need(
+                "laboratory.address",
+                &c.laboratory.address,
+                "the laboratory's address",
             ),
-        })
-        .collect();
-    if conditions.is_empty() {
-        need(
-            "conditions",
-            "",
-            "the environmental conditions during the measurement (temperature, humidity)",
+            accreditation: c.laboratory.accreditation.clone(),
+            country: c.laboratory.country.clone(),
+        };
+        let location = self.need(
+            "location",
+            &c.location,
+            "where the calibration was performed",
         );
+        let customer = Party {
+            name: self.need("customer.name", &c.customer.name, "the customer"),
+            address: self.need(
+                "customer.address",
+                &c.customer.address,
+                "the customer's address",
+            ),
+        };
+        let item = Item {
+            description: self.need("item.description", &c.item.description, "what the item is"),
+            manufacturer: self.need(
+                "item.manufacturer",
+                &c.item.manufacturer,
+                "the item's manufacturer",
+            ),
+            model: self.need("item.model", &c.item.model, "the item's model"),
+            serial: self.need("item.serial", &c.item.serial, "the item's serial number"),
+            condition: self.need(
+                "item.condition",
+                &c.item.condition,
+                "the item's condition on receipt",
+            ),
+        };
+        (laboratory, location, customer, item)
     }
-    let procedure = need(
-        "procedure",
-        &c.procedure,
-        "the procedure's reference and title",
-    );
-    let mut traceability = Vec::new();
-    for (i, t) in c.traceability.iter().enumerate() {
-        need(
-            &format!("traceability[{i}].statement"),
-            &t.statement,
-            "where the input's value and uncertainty come from",
-        );
-        traceability.push((input_index(t.input), t.statement.clone()));
-    }
-    for (name, field) in uncertain_inputs(config) {
-        if !c.traceability.iter().any(|t| t.input == name) {
-            let key = serde_name(name);
-            need(
-                &format!("traceability (input: {key})"),
+
+    /// The instruments used, at least one.
+    fn equipment(&mut self, c: &CertificateConfig) -> Vec<Equipment> {
+        let equipment: Vec<Equipment> = c
+            .equipment
+            .iter()
+            .enumerate()
+            .map(|(i, e)| Equipment {
+                role: self.need(
+                    &format!("equipment[{i}].role"),
+                    &e.role,
+                    "the instrument's role",
+                ),
+                description: self.need(
+                    &format!("equipment[{i}].description"),
+                    &e.description,
+                    "make and model",
+                ),
+                identity: self.need(
+                    &format!("equipment[{i}].identity"),
+                    &e.identity,
+                    "serial or asset number",
+                ),
+                calibration_due: self.need(
+                    &format!("equipment[{i}].calibration_due"),
+                    &e.calibration_due,
+                    "when its calibration falls due",
+                ),
+            })
+            .collect();
+        if equipment.is_empty() {
+            self.need(
+                "equipment",
                 "",
-                &format!("{field} is not zero: state where that uncertainty comes from"),
+                "the centrifuge, the probe and the data acquisition, each with its identity and calibration due date",
             );
         }
+        equipment
     }
-    let mut limits = Vec::new();
-    for (i, l) in c.limits.iter().enumerate() {
-        if l.lower.is_none() && l.upper.is_none() {
-            need(
-                &format!("limits[{i}].lower (or upper)"),
+
+    /// The environmental conditions, at least one.
+    fn conditions(&mut self, c: &CertificateConfig) -> Vec<Condition> {
+        let conditions: Vec<Condition> = c
+            .conditions
+            .iter()
+            .enumerate()
+            .map(|(i, cnd)| Condition {
+                quantity: self.need(
+                    &format!("conditions[{i}].quantity"),
+                    &cnd.quantity,
+                    "the quantity",
+                ),
+                value: self.need(
+                    &format!("conditions[{i}].value"),
+                    &cnd.value,
+                    "its value with unit and range",
+                ),
+            })
+            .collect();
+        if conditions.is_empty() {
+            self.need(
+                "conditions",
                 "",
-                "a limit needs at least one end",
+                "the environmental conditions during the measurement (temperature, humidity)",
             );
         }
-        limits.push(Limit {
-            index: l.coefficient as usize,
-            relative: matches!(l.unit, LimitUnitName::Micro),
-            lower: l.lower,
-            upper: l.upper,
-            source: l.source.clone().filter(|s| !s.trim().is_empty()),
-        });
+        conditions
     }
-    let rule = c.decision_rule.map(|r| match r {
-        DecisionRuleName::SimpleAcceptance => DecisionRule::SimpleAcceptance,
-        DecisionRuleName::GuardBand => DecisionRule::GuardBand,
-    });
-    if !limits.is_empty() && rule.is_none() {
-        need(
-            "decision_rule",
-            "",
-            "limits need a decision rule: `simple_acceptance` or `guard_band` (ILAC-G8:09/2019)",
-        );
-    }
-    let authorisation = Authorisation {
-        name: need(
-            "authorisation.name",
-            &c.authorisation.name,
-            "who authorises the certificate",
-        ),
-        role: need(
-            "authorisation.role",
-            &c.authorisation.role,
-            "the role of who authorises it",
-        ),
-    };
-    let previous_certificate = c
-        .previous_certificate
-        .as_ref()
-        .map(|p| PreviousCertificate {
-            id: need(
-                "previous_certificate.id",
-                &p.id,
-                "the identification of the certificate this one follows",
-            ),
-            sha256: p.sha256.as_ref().map(|h| h.to_ascii_lowercase()),
-        });
-    if c.previous_certificate
-        .as_ref()
-        .and_then(|p| p.sha256.as_ref())
-        .is_some_and(|h| !(h.len() == 64 && h.bytes().all(|b| b.is_ascii_hexdigit())))
-    {
-        errors.push(PipelineError::Unsupported {
-            path: check.path.to_owned(),
-            field: "certificate.previous_certificate.sha256".to_owned(),
-            reason: UnsupportedReason::NotSha256,
-        });
-    }
-    if let Some(country) = &c.laboratory.country
-        && !(country.len() == 2 && country.bytes().all(|b| b.is_ascii_uppercase()))
-    {
-        errors.push(PipelineError::Unsupported {
-            path: check.path.to_owned(),
-            field: "certificate.laboratory.country".to_owned(),
-            reason: UnsupportedReason::NotCountryCode,
-        });
-    }
-    PipelineError::from_list(errors)?;
-    for (i, l) in limits.iter().enumerate() {
-        for (end, v) in [("lower", l.lower), ("upper", l.upper)] {
-            if let Some(v) = v {
-                check.finite(format!("certificate.limits[{i}].{end}"), v)?;
+
+    /// The traceability statements, and one for each Type B input with a non-zero
+    /// uncertainty.
+    fn traceability(
+        &mut self,
+        c: &CertificateConfig,
+        config: &StudyConfig,
+    ) -> Vec<(usize, String)> {
+        let mut traceability = Vec::new();
+        for (i, t) in c.traceability.iter().enumerate() {
+            self.need(
+                &format!("traceability[{i}].statement"),
+                &t.statement,
+                "where the input's value and uncertainty come from",
+            );
+            traceability.push((input_index(t.input), t.statement.clone()));
+        }
+        for (name, field) in uncertain_inputs(config) {
+            if !c.traceability.iter().any(|t| t.input == name) {
+                let key = name.key();
+                self.need(
+                    &format!("traceability (input: {key})"),
+                    "",
+                    &format!("{field} is not zero: state where that uncertainty comes from"),
+                );
             }
         }
+        traceability
     }
-    Ok(Certificate {
-        id,
-        laboratory,
-        location,
-        customer,
-        item,
-        equipment,
-        dates,
-        operator,
-        conditions,
-        procedure,
-        deviations: c.deviations.clone(),
-        traceability,
-        limits,
-        rule,
-        limits_source: c.limits_source.clone().filter(|s| !s.trim().is_empty()),
-        authorisation,
-        previous_certificate,
-        certify: match c.certify {
-            CertifyName::Auto => CertifyPolicy::Auto,
-            CertifyName::Probe => CertifyPolicy::Probe,
-            CertifyName::TwoOrientation => CertifyPolicy::TwoOrientation,
-        },
-        despite_check: c.certify_despite_check.clone(),
-    })
+
+    /// The specification limits, each with at least one end, and their decision rule.
+    fn limits(&mut self, c: &CertificateConfig) -> (Vec<Limit>, Option<DecisionRule>) {
+        let mut limits = Vec::new();
+        for (i, l) in c.limits.iter().enumerate() {
+            if l.lower.is_none() && l.upper.is_none() {
+                self.need(
+                    &format!("limits[{i}].lower (or upper)"),
+                    "",
+                    "a limit needs at least one end",
+                );
+            }
+            limits.push(Limit {
+                index: l.coefficient as usize,
+                relative: matches!(l.unit, LimitUnitName::Micro),
+                lower: l.lower,
+                upper: l.upper,
+                source: l.source.clone().filter(|s| !s.trim().is_empty()),
+            });
+        }
+        let rule = c.decision_rule.map(|r| match r {
+            DecisionRuleName::SimpleAcceptance => DecisionRule::SimpleAcceptance,
+            DecisionRuleName::GuardBand => DecisionRule::GuardBand,
+        });
+        if !limits.is_empty() && rule.is_none() {
+            self.need(
+                "decision_rule",
+                "",
+                "limits need a decision rule: `simple_acceptance` or `guard_band` (ILAC-G8:09/2019)",
+            );
+        }
+        (limits, rule)
+    }
+
+    /// The certificate this one follows, when it names one.
+    fn previous_certificate(&mut self, c: &CertificateConfig) -> Option<PreviousCertificate> {
+        c.previous_certificate
+            .as_ref()
+            .map(|p| PreviousCertificate {
+                id: self.need(
+                    "previous_certificate.id",
+                    &p.id,
+                    "the identification of the certificate this one follows",
+                ),
+                sha256: p.sha256.as_ref().map(|h| h.to_ascii_lowercase()),
+            })
+    }
+
+    /// The fields with a format: the previous certificate's SHA-256 and the laboratory's
+    /// country code.
+    fn formats(&mut self, c: &CertificateConfig) {
+        if c.previous_certificate
+            .as_ref()
+            .and_then(|p| p.sha256.as_ref())
+            .is_some_and(|h| !(h.len() == 64 && h.bytes().all(|b| b.is_ascii_hexdigit())))
+        {
+            self.errors.push(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: "certificate.previous_certificate.sha256".to_owned(),
+                reason: UnsupportedReason::NotSha256,
+            });
+        }
+        if let Some(country) = &c.laboratory.country
+            && !(country.len() == 2 && country.bytes().all(|b| b.is_ascii_uppercase()))
+        {
+            self.errors.push(PipelineError::Unsupported {
+                path: self.path.to_owned(),
+                field: "certificate.laboratory.country".to_owned(),
+                reason: UnsupportedReason::NotCountryCode,
+            });
+        }
+    }
 }
 
 /// Every text of the certificate section with its field (under `certificate.`).
@@ -527,17 +598,4 @@ fn texts(c: &CertificateConfig) -> Vec<(String, &str)> {
         list.push((format!("traceability[{i}].statement"), &t.statement));
     }
     list
-}
-
-/// The name a traceability entry gives an input in the study file.
-const fn serde_name(name: TypeBInputName) -> &'static str {
-    match name {
-        TypeBInputName::Radius => "radius",
-        TypeBInputName::G => "g",
-        TypeBInputName::RateScale => "rate_scale",
-        TypeBInputName::PivotToProbe => "pivot_to_probe",
-        TypeBInputName::ProbeToPiga => "probe_to_piga",
-        TypeBInputName::ProbeGain => "probe_gain",
-        TypeBInputName::K1 => "k1",
-    }
 }

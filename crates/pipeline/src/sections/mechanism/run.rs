@@ -94,6 +94,14 @@ fn run_phase(
     })
 }
 
+/// The label of the simulated phases' noise streams (`units::stream_seed`).
+const PHASE_STREAM: u64 = 0x3EC4_A515;
+
+/// The seed of simulated phase `n`'s output noise under the section's `seed`.
+const fn phase_seed(seed: u64, n: usize) -> u64 {
+    units::stream_seed(seed, PHASE_STREAM, n as u64)
+}
+
 /// Runs the mechanism section with the phases' radius-error fits `phases`.
 pub(crate) fn run(
     inputs: &Core,
@@ -109,8 +117,9 @@ pub(crate) fn run(
             c_r_sigma_m_s2: results.fit.c_r_sigma_m_s2,
             offset_um: results.fit.offset_um,
         };
-        // One noise stream per simulated phase: the seed, then seed + 1, ...
-        run_phase(geometry, m, drift, m.seed.wrapping_add(n as u64))
+        // One noise stream per simulated phase: the seed and the phase through
+        // `units::stream_seed` (with `seed + n`, seed 1's phase 1 drew seed 2's phase 0)
+        run_phase(geometry, m, drift, phase_seed(m.seed, n))
             .map(|phase| MechanismPhase {
                 phase: results.name.clone(),
                 ..phase
@@ -149,5 +158,19 @@ fn locate(failure: PhaseFailure, path: &std::path::Path, field: &str) -> Pipelin
             field: field.to_owned(),
             source,
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// No phase of one seed draws the noise of a phase of a neighbouring seed.
+    #[test]
+    fn phase_seeds_do_not_depend_on_the_seed_plus_the_phase() {
+        let seed1: Vec<u64> = (1..200).map(|n| phase_seed(1, n)).collect();
+        let seed2: Vec<u64> = (0..199).map(|n| phase_seed(2, n)).collect();
+        assert!(seed1.iter().all(|x| !seed2.contains(x)));
+        assert_eq!(phase_seed(7, 3), phase_seed(7, 3));
     }
 }

@@ -4,19 +4,19 @@
 
 use ::calibration::{
     K2_INFLATION_LIMIT, Orientation, OrientationData, ProbeCr, TwoOrientationError,
-    TwoOrientationEvaluation, TwoOrientationWarning, evaluate_two_orientation, fit_two_orientation,
+    TwoOrientationEvaluation, TwoOrientationFit, TwoOrientationWarning, evaluate_two_orientation,
+    fit_two_orientation,
 };
-use uncertainty::{Dof, McOptions, Trials};
+use uncertainty::{McOptions, Trials};
 
 use super::validate::TwoOrientationInputs;
 use crate::error::{PipelineError, Result};
 use crate::inputs::Core;
 use crate::piga_data::{self, PigaPoints};
 use crate::results::{
-    BudgetLine, Coefficient, DegreesOfFreedom, Estimate, Headline, InfiniteDof, MonteCarloOutput,
-    MountingResults, PhaseResults, ProbeComparison, ProbeDeclared, RateSpread,
-    TwoOrientationBudgets, TwoOrientationHeadline, TwoOrientationMonteCarlo, TwoOrientationResults,
-    Warning,
+    BudgetLine, Coefficient, Estimate, Headline, MonteCarloOutput, MountingResults, PhaseResults,
+    ProbeComparison, ProbeDeclared, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,
+    TwoOrientationMonteCarlo, TwoOrientationResults, Warning,
 };
 
 /// Runs the section against the study's phase results (the probe phase's C_r).
@@ -30,35 +30,7 @@ pub(crate) fn run(
         path: core.source.clone(),
         source: Box::new(e),
     };
-    // each data set's points: a table's rows, or each raw recording reduced (every
-    // recording's problem at once, both orientations)
-    let mut reduced = Vec::with_capacity(s.sets.len());
-    let mut errors = Vec::new();
-    let mut warnings = Vec::new();
-    for d in &s.sets {
-        match piga_data::points(&d.data, &core.source) {
-            Ok((p, w)) => {
-                reduced.push(p);
-                warnings.extend(w);
-            }
-            Err(e) => errors.push(e),
-        }
-    }
-    PipelineError::from_list(errors)?;
-    // the joint fit is weighted only when both data sets give σ: say when one's are unused
-    if let ([a, b], [pa, pb]) = (s.sets.as_slice(), reduced.as_slice())
-        && pa.sigma_rad_s.is_some() != pb.sigma_rad_s.is_some()
-    {
-        let (with, without) = if pa.sigma_rad_s.is_some() {
-            (a, b)
-        } else {
-            (b, a)
-        };
-        warnings.push(Warning::two_orientation_unweighted(
-            &with.field,
-            &without.field,
-        ));
-    }
+    let (reduced, mut warnings) = reduce(core, s)?;
     let rates: Vec<Vec<f64>> = reduced
         .iter()
         .map(|p| {
@@ -94,14 +66,7 @@ pub(crate) fn run(
         ));
     }
     let phase = &phases[s.phase];
-    let c_r_u = phase.fit.c_r_sigma_m_s2.unwrap_or(0.0);
-    let probe = ProbeCr {
-        c_r_m_s2: phase.fit.c_r_m_s2,
-        u_m_s2: c_r_u,
-        dof: (c_r_u > 0.0 && phase.fit.dof > 0).then_some(phase.fit.dof as f64),
-        pivot_to_probe_mm: core.lever.pivot_to_probe_mm,
-        probe_to_piga_mm: core.lever.probe_to_piga_mm,
-    };
+    let probe = probe_cr(core, phase);
     let options = McOptions {
         seed: s.seed,
         trials: s.trials.map_or(McOptions::default().trials, Trials::Fixed),
@@ -116,30 +81,128 @@ pub(crate) fn run(
         .map_err(|u| fail(TwoOrientationError::Uncertainty(u)))?;
     let coefficient = |name: &str| {
         let o = e.gum.output(name).expect("the model names its outputs");
-        Coefficient {
-            value: o.estimate,
-            u: o.standard_uncertainty,
-            u95: o.expanded_uncertainty,
-            k: o.coverage_factor,
-            dof: dof_value(o.dof),
-        }
+        Coefficient::of(o, o.estimate)
     };
-    let mc_output = |name: &str| {
-        let o = mc.output(name).expect("the model names its outputs");
-        let v = validation.output(name).expect("validated per output");
-        MonteCarloOutput {
-            mean: o.estimate,
-            u: o.standard_uncertainty,
-            low95: o.coverage_interval.0,
-            high95: o.coverage_interval.1,
-            gum_agrees: v.agrees,
-            tolerance: v.tolerance,
-            d_low: v.d_low,
-            d_high: v.d_high,
-            heavy_tailed: o.heavy_tailed,
-        }
+    let mountings = mountings(s, &fit, &reduced, coefficient);
+    let k2 = coefficient("k2");
+    let c = coefficient("C");
+    let monte_carlo = monte_carlo(mc, &validation, s.seed);
+    let k3 = coefficient("k3");
+    let headline = TwoOrientationHeadline {
+        k2: Headline::of(&k2, &monte_carlo.k2),
+        k3: Headline::of(&k3, &monte_carlo.k3),
+        c: Headline::of(&c, &monte_carlo.c),
     };
-    let mountings: Vec<MountingResults> = [Orientation::IaIn, Orientation::IaOut]
+    let (k2_probe, k2_probe_u95) = probe_k2(core, s, &reduced, probe).map_err(fail)?;
+    let (d, u, z) = e
+        .probe_difference
+        .expect("the evaluation was given the probe");
+    let comparison = ProbeComparison {
+        phase: phase.name.clone(),
+        chosen_by: s.chosen_by.to_owned(),
+        c_r_m_s2: Estimate {
+            value: probe.c_r_m_s2,
+            u: probe.u_m_s2,
+        },
+        difference_m_s2: Coefficient {
+            value: d,
+            u,
+            ..coefficient("C − C_r")
+        },
+        z,
+        agrees: z.abs() <= ::calibration::Z_LIMIT,
+        k2_probe,
+        k2_probe_u95,
+        k2_difference: k2.value - k2_probe.value,
+    };
+    let all: f64 = fit.residuals_rad_s.iter().flatten().map(|r| r * r).sum();
+    let results = TwoOrientationResults {
+        mountings,
+        k2,
+        k3,
+        c_m_s2: c,
+        delta_k2_total: coefficient("Δk2,total"),
+        g_m_s2: Estimate {
+            value: core.g_m_s2,
+            u: s.type_b.g_u_m_s2,
+        },
+        dof: fit.fit.dof,
+        residual_sd_rad_s: (all / fit.fit.dof.max(1) as f64).sqrt(),
+        omega4_vif: fit.gamma_vif,
+        k2_inflation_by_omega4: fit.k2_inflation,
+        k2_c_correlation: fit.k2_gamma_correlation,
+        u_inflation_by_rates: spread,
+        condition_number: fit.fit.condition_number,
+        budget: TwoOrientationBudgets {
+            k2: budget(&e, "k2", &s.type_b_notes, &s.earth_rate.words),
+            c: budget(&e, "C", &s.type_b_notes, &s.earth_rate.words),
+            difference: Some(budget(&e, "C − C_r", &s.type_b_notes, &s.earth_rate.words)),
+        },
+        monte_carlo,
+        headline,
+        covariance: output_covariance(&e.gum, 6),
+        probe: Some(comparison),
+        earth_rate: s.earth_rate.clone(),
+    };
+    warnings.extend(evaluation_warnings(&e, core, s, phase));
+    Ok((results, warnings))
+}
+
+/// Each data set's points: a table's rows, or each raw recording reduced (every recording's
+/// problem at once, both orientations), with the reduction's warnings and one when only one
+/// data set gives σ (the joint fit is weighted only when both do).
+fn reduce(core: &Core, s: &TwoOrientationInputs) -> Result<(Vec<PigaPoints>, Vec<Warning>)> {
+    let mut reduced = Vec::with_capacity(s.sets.len());
+    let mut errors = Vec::new();
+    let mut warnings = Vec::new();
+    for d in &s.sets {
+        match piga_data::points(&d.data, &core.source) {
+            Ok((p, w)) => {
+                reduced.push(p);
+                warnings.extend(w);
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+    PipelineError::from_list(errors)?;
+    if let ([a, b], [pa, pb]) = (s.sets.as_slice(), reduced.as_slice())
+        && pa.sigma_rad_s.is_some() != pb.sigma_rad_s.is_some()
+    {
+        let (with, without) = if pa.sigma_rad_s.is_some() {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        warnings.push(Warning::two_orientation_unweighted(
+            &with.field,
+            &without.field,
+        ));
+    }
+    Ok((reduced, warnings))
+}
+
+/// The probe phase's C_r with its standard uncertainty and degrees of freedom, and the
+/// lever heights that scale it to the PIGA.
+fn probe_cr(core: &Core, phase: &PhaseResults) -> ProbeCr {
+    let c_r_u = phase.fit.c_r_sigma_m_s2.unwrap_or(0.0);
+    ProbeCr {
+        c_r_m_s2: phase.fit.c_r_m_s2,
+        u_m_s2: c_r_u,
+        dof: (c_r_u > 0.0 && phase.fit.dof > 0).then_some(phase.fit.dof as f64),
+        pivot_to_probe_mm: core.lever.pivot_to_probe_mm,
+        probe_to_piga_mm: core.lever.probe_to_piga_mm,
+    }
+}
+
+/// Each mounting's results (IA in, then IA out): its data, radius, rates, k0 and k1 (by
+/// `coefficient`, from the GUM), the Earth-rate term and its residual SD.
+fn mountings(
+    s: &TwoOrientationInputs,
+    fit: &TwoOrientationFit,
+    reduced: &[PigaPoints],
+    coefficient: impl Fn(&str) -> Coefficient,
+) -> Vec<MountingResults> {
+    [Orientation::IaIn, Orientation::IaOut]
         .iter()
         .enumerate()
         .map(|(k, &o)| {
@@ -147,7 +210,7 @@ pub(crate) fn run(
             let (set, points) = s
                 .sets
                 .iter()
-                .zip(&reduced)
+                .zip(reduced)
                 .find(|(d, _)| d.orientation == o)
                 .expect("one data set per orientation");
             let tag = if k == 0 { "IA in" } else { "IA out" };
@@ -185,13 +248,19 @@ pub(crate) fn run(
                     .sqrt(),
             }
         })
-        .collect();
-    let k2 = coefficient("k2");
-    let c = coefficient("C");
-    let difference = coefficient("C − C_r");
-    let monte_carlo = TwoOrientationMonteCarlo {
+        .collect()
+}
+
+/// The Monte Carlo results of k2, k3, C, Δk2,total and C − C_r with their §8 validation.
+fn monte_carlo(
+    mc: &uncertainty::McResult,
+    validation: &uncertainty::Validation,
+    seed: u64,
+) -> TwoOrientationMonteCarlo {
+    let mc_output = |name: &str| MonteCarloOutput::of(mc, validation, name);
+    TwoOrientationMonteCarlo {
         trials: mc.trials,
-        seed: s.seed,
+        seed,
         gum_agrees: ["k2", "k3", "C", "Δk2,total"]
             .iter()
             .all(|n| validation.output(n).is_some_and(|v| v.agrees)),
@@ -200,89 +269,44 @@ pub(crate) fn run(
         c: mc_output("C"),
         delta_k2_total: mc_output("Δk2,total"),
         difference: Some(mc_output("C − C_r")),
-    };
-    let k3 = coefficient("k3");
-    let headline = TwoOrientationHeadline {
-        k2: Headline::of(&k2, &monte_carlo.k2),
-        k3: Headline::of(&k3, &monte_carlo.k3),
-        c: Headline::of(&c, &monte_carlo.c),
-    };
-    let (k2_probe, k2_probe_u95) = probe_k2(core, s, &reduced, probe).map_err(fail)?;
-    let (d, u, z) = e
-        .probe_difference
-        .expect("the evaluation was given the probe");
-    let comparison = ProbeComparison {
-        phase: phase.name.clone(),
-        chosen_by: s.chosen_by.to_owned(),
-        c_r_m_s2: Estimate {
-            value: probe.c_r_m_s2,
-            u: probe.u_m_s2,
-        },
-        difference_m_s2: Coefficient {
-            value: d,
-            u,
-            ..difference
-        },
-        z,
-        agrees: z.abs() <= ::calibration::Z_LIMIT,
-        k2_probe,
-        k2_probe_u95,
-        k2_difference: k2.value - k2_probe.value,
-    };
-    let all: f64 = fit.residuals_rad_s.iter().flatten().map(|r| r * r).sum();
-    let results = TwoOrientationResults {
-        mountings,
-        k2,
-        k3,
-        c_m_s2: c,
-        delta_k2_total: coefficient("Δk2,total"),
-        g_m_s2: Estimate {
-            value: core.g_m_s2,
-            u: s.type_b.g_u_m_s2,
-        },
-        dof: fit.fit.dof,
-        residual_sd_rad_s: (all / fit.fit.dof.max(1) as f64).sqrt(),
-        omega4_vif: fit.gamma_vif,
-        k2_inflation_by_omega4: fit.k2_inflation,
-        k2_c_correlation: fit.k2_gamma_correlation,
-        u_inflation_by_rates: spread,
-        condition_number: fit.fit.condition_number,
-        budget: TwoOrientationBudgets {
-            k2: budget(&e, "k2", &s.type_b_notes, &s.earth_rate.words),
-            c: budget(&e, "C", &s.type_b_notes, &s.earth_rate.words),
-            difference: Some(budget(&e, "C − C_r", &s.type_b_notes, &s.earth_rate.words)),
-        },
-        monte_carlo,
-        headline,
-        covariance: output_covariance(&e.gum, 6),
-        probe: Some(comparison),
-        earth_rate: s.earth_rate.clone(),
-    };
-    warnings.extend(e.warnings.iter().map(|w| match *w {
-        TwoOrientationWarning::GammaNotSeparable {
-            vif,
-            k2_inflation,
-            correlation,
-        } => Warning::omega4_not_separable(k2_inflation, correlation, K2_INFLATION_LIMIT, vif),
-        TwoOrientationWarning::ProbeDisagrees {
-            difference_m_s2,
-            u_m_s2,
-            z,
-        } => Warning::probe_disagrees(
-            &ProbeDeclared {
-                phase: phase.name.clone(),
-                angle_zero: core.angle_zero,
-                direction: crate::inputs::probe_sign(core.lever.probe_direction),
-                gap_field: s.gap_unit.0.clone(),
-                gap_unit: s.gap_unit.1.clone(),
-            },
-            phase.fit.c_r_m_s2,
-            difference_m_s2,
-            u_m_s2,
-            z,
-        ),
-    }));
-    Ok((results, warnings))
+    }
+}
+
+/// The evaluation's warnings in the study's words: ω⁴ not separable from k2, the probe
+/// disagreeing with the PIGA's C (naming what the probe phase declares).
+fn evaluation_warnings(
+    e: &TwoOrientationEvaluation,
+    core: &Core,
+    s: &TwoOrientationInputs,
+    phase: &PhaseResults,
+) -> Vec<Warning> {
+    e.warnings
+        .iter()
+        .map(|w| match *w {
+            TwoOrientationWarning::GammaNotSeparable {
+                vif,
+                k2_inflation,
+                correlation,
+            } => Warning::omega4_not_separable(k2_inflation, correlation, K2_INFLATION_LIMIT, vif),
+            TwoOrientationWarning::ProbeDisagrees {
+                difference_m_s2,
+                u_m_s2,
+                z,
+            } => Warning::probe_disagrees(
+                &ProbeDeclared {
+                    phase: phase.name.clone(),
+                    angle_zero: core.angle_zero,
+                    direction: crate::inputs::probe_sign(core.lever.probe_direction),
+                    gap_field: s.gap_unit.0.clone(),
+                    gap_unit: s.gap_unit.1.clone(),
+                },
+                phase.fit.c_r_m_s2,
+                difference_m_s2,
+                u_m_s2,
+                z,
+            ),
+        })
+        .collect()
 }
 
 /// k2 by the probe method, as the calibration section computes it: the IA-in data set's
@@ -370,13 +394,6 @@ fn output_covariance(gum: &uncertainty::GumResult, n: usize) -> crate::results::
     }
 }
 
-fn dof_value(dof: Dof) -> DegreesOfFreedom {
-    match dof {
-        Dof::Finite(nu) => DegreesOfFreedom::Finite(nu),
-        Dof::Infinite => DegreesOfFreedom::Infinite(InfiniteDof::Infinite),
-    }
-}
-
 /// One output's budget: the fit's ten coefficients as one line (their correlated
 /// contribution), then every other input that enters the output (g, the rate scale, each
 /// mounting's radius; with the probe its lever heights, gain and C_r), each with what the
@@ -392,20 +409,12 @@ fn budget(
     let output = e.gum.output(name).expect("the model names its outputs");
     let quantities = e.inputs.quantities();
     let terms = ::calibration::TWO_ORIENTATION_TERMS;
-    let group = &output.contributions[..terms];
-    let share: f64 = group.iter().map(|c| c.variance_percent).sum();
-    let contribution = (share.max(0.0) / 100.0).sqrt() * output.standard_uncertainty;
-    let mut lines = vec![BudgetLine {
-        quantity: ::calibration::noise_budget_line("the two-orientation fit", quantities[0].dof),
-        evaluation: "A".to_owned(),
-        value: None,
-        u: contribution,
-        sensitivity: 1.0,
-        contribution,
-        percent: share,
-        dof: dof_value(quantities[0].dof),
-        note: None,
-    }];
+    let mut lines = vec![BudgetLine::fit_group(
+        output,
+        &output.contributions[..terms],
+        "the two-orientation fit",
+        quantities[0].dof,
+    )];
     for (k, (c, q)) in output
         .contributions
         .iter()
@@ -439,19 +448,9 @@ fn budget(
             })
         };
         lines.push(BudgetLine {
-            quantity: q.name.clone(),
-            evaluation: match q.kind {
-                uncertainty::Evaluation::TypeA => "A".to_owned(),
-                uncertainty::Evaluation::TypeB => "B".to_owned(),
-            },
-            value: Some(q.value),
-            u: q.standard_uncertainty,
-            sensitivity: c.sensitivity,
-            contribution: c.uncertainty,
             // (+ 0.0: an input stated exactly contributes −0 % otherwise)
             percent: c.variance_percent + 0.0,
-            dof: dof_value(q.dof),
-            note,
+            ..BudgetLine::input(q, c, note)
         });
     }
     lines
