@@ -220,6 +220,7 @@ fn describe(
     phases(&mut s, &v);
     calibration(&mut s, &v);
     two_orientation(&mut s, &v);
+    units(&mut s, &v);
     mountings(&mut s, &v);
     type_b(&mut s, &v);
     for (key, words) in [
@@ -272,9 +273,14 @@ fn centrifuge_and_probe(
     used: Option<&pipeline::ProfileResults>,
     direction_unfilled: bool,
 ) {
+    let k1_words = if v.get("units").is_some_and(Value::is_array) {
+        "the study's k1 (the top summary's Δk2; each unit states its own below)"
+    } else {
+        "PIGA k1"
+    };
     let _ = writeln!(
         s,
-        "centrifuge: R = {} m, g = {} m/s², PIGA k1 = {} rad/(s·g)",
+        "centrifuge: R = {} m, g = {} m/s², {k1_words} = {} rad/(s·g)",
         num(v.get("radius_m")),
         num(v.get("g_m_s2")),
         num(v.get("k1_rad_s_g"))
@@ -411,77 +417,134 @@ fn phases(s: &mut String, v: &Value) {
 /// The calibration: its data, the compensation and k1.
 fn calibration(s: &mut String, v: &Value) {
     if let Some(cal) = v.get("calibration").filter(|c| !c.is_null()) {
-        let data = if cal["table"].is_object() {
-            format!(
-                "the PIGA table {}",
-                cal["table"]["file"].as_str().unwrap_or("")
-            )
-        } else {
-            format!(
-                "{} raw PIGA output recordings",
-                cal["recordings"]["files"].as_array().map_or(0, Vec::len)
-            )
-        };
-        let k1 = match &cal["k1"] {
-            Value::String(s) if s == "fitted" => "k1 fitted from the ω² coefficient".to_owned(),
-            Value::Object(m) if m.contains_key("given") => {
-                format!("k1 given: {} rad/(s·g)", num(m["given"].get("k1_rad_s_g")))
-            }
-            other => format!("k1 {other}"),
-        };
-        let _ = writeln!(
-            s,
-            "calibration: eq. 18 fitted to {data}, compensated with phase {}'s C_r; {k1}; \
-             GUM and Monte Carlo uncertainty",
-            cal["compensate_with"].as_str().unwrap_or("")
-        );
+        let _ = writeln!(s, "calibration: {}", calibration_words(cal));
     }
 }
 
 /// The two orientations: each data set and what C is compared with.
 fn two_orientation(s: &mut String, v: &Value) {
     if let Some(sym) = v.get("two_orientation").filter(|c| !c.is_null()) {
-        let sets: Vec<String> = sym["orientations"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .map(|o| {
-                let which = match o["orientation"].as_str() {
-                    Some("ia_in") => "IA in",
-                    Some("ia_out") => "IA out",
-                    _ => "orientation not declared",
-                };
-                let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
-                    || "radius not declared".to_owned(),
-                    |r| format!("R = {} m", num(Some(r))),
-                );
-                let data = if o["table"].is_object() {
-                    format!(
-                        "the PIGA table {}",
-                        o["table"]["file"].as_str().unwrap_or("")
-                    )
-                } else if o["recordings"].is_object() {
-                    format!(
-                        "{} raw PIGA output recordings",
-                        o["recordings"]["files"].as_array().map_or(0, Vec::len)
-                    )
-                } else {
-                    "no data".to_owned()
-                };
-                format!("{which} at {radius} from {data}")
-            })
-            .collect();
-        let compare = match sym["compare_with"].as_str() {
-            Some(phase) => format!("phase {phase}'s C_r"),
-            None => "the compensating (or first) phase's C_r".to_owned(),
-        };
+        let _ = writeln!(s, "two orientations: {}", two_orientation_words(sym));
+    }
+}
+
+/// The units calibrated from the study's probe phases, each with its k1, radius, calibration
+/// and certificate.
+fn units(s: &mut String, v: &Value) {
+    if let Some(units) = v.get("units").and_then(Value::as_array) {
         let _ = writeln!(
             s,
-            "two orientations: eq. 23 fitted jointly to {}; k2 and the radius growth C from the \
-             PIGA alone, C compared with {compare}; GUM and Monte Carlo uncertainty",
-            sets.join(" and ")
+            "{} unit{} calibrated from these probe phases, measured once; each unit's results, \
+             report and certificate in units/LABEL/ of the output folder, their summary in it:",
+            units.len(),
+            if units.len() == 1 { "" } else { "s" }
         );
+        for u in units {
+            let radius = match u.get("radius_m").filter(|r| !r.is_null()) {
+                Some(r) => format!("R = {} m (its own)", num(Some(r))),
+                None => format!("R = {} m (the study's)", num(v.get("radius_m"))),
+            };
+            let _ = writeln!(
+                s,
+                "  unit {}: k1 = {} rad/(s·g), {radius}, so its own Δk2 = k1·C_r·g/R²",
+                u["label"].as_str().unwrap_or(""),
+                num(u.get("k1_rad_s_g"))
+            );
+            if let Some(cal) = u.get("calibration").filter(|c| !c.is_null()) {
+                let _ = writeln!(s, "    calibration: {}", calibration_words(cal));
+            }
+            if let Some(sym) = u.get("two_orientation").filter(|c| !c.is_null()) {
+                let _ = writeln!(s, "    two orientations: {}", two_orientation_words(sym));
+            }
+            match u.get("certificate").filter(|c| !c.is_null()) {
+                Some(c) => {
+                    let item = &c["item"];
+                    let _ = writeln!(
+                        s,
+                        "    certificate {} for {} {} (serial {}), customer {}",
+                        edge_io::visible(c["id"].as_str().unwrap_or("")),
+                        edge_io::visible(item["manufacturer"].as_str().unwrap_or("")),
+                        edge_io::visible(item["model"].as_str().unwrap_or("")),
+                        edge_io::visible(item["serial"].as_str().unwrap_or("")),
+                        edge_io::visible(c["customer"]["name"].as_str().unwrap_or(""))
+                    );
+                }
+                None => {
+                    let _ = writeln!(s, "    no certificate (no `certificate` section)");
+                }
+            }
+        }
     }
+}
+
+/// A calibration section in words (`check`).
+fn calibration_words(cal: &Value) -> String {
+    let data = if cal["table"].is_object() {
+        format!(
+            "the PIGA table {}",
+            cal["table"]["file"].as_str().unwrap_or("")
+        )
+    } else {
+        format!(
+            "{} raw PIGA output recordings",
+            cal["recordings"]["files"].as_array().map_or(0, Vec::len)
+        )
+    };
+    let k1 = match &cal["k1"] {
+        Value::String(s) if s == "fitted" => "k1 fitted from the ω² coefficient".to_owned(),
+        Value::Object(m) if m.contains_key("given") => {
+            format!("k1 given: {} rad/(s·g)", num(m["given"].get("k1_rad_s_g")))
+        }
+        other => format!("k1 {other}"),
+    };
+    format!(
+        "eq. 18 fitted to {data}, compensated with phase {}'s C_r; {k1}; GUM and Monte Carlo \
+         uncertainty",
+        cal["compensate_with"].as_str().unwrap_or("")
+    )
+}
+
+/// A two-orientation section in words (`check`).
+fn two_orientation_words(sym: &Value) -> String {
+    let sets: Vec<String> = sym["orientations"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|o| {
+            let which = match o["orientation"].as_str() {
+                Some("ia_in") => "IA in",
+                Some("ia_out") => "IA out",
+                _ => "orientation not declared",
+            };
+            let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
+                || "radius not declared".to_owned(),
+                |r| format!("R = {} m", num(Some(r))),
+            );
+            let data = if o["table"].is_object() {
+                format!(
+                    "the PIGA table {}",
+                    o["table"]["file"].as_str().unwrap_or("")
+                )
+            } else if o["recordings"].is_object() {
+                format!(
+                    "{} raw PIGA output recordings",
+                    o["recordings"]["files"].as_array().map_or(0, Vec::len)
+                )
+            } else {
+                "no data".to_owned()
+            };
+            format!("{which} at {radius} from {data}")
+        })
+        .collect();
+    let compare = match sym["compare_with"].as_str() {
+        Some(phase) => format!("phase {phase}'s C_r"),
+        None => "the compensating (or first) phase's C_r".to_owned(),
+    };
+    format!(
+        "eq. 23 fitted jointly to {}; k2 and the radius growth C from the PIGA alone, C \
+         compared with {compare}; GUM and Monte Carlo uncertainty",
+        sets.join(" and ")
+    )
 }
 
 /// The IEEE 836 model's mountings, terms and compensation.

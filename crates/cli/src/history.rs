@@ -11,8 +11,9 @@ use records::{Access, Database, Date, HealthOptions, HistoryOptions, IntervalReq
 use crate::console::Console;
 use crate::record::RecordsFile;
 
-/// The share of the target U95 that Δk2 may reach, when `--share` is not given.
-const DEFAULT_SHARE: f64 = 0.2;
+/// The share of the target U95 that Δk2 may reach, when `--share` is not given (the command
+/// line's and the Python package's default).
+pub const DEFAULT_SHARE: f64 = 0.2;
 
 /// Arguments of `centrifuge-cal history`.
 #[derive(Debug, Args)]

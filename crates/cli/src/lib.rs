@@ -36,7 +36,9 @@ use std::process::ExitCode;
 
 use clap::{CommandFactory as _, FromArgMatches as _, Parser, Subcommand};
 
+pub use history::DEFAULT_SHARE;
 pub use paths::Places;
+pub use record::records_path;
 
 /// centrifuge-cal: PIGA calibration on a precision centrifuge, and the spindle imbalance's
 /// pseudo-second-order term.

@@ -63,26 +63,37 @@ pub(crate) struct RecordsFile {
 impl RecordsFile {
     /// The database's path and, when it is a default, the words saying which.
     pub(crate) fn resolve(&self) -> anyhow::Result<(PathBuf, Option<&'static str>)> {
-        if let Some(p) = &self.records {
-            return Ok((p.clone(), None));
-        }
-        if let Some(p) = std::env::var_os("CENTRIFUGE_CAL_RECORDS").filter(|p| !p.is_empty()) {
-            return Ok((PathBuf::from(p), Some("from $CENTRIFUGE_CAL_RECORDS")));
-        }
-        let data = std::env::var_os("XDG_DATA_HOME")
-            .filter(|p| !p.is_empty())
-            .map(PathBuf::from)
-            .or_else(|| {
-                std::env::var_os("HOME")
-                    .filter(|p| !p.is_empty())
-                    .map(|h| PathBuf::from(h).join(".local/share"))
-            })
-            .context("no --records given, and neither $CENTRIFUGE_CAL_RECORDS, $XDG_DATA_HOME nor $HOME is set: give --records FILE")?;
-        Ok((
-            data.join("centrifuge-cal/records.sqlite"),
-            Some("the default: no --records given"),
-        ))
+        records_path(self.records.as_deref())
     }
+}
+
+/// The records database's path: `given` (`--records FILE`), else `$CENTRIFUGE_CAL_RECORDS`,
+/// else `records.sqlite` in `$XDG_DATA_HOME/centrifuge-cal` (`~/.local/share/centrifuge-cal`);
+/// with, when it is a default, the words saying which. The command line and the Python
+/// package find the database through this one function.
+///
+/// # Errors
+/// No path given and none of the variables set.
+pub fn records_path(given: Option<&Path>) -> anyhow::Result<(PathBuf, Option<&'static str>)> {
+    if let Some(p) = given {
+        return Ok((p.to_owned(), None));
+    }
+    if let Some(p) = std::env::var_os("CENTRIFUGE_CAL_RECORDS").filter(|p| !p.is_empty()) {
+        return Ok((PathBuf::from(p), Some("from $CENTRIFUGE_CAL_RECORDS")));
+    }
+    let data = std::env::var_os("XDG_DATA_HOME")
+        .filter(|p| !p.is_empty())
+        .map(PathBuf::from)
+        .or_else(|| {
+            std::env::var_os("HOME")
+                .filter(|p| !p.is_empty())
+                .map(|h| PathBuf::from(h).join(".local/share"))
+        })
+        .context("no --records given, and neither $CENTRIFUGE_CAL_RECORDS, $XDG_DATA_HOME nor $HOME is set: give --records FILE")?;
+    Ok((
+        data.join("centrifuge-cal/records.sqlite"),
+        Some("the default: no --records given"),
+    ))
 }
 
 /// What `record` adds to a study's outputs.
@@ -143,8 +154,19 @@ fn optional_file(path: &Path) -> anyhow::Result<Option<Vec<u8>>> {
     }
 }
 
-/// Records the study whose outputs are in `dir` into `db`.
-pub(crate) fn record_dir(db: &mut Database, dir: &Path, extra: &Extra) -> anyhow::Result<Outcome> {
+/// One study's outputs as read from its folder, ready to be submitted.
+struct Read {
+    dir: PathBuf,
+    results: pipeline::StudyResults,
+    bytes: Vec<u8>,
+    inputs: Vec<InputFile>,
+    tool_version: Option<String>,
+    dcc: Option<Vec<u8>>,
+    pdf: Option<Vec<u8>>,
+}
+
+/// Reads the study whose outputs are in `dir`.
+fn read_study(dir: &Path) -> anyhow::Result<Read> {
     let results_path = dir.join("results.json");
     if !results_path.is_file() {
         anyhow::bail!(
@@ -180,27 +202,110 @@ pub(crate) fn record_dir(db: &mut Database, dir: &Path, extra: &Extra) -> anyhow
     };
     let dcc = optional_file(&dir.join("certificate.dcc.xml"))?;
     let pdf = optional_file(&dir.join("certificate.pdf"))?;
-    let submission = Submission {
-        results: &results,
-        results_json: &bytes,
+    Ok(Read {
+        dir: dir.to_owned(),
+        results,
+        bytes,
         inputs,
         tool_version,
-        dcc_xml: dcc.as_deref(),
-        certificate_pdf: pdf.as_deref(),
-        centrifuge: extra.centrifuge.clone(),
-        date: extra.date,
-        profile: extra.profile.clone(),
-        supersedes: extra.supersedes.clone(),
+        dcc,
+        pdf,
+    })
+}
+
+/// Records the study whose outputs are in `dir` into `db`: one study, or, for a
+/// several-unit study's top folder, every unit's (`units/<label>/`) in one transaction,
+/// all or none. Each folder recorded with what recording it did.
+pub(crate) fn record_dir(
+    db: &mut Database,
+    dir: &Path,
+    extra: &Extra,
+) -> anyhow::Result<Vec<(PathBuf, Outcome)>> {
+    let top = read_study(dir)?;
+    let studies = match &top.results.units {
+        None => vec![top],
+        Some(units) => {
+            if extra.supersedes.is_some() {
+                anyhow::bail!(
+                    "{}: a several-unit study's folder holds {} certificates, and --supersedes                      names the one certificate a corrected certificate replaces: record the                      corrected unit's own folder (`centrifuge-cal record {}/units/LABEL                      --supersedes …`)",
+                    dir.display(),
+                    units.len(),
+                    dir.display()
+                );
+            }
+            if units.is_empty() {
+                anyhow::bail!("{}: a several-unit study without units", dir.display());
+            }
+            units
+                .iter()
+                .map(|u| {
+                    // a label names a folder inside this one, never a path elsewhere
+                    if u.label.is_empty()
+                        || !u
+                            .label
+                            .bytes()
+                            .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-')
+                    {
+                        anyhow::bail!(
+                            "{}: field `units`: the label {:?} is not a unit's folder name                              (letters, digits, `_` and `-`)",
+                            dir.join("results.json").display(),
+                            edge_io::visible(&u.label)
+                        );
+                    }
+                    let unit_dir = dir.join("units").join(&u.label);
+                    let read = read_study(&unit_dir).with_context(|| {
+                        format!("unit {} of the study in {}", u.label, dir.display())
+                    })?;
+                    if read.results.units.is_some() {
+                        anyhow::bail!(
+                            "{}: holds another several-unit study, not unit {}'s results",
+                            unit_dir.display(),
+                            u.label
+                        );
+                    }
+                    Ok(read)
+                })
+                .collect::<anyhow::Result<Vec<_>>>()?
+        }
     };
-    let outcome = match std::env::var_os(PAUSE_BEFORE_COMMIT) {
-        Some(marker) => db.record_then(&submission, || {
+    let submissions: Vec<Submission<'_>> = studies
+        .iter()
+        .map(|s| Submission {
+            results: &s.results,
+            results_json: &s.bytes,
+            inputs: s.inputs.clone(),
+            tool_version: s.tool_version.clone(),
+            dcc_xml: s.dcc.as_deref(),
+            certificate_pdf: s.pdf.as_deref(),
+            centrifuge: extra.centrifuge.clone(),
+            date: extra.date,
+            profile: extra.profile.clone(),
+            supersedes: extra.supersedes.clone(),
+        })
+        .collect();
+    let outcomes = match std::env::var_os(PAUSE_BEFORE_COMMIT) {
+        Some(marker) => db.record_all_then(&submissions, || {
             let _ = std::fs::write(&marker, b"paused before commit");
             std::thread::sleep(std::time::Duration::from_secs(120));
         }),
-        None => db.record(&submission),
+        None => db.record_all(&submissions),
     }
-    .with_context(|| format!("recording {}", dir.display()))?;
-    Ok(outcome)
+    .with_context(|| {
+        if studies.len() > 1 {
+            format!(
+                "recording the {} units of {} (nothing of any was recorded)",
+                studies.len(),
+                dir.display()
+            )
+        } else {
+            format!("recording {}", dir.display())
+        }
+    })?;
+    Ok(studies
+        .iter()
+        .map(|s| s.dir.clone())
+        .zip(outcomes)
+        .collect())
 }
 
 /// Prints what a recording did.
@@ -303,7 +408,9 @@ impl Record {
             supersedes: self.supersedes.clone(),
             profile: self.profile.clone(),
         };
-        let outcome = record_dir(&mut db, dir, &extra)?;
-        print_outcome(&mut console, &path, default, dir, &outcome)
+        for (study, outcome) in record_dir(&mut db, dir, &extra)? {
+            print_outcome(&mut console, &path, default, &study, &outcome)?;
+        }
+        Ok(())
     }
 }

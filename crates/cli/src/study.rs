@@ -78,12 +78,19 @@ impl Study {
             .unzip();
         let outcomes = expected.as_ref().map(|e| e.compare(&results)).transpose()?;
         let provenance = report::Provenance::of_study(&study, expected_record.as_ref())?;
-        let files = report::write_outputs(
+        // a several-unit study: each unit's provenance is the configuration and the files its
+        // numbers come from (the probe recordings and its own data)
+        let unit_provenance = study
+            .units()
+            .map(|(_, unit)| report::Provenance::of_study(unit, None))
+            .collect::<report::Result<Vec<_>>>()?;
+        let files = report::write_outputs_with_units(
             &out,
             &results,
             expected.as_ref(),
             outcomes.as_deref(),
             Some(&provenance),
+            &unit_provenance,
         )
         .with_context(|| format!("writing the study's outputs into {}", out.display()))?;
         let mut console = Console::stdout();
@@ -126,6 +133,16 @@ impl Study {
         if let Some(xml) = &files.certificate_dcc {
             writeln!(console, "wrote {}", xml.display())?;
         }
+        for (label, unit) in &files.units {
+            let mut names = vec![unit.results_json.display().to_string()];
+            names.extend(unit.certificate_pdf.iter().map(|p| p.display().to_string()));
+            names.extend(unit.certificate_dcc.iter().map(|p| p.display().to_string()));
+            writeln!(
+                console,
+                "wrote unit {label}: {} (and its report and figures)",
+                names.join(", ")
+            )?;
+        }
         if let Some(db_path) = &self.records {
             let recorded = records::Database::open(db_path, records::Access::CreateIfMissing)
                 .map_err(anyhow::Error::new)
@@ -141,7 +158,9 @@ impl Study {
                         db_path.display()
                     )
                 })?;
-            crate::record::print_outcome(&mut console, db_path, None, &out, &recorded)?;
+            for (study, outcome) in &recorded {
+                crate::record::print_outcome(&mut console, db_path, None, study, outcome)?;
+            }
         }
         Ok(())
     }
@@ -229,6 +248,27 @@ fn print_summary(out: &mut Console, results: &StudyResults) -> Result<(), Consol
                 e(fit.c_r_sigma_m_s2),
                 fit.delta_k2_rad_s_g2,
                 e(fit.delta_k2_sigma_rad_s_g2)
+            )?;
+        }
+    }
+    if let Some(units) = &results.units {
+        writeln!(
+            out,
+            "(Δk2 above at the study's k1 = {} rad/(s·g) and R = {} m; each unit's, at its own \
+             k1 and radius, in its summary below)",
+            results.inputs.k1_rad_s_g, results.inputs.radius_m
+        )?;
+        for u in units {
+            let k2 = u.k2.map_or_else(
+                || "—".to_owned(),
+                |k| format!("k2 = {:.4e} ± {:.2e} rad/(s·g²) (U95)", k.value, k.u95),
+            );
+            writeln!(
+                out,
+                "unit {}: {}, certificate {}, {k2}",
+                u.label,
+                edge_io::visible(u.item.as_deref().unwrap_or("no certificate item")),
+                edge_io::visible(u.certificate.as_deref().unwrap_or("none"))
             )?;
         }
     }

@@ -51,8 +51,11 @@ static SEQUENCE: AtomicUsize = AtomicUsize::new(0);
 /// Two processes writing the same target at the same time are not supported.
 ///
 /// # Owned names, and the record of what was written
-/// The caller lists the file names it writes as patterns with at most one `*` (e.g.
-/// `"results.json"`, `"probe_signals_*.svg"`). Every file written must match one.
+/// The caller lists the file names it writes as patterns in which `*` stands for any run of
+/// characters but `/` (e.g. `"results.json"`, `"probe_signals_*.svg"`,
+/// `"units/*/results.json"` for a file in a folder of the set). Every file written must
+/// match one. A folder of the set is replaced with it: it is the set's when the record lists
+/// files in it, and each of its entries is checked as the target's own.
 ///
 /// A name is not proof of authorship: a lab's own `probe_020deg_s.csv` matches a
 /// simulation's pattern (issue 32: `simulate --out` onto a folder of real recordings
@@ -137,7 +140,9 @@ impl OutputSet {
     ///
     /// # Errors
     /// [`EdgeIoError::BadFileName`] for a name that is empty, `.` or `..`, has a path
-    /// separator, was written already or matches no owned pattern; [`EdgeIoError::Write`]
+    /// separator other than `/` between folder names (`units/A/results.json` is a file in a
+    /// folder of the set, created with it), was written already or matches no owned
+    /// pattern; [`EdgeIoError::Write`]
     /// naming `target/name` when the file cannot be created, written (including an error
     /// `contents` returns) or synced.
     pub fn write_with<F>(&mut self, name: &str, contents: F) -> Result<PathBuf>
@@ -150,10 +155,14 @@ impl OutputSet {
             path: destination.clone(),
             source,
         };
+        let staged = self.staging.join(name);
+        if let Some(folder) = staged.parent().filter(|p| *p != self.staging) {
+            fs::create_dir_all(folder).map_err(error)?;
+        }
         let file = fs::OpenOptions::new()
             .write(true)
             .create_new(true)
-            .open(self.staging.join(name))
+            .open(&staged)
             .map_err(error)?;
         let mut out = BufWriter::with_capacity(1 << 16, file);
         contents(&mut out).map_err(error)?;
@@ -232,8 +241,16 @@ impl OutputSet {
     fn check_name(&self, name: &str) -> Result<()> {
         let reason = if name.is_empty() || name == "." || name == ".." {
             Some("not a file name")
-        } else if name.chars().any(std::path::is_separator) {
-            Some("has a path separator")
+        } else if name
+            .split('/')
+            .any(|c| c.chars().any(std::path::is_separator))
+        {
+            Some("has a path separator other than `/`")
+        } else if name
+            .split('/')
+            .any(|c| c.is_empty() || c == "." || c == "..")
+        {
+            Some("has an empty, `.` or `..` folder or file name")
         } else if self.names.iter().any(|(n, _)| n == name) {
             Some("written twice")
         } else if !self.owned.iter().any(|p| matches_pattern(p, name)) {
@@ -259,14 +276,25 @@ impl Drop for OutputSet {
     }
 }
 
-/// Whether `name` matches `pattern`, in which one `*` stands for any run of characters.
+/// Whether `name` matches `pattern`, in which each `*` stands for any run of characters
+/// other than `/` (a name in a folder of the set is `folder/name`).
 fn matches_pattern(pattern: &str, name: &str) -> bool {
     match pattern.split_once('*') {
         None => pattern == name,
-        Some((prefix, suffix)) => {
-            name.len() >= prefix.len() + suffix.len()
-                && name.starts_with(prefix)
-                && name.ends_with(suffix)
+        Some((prefix, rest)) => {
+            let Some(name) = name.strip_prefix(prefix) else {
+                return false;
+            };
+            let mut end = 0;
+            loop {
+                if matches_pattern(rest, &name[end..]) {
+                    return true;
+                }
+                match name[end..].chars().next() {
+                    None | Some('/') => return false,
+                    Some(c) => end += c.len_utf8(),
+                }
+            }
         }
     }
 }
@@ -395,7 +423,33 @@ fn read_record(dir: &Path) -> Option<std::collections::HashMap<String, u64>> {
 
 /// Refuses a target that holds an entry an earlier set did not write (see [`OutputSet`]).
 fn check_replaceable(resolved: &Path, target: &Path, owned: &[String]) -> Result<()> {
-    let entries = match fs::read_dir(resolved) {
+    let record = read_record(resolved);
+    let mut foreign: Vec<(String, &'static str)> = Vec::new();
+    scan(resolved, "", target, record.as_ref(), owned, &mut foreign)?;
+    foreign.sort();
+    match foreign.first() {
+        None => Ok(()),
+        Some((example, why)) => Err(EdgeIoError::ForeignEntries {
+            target: target.to_owned(),
+            count: foreign.len(),
+            example: example.clone(),
+            why,
+        }),
+    }
+}
+
+/// The entries of `dir` (at `prefix`, `""` or `units/A/`, within the target) that an earlier
+/// set did not write, into `foreign`: a folder is its own only when the record lists files
+/// under it, and then every entry in it is checked in turn.
+fn scan(
+    dir: &Path,
+    prefix: &str,
+    target: &Path,
+    record: Option<&std::collections::HashMap<String, u64>>,
+    owned: &[String],
+    foreign: &mut Vec<(String, &'static str)>,
+) -> Result<()> {
+    let entries = match fs::read_dir(dir) {
         Ok(entries) => entries,
         Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(()),
         Err(source) => {
@@ -405,25 +459,32 @@ fn check_replaceable(resolved: &Path, target: &Path, owned: &[String]) -> Result
             });
         }
     };
-    let record = read_record(resolved);
-    let mut foreign: Vec<(String, &'static str)> = Vec::new();
     for entry in entries {
         let entry = entry.map_err(|source| EdgeIoError::Replace {
             target: target.to_owned(),
             source,
         })?;
         let name = entry.file_name();
-        let text = name.to_string_lossy().into_owned();
-        if text == OUTPUT_RECORD && record.is_some() {
+        let text = format!("{prefix}{}", name.to_string_lossy());
+        if prefix.is_empty() && text == OUTPUT_RECORD && record.is_some() {
             continue;
         }
-        let why = match (&record, name.to_str()) {
+        let folder = format!("{text}/");
+        let is_dir = entry.metadata().is_ok_and(|m| m.is_dir());
+        if is_dir
+            && name.to_str().is_some()
+            && record.is_some_and(|r| r.keys().any(|k| k.starts_with(&folder)))
+        {
+            scan(&entry.path(), &folder, target, record, owned, foreign)?;
+            continue;
+        }
+        let why = match (record, name.to_str()) {
             (_, None) => Some("a name that is not UTF-8"),
-            (_, Some(n)) if !owned.iter().any(|p| matches_pattern(p, n)) => {
+            (_, Some(_)) if !owned.iter().any(|p| matches_pattern(p, &text)) => {
                 Some("not a name this tool writes")
             }
             (None, _) => Some("no record of what this tool wrote here"),
-            (Some(record), Some(n)) => match (record.get(n), entry.metadata()) {
+            (Some(record), Some(_)) => match (record.get(&text), entry.metadata()) {
                 (None, _) => Some("not among the files this tool wrote here"),
                 (Some(_), Ok(m)) if !m.is_file() => Some("not a regular file"),
                 (Some(&bytes), Ok(m)) if m.len() != bytes => {
@@ -437,16 +498,7 @@ fn check_replaceable(resolved: &Path, target: &Path, owned: &[String]) -> Result
             foreign.push((text, why));
         }
     }
-    foreign.sort();
-    match foreign.first() {
-        None => Ok(()),
-        Some((example, why)) => Err(EdgeIoError::ForeignEntries {
-            target: target.to_owned(),
-            count: foreign.len(),
-            example: example.clone(),
-            why,
-        }),
-    }
+    Ok(())
 }
 
 /// Flushes a directory's entries to disk (a no-op where directories cannot be opened).
@@ -461,6 +513,27 @@ fn sync_dir(dir: &Path) -> io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn patterns_match_folders_and_names() {
+        assert!(matches_pattern(
+            "units/*/results.json",
+            "units/A/results.json"
+        ));
+        assert!(!matches_pattern(
+            "units/*/results.json",
+            "units/A/B/results.json"
+        ));
+        assert!(matches_pattern(
+            "units/*/probe_signals_*.svg",
+            "units/A-2/probe_signals_pre.svg"
+        ));
+        assert!(!matches_pattern(
+            "units/*/results.json",
+            "units//results.json.x"
+        ));
+        assert!(!matches_pattern("probe_*.svg", "probe_x/y.svg"));
+    }
 
     #[test]
     fn patterns_have_one_wildcard() {

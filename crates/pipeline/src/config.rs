@@ -98,6 +98,118 @@ pub struct StudyConfig {
     /// `deprecated_key` warning naming the new key; both at once is an error.
     #[serde(default, rename = "symmetric", skip_serializing_if = "Option::is_none")]
     pub symmetric_deprecated: Option<TwoOrientationConfig>,
+    /// Several units calibrated from this study's one spindle characterisation, each with its
+    /// own k1, calibration data and certificate (absent: the study is of one unit, stated by
+    /// the top-level sections). With it, the top-level `calibration`, `certificate`,
+    /// `two_orientation` and `mountings` are refused.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<Vec<UnitConfig>>,
+}
+
+// ---- several units (issue 30 part 4, docs/CONFIGURATION.md "Several units") ----
+
+/// One unit of a several-unit study (`units: [(label: "A", …), …]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitConfig {
+    /// The unit's label: letters, digits, `_` and `-`, at most 64 characters, unique in the
+    /// study (compared without regard to case): its outputs go to `units/<label>/`.
+    pub label: String,
+    /// The unit's scale factor `k1`, rad/(s·g): its Δk2 = k1·C_r·g/R² (eq. 19).
+    pub k1_rad_s_g: f64,
+    /// The unit's static working radius, m (default: the study's `radius_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_m: Option<f64>,
+    /// The unit's calibration on its own table or raw output recordings, compensated with a
+    /// phase of the study.
+    pub calibration: CalibrationConfig,
+    /// Its two-orientation calibration (absent: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub two_orientation: Option<TwoOrientationConfig>,
+    /// Its certificate's statements (absent: no certificate for this unit). The
+    /// identification must differ from every other unit's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub certificate: Option<CertificateConfig>,
+}
+
+/// The top-level sections a several-unit study refuses beside `units`: each is a unit's
+/// own, stated inside each unit (or, for `mountings`, not yet available per unit).
+const BESIDE_UNITS: [(&str, &str); 5] = [
+    (
+        "calibration",
+        "each unit states its own calibration: move it into `units[…].calibration`",
+    ),
+    (
+        "certificate",
+        "each unit states its own certificate: move it into `units[…].certificate`",
+    ),
+    (
+        "two_orientation",
+        "each unit states its own two-orientation data: move it into \
+         `units[…].two_orientation`",
+    ),
+    (
+        "symmetric",
+        "each unit states its own two-orientation data: move it into \
+         `units[…].two_orientation`",
+    ),
+    (
+        "mountings",
+        "the mountings section is not available per unit yet: run a study of that unit on \
+         its own",
+    ),
+];
+
+impl StudyConfig {
+    /// The top-level sections given beside `units` that a several-unit study refuses, each
+    /// with what to do instead (empty for a study without units).
+    pub(crate) fn beside_units(&self) -> Vec<(&'static str, &'static str)> {
+        if self.units.is_none() {
+            return Vec::new();
+        }
+        let given = [
+            self.calibration.is_some(),
+            self.certificate.is_some(),
+            self.two_orientation.is_some(),
+            self.symmetric_deprecated.is_some(),
+            self.mountings.is_some(),
+        ];
+        BESIDE_UNITS
+            .iter()
+            .zip(given)
+            .filter_map(|(&what, given)| given.then_some(what))
+            .collect()
+    }
+
+    /// The study of the shared part of a several-unit study: its probe phases and what goes
+    /// with them (mechanism, balance, counterweight), without any unit.
+    #[must_use]
+    pub fn without_units(&self) -> Self {
+        Self {
+            units: None,
+            ..self.clone()
+        }
+    }
+
+    /// The single-unit study of unit `index`: the study with that unit's k1, radius (when it
+    /// states one), calibration, two-orientation section and certificate, named
+    /// `<name>: unit <label>`. A several-unit study computes each unit as this study (the
+    /// same code on the same values: the numbers of a unit equal those of its single-unit
+    /// study). `None` when there is no such unit.
+    #[must_use]
+    pub fn for_unit(&self, index: usize) -> Option<Self> {
+        let unit = self.units.as_ref()?.get(index)?;
+        Some(Self {
+            name: format!("{}: unit {}", self.name, unit.label),
+            radius_m: unit.radius_m.or(self.radius_m),
+            k1_rad_s_g: unit.k1_rad_s_g,
+            calibration: Some(unit.calibration.clone()),
+            certificate: unit.certificate.clone(),
+            two_orientation: unit.two_orientation.clone(),
+            units: None,
+            ..self.clone()
+        })
+    }
 }
 
 /// The counterweight section (`counterweight: (...)`): what a `radius_change` phase, one
@@ -626,6 +738,7 @@ fn config_key(type_name: &str) -> Option<&'static str> {
         "CertifyName" => "certificate.certify",
         "AuthorisationConfig" => "certificate.authorisation",
         "TwoOrientationConfig" => "two_orientation",
+        "UnitConfig" => "units[…]",
         // the lab profile (lab.ron)
         "ProfileConfig" => return None,
         "ProfileLaboratory" => "laboratory",

@@ -413,6 +413,31 @@ pub enum PipelineError {
         /// What is wrong, and what to write instead.
         problem: String,
     },
+    /// A top-level section that a several-unit study takes from each unit.
+    #[error("{}: field `{field}` is given beside `units`: {hint}", path.display())]
+    BesideUnits {
+        /// The configuration file.
+        path: PathBuf,
+        /// The top-level section.
+        field: String,
+        /// What to do instead, in words.
+        hint: &'static str,
+    },
+    /// A value that must differ between the items of a list (a unit's certificate
+    /// identification).
+    #[error("{}: field `{field}` = {value:?}: {what} is already used at `{first}`", path.display())]
+    UsedTwice {
+        /// The configuration file.
+        path: PathBuf,
+        /// The second occurrence.
+        field: String,
+        /// The first occurrence.
+        first: String,
+        /// The value.
+        value: String,
+        /// What it is, in words.
+        what: &'static str,
+    },
     /// Several errors, each complete, in the configuration's order.
     #[error("{} errors:{}", errors.len(), list(errors))]
     Several {
@@ -596,6 +621,75 @@ impl PipelineError {
             1 => Err(errors.remove(0)),
             _ => Err(Self::Several { errors }),
         }
+    }
+}
+
+impl PipelineError {
+    /// The error of unit `index`'s single-unit study as the several-unit study's file names
+    /// it: a field that is the unit's own (`calibration…`, `certificate…`, `two_orientation…`,
+    /// `k1_rad_s_g`, `radius_m`) becomes `units[index].…`; a shared field keeps its name.
+    #[must_use]
+    pub(crate) fn in_unit(self, index: usize) -> Self {
+        let own = |field: &mut String| {
+            let is_own = ["calibration", "certificate", "two_orientation"]
+                .iter()
+                .any(|k| {
+                    field.strip_prefix(k).is_some_and(|rest| {
+                        rest.is_empty() || rest.starts_with('.') || rest.starts_with('[')
+                    })
+                })
+                || field == "k1_rad_s_g"
+                || field == "radius_m";
+            if is_own {
+                *field = format!("units[{index}].{field}");
+            }
+        };
+        let mut e = self;
+        match &mut e {
+            Self::Several { errors } => {
+                let errors = std::mem::take(errors);
+                return Self::Several {
+                    errors: errors.into_iter().map(|e| e.in_unit(index)).collect(),
+                };
+            }
+            Self::DuplicateName { field, first, .. } | Self::UsedTwice { field, first, .. } => {
+                own(field);
+                own(first);
+            }
+            Self::StatedTwice { field, other, .. } => {
+                own(field);
+                own(other);
+            }
+            Self::InvalidField { field, .. }
+            | Self::DuplicateRate { field, .. }
+            | Self::SameRecording { field, .. }
+            | Self::TooFewPoints { field, .. }
+            | Self::NonFiniteResult { field, .. }
+            | Self::Identify { field, .. }
+            | Self::Calibration { field, .. }
+            | Self::Uncertainty { field, .. }
+            | Self::Balance { field, .. }
+            | Self::Harmonics { field, .. }
+            | Self::EmptyList { field, .. }
+            | Self::Kinematics { field, .. }
+            | Self::AccelModel { field, .. }
+            | Self::Recording { field, .. }
+            | Self::Unsupported { field, .. }
+            | Self::TableValue { field, .. }
+            | Self::RateWithoutSigma { field, .. }
+            | Self::TooFewRates { field, .. }
+            | Self::InvalidName { field, .. }
+            | Self::UnknownPhase { field, .. }
+            | Self::MissingField { field, .. }
+            | Self::UnknownKey { field, .. }
+            | Self::InvalidDate { field, .. }
+            | Self::HiddenCharacter { field, .. }
+            | Self::ImplausibleUncertainty { field, .. }
+            | Self::InvalidMountings { field, .. }
+            | Self::BesideUnits { field, .. } => own(field),
+            _ => {}
+        }
+        e
     }
 }
 

@@ -16,7 +16,9 @@
 //! 100 and 101); with a `two_orientation` section, the IA-in and IA-out tables by eq. 23;
 //! with a `mountings` section, the IEEE 836 model from several mountings, each table fitted
 //! jointly with the probe's C_r compensated along each mounting's axes (eq. 15 and 23 as
-//! special cases; `docs/MODEL.md`). The `report` crate writes the outputs.
+//! special cases; `docs/MODEL.md`); with a `units` list, several units calibrated from the
+//! one spindle characterisation, each as its own single-unit study on the phases measured
+//! once (`StudyConfig::for_unit`; issue 30). The `report` crate writes the outputs.
 //!
 //! Only the `load` module touches files.
 //!
@@ -91,7 +93,7 @@ pub use config::{
     CentrifugeConfig, CentrifugeTraceability, GravityConfig, InstrumentConfig, PersonConfig,
     ProbeConfig, ProfileConfig, ProfileLaboratory, ProfileLever,
 };
-pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig};
+pub use config::{OrientationConfig, OrientationName, TwoOrientationConfig, UnitConfig};
 pub use error::{DegenerateInterval, InvalidReason, PipelineError, Result, UnsupportedReason};
 pub use inputs::{DataSource, InputFile, InputRole, Loaded};
 pub use load::{Files, MAX_STUDY_BYTES, load_profile, load_study, parse_study};
@@ -119,7 +121,7 @@ pub use results::{
     Estimate, FitWeighting, InfiniteDof, LabelSummary, MechanismPhase, MechanismResults, ModelFit,
     MonteCarlo, MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult,
     PigaResult, PointResult, ProbeTrace, ProfileResults, RadiusModel, StudyInputs, StudyResults,
-    ValueOrigin, ValueSource, Warning, WarningCode, model_name,
+    UnitSummary, ValueOrigin, ValueSource, Warning, WarningCode, model_name,
 };
 pub use results::{
     MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,

@@ -4,6 +4,7 @@
 //! next.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use crate::config::{DeprecatedKey, StudyConfig};
 use crate::error::{PipelineError, Result};
@@ -11,7 +12,7 @@ use recording::FileDigest;
 
 use crate::inputs::{Core, DataSource, InputFile};
 use crate::profile::Profile;
-use crate::results::{ProfileResults, StudyInputs, StudyResults, Warning};
+use crate::results::{ProfileResults, StudyInputs, StudyResults, UnitSummary, Warning};
 use crate::sections::balance::counterweight::{self, CounterweightInputs};
 use crate::sections::balance::{self, BalanceInputs};
 use crate::sections::calibration::{self, CalibrationInputs, CalibrationMeasurement};
@@ -25,7 +26,8 @@ use crate::sections::two_orientation::{self, TwoOrientationInputs};
 #[derive(Debug, Clone)]
 pub struct Inputs {
     core: Core,
-    phases: Phases,
+    /// Shared by the units of a several-unit study: their phases are the study's.
+    phases: Arc<Phases>,
     mechanism: Option<Mechanism>,
     calibration: Option<CalibrationInputs>,
     balance: Option<BalanceInputs>,
@@ -40,6 +42,17 @@ pub struct Inputs {
     /// The lab profile the study named: which values came from it, and the file it was read
     /// from with its size and SHA-256.
     profile: Option<(ProfileResults, PathBuf, Option<FileDigest>)>,
+    /// A several-unit study's units, each as its single-unit study (empty: one unit, or
+    /// none).
+    units: Vec<Unit>,
+}
+
+/// One unit of a several-unit study: its label and its single-unit study's inputs
+/// ([`StudyConfig::for_unit`]), whose phases are the study's own.
+#[derive(Debug, Clone)]
+struct Unit {
+    label: String,
+    inputs: Inputs,
 }
 
 impl Inputs {
@@ -65,10 +78,72 @@ impl Inputs {
     /// that names a profile without one given here, or names a centrifuge without a profile;
     /// a centrifuge, probe or signatory the profile does not have.
     pub fn with_profile(
+        config: StudyConfig,
+        profile: Option<&Profile>,
+        source: &Path,
+        load: &dyn DataSource,
+    ) -> Result<Self> {
+        if config.units.is_some() {
+            return Self::with_units(&config, profile, source, load);
+        }
+        Self::build(config, profile, source, load, None)
+    }
+
+    /// A several-unit study: its shared part ([`StudyConfig::without_units`]) with its phases
+    /// read once, then each unit's single-unit study ([`StudyConfig::for_unit`]) on those
+    /// phases. Every unit's problems at once, each naming the unit's field
+    /// (`units[1].calibration.table`); a problem of a shared field is named once.
+    fn with_units(
+        config: &StudyConfig,
+        profile: Option<&Profile>,
+        source: &Path,
+        load: &dyn DataSource,
+    ) -> Result<Self> {
+        PipelineError::from_list(units_problems(config, source))?;
+        let mut top = Self::build(config.without_units(), profile, source, load, None)?;
+        let mut errors: Vec<PipelineError> = Vec::new();
+        let mut units = Vec::new();
+        let count = config.units.as_ref().map_or(0, Vec::len);
+        for index in 0..count {
+            let Some(unit_config) = config.for_unit(index) else {
+                continue;
+            };
+            let label = config
+                .units
+                .as_ref()
+                .map_or_else(String::new, |u| u[index].label.clone());
+            match Self::build(unit_config, profile, source, load, Some(&top.phases)) {
+                Ok(inputs) => units.push(Unit { label, inputs }),
+                Err(e) => {
+                    // a shared field's problem is the same in every unit: named once
+                    let e = e.in_unit(index);
+                    let flat = match e {
+                        PipelineError::Several { errors } => errors,
+                        e => vec![e],
+                    };
+                    for e in flat {
+                        let text = e.to_string();
+                        if !errors.iter().any(|known| known.to_string() == text) {
+                            errors.push(e);
+                        }
+                    }
+                }
+            }
+        }
+        PipelineError::from_list(errors)?;
+        top.units = units;
+        Ok(top)
+    }
+
+    /// The inputs of one study (a single-unit study, or a several-unit study's shared part
+    /// or one unit); `shared`: the phases of the several-unit study, read once, which a
+    /// unit uses instead of reading them again.
+    fn build(
         mut config: StudyConfig,
         profile: Option<&Profile>,
         source: &Path,
         load: &dyn DataSource,
+        shared: Option<&Arc<Phases>>,
     ) -> Result<Self> {
         let deprecated = config.take_deprecated_keys(source)?;
         let profile = match (&config.profile, profile) {
@@ -172,7 +247,12 @@ impl Inputs {
             })
             .transpose()?;
         let base = core.base().to_owned();
-        let phases = checked.load(&config.phases, &base, source, load, &core.angle_zero)?;
+        let phases = match shared {
+            Some(phases) => Arc::clone(phases),
+            None => {
+                Arc::new(checked.load(&config.phases, &base, source, load, &core.angle_zero)?)
+            }
+        };
         core.angle_zero.measured_angles = phases.measure_angles();
         let calibration = match (config.calibration.as_ref(), calibration_refs) {
             (Some(c), Some(refs)) => Some(calibration::load(c, refs, type_b, &base, source, load)?),
@@ -191,7 +271,14 @@ impl Inputs {
             mountings,
             deprecated,
             profile,
+            units: Vec::new(),
         })
+    }
+
+    /// A several-unit study's units, each with its label and its single-unit study's
+    /// inputs (empty for a study of one unit).
+    pub fn units(&self) -> impl Iterator<Item = (&str, &Self)> {
+        self.units.iter().map(|u| (u.label.as_str(), &u.inputs))
     }
 
     /// The lab profile's file and its size and SHA-256 as read (`None`: the study names no
@@ -212,6 +299,19 @@ impl Inputs {
     /// past its calibration due date on the measurement date, or due dates that cannot be
     /// compared with it. `run` states the same among its warnings.
     pub fn warnings(&self) -> Vec<Warning> {
+        let mut warnings = self
+            .certificate
+            .as_ref()
+            .map(Certificate::warnings)
+            .unwrap_or_default();
+        for unit in &self.units {
+            warnings.extend(unit.inputs.warnings());
+        }
+        warnings
+    }
+
+    /// [`Inputs::warnings`] of this study alone (not its units').
+    fn own_warnings(&self) -> Vec<Warning> {
         self.certificate
             .as_ref()
             .map(Certificate::warnings)
@@ -223,6 +323,9 @@ impl Inputs {
     /// [`FileDigest::of`] its bytes).
     #[must_use]
     pub fn with_config_digest(mut self, digest: FileDigest) -> Self {
+        for unit in &mut self.units {
+            unit.inputs.config_digest = Some(digest.clone());
+        }
         self.config_digest = Some(digest);
         self
     }
@@ -276,6 +379,71 @@ impl Inputs {
     }
 }
 
+/// What a several-unit study's `units` list and top level may not hold, every problem at
+/// once: an empty list; a label that is not a name (it names a folder) or that another unit
+/// has (compared without regard to case, as some file systems compare folder names); a
+/// certificate identification another unit has; a top-level section that is each unit's own.
+fn units_problems(config: &StudyConfig, source: &Path) -> Vec<PipelineError> {
+    let mut errors = Vec::new();
+    for (field, hint) in config.beside_units() {
+        errors.push(PipelineError::BesideUnits {
+            path: source.to_owned(),
+            field: field.to_owned(),
+            hint,
+        });
+    }
+    let Some(units) = &config.units else {
+        return errors;
+    };
+    if units.is_empty() {
+        errors.push(PipelineError::EmptyList {
+            path: source.to_owned(),
+            field: "units".to_owned(),
+        });
+    }
+    for (i, unit) in units.iter().enumerate() {
+        let label = &unit.label;
+        let valid = !label.is_empty()
+            && label.len() <= 64
+            && label
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-');
+        if !valid {
+            errors.push(PipelineError::InvalidName {
+                path: source.to_owned(),
+                field: format!("units[{i}].label"),
+                name: label.clone(),
+            });
+        } else if let Some(first) = units[..i]
+            .iter()
+            .position(|u| u.label.eq_ignore_ascii_case(label))
+        {
+            errors.push(PipelineError::DuplicateName {
+                path: source.to_owned(),
+                field: format!("units[{i}].label"),
+                first: format!("units[{first}].label"),
+                name: label.clone(),
+            });
+        }
+        if let Some(id) = unit.certificate.as_ref().map(|c| c.id.trim())
+            && let Some(first) = units[..i].iter().position(|u| {
+                u.certificate
+                    .as_ref()
+                    .is_some_and(|c| !id.is_empty() && c.id.trim() == id)
+            })
+        {
+            errors.push(PipelineError::UsedTwice {
+                path: source.to_owned(),
+                field: format!("units[{i}].certificate.id"),
+                first: format!("units[{first}].certificate.id"),
+                value: id.to_owned(),
+                what: "a certificate's identification (each certificate has its own)",
+            });
+        }
+    }
+    errors
+}
+
 /// Runs a study: each phase with its per-point geometry, its radius-error fit and the
 /// pseudo-second-order error `Δk2` it implies, then the mechanism, calibration, balance and
 /// counterweight sections when configured.
@@ -297,12 +465,61 @@ pub fn run_with_progress(
     if total > 0 {
         progress(Progress::Recordings { total });
     }
+    // Each phase measured once (the recordings analysed); a several-unit study fits them for
+    // each unit, with its k1 and radius.
+    let measured = inputs
+        .phases
+        .list
+        .iter()
+        .map(|phase| phases::measure_phase(core, phase, progress))
+        .collect::<Result<Vec<_>>>()?;
+    let mut results = run_sections(inputs, &measured)?;
+    if inputs.units.is_empty() {
+        return Ok(results);
+    }
+    let mut summaries = Vec::with_capacity(inputs.units.len());
+    let mut studies = Vec::with_capacity(inputs.units.len());
+    for (index, unit) in inputs.units.iter().enumerate() {
+        let _unit = tracing::info_span!("unit", label = %unit.label).entered();
+        let r = run_sections(&unit.inputs, &measured).map_err(|e| e.in_unit(index))?;
+        summaries.push(unit_summary(&unit.label, &unit.inputs, &r));
+        studies.push(r);
+    }
+    results.units = Some(summaries);
+    results.unit_studies = studies;
+    Ok(results)
+}
+
+/// The top folder's line of a unit.
+fn unit_summary(label: &str, inputs: &Inputs, r: &StudyResults) -> UnitSummary {
+    UnitSummary {
+        label: label.to_owned(),
+        folder: format!("units/{label}"),
+        study: r.study.clone(),
+        k1_rad_s_g: inputs.core.k1_rad_s_g,
+        radius_m: inputs.core.radius_m,
+        certificate: r.certificate.as_ref().map(|c| c.id.clone()),
+        item: r
+            .certificate
+            .as_ref()
+            .map(|c| format!("{} {}", c.item.model, c.item.serial)),
+        compensate_with: r.calibration.as_ref().map(|c| c.compensate_with.clone()),
+        delta_k2: r.calibration.as_ref().map(|c| c.delta_k2),
+        k2: r.calibration.as_ref().map(|c| c.coefficients.k2),
+        warnings: r.warnings.len(),
+    }
+}
+
+/// The sections of one study (a single-unit study, or a several-unit study's shared part or
+/// one unit) on its measured phases.
+fn run_sections(inputs: &Inputs, measured: &[phases::Measured]) -> Result<StudyResults> {
+    let core = &inputs.core;
     let mut warnings: Vec<Warning> = inputs
         .deprecated
         .iter()
         .map(|d| Warning::deprecated_key(d.old, d.new))
         .collect();
-    warnings.extend(inputs.warnings());
+    warnings.extend(inputs.own_warnings());
     let mut phases = Vec::with_capacity(inputs.phases.list.len());
     // Phases holding a second probe's data are fitted like the others, through the first
     // probe's lever and direction: their C_r is not the PIGA plane's, and they say so.
@@ -311,8 +528,8 @@ pub fn run_with_progress(
         .as_ref()
         .map(BalanceInputs::second_probe_phases)
         .unwrap_or_default();
-    for (p, phase) in inputs.phases.list.iter().enumerate() {
-        let (results, more) = phases::run_phase(core, inputs.phases.model, phase, progress)?;
+    for (p, (phase, m)) in inputs.phases.list.iter().zip(measured).enumerate() {
+        let (results, more) = phases::fit_phase(core, inputs.phases.model, phase, m)?;
         if second_probe.contains(&p) {
             warnings.push(Warning::second_probe_phase(&phase.name, &phase.key));
         }
@@ -394,6 +611,8 @@ pub fn run_with_progress(
         two_orientation,
         mountings,
         profile: inputs.profile_values().cloned(),
+        units: None,
+        unit_studies: Vec::new(),
     };
     // The libraries refuse their own non-finite results; this catches what is combined here.
     edge_io::check_finite(&results).map_err(|e| PipelineError::NonFiniteResult {

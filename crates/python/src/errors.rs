@@ -246,6 +246,8 @@ impl Located {
             | E::UnknownPhase { path, field, .. }
             | E::StatedTwice { path, field, .. }
             | E::InvalidMountings { path, field, .. }
+            | E::BesideUnits { path, field, .. }
+            | E::UsedTwice { path, field, .. }
             | E::UnknownKey { path, field, .. } => at(path, field),
             E::File(e) => Self::edge(e),
             E::TwoOrientation { path, source } => Self {

@@ -20,6 +20,7 @@ use workspace_hack as _;
 mod errors;
 mod files;
 mod fit;
+mod history;
 mod interrupt;
 mod study;
 mod to_python;
@@ -41,6 +42,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::fit_radius_error, m)?)?;
     m.add_function(wrap_pyfunction!(study::delta_k2, m)?)?;
     m.add_function(wrap_pyfunction!(study::certificate, m)?)?;
+    m.add_function(wrap_pyfunction!(history::unit_history, m)?)?;
+    m.add_function(wrap_pyfunction!(history::centrifuge_health, m)?)?;
     m.add_function(wrap_pyfunction!(cli_main, m)?)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -288,7 +288,36 @@ impl Database {
         submission: &Submission<'_>,
         before_commit: impl FnOnce(),
     ) -> Result<Outcome> {
-        let rows = submission.rows()?;
+        let mut outcomes = self.record_all_then(std::slice::from_ref(submission), before_commit)?;
+        Ok(outcomes.remove(0))
+    }
+
+    /// Records several studies in one transaction: all of them, or, if any fails, none (a
+    /// several-unit study's units, each its own study and certificate from one probe phase).
+    /// A study recorded before is left as it is ([`Outcome::AlreadyRecorded`]); the others
+    /// are recorded.
+    ///
+    /// # Errors
+    /// As [`Database::record`], for any of them: then nothing of any is written.
+    pub fn record_all(&mut self, submissions: &[Submission<'_>]) -> Result<Vec<Outcome>> {
+        self.record_all_then(submissions, || {})
+    }
+
+    /// [`Database::record_all`], calling `before_commit` when everything is written but not
+    /// yet committed (the tests stop a recording there).
+    ///
+    /// # Errors
+    /// As [`Database::record_all`].
+    pub fn record_all_then(
+        &mut self,
+        submissions: &[Submission<'_>],
+        before_commit: impl FnOnce(),
+    ) -> Result<Vec<Outcome>> {
+        // every study checked before the database is touched
+        let rows = submissions
+            .iter()
+            .map(Submission::rows)
+            .collect::<Result<Vec<_>>>()?;
         let path = self.path.clone();
         let err = move |action: &'static str| {
             let path = path.clone();
@@ -302,31 +331,36 @@ impl Database {
             .conn
             .transaction_with_behavior(TransactionBehavior::Immediate)
             .map_err(err("starting the record's transaction"))?;
-        if let Some((record, recorded_at)) = tx
-            .query_row(
-                "SELECT record_hash, recorded_at FROM studies WHERE record_hash = ?1",
-                [&rows.hash],
-                |r| Ok((r.get::<_, String>(0)?, r.get::<_, String>(1)?)),
-            )
-            .optional()
-            .map_err(err("looking the record up"))?
-        {
-            return Ok(Outcome::AlreadyRecorded {
-                record,
-                recorded_at,
-            });
+        let mut outcomes = Vec::with_capacity(rows.len());
+        for rows in &rows {
+            if let Some((record, recorded_at)) = tx
+                .query_row(
+                    "SELECT record_hash, recorded_at FROM studies WHERE record_hash = ?1",
+                    [&rows.hash],
+                    |r| Ok((r.get::<_, String>(0)?, r.get::<_, String>(1)?)),
+                )
+                .optional()
+                .map_err(err("looking the record up"))?
+            {
+                outcomes.push(Outcome::AlreadyRecorded {
+                    record,
+                    recorded_at,
+                });
+                continue;
+            }
+            // an error here drops the transaction: nothing of any study is written
+            outcomes.push(insert(&tx, rows).map_err(|e| match e {
+                Insert::Sql(action, source) => RecordsError::Sqlite {
+                    path: self.path.clone(),
+                    action,
+                    source,
+                },
+                Insert::Records(e) => e,
+            })?);
         }
-        let outcome = insert(&tx, &rows).map_err(|e| match e {
-            Insert::Sql(action, source) => RecordsError::Sqlite {
-                path: self.path.clone(),
-                action,
-                source,
-            },
-            Insert::Records(e) => e,
-        })?;
         before_commit();
         tx.commit().map_err(err("committing the record"))?;
-        Ok(outcome)
+        Ok(outcomes)
     }
 
     /// Records a balancing of `centrifuge` on `date`.
@@ -602,7 +636,7 @@ impl Database {
                  ORDER BY s.measured_day, s.id",
             )
             .map_err(self.sql("reading the centrifuge's campaigns"))?;
-        let campaigns: Vec<Campaign> = stmt
+        let mut campaigns: Vec<Campaign> = stmt
             .query_map([id], |r| {
                 let date: String = r.get(0)?;
                 Ok(Campaign {
@@ -618,6 +652,15 @@ impl Database {
             })
             .and_then(Iterator::collect)
             .map_err(self.sql("reading the centrifuge's campaigns"))?;
+        // The units of a several-unit study are recorded as one study each, from one probe
+        // phase: the same campaign, counted once (the first unit's line; its Δk2 is at that
+        // unit's k1 and radius).
+        campaigns.dedup_by(|later, first| {
+            later.date == first.date
+                && later.phase == first.phase
+                && later.c_r_m_s2.to_bits() == first.c_r_m_s2.to_bits()
+                && later.offset_um.to_bits() == first.offset_um.to_bits()
+        });
         let mut stmt = self
             .conn
             .prepare_cached(

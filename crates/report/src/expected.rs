@@ -237,7 +237,7 @@ fn lookup(root: &serde_json::Value, path: &str) -> Option<f64> {
             node = match index.parse::<usize>() {
                 Ok(i) => node.get(i)?,
                 Err(_) => node.as_array()?.iter().find(|item| {
-                    ["name", "phase"]
+                    ["name", "phase", "label"]
                         .iter()
                         .any(|k| item.get(k).and_then(|v| v.as_str()) == Some(index))
                 })?,

@@ -28,6 +28,7 @@ mod standalone;
 mod summary;
 mod svgplot;
 mod two_orientation;
+mod units;
 
 pub use balance::balance_polar_svg;
 pub use certificate::{
@@ -47,7 +48,7 @@ pub use history::{health_svg, health_text, history_svg, history_text};
 pub use markdown::render;
 pub use output::{
     SavedResults, WrittenFiles, read_results, results_json, results_json_with_provenance,
-    write_certificate, write_outputs,
+    write_certificate, write_outputs, write_outputs_with_units,
 };
 pub use plot::{calibration_residuals_svg, probe_signals_svg, radius_error_svg};
 pub use provenance::{FileRecord, Provenance, Software, TOOL};

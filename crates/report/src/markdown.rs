@@ -29,6 +29,7 @@ pub fn render(
     let i = &results.inputs;
     let _ = writeln!(out, "# Study {}\n", format::md_text(&results.study));
     crate::summary::summary_markdown(&mut out, results);
+    crate::units::units_markdown(&mut out, results);
     let _ = writeln!(
         out,
         "Inputs: R = {} m, g = {} m/s², k1 = {} rad/(s·g), lever ratio (probe → PIGA plane) = {:.6}.\n",

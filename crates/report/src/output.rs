@@ -24,6 +24,15 @@ const STUDY_FILES: &[&str] = &[
     // written by earlier versions: removed when a study writes into the folder again
     "certificate.html",
     dcc::FILE_NAME,
+    // a several-unit study: each unit's own outputs in units/<label>/
+    "units/*/results.json",
+    "units/*/report.md",
+    "units/*/radius_error.svg",
+    "units/*/probe_signals_*.svg",
+    "units/*/calibration_residuals.svg",
+    "units/*/balance_polar.svg",
+    "units/*/certificate.pdf",
+    "units/*/certificate.dcc.xml",
 ];
 
 /// The files a study wrote.
@@ -47,6 +56,8 @@ pub struct WrittenFiles {
     /// `certificate.dcc.xml`, the certificate as a DCC, when the study has a certificate
     /// section.
     pub certificate_dcc: Option<PathBuf>,
+    /// A several-unit study: each unit's label and its files, in `units/<label>/`.
+    pub units: Vec<(String, WrittenFiles)>,
 }
 
 /// What a study's `results.json` holds: the results and, when recorded, their provenance.
@@ -129,6 +140,10 @@ pub fn results_json_with_provenance(
 /// exactly these files, or, on any error, what it held before, byte for byte. Files of an
 /// earlier study that this one does not write (a probe figure) are removed.
 ///
+/// A several-unit study's units (`results.unit_studies`) are written too, each into
+/// `units/<label>/` as a single-unit study, in the same set; without their provenance
+/// ([`write_outputs_with_units`] takes it).
+///
 /// # Errors
 /// [`ReportError::Plot`] or [`ReportError::Serialize`] when an output cannot be rendered
 /// (nothing is written); [`ReportError::File`] when `dir` holds files a study does not write,
@@ -140,18 +155,82 @@ pub fn write_outputs(
     outcomes: Option<&[CheckOutcome]>,
     provenance: Option<&Provenance>,
 ) -> Result<WrittenFiles> {
+    write_outputs_with_units(dir, results, expected, outcomes, provenance, &[])
+}
+
+/// [`write_outputs`], with the provenance of each unit of a several-unit study
+/// (`unit_provenance[i]` for `results.unit_studies[i]`; a unit without one is written
+/// without provenance): each unit's results.json and certificate list the configuration and
+/// the files that unit's numbers come from (the probe recordings and its own data).
+///
+/// # Errors
+/// As [`write_outputs`].
+pub fn write_outputs_with_units(
+    dir: &Path,
+    results: &StudyResults,
+    expected: Option<&Expected>,
+    outcomes: Option<&[CheckOutcome]>,
+    provenance: Option<&Provenance>,
+    unit_provenance: &[Provenance],
+) -> Result<WrittenFiles> {
+    let top = render_study(results, expected, outcomes, provenance)?;
+    let labels: Vec<&str> = results
+        .units
+        .iter()
+        .flatten()
+        .map(|u| u.label.as_str())
+        .collect();
+    let mut units = Vec::with_capacity(results.unit_studies.len());
+    for (i, unit) in results.unit_studies.iter().enumerate() {
+        let label = labels.get(i).copied().ok_or(ReportError::Results {
+            path: dir.join("results.json"),
+            message: format!("unit {i} of the study has no label in its `units` list"),
+        })?;
+        units.push((
+            label,
+            render_study(unit, None, None, unit_provenance.get(i))?,
+        ));
+    }
+    let mut set = OutputSet::create(dir, STUDY_FILES)?;
+    let mut written = write_rendered(&mut set, "", top)?;
+    for (label, files) in units {
+        let files = write_rendered(&mut set, &format!("units/{label}/"), files)?;
+        written.units.push((label.to_owned(), files));
+    }
+    set.commit()?;
+    Ok(written)
+}
+
+/// A study's files, rendered in memory, in the order they are written.
+struct Rendered(Vec<(String, Vec<u8>)>);
+
+/// Renders a study's files (nothing is written).
+fn render_study(
+    results: &StudyResults,
+    expected: Option<&Expected>,
+    outcomes: Option<&[CheckOutcome]>,
+    provenance: Option<&Provenance>,
+) -> Result<Rendered> {
     let json = match provenance {
         Some(p) => results_json_with_provenance(results, p)?,
         None => results_json(results)?,
     };
     let report = render(results, expected, outcomes);
-    let mut probe_figures = Vec::new();
+    let mut files: Vec<(String, Vec<u8>)> = vec![
+        ("results.json".to_owned(), json.into_bytes()),
+        ("report.md".to_owned(), report.into_bytes()),
+    ];
     for phase in &results.phases {
         let key = &phase.name;
         let title = format!("{}: probe signal over one revolution, {key}", results.study);
         if let Some(svg) = probe_signals_svg_text(phase, &title)? {
-            probe_figures.push((format!("probe_signals_{key}.svg"), svg));
+            files.push((format!("probe_signals_{key}.svg"), svg.into_bytes()));
         }
+    }
+    if let Some(c) = &results.calibration {
+        let title = format!("{}: calibration residuals (eq. 18)", results.study);
+        let svg = crate::plot::calibration_residuals_svg(c, &title)?;
+        files.push(("calibration_residuals.svg".to_owned(), svg.into_bytes()));
     }
     // Fig. 5: the last phase whose fit has residual degrees of freedom (the paper's: after
     // balancing), else the last phase.
@@ -163,67 +242,54 @@ pub fn write_outputs(
         .or(results.phases.last())
         .ok_or(ReportError::NoPhase)?;
     let title = format!("{}: radius error, phase {}", results.study, figure.name);
-    let radius_figure = radius_error_svg(figure, &title)?;
-
-    let balance_figure = results
-        .balance
-        .as_ref()
-        .map(|b| {
-            let title = format!("{}: balance phasors and correction", results.study);
-            crate::balance::balance_polar_svg(b, &title)
-        })
-        .transpose()?;
-
+    files.push((
+        "radius_error.svg".to_owned(),
+        radius_error_svg(figure, &title)?.into_bytes(),
+    ));
+    if let Some(b) = &results.balance {
+        let title = format!("{}: balance phasors and correction", results.study);
+        let svg = crate::balance::balance_polar_svg(b, &title)?;
+        files.push(("balance_polar.svg".to_owned(), svg.into_bytes()));
+    }
     // The certificate lists the input files with their digests: without a provenance
     // record, the files' table says so.
-    let certificate = results
-        .certificate
-        .as_ref()
-        .map(|_| crate::certificate::certificate_pdf(results, provenance, &Software::this_build()))
-        .transpose()?;
+    if results.certificate.is_some() {
+        let pdf =
+            crate::certificate::certificate_pdf(results, provenance, &Software::this_build())?;
+        files.push(("certificate.pdf".to_owned(), pdf));
+        let xml = certificate_dcc(results, provenance)?;
+        files.push((dcc::FILE_NAME.to_owned(), xml.into_bytes()));
+    }
+    Ok(Rendered(files))
+}
 
-    let certificate_dcc = results
-        .certificate
-        .as_ref()
-        .map(|_| certificate_dcc(results, provenance))
-        .transpose()?;
-
-    let mut set = OutputSet::create(dir, STUDY_FILES)?;
-    let results_json = set.write("results.json", json.as_bytes())?;
-    let report_md = set.write("report.md", report.as_bytes())?;
-    let probe_signals_svg = probe_figures
-        .iter()
-        .map(|(name, svg)| set.write(name, svg.as_bytes()))
-        .collect::<edge_io::Result<Vec<_>>>()?;
-    let calibration_residuals_svg = match &results.calibration {
-        Some(c) => {
-            let title = format!("{}: calibration residuals (eq. 18)", results.study);
-            let svg = crate::plot::calibration_residuals_svg(c, &title)?;
-            Some(set.write("calibration_residuals.svg", svg.as_bytes())?)
-        }
-        None => None,
+/// Writes rendered files into `set` under `prefix` (`""` or `units/<label>/`).
+fn write_rendered(set: &mut OutputSet, prefix: &str, rendered: Rendered) -> Result<WrittenFiles> {
+    let mut written = WrittenFiles {
+        results_json: PathBuf::new(),
+        report_md: PathBuf::new(),
+        radius_error_svg: PathBuf::new(),
+        calibration_residuals_svg: None,
+        probe_signals_svg: Vec::new(),
+        balance_polar_svg: None,
+        certificate_pdf: None,
+        certificate_dcc: None,
+        units: Vec::new(),
     };
-    let radius_error_svg = set.write("radius_error.svg", radius_figure.as_bytes())?;
-    let balance_polar_svg = balance_figure
-        .map(|svg| set.write("balance_polar.svg", svg.as_bytes()))
-        .transpose()?;
-    let certificate_pdf = certificate
-        .map(|pdf| set.write("certificate.pdf", &pdf))
-        .transpose()?;
-    let certificate_dcc = certificate_dcc
-        .map(|xml| set.write(dcc::FILE_NAME, xml.as_bytes()))
-        .transpose()?;
-    set.commit()?;
-    Ok(WrittenFiles {
-        results_json,
-        report_md,
-        radius_error_svg,
-        probe_signals_svg,
-        calibration_residuals_svg,
-        balance_polar_svg,
-        certificate_pdf,
-        certificate_dcc,
-    })
+    for (name, bytes) in rendered.0 {
+        let path = set.write(&format!("{prefix}{name}"), &bytes)?;
+        match name.as_str() {
+            "results.json" => written.results_json = path,
+            "report.md" => written.report_md = path,
+            "radius_error.svg" => written.radius_error_svg = path,
+            "calibration_residuals.svg" => written.calibration_residuals_svg = Some(path),
+            "balance_polar.svg" => written.balance_polar_svg = Some(path),
+            "certificate.pdf" => written.certificate_pdf = Some(path),
+            n if n == dcc::FILE_NAME => written.certificate_dcc = Some(path),
+            _ => written.probe_signals_svg.push(path),
+        }
+    }
+    Ok(written)
 }
 
 /// The certificate as a DCC (`crates/dcc`): its software this build, its input files the

@@ -110,6 +110,17 @@ fn warnings(results: &StudyResults) -> Vec<String> {
 /// with value ± U95 in rad/s units and in µg, µg/g², µg/g³, k, ν_eff and the method of the
 /// interval; C_r and Δk2; every warning. `None` for a study without a calibration.
 pub fn summary_text(results: &StudyResults) -> Option<String> {
+    if let Some(units) = results.units.as_ref() {
+        // a several-unit study: each unit's summary, headed by its label and folder
+        let mut out = String::new();
+        for (u, unit) in units.iter().zip(&results.unit_studies) {
+            let _ = writeln!(out, "unit {} ({}):", u.label, u.folder);
+            for line in summary_text(unit).unwrap_or_default().lines() {
+                let _ = writeln!(out, "  {line}");
+            }
+        }
+        return Some(out);
+    }
     let Some(c) = results.calibration.as_ref() else {
         return crate::two_orientation::summary_alone(results)
             .or_else(|| crate::mountings::summary_alone(results));

@@ -57,6 +57,20 @@ pub(crate) struct Plan<'a> {
     /// Both mountings' evidence in words (the files whose names say IA in and IA out), when
     /// the files hold both.
     pub(crate) mountings: Option<String>,
+    /// Several units, one PIGA table each (a `units` list), when the files hold several
+    /// tables that name no mounting.
+    pub(crate) units: Vec<Unit<'a>>,
+}
+
+/// One unit of a several-unit study: its label (with where it comes from) and its data.
+#[derive(Debug)]
+pub(crate) struct Unit<'a> {
+    /// Its label (its folder's name).
+    pub(crate) label: String,
+    /// Where the label comes from, in words.
+    pub(crate) evidence: String,
+    /// Its PIGA data.
+    pub(crate) data: PigaData<'a>,
 }
 
 /// A file's path as the configuration names it: relative to the configuration's folder.
@@ -148,7 +162,16 @@ pub(crate) fn render(plan: &Plan<'_>, relative: &RelativePath<'_>) -> String {
     if let Some((ia_in, ia_out)) = &plan.two_orientation {
         two_orientation(&mut s, plan, ia_in, ia_out, &compensate, relative);
     }
+    if !plan.units.is_empty() {
+        units(&mut s, &plan.units, &compensate, relative);
+    }
     match &plan.profile {
+        Some(_) if !plan.units.is_empty() => {
+            s.push_str(
+                "    // Each unit's certificate goes in its entry (`certificate: (id: …, customer: …,\n    \
+                 // item: …, dates: …)`); the lab profile states the rest (docs/CONFIGURATION.md).\n",
+            );
+        }
         Some(profile) => certificate(&mut s, profile),
         None => uncertainty_to_fill(&mut s),
     }
@@ -366,6 +389,51 @@ fn piga_data(
             let _ = writeln!(s, "{inner}],\n{indent}),");
         }
     }
+}
+
+/// The `units` list: each unit's label, k1 (to fill in) and calibration on its data.
+fn units(s: &mut String, units: &[Unit<'_>], compensate: &str, relative: &RelativePath<'_>) {
+    let _ = writeln!(
+        s,
+        "    // {} units calibrated in one run from the phases above (measured once), one table\n    \
+         // each; each unit's results, report and certificate go to units/LABEL/ of the output\n    \
+         // folder (docs/CONFIGURATION.md, \"Several units\"). A unit's certificate goes in its\n    \
+         // entry: `certificate: (…)`, as a single-unit study's.\n    units: [",
+        units.len()
+    );
+    for (i, unit) in units.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "        (\n            label: {},  // {}",
+            ron_string(&unit.label),
+            comment_text(&unit.evidence)
+        );
+        placeholder(
+            s,
+            "            ",
+            "k1_rad_s_g",
+            PLACEHOLDER,
+            &format!("units[{i}].k1_rad_s_g"),
+            &format!(
+                "What is unit {}'s nominal scale factor k1, in rad/(s·g), from its data sheet or last certificate?",
+                unit.label
+            ),
+        );
+        s.push_str("            calibration: (\n");
+        piga_data(
+            s,
+            &unit.data,
+            relative,
+            "                ",
+            &format!("units[{i}].calibration"),
+        );
+        let _ = writeln!(
+            s,
+            "                compensate_with: {compensate},  // the phase whose C_r is removed (eq. 19)\n                \
+             k1: fitted,\n            ),\n        ),"
+        );
+    }
+    s.push_str("    ],\n");
 }
 
 /// The two-orientation section (eq. 23) on both mountings' data.

@@ -305,6 +305,16 @@ fn read_profile(path: &Path) -> anyhow::Result<pipeline::ProfileConfig> {
 /// The mountings init read from the PIGA files' names, with the evidence, when the files
 /// hold both.
 fn orientation_lines(plan: &config::Plan<'_>) -> Option<String> {
+    if !plan.units.is_empty() {
+        let names: Vec<String> = plan.units.iter().map(|u| u.label.clone()).collect();
+        return Some(format!(
+            "\n{} PIGA tables that name no mounting: {} units calibrated in one run ({}), \
+             each from its table, the probe phases measured once\n",
+            plan.units.len(),
+            plan.units.len(),
+            names.join(", ")
+        ));
+    }
     plan.mountings.as_ref().map(|m| {
         format!(
             "\nIA in and IA out: {m}: a two-orientation section (eq. 23); the calibration takes \
@@ -425,6 +435,23 @@ fn plan<'a>(
             g.name = format!("phase_{}", i + 1);
         }
     }
+    // Several PIGA tables whose names state no mounting, and no raw recordings: several
+    // units calibrated in one run, one table each (a `units` list).
+    let units = match tables.get(&None) {
+        Some(list) if list.len() > 1 && tables.len() == 1 && piga.is_empty() => {
+            let list = tables.remove(&None).unwrap_or_default();
+            unit_labels(&list, shown)
+                .into_iter()
+                .zip(list)
+                .map(|((label, evidence), f)| config::Unit {
+                    label,
+                    evidence,
+                    data: config::PigaData::Table(f),
+                })
+                .collect()
+        }
+        _ => Vec::new(),
+    };
     // The PIGA's data: one set (a table, or recordings), or one per mounting.
     let keys: Vec<Option<Orientation>> = tables.keys().chain(piga.keys()).copied().collect();
     let both = keys.contains(&Some(Orientation::In)) && keys.contains(&Some(Orientation::Out));
@@ -525,7 +552,53 @@ fn plan<'a>(
         two_orientation,
         profile: None,
         mountings,
+        units,
     }
+}
+
+/// Each unit's label from its table's name (`piga_A.csv` → `A`: the name without its
+/// extension and a leading `piga_`, letters, digits, `_` and `-` kept, anything else `_`),
+/// made unique without regard to case (`_2`, `_3`…), with the evidence in words.
+fn unit_labels(tables: &[&Finding], shown: &dyn Fn(&Path) -> String) -> Vec<(String, String)> {
+    let mut labels: Vec<(String, String)> = Vec::new();
+    for f in tables {
+        let stem = f
+            .path
+            .file_stem()
+            .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+        let lower = stem.to_ascii_lowercase();
+        let bare = ["piga_", "piga-", "piga"]
+            .iter()
+            .find_map(|p| {
+                lower
+                    .starts_with(p)
+                    .then(|| stem[p.len()..].to_owned())
+                    .filter(|r| !r.is_empty())
+            })
+            .unwrap_or_else(|| stem.clone());
+        let mut label: String = bare
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .take(60)
+            .collect();
+        if label.is_empty() {
+            label = "unit".to_owned();
+        }
+        let base = label.clone();
+        let mut n = 2;
+        while labels.iter().any(|(l, _)| l.eq_ignore_ascii_case(&label)) {
+            label = format!("{base}_{n}");
+            n += 1;
+        }
+        labels.push((label, format!("from the table's name, {}", shown(&f.path))));
+    }
+    labels
 }
 
 /// The files of a set of PIGA data.

@@ -162,6 +162,45 @@ fn check_two_orientations_recorded_raw() {
     insta::assert_snapshot!("check_two_orientation_recordings", text);
 }
 
+/// `check` and `study` of the two-unit fixture: the units in words (each unit's k1, radius,
+/// data and certificate), and the study's summary naming each unit with its calibration.
+#[test]
+fn check_and_study_of_several_units() {
+    let tmp = Scratch::new("cli-human-units");
+    let (text, ok) = run(&["check", "fixtures/studies/units.ron"], &tmp.0);
+    assert!(ok, "{text}");
+    assert_words("check units", &text);
+    assert!(
+        text.contains("2 units calibrated from these probe phases, measured once"),
+        "{text}"
+    );
+    assert!(
+        text.contains("unit B: k1 = 0.61 rad/(s·g), R = 2.5 m (the study's)"),
+        "{text}"
+    );
+    insta::assert_snapshot!("check_units", text);
+    let out = tmp.0.join("study");
+    let (text, ok) = run(
+        &[
+            "study",
+            "--config",
+            "fixtures/studies/units.ron",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &tmp.0,
+    );
+    assert!(ok, "{text}");
+    assert_words("study units", &text);
+    insta::assert_snapshot!("study_units", text);
+    // the top report's table of the units (report.md, Markdown)
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let start = report.find("## Units").expect("the units' section");
+    let section = &report[start..];
+    let end = section[3..].find("\n## ").map_or(section.len(), |i| i + 4);
+    insta::assert_snapshot!("report_units", &section[..end]);
+}
+
 #[test]
 fn simulate_then_identify() {
     let tmp = Scratch::new("cli-human-simulate");

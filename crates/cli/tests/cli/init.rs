@@ -792,3 +792,58 @@ fn file_names_are_written_exactly_and_read_back_to_the_same_files() {
         assert!(names.contains(&path.file_name().unwrap().to_str().unwrap()));
     }
 }
+
+/// A folder with one run's probe recordings and several PIGA tables that name no mounting
+/// (the two-unit fixture): `init` writes a `units` list, one unit per table labelled from its
+/// name, each with its k1 to fill in; filled in, the study calibrates both units.
+#[test]
+fn a_folder_with_several_units_tables_becomes_a_units_list() {
+    let tmp = Scratch::new("cli-init-units");
+    for entry in std::fs::read_dir(root().join("fixtures/units")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "csv") {
+            std::fs::copy(&path, tmp.0.join(path.file_name().unwrap())).unwrap();
+        }
+    }
+    let out = cli(&["init", tmp.0.to_str().unwrap()]);
+    let printed = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{printed}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        printed.contains("2 units calibrated in one run (A, B)"),
+        "{printed}"
+    );
+    assert!(printed.contains("units[1].k1_rad_s_g"), "{printed}");
+    let config = tmp.0.join("study.ron");
+    let text = std::fs::read_to_string(&config).unwrap();
+    assert!(text.contains("    units: ["), "{text}");
+    assert!(text.contains("label: \"A\""), "{text}");
+    assert!(text.contains("file: \"piga_B.csv\""), "{text}");
+    assert!(!text.contains("\n    calibration: ("), "{text}");
+    std::fs::write(&config, fill_in(&text)).unwrap();
+    let results = tmp.0.join("out");
+    let study = cli(&[
+        "study",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        results.to_str().unwrap(),
+    ]);
+    assert!(
+        study.status.success(),
+        "{}",
+        String::from_utf8_lossy(&study.stderr)
+    );
+    for unit in ["A", "B"] {
+        assert!(
+            results
+                .join("units")
+                .join(unit)
+                .join("results.json")
+                .is_file()
+        );
+    }
+}

@@ -482,3 +482,89 @@ fn history_text_snapshots() {
         }
     }
 }
+
+/// The two-unit fixture: `study --records` writes each unit's complete folder (results,
+/// certificate, DCC) and records both units in one transaction, each folder a study that
+/// `certificate` and `record` take as it is; a recording of the top folder killed before its
+/// commit leaves the database without either unit; the centrifuge's history counts the run
+/// once.
+#[test]
+fn a_two_unit_study_gives_two_certificates_and_two_records_from_one_probe_phase() {
+    let scratch = Scratch::new("records-units");
+    let out = scratch.path().join("out");
+    let db = scratch.path().join("lab.sqlite");
+    let text = ok(&cli(&[
+        "study",
+        "--config",
+        s(&root().join("fixtures/studies/units.ron")),
+        "--out",
+        s(&out),
+        "--records",
+        s(&db),
+    ]));
+    assert!(
+        text.contains("certificate CC-2026-0051 of unit PIGA-16/SN 1604-0201"),
+        "{text}"
+    );
+    assert!(
+        text.contains("certificate CC-2026-0052 of unit PIGA-22/SN 2210-0033"),
+        "{text}"
+    );
+    assert!(text.contains("regression: "), "{text}");
+    for unit in ["A", "B"] {
+        let dir = out.join("units").join(unit);
+        for file in [
+            "results.json",
+            "report.md",
+            "certificate.pdf",
+            "certificate.dcc.xml",
+        ] {
+            assert!(dir.join(file).is_file(), "units/{unit}/{file}");
+        }
+        // a unit's folder is a single-unit study's: re-rendered and recorded as one
+        ok(&cli(&[
+            "certificate",
+            s(&dir),
+            "--out",
+            s(&scratch.path().join(format!("{unit}.pdf"))),
+        ]));
+        let again = ok(&cli(&["record", s(&dir), "--records", s(&db)]));
+        assert!(again.starts_with("already recorded"), "{again}");
+    }
+    let top: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("results.json")).unwrap()).unwrap();
+    assert_eq!(top["units"].as_array().unwrap().len(), 2);
+    assert!(top.get("certificate").is_none());
+    // the run is one campaign of the centrifuge
+    assert_eq!(count(&db, "campaigns"), 1);
+    // the top folder recorded again: both already there, nothing written
+    let again = ok(&cli(&["record", s(&out), "--records", s(&db)]));
+    assert_eq!(again.matches("already recorded").count(), 2, "{again}");
+
+    // killed before the commit: neither unit is in the database
+    let fresh = scratch.path().join("fresh.sqlite");
+    let marker = scratch.path().join("paused");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
+        .args(["record", s(&out), "--records", s(&fresh)])
+        .env("CENTRIFUGE_CAL_TEST_PAUSE_BEFORE_COMMIT", &marker)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !marker.exists() {
+        assert!(
+            start.elapsed().as_secs() < 60,
+            "the recording reached its commit"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap(); // SIGKILL: no clean-up runs
+    let _ = child.wait();
+    for serial in ["SN 1604-0201", "SN 2210-0033"] {
+        let missing = cli(&["history", serial, "--records", s(&fresh)]);
+        assert!(!missing.status.success(), "{serial} is not recorded");
+    }
+    let text = ok(&cli(&["record", s(&out), "--records", s(&fresh)]));
+    assert_eq!(text.matches("recorded ").count(), 2, "{text}");
+}

@@ -192,7 +192,14 @@ fn bad_names_are_refused() {
     for (name, reason) in [
         ("", "not a file name"),
         ("..", "not a file name"),
-        ("../results.json", "has a path separator"),
+        (
+            "../results.json",
+            "has an empty, `.` or `..` folder or file name",
+        ),
+        (
+            "units//results.json",
+            "has an empty, `.` or `..` folder or file name",
+        ),
         ("results.json", "written twice"),
         (
             "notes.txt",
@@ -354,4 +361,52 @@ fn an_empty_folder_is_taken() {
     std::fs::create_dir_all(&target).unwrap();
     write_set(&target, &[("results.json", "1")]).unwrap();
     assert_eq!(entries(&target), ["results.json"]);
+}
+
+/// A set may hold folders (`units/A/results.json`): they are written, swapped in and
+/// replaced with it, and a file in them the set did not write is refused like one beside
+/// them.
+#[test]
+fn folders_of_a_set_are_written_replaced_and_guarded() {
+    let scratch = Scratch::new("edge-io-folders");
+    let target = scratch.0.join("study");
+    let owned = ["results.json", "units/*/results.json", "units/*/report.md"];
+    let mut set = OutputSet::create(&target, &owned).unwrap();
+    set.write("results.json", b"top").unwrap();
+    set.write("units/A/results.json", b"a").unwrap();
+    set.write("units/B/results.json", b"b").unwrap();
+    assert!(matches!(
+        set.write("units/A/notes.txt", b"x"),
+        Err(EdgeIoError::BadFileName { .. })
+    ));
+    set.commit().unwrap();
+    assert_eq!(
+        std::fs::read(target.join("units/B/results.json")).unwrap(),
+        b"b"
+    );
+    // written again with one unit fewer: the other unit's folder goes with the old set
+    let mut set = OutputSet::create(&target, &owned).unwrap();
+    set.write("results.json", b"top2").unwrap();
+    set.write("units/A/report.md", b"r").unwrap();
+    set.commit().unwrap();
+    assert!(!target.join("units/B").exists());
+    assert!(!target.join("units/A/results.json").exists());
+    assert_eq!(
+        std::fs::read(target.join("units/A/report.md")).unwrap(),
+        b"r"
+    );
+    // a lab's own file in a unit's folder: nothing is replaced
+    std::fs::write(target.join("units/A/notes.txt"), b"mine").unwrap();
+    assert!(matches!(
+        OutputSet::create(&target, &owned),
+        Err(EdgeIoError::ForeignEntries { count: 1, ref example, .. }) if example == "units/A/notes.txt"
+    ));
+    // a folder the record does not list is foreign as a whole
+    std::fs::remove_file(target.join("units/A/notes.txt")).unwrap();
+    std::fs::create_dir(target.join("units/C")).unwrap();
+    std::fs::write(target.join("units/C/results.json"), b"c").unwrap();
+    assert!(matches!(
+        OutputSet::create(&target, &owned),
+        Err(EdgeIoError::ForeignEntries { .. })
+    ));
 }

@@ -15,6 +15,7 @@ mod mountings;
 mod phases;
 mod profile;
 mod two_orientation;
+mod units;
 mod warning;
 
 pub use balance::*;
@@ -27,6 +28,7 @@ pub use mountings::*;
 pub use phases::*;
 pub use profile::{ProfileResults, ValueOrigin, ValueSource};
 pub use two_orientation::*;
+pub use units::UnitSummary;
 pub use warning::{ProbeDeclared, Warning, WarningCode};
 
 /// All results of a study.
@@ -64,6 +66,15 @@ pub struct StudyResults {
     /// The lab profile the study named, and which values came from it (absent: none).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub profile: Option<ProfileResults>,
+    /// A several-unit study: each unit's label, folder and main numbers (absent: a study of
+    /// one unit). Each unit's complete results are in [`StudyResults::unit_studies`].
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub units: Option<Vec<UnitSummary>>,
+    /// A several-unit study: each unit's complete results, in `units`' order, as its
+    /// single-unit study gives them (written to its own folder, `units/<label>/`, not into
+    /// this results.json).
+    #[serde(skip)]
+    pub unit_studies: Vec<StudyResults>,
 }
 
 /// Scalar inputs of the study.

@@ -23,6 +23,7 @@ mod two_orientation_recordings;
 mod two_orientation_study;
 mod two_orientation_type_b;
 mod type_b;
+mod units;
 
 use std::path::{Path, PathBuf};
 

@@ -14,7 +14,10 @@ The Rust toolkit behind ``cargo xtask``, with numpy arrays in and typed results 
 - :func:`advise_balance` and :func:`plan`: the balance advisor and the test planner;
 - :func:`run_study`: a whole study from its configuration file or a dict of the same shape,
   returning what ``results.json`` holds;
-- :func:`certificate`: the calibration certificate (PDF/A) of a study's results folder.
+- :func:`certificate`: the calibration certificate (PDF/A) of a study's results folder;
+- :func:`history` and :func:`centrifuge_history`: a unit's certified coefficients against
+  date (drift, prediction, recommended interval) and a centrifuge's health, from the records
+  database, as numpy arrays (the numbers of ``centrifuge-cal history --json``).
 
 Units are in the names (``rate_deg_s``, ``radius_error_um``, ``c_r_m_s2``); lengths of a
 probe recording and of its fit are in µm, the study's unit, whatever the file declares (the
@@ -56,6 +59,13 @@ from .errors import (
     InputError,
     RecordingError,
     _error,
+)
+from .history import (
+    CentrifugeHealth,
+    Drift,
+    Prediction,
+    TermHistory,
+    UnitHistory,
 )
 from .results import (
     BalanceAdvice,
@@ -401,6 +411,66 @@ def certificate(results_dir: PathLike, out: PathLike | None = None) -> str:
     """
     return _native.certificate(
         _path("results_dir", results_dir), None if out is None else _path("out", out)
+    )
+
+
+def history(
+    unit: str,
+    records: PathLike | None = None,
+    *,
+    at: str | None = None,
+    term: str | None = None,
+    tolerance: float | None = None,
+    reliability: float = 0.95,
+) -> UnitHistory:
+    """A unit's history from the records database, as ``centrifuge-cal history UNIT --json``
+    computes it (``docs/RECORDS.md``): each certified term across the unit's current
+    certificates as numpy arrays (dates as ``datetime64[D]``), its drift per year with its
+    uncertainty and significance, and the value predicted at ``at`` (YYYY-MM-DD; default the
+    end of the recommended interval, else one year after the latest certificate).
+
+    ``unit`` is its serial number or ``MODEL/SERIAL``; ``records`` the database (default: as
+    the command line finds it, ``$CENTRIFUGE_CAL_RECORDS``, else
+    ``~/.local/share/centrifuge-cal/records.sqlite``). With ``term`` (``"k2"``) and
+    ``tolerance`` (in the term's unit), the recommended interval for ``reliability`` by the
+    variables method. Raises :class:`ConfigError` for a database or unit that cannot be found
+    and :class:`InputError` for a term without a tolerance.
+    """
+    return UnitHistory._of(
+        _native.unit_history(
+            text("unit", unit),
+            None if records is None else _path("records", records),
+            None if at is None else text("at", at),
+            None if term is None else text("term", term),
+            None if tolerance is None else number("tolerance", tolerance),
+            number("reliability", reliability),
+        )
+    )
+
+
+def centrifuge_history(
+    name: str,
+    records: PathLike | None = None,
+    *,
+    target_u95: float | None = None,
+    share: float | None = None,
+    next: str | None = None,
+) -> CentrifugeHealth:
+    """A centrifuge's health from the records database, as ``centrifuge-cal history
+    --centrifuge NAME --json`` computes it: C_r, the static offset and Δk2 of each campaign as
+    numpy arrays, the balance events, the drifts since the latest balance and, with
+    ``target_u95`` (the U95 of k2 to meet, rad/(s·g²)), whether to rebalance before the next
+    campaign (``next``, YYYY-MM-DD; ``share`` of the target Δk2 may reach, default 0.2 as the
+    command line's). ``records`` as for :func:`history`.
+    """
+    return CentrifugeHealth._of(
+        _native.centrifuge_health(
+            text("name", name),
+            None if records is None else _path("records", records),
+            None if target_u95 is None else number("target_u95", target_u95),
+            None if share is None else number("share", share),
+            None if next is None else text("next", next),
+        )
     )
 
 
@@ -807,30 +877,37 @@ __all__ = [
     "BalanceAdvice",
     "Calibration",
     "CentrifugeCalError",
+    "CentrifugeHealth",
     "CentrifugeCalWarning",
     "Coefficients",
     "ComputationError",
     "ConfigError",
     "DeltaK2",
+    "Drift",
     "FirstHarmonic",
     "HarmonicFit",
     "IncompleteRevolution",
     "InputError",
     "PerRevolution",
     "Plan",
+    "Prediction",
     "RadiusFit",
     "Recording",
     "RecordingError",
     "StudyResults",
+    "TermHistory",
     "TwoOrientation",
+    "UnitHistory",
     "Warning",
     "advise_balance",
     "calibrate",
     "calibrate_two_orientation",
+    "centrifuge_history",
     "certificate",
     "delta_k2",
     "fit_harmonics",
     "fit_radius_error",
+    "history",
     "plan",
     "read_recording",
     "run_study",

@@ -70,3 +70,18 @@ def delta_k2(
 ) -> tuple[float, float]: ...
 def cli_main(argv: list[str]) -> int: ...
 def certificate(results: str, out: str | None = None) -> str: ...
+def unit_history(
+    unit: str,
+    records: str | None = None,
+    at: str | None = None,
+    term: str | None = None,
+    tolerance: float | None = None,
+    reliability: float = 0.95,
+) -> dict[str, Any]: ...
+def centrifuge_health(
+    name: str,
+    records: str | None = None,
+    target_u95: float | None = None,
+    share: float | None = None,
+    next: str | None = None,
+) -> dict[str, Any]: ...

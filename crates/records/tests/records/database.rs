@@ -267,3 +267,58 @@ fn a_study_without_a_certificate_needs_a_centrifuge_and_a_date() {
     assert_eq!(cf.campaigns[0].c_r_m_s2, r.phases[0].fit.c_r_m_s2);
     assert_eq!(cf.campaigns[0].phase, "spindle");
 }
+
+/// A several-unit study's units are recorded in one transaction: both, or, when the second
+/// fails (its certificate identification already stands for other results), neither — the
+/// database as it was, and the first unit's record absent.
+#[test]
+fn several_units_are_recorded_all_or_none() {
+    let path = temp_db("units");
+    let mut db = Database::open(&path, Access::CreateIfMissing).unwrap();
+    // an earlier study holding certificate CC-U2
+    let earlier = variant("CC-U2", "2025-11-19", Some(4.0e-7), None);
+    let earlier_json = json(&earlier);
+    db.record(&submission(&earlier, &earlier_json)).unwrap();
+    let before = db.counts().unwrap();
+    let first = variant("CC-U1", "2026-11-19", Some(5.0e-7), None);
+    let mut second = variant("CC-U2", "2026-11-19", Some(6.0e-7), None);
+    second.certificate.as_mut().unwrap().item.serial = "SN 9999-0002".into();
+    let (a, b) = (json(&first), json(&second));
+    let e = db
+        .record_all(&[submission(&first, &a), submission(&second, &b)])
+        .unwrap_err();
+    assert!(
+        matches!(&e, RecordsError::CertificateConflict { id, .. } if id == "CC-U2"),
+        "{e}"
+    );
+    assert_eq!(
+        db.counts().unwrap(),
+        before,
+        "nothing of either unit written"
+    );
+    let none = db.unit_records("SN 1604-0117").unwrap();
+    assert!(
+        none.certificates.iter().all(|c| c.id != "CC-U1"),
+        "the first unit's certificate is not recorded"
+    );
+    // both good: both recorded in one go, and again: nothing written
+    second.certificate.as_mut().unwrap().id = "CC-U3".into();
+    let b = json(&second);
+    let outcomes = db
+        .record_all(&[submission(&first, &a), submission(&second, &b)])
+        .unwrap();
+    assert!(
+        outcomes
+            .iter()
+            .all(|o| matches!(o, Outcome::Recorded { .. }))
+    );
+    assert_eq!(db.counts().unwrap().1, before.1 + 2);
+    let again = db
+        .record_all(&[submission(&first, &a), submission(&second, &b)])
+        .unwrap();
+    assert!(
+        again
+            .iter()
+            .all(|o| matches!(o, Outcome::AlreadyRecorded { .. }))
+    );
+}

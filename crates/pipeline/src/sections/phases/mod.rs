@@ -8,5 +8,5 @@ mod run;
 mod validate;
 
 pub use analysis::Progress;
-pub(crate) use run::run_phase;
+pub(crate) use run::{Measured, fit_phase, measure_phase, run_phase};
 pub(crate) use validate::{Phases, check};

@@ -14,6 +14,17 @@ use crate::results::{
     Warning,
 };
 
+/// What a phase measured at each rate, carried to the PIGA plane (eq. 21–22): its points,
+/// the probe traces of its recordings and their warnings. It depends on the probe's lever
+/// and the data only, so a several-unit study measures each phase once and fits it for each
+/// unit ([`fit_phase`]).
+#[derive(Debug, Clone)]
+pub(crate) struct Measured {
+    points: Vec<PointResult>,
+    traces: Vec<ProbeTrace>,
+    warnings: Vec<Warning>,
+}
+
 /// Runs one phase: its points, the study's model fitted to them and the other model beside
 /// it where the points allow, with the phase's warnings.
 pub(crate) fn run_phase(
@@ -22,9 +33,37 @@ pub(crate) fn run_phase(
     phase: &Phase,
     progress: &(dyn Fn(Progress<'_>) + Sync),
 ) -> Result<(PhaseResults, Vec<Warning>)> {
+    let measured = measure_phase(inputs, phase, progress)?;
+    fit_phase(inputs, model, phase, &measured)
+}
+
+/// A phase's points at the PIGA plane ([`Measured`]).
+pub(crate) fn measure_phase(
+    inputs: &Core,
+    phase: &Phase,
+    progress: &(dyn Fn(Progress<'_>) + Sync),
+) -> Result<Measured> {
     let _span = tracing::info_span!("phase", name = %phase.name).entered();
-    let (points, traces, mut warnings) = phase_points(inputs, phase, progress)?;
+    let (points, traces, warnings) = phase_points(inputs, phase, progress)?;
     tracing::info!(points = points.len(), "per-point geometry done");
+    Ok(Measured {
+        points,
+        traces,
+        warnings,
+    })
+}
+
+/// A measured phase fitted by the radius-error model with the Δk2 of `inputs`' k1 and
+/// geometry (eq. 16, 19), with the phase's warnings.
+pub(crate) fn fit_phase(
+    inputs: &Core,
+    model: RadiusModel,
+    phase: &Phase,
+    measured: &Measured,
+) -> Result<(PhaseResults, Vec<Warning>)> {
+    let points = measured.points.clone();
+    let traces = measured.traces.clone();
+    let mut warnings = measured.warnings.clone();
     if let PhaseData::RadiusChange { .. } = phase.data {
         let results = PhaseResults {
             name: phase.name.clone(),
