@@ -134,11 +134,10 @@ pub(crate) fn validate(
     config: &MountingsConfig,
     study: &StudyConfig,
     names: &PhaseNames<'_>,
-    base: &Path,
+    core: &crate::inputs::Core,
     load: &dyn DataSource,
-    g_m_s2: f64,
-    lever: &harmonics::LeverGeometry,
 ) -> Result<MountingsInputs> {
+    let (base, g_m_s2, lever) = (core.base(), core.g_m_s2, &core.lever);
     let mut errors = Vec::new();
     // the terms: k0 and k1 always, each tag known
     let mut terms = vec![Term::K0, Term::K1];
