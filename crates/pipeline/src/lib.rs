@@ -68,6 +68,7 @@ mod intervals;
 mod load;
 mod piga_data;
 mod profile;
+mod resolved;
 mod results;
 mod sections;
 mod study;
