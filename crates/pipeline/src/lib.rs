@@ -118,11 +118,12 @@ pub use results::{
     StaticPhasor, StiffnessResult, TwoPlaneCorrectionResult, TwoPlaneResults,
 };
 pub use results::{
-    BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
-    Estimate, FitWeighting, InfiniteDof, LabelSummary, MechanismPhase, MechanismResults, ModelFit,
-    MonteCarlo, MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult,
-    PigaResult, PointResult, ProbeTrace, ProfileResults, RadiusModel, StudyInputs, StudyResults,
-    UnitSummary, ValueOrigin, ValueSource, Warning, WarningCode, model_name,
+    BudgetLine, COEFFICIENT_NAMES, COEFFICIENT_UNITS, CalibrationResults, CalibrationRow,
+    Coefficient, Conventional, DegreesOfFreedom, Estimate, FitWeighting, InfiniteDof, LabelSummary,
+    MechanismPhase, MechanismResults, ModelFit, MonteCarlo, MonteCarloOutput, Nuisance,
+    PhaseResults, PigaCoefficients, PigaRecordingResult, PigaResult, PointResult, ProbeTrace,
+    ProfileResults, RELATIVE_UNITS, RadiusModel, StudyInputs, StudyResults, UnitSummary,
+    ValueOrigin, ValueSource, Warning, WarningCode, model_name,
 };
 pub use results::{
     MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,
