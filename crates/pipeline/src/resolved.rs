@@ -1,7 +1,8 @@
 //! The study's resolved facts: what the study settles once, before its sections validate,
 //! from the parts of the configuration that several sections depend on — the phase whose C_r
 //! compensates (the calibration's `compensate_with`, else the first phase), the probe gain
-//! each phase's recordings state and the gap unit each states, the Type B inputs at the
+//! each phase's recordings state, the gap unit each states and what each was given as, the
+//! Type B inputs at the
 //! compensating phase, which Type B inputs are uncertain, and which sections the study has.
 //! Each section validates its own part of the configuration with these beside it, and reads
 //! no other section's part. Core: used by sections, importing none.
@@ -31,6 +32,45 @@ pub(crate) struct Present {
     pub(crate) two_orientation: bool,
 }
 
+/// What a phase was given as, for the sections that name a phase (the balance advisor needs
+/// first harmonics, the counterweight a change of radius error).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum PhaseShape {
+    /// First-harmonic coefficients, `points` rates.
+    FirstHarmonic { points: usize },
+    /// Probe recordings, `files` of them.
+    Recordings { files: usize },
+    /// Radius errors.
+    RadiusError,
+    /// A change of radius error between two rates.
+    RadiusChange {
+        from_rate_deg_s: f64,
+        to_rate_deg_s: f64,
+        change_um: f64,
+    },
+}
+
+impl PhaseShape {
+    fn of(phase: &PhaseConfig) -> Self {
+        match &phase.points {
+            Points::FirstHarmonic(p) => Self::FirstHarmonic { points: p.len() },
+            Points::Recordings(set) => Self::Recordings {
+                files: set.files.len(),
+            },
+            Points::RadiusError(_) => Self::RadiusError,
+            &Points::RadiusChange {
+                from_rate_deg_s,
+                to_rate_deg_s,
+                change_um,
+            } => Self::RadiusChange {
+                from_rate_deg_s,
+                to_rate_deg_s,
+                change_um,
+            },
+        }
+    }
+}
+
 /// What the study resolves once and hands every section beside its own configuration.
 #[derive(Debug, Clone)]
 pub(crate) struct Resolved<'a> {
@@ -43,6 +83,8 @@ pub(crate) struct Resolved<'a> {
     stated_gains: Vec<Option<(f64, String)>>,
     /// Per phase: the field stating its gap unit, and what it states.
     gap_units: Vec<(String, String)>,
+    /// Per phase: what it was given as.
+    shapes: Vec<PhaseShape>,
     /// The Type B inputs at the compensating phase (`None`: the study has no calibration
     /// section, or states no Type B input).
     type_b: Option<TypeB>,
@@ -114,6 +156,7 @@ impl<'a> Resolved<'a> {
                 .enumerate()
                 .map(|(i, p)| gap_unit(p, i))
                 .collect(),
+            shapes: config.phases.iter().map(PhaseShape::of).collect(),
             type_b,
             uncertain_inputs: uncertain_inputs(config),
         })
@@ -146,6 +189,11 @@ impl<'a> Resolved<'a> {
                 "a change given in µm".to_owned(),
             )
         })
+    }
+
+    /// What phase `phase` (an index of a known phase) was given as.
+    pub(crate) fn phase_shape(&self, phase: usize) -> PhaseShape {
+        self.shapes[phase]
     }
 
     /// The Type B inputs of the study with a non-zero standard uncertainty, each with the

@@ -214,7 +214,7 @@ impl Inputs {
                 balance::validate(
                     &check,
                     b,
-                    &config.phases,
+                    &resolved,
                     &names.names,
                     core.lever.probe_to_piga_mm,
                 )
@@ -223,7 +223,7 @@ impl Inputs {
         let counterweight = config
             .counterweight
             .as_ref()
-            .map(|c| counterweight::validate(&check, c, &config.phases, &names.names))
+            .map(|c| counterweight::validate(&check, c, &resolved, &names.names))
             .transpose()?;
         let certificate = config
             .certificate
