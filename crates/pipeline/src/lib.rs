@@ -26,10 +26,13 @@
 //! The configuration's format (`config`, serde DTOs) and the output format (`results`) are
 //! leaves; the core (`inputs`: the data source, the centrifuge's geometry, field checks)
 //! uses only them; `piga_data` (the PIGA's table or raw output recordings, read and reduced
-//! to points) is core shared by the calibration and two-orientation sections; each section (`sections::{phases, mechanism, calibration, balance, two_orientation,
-//! mountings, certificate}`)
-//! validates its part of the configuration, runs on values and fills its results, using
-//! only the core and the formats; `study` orders the sections; `load` is the edge.
+//! to points) is core shared by the calibration and two-orientation sections; `resolved`
+//! (core) holds what several sections depend on, settled once before they validate (the
+//! compensating phase, the probe gain and Type B inputs, which sections are present); each
+//! section (`sections::{phases, mechanism, calibration, balance, two_orientation,
+//! mountings, certificate}`) validates its own part of the configuration with those facts
+//! (never the whole `StudyConfig`), runs on values and fills its results, using only the
+//! core and the formats; `study` orders the sections; `load` is the edge.
 //!
 //! ```
 //! use std::path::Path;

@@ -291,3 +291,134 @@ fn uncertain_inputs(config: &StudyConfig) -> Vec<(TypeBInputName, String)> {
     }
     list
 }
+
+#[cfg(test)]
+mod tests {
+    use std::collections::HashMap;
+    use std::path::Path;
+
+    use super::*;
+
+    /// A study of two phases (a radius change, then first harmonics) with `sections`.
+    fn config(sections: &str) -> StudyConfig {
+        let text = format!(
+            r#"(
+            name: "t", radius_m: 2.5, g_m_s2: 9.8, k1_rad_s_g: 0.56,
+            lever: (pivot_to_probe_mm: 700.0, probe_to_piga_mm: 510.0),
+            phases: [
+                (name: "before", points: radius_change(from_rate_deg_s: 10.0,
+                                                       to_rate_deg_s: 200.0, change_um: 20.0)),
+                (name: "after", points: first_harmonic([
+                    (rate_deg_s: 10.0, dc1_um: 1.0, ds1_um: 0.0),
+                    (rate_deg_s: 20.0, dc1_um: 1.0, ds1_um: 0.0),
+                ])),
+            ],
+            {sections}
+        )"#
+        );
+        StudyConfig::from_ron(&text, Path::new("t.ron")).unwrap()
+    }
+
+    fn names(second_probe: Vec<usize>) -> PhaseNames<'static> {
+        PhaseNames {
+            names: HashMap::from([("before", 0), ("after", 1)]),
+            second_probe,
+        }
+    }
+
+    const UNCERTAINTY: &str = "uncertainty: (radius_u_m: 5.0e-6, g_u_m_s2: 0.0, \
+        zero_reasons: {\"g_u_m_s2\": \"measured\"}, rate_u_relative: 1.0e-6, \
+        pivot_to_probe_u_mm: 0.5, probe_to_piga_u_mm: 0.5, probe_gain_u_relative: 2.0e-3),";
+
+    #[test]
+    fn without_a_calibration_the_first_phase_compensates_and_no_type_b_is_read() {
+        let config = config(UNCERTAINTY);
+        let check = Check {
+            path: Path::new("t.ron"),
+        };
+        let r = Resolved::new(&check, &config, &names(Vec::new())).unwrap();
+        assert_eq!(r.compensation.index, 0);
+        assert_eq!(r.compensation.chosen_by, "first phase");
+        assert_eq!(r.type_b(), None);
+        assert_eq!(
+            r.present,
+            Present {
+                calibration: false,
+                uncertainty: true,
+                two_orientation: false,
+            }
+        );
+        // another phase's Type B is read by the same rule, on demand
+        let t = r.type_b_at(&check, 1).unwrap().unwrap();
+        assert_eq!(t.values.radius_u_m, 5.0e-6);
+        assert!(t.from_section);
+        assert_eq!(
+            r.phase_shape(0),
+            PhaseShape::RadiusChange {
+                from_rate_deg_s: 10.0,
+                to_rate_deg_s: 200.0,
+                change_um: 20.0,
+            }
+        );
+        assert_eq!(r.phase_shape(1), PhaseShape::FirstHarmonic { points: 2 });
+        assert_eq!(
+            r.gap_unit(1),
+            (
+                "phases[1].points (dc1_um, ds1_um)".to_owned(),
+                "coefficients given in µm".to_owned()
+            )
+        );
+        // the non-zero inputs, each with its field; g is 0
+        let uncertain: Vec<&str> = r
+            .uncertain_inputs()
+            .iter()
+            .map(|(_, f)| f.as_str())
+            .collect();
+        assert_eq!(
+            uncertain,
+            [
+                "`uncertainty.radius_u_m`",
+                "`uncertainty.rate_u_relative`",
+                "`uncertainty.pivot_to_probe_u_mm`",
+                "`uncertainty.probe_to_piga_u_mm`",
+                "`uncertainty.probe_gain_u_relative`",
+            ]
+        );
+    }
+
+    #[test]
+    fn the_calibration_names_the_compensating_phase_once() {
+        let calibration = format!(
+            "calibration: (table: (file: \"piga.csv\"), compensate_with: \"after\"), {UNCERTAINTY}"
+        );
+        let config = config(&calibration);
+        let check = Check {
+            path: Path::new("t.ron"),
+        };
+        let r = Resolved::new(&check, &config, &names(Vec::new())).unwrap();
+        assert_eq!(r.compensation.index, 1);
+        assert_eq!(r.compensation.chosen_by, "calibration.compensate_with");
+        assert!(r.present.calibration);
+        let t = r.type_b().expect("the calibration's Type B, resolved once");
+        assert_eq!(r.type_b_at(&check, 1).unwrap(), Some(t));
+        // an unknown phase, and a second probe's, are the calibration's field's errors
+        let unknown = config_with_phase("nowhere");
+        let e = Resolved::new(&check, &unknown, &names(Vec::new())).unwrap_err();
+        assert!(
+            matches!(&e, PipelineError::UnknownPhase { field, .. } if field == "calibration.compensate_with"),
+            "{e}"
+        );
+        let e = Resolved::new(&check, &config, &names(vec![1])).unwrap_err();
+        assert!(
+            matches!(&e, PipelineError::Unsupported { field, reason: UnsupportedReason::SecondProbeData, .. }
+                if field == "calibration.compensate_with"),
+            "{e}"
+        );
+    }
+
+    fn config_with_phase(name: &str) -> StudyConfig {
+        config(&format!(
+            "calibration: (table: (file: \"piga.csv\"), compensate_with: \"{name}\"), {UNCERTAINTY}"
+        ))
+    }
+}
