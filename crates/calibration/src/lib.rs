@@ -61,10 +61,11 @@ pub use calibrate::{
 pub use limits::{LABEL_OFFSET_LIMIT, label_offset_limit, lack_of_fit_limit};
 pub use model::{CalibrationModel, K1Mode, Nominal, input, output};
 pub use mountings::{
-    ArmStretch, ArmStretchEstimate, Column, Confounded, JointDesign, JointSpec, MountingData,
-    MountingsError, MountingsFit, NuisanceEstimate, Nuisances, PoorlySeparated, ProbeCompensation,
-    RANK_TOLERANCE, Separability, SeparabilityWarning, TermEstimate, fit_mountings, joint_design,
-    separability,
+    ArmStretch, ArmStretchEstimate, CaseAxis, Column, Confounded, JointDesign, JointSpec,
+    MountingData, MountingsError, MountingsFit, MountingsTypeB, NuisanceEstimate, Nuisances,
+    PoorlySeparated, ProbeCompensation, RANK_TOLERANCE, Separability, SeparabilityWarning,
+    TermEstimate, TypeBContribution, TypeBInput, fit_mountings, joint_design, separability,
+    type_b_contributions,
 };
 pub use quantities::{AxialEarthRate, CrInput, K1Input, Spin, TypeB, measurement_inputs};
 pub use two_orientation::{

@@ -106,8 +106,8 @@ pub use profile::Profile;
 pub use recording::FileDigest;
 pub use results::{AngleZero, ProbeDeclared};
 pub use results::{
-    ArmStretchResult, MountingFitResult, MountingsProbe, MountingsResults, Normalised,
-    NuisanceResult, TermResult,
+    ArmStretchResult, MountingFitResult, MountingsProbe, MountingsResults, MountingsTypeBLine,
+    Normalised, NuisanceResult, TermResult,
 };
 pub use results::{
     Authorisation, CertificateResults, Certified, CertifiedCoefficient, CertifiedMethod,

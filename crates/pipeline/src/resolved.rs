@@ -181,6 +181,15 @@ impl<'a> Resolved<'a> {
         crate::type_b::type_b(check, self.uncertainty, stated)
     }
 
+    /// The Type B inputs the `uncertainty` section states, with no probe gain stated by a
+    /// phase's recordings (`None`: the study has no `uncertainty` section).
+    ///
+    /// # Errors
+    /// Those of `crate::type_b::type_b`.
+    pub(crate) fn type_b_of_section(&self, check: &Check<'_>) -> Result<Option<TypeB>> {
+        crate::type_b::type_b(check, self.uncertainty, None)
+    }
+
     /// The field that states the gap unit of phase `phase`, and what it states.
     pub(crate) fn gap_unit(&self, phase: usize) -> (String, String) {
         self.gap_units.get(phase).cloned().unwrap_or_else(|| {

@@ -239,7 +239,16 @@ impl Inputs {
             .mountings
             .as_ref()
             .map(|s| {
-                mountings::validate(&check, s, &resolved, &names, core.base(), load, core.g_m_s2)
+                mountings::validate(
+                    &check,
+                    s,
+                    &resolved,
+                    &names,
+                    core.base(),
+                    load,
+                    core.g_m_s2,
+                    &core.lever,
+                )
             })
             .transpose()?;
         let base = core.base().to_owned();

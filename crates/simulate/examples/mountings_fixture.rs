@@ -1,17 +1,20 @@
-//! Writes `fixtures/mountings/`: a simulated five-mounting PIGA campaign (issue 29,
-//! `docs/MODEL.md`) on the two-orientation fixture's spindle (fixtures/scenarios/
-//! two_orientation.ron: C_r = 1.6e-6 m·s², a drift across the arm, an arm stretch of
-//! 0.48e-6 m·s² the probe does not see), so that the study fixtures/studies/mountings.ron
-//! compensates it with that fixture's probe recordings. One table per mounting (rates in
-//! deg/s, mean outputs in rad/s with 1e-9 rad/s of noise), and `truth.json` with the true
+//! Writes a simulated five-mounting campaign (issue 29, `docs/MODEL.md`) on the
+//! two-orientation fixture's spindle (fixtures/scenarios/two_orientation.ron: C_r = 1.6e-6
+//! m·s², a drift across the arm, an arm stretch of 0.48e-6 m·s² the probe does not see), so
+//! that a study compensates it with that fixture's probe recordings. One table per mounting
+//! (rates in deg/s, mean outputs with white noise), and `truth.json` with the true
 //! coefficients, mountings and spindle.
 //!
-//! `cargo run -p simulate --example mountings_fixture -- fixtures/mountings`
+//! - a PIGA (outputs in rad/s, 1e-9 rad/s of noise), for fixtures/studies/mountings.ron:
+//!   `cargo run -p simulate --example mountings_fixture -- fixtures/mountings`
+//! - a pendulous (quartz-flexure) accelerometer (outputs in mA, 2 nA of noise; the worked
+//!   example of docs/MODEL.md), for fixtures/studies/mountings_pendulous.ron:
+//!   `cargo run -p simulate --example mountings_fixture -- fixtures/mountings_pendulous pendulous`
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use accel_model::{AccelKind, ModelCoefficients, MountedSpindle, MountingPreset, Term};
+use accel_model::{AccelKind, ModelCoefficients, MountedSpindle, MountingPreset, OutputUnit, Term};
 use kinematics::{Centrifuge, EARTH_RATE_RAD_S, ErrorMotion, Site};
 use simulate::{CampaignMounting, MountingCampaign, campaign_points, noisy_outputs};
 
@@ -24,8 +27,8 @@ const MOUNTINGS: [(MountingPreset, f64, f64); 5] = [
     (MountingPreset::IaAxial, 2.46, 1e-6),
 ];
 
-/// The true coefficients (rad/s per gⁿ; misalignments in rad).
-const TRUTH: [(Term, f64); 8] = [
+/// The PIGA's true coefficients (rad/s per gⁿ; misalignments in rad).
+const PIGA_TRUTH: [(Term, f64); 8] = [
     (Term::K0, 1e-5),
     (Term::K1, 0.56),
     (Term::K2, 5e-7),
@@ -36,16 +39,64 @@ const TRUTH: [(Term, f64); 8] = [
     (Term::DeltaP, -5e-5),
 ];
 
-const NOISE_RAD_S: f64 = 1e-9;
+/// The pendulous accelerometer's true coefficients (mA per gⁿ; misalignments in rad): k2 of
+/// 20 µg/g², a cross-axis k_pp and k_io.
+const PENDULOUS_TRUTH: [(Term, f64); 9] = [
+    (Term::K0, 0.02),
+    (Term::K1, 1.3),
+    (Term::K2, 2.6e-5),
+    (Term::K3, 1.3e-6),
+    (Term::K4, 4e-8),
+    (Term::Kpp, 1.5e-5),
+    (Term::Kio, 8e-6),
+    (Term::DeltaO, 2e-4),
+    (Term::DeltaP, 1e-4),
+];
+
+/// What differs between the two kinds: the model, its truth, the noise, the tables' names.
+struct Kind {
+    kind: AccelKind,
+    truth: &'static [(Term, f64)],
+    noise: f64,
+    /// The table's file prefix and output column.
+    prefix: &'static str,
+    column: &'static str,
+    /// The output unit's suffix in truth.json's keys.
+    suffix: &'static str,
+    /// The bias shifts' scale on remounting, output units (the PIGA's are in rad/s).
+    shift_scale: f64,
+}
+
 const SEED: u64 = 29;
 const LATITUDE_DEG: f64 = 39.9;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let out = PathBuf::from(
-        std::env::args()
-            .nth(1)
-            .ok_or("usage: mountings_fixture OUT_DIR")?,
-    );
+    let usage = "usage: mountings_fixture OUT_DIR [piga|pendulous]";
+    let out = PathBuf::from(std::env::args().nth(1).ok_or(usage)?);
+    let kind = match std::env::args().nth(2).as_deref() {
+        None | Some("piga") => Kind {
+            kind: AccelKind::Piga,
+            truth: &PIGA_TRUTH,
+            noise: 1e-9,
+            prefix: "piga",
+            column: "output_rad_s",
+            suffix: "rad_s",
+            shift_scale: 1.0,
+        },
+        Some("pendulous") => Kind {
+            kind: AccelKind::Pendulous {
+                unit: OutputUnit::MilliAmpere,
+            },
+            truth: &PENDULOUS_TRUTH,
+            noise: 2e-6,
+            prefix: "accel",
+            column: "output_ma",
+            suffix: "ma",
+            // the PIGA's shifts in g (output / k1), as outputs of a 1.3 mA/g accelerometer
+            shift_scale: 1.3 / 0.56,
+        },
+        Some(_) => return Err(usage.into()),
+    };
     std::fs::create_dir_all(&out)?;
     let spindle = MountedSpindle {
         centrifuge: Centrifuge {
@@ -65,8 +116,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         },
         arm_stretch_m_s2: 0.48e-6,
     };
-    let mut coefficients = ModelCoefficients::zero(AccelKind::Piga);
-    for (t, v) in TRUTH {
+    let mut coefficients = ModelCoefficients::zero(kind.kind);
+    for &(t, v) in kind.truth {
         coefficients.set(t, v);
     }
     let rates_deg_s: Vec<f64> = (0..12).map(|i| 35.0 + 15.0 * f64::from(i)).collect();
@@ -78,23 +129,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .map(|&(p, r, shift)| CampaignMounting {
                 axes: p.axes(),
                 radius_m: r,
-                bias_shift: shift,
+                bias_shift: shift * kind.shift_scale,
             })
             .collect(),
         rates_rad_s: rates_deg_s.iter().map(|r| r.to_radians()).collect(),
     };
     let points = campaign_points(&campaign)?;
-    let outputs = noisy_outputs(&points, NOISE_RAD_S, SEED, 0)?;
+    let outputs = noisy_outputs(&points, kind.noise, SEED, 0)?;
     for ((preset, ..), outs) in MOUNTINGS.iter().zip(&outputs) {
-        let mut text = String::from("rate_deg_s,output_rad_s\n");
+        let mut text = format!("rate_deg_s,{}\n", kind.column);
         for (r, y) in rates_deg_s.iter().zip(outs) {
             writeln!(text, "{r},{y:e}")?;
         }
-        std::fs::write(out.join(format!("piga_{}.csv", preset.tag())), text)?;
+        std::fs::write(
+            out.join(format!("{}_{}.csv", kind.prefix, preset.tag())),
+            text,
+        )?;
     }
     // truth.json by hand: simulate keeps serde_json a test dependency
     let mut truth = String::from("{\n  \"coefficients\": {\n");
-    let terms: Vec<String> = TRUTH
+    let terms: Vec<String> = kind
+        .truth
         .iter()
         .map(|(t, v)| format!("    \"{}\": {v:e}", t.symbol()))
         .collect();
@@ -104,8 +159,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .map(|(p, r, shift)| {
             format!(
-                "    {{\"preset\": \"{}\", \"radius_m\": {r}, \"bias_shift_rad_s\": {shift:e}}}",
-                p.tag()
+                "    {{\"preset\": \"{}\", \"radius_m\": {r}, \"bias_shift_{}\": {:e}}}",
+                p.tag(),
+                kind.suffix,
+                shift * kind.shift_scale
             )
         })
         .collect();
@@ -114,8 +171,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         truth,
         "\n  ],\n  \"spindle\": {{\"dr_xs_m\": 5.6e-6, \"dr_ys_m\": -1.97e-6, \"c_r_m_s2\": 1.6e-6, \
          \"c_r_y_m_s2\": 4e-7, \"arm_stretch_m_s2\": 4.8e-7}},\n  \"latitude_deg\": \
-         {LATITUDE_DEG},\n  \"g_m_s2\": 9.8,\n  \"noise_rad_s\": {NOISE_RAD_S:e},\n  \"seed\": \
-         {SEED}\n}}\n"
+         {LATITUDE_DEG},\n  \"g_m_s2\": 9.8,\n  \"noise_{}\": {:e},\n  \"seed\": \
+         {SEED}\n}}\n",
+        kind.suffix, kind.noise
     )?;
     std::fs::write(out.join("truth.json"), truth)?;
     Ok(())

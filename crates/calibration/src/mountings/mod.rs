@@ -14,7 +14,8 @@
 //! Read in this order: `spec` (what the lab declares: the kind, the terms, each mounting's
 //! data and nuisance terms), `column` (the design's columns and their words), `report` (what
 //! the separability analysis finds, in words), `error`, `check`, `design` (the design, once),
-//! `separability` (the analysis before any fit), `fit` (the joint fit and its results).
+//! `separability` (the analysis before any fit), `fit` (the joint fit and its results),
+//! `type_b` (the radii, g, the rate scale and the fixtures' angles propagated to every term).
 
 mod check;
 mod column;
@@ -24,6 +25,7 @@ mod fit;
 mod report;
 mod separability;
 mod spec;
+mod type_b;
 
 pub use column::Column;
 pub use design::{JointDesign, joint_design};
@@ -32,3 +34,4 @@ pub use fit::{ArmStretchEstimate, MountingsFit, NuisanceEstimate, TermEstimate, 
 pub use report::{Confounded, PoorlySeparated, Separability, SeparabilityWarning};
 pub use separability::{RANK_TOLERANCE, separability};
 pub use spec::{ArmStretch, JointSpec, MountingData, Nuisances, ProbeCompensation};
+pub use type_b::{CaseAxis, MountingsTypeB, TypeBContribution, TypeBInput, type_b_contributions};

@@ -5,3 +5,4 @@ mod coverage;
 mod numpy_data;
 mod separable;
 mod special_cases;
+mod type_b_coverage;

@@ -164,4 +164,21 @@ pub struct MountingsResults {
     pub separability: String,
     /// What the expanded uncertainties hold, in words.
     pub uncertainty_scope: String,
+    /// The Type B inputs propagated to the terms (the radii, g, the rate scale, the fixtures'
+    /// angles), each with its share of every term's u (empty: none stated).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub type_b: Vec<MountingsTypeBLine>,
+}
+
+/// One Type B input of the joint fit and its share of each term's standard uncertainty.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MountingsTypeBLine {
+    /// The input in words ("radius of IA in", "g", "angle of IA out about PA").
+    pub input: String,
+    /// Its standard uncertainty, in `unit`.
+    pub u: f64,
+    /// The unit of `u` (m, m/s², relative, rad).
+    pub unit: String,
+    /// `|c|·u` for each term, in the order of `terms`, in each term's unit.
+    pub contributions: Vec<f64>,
 }

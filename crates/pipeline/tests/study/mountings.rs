@@ -72,14 +72,64 @@ fn the_five_mounting_fixture_covers_its_truth() {
         (across - want_across).abs() < 0.05 * want_across.abs(),
         "Δr_ys {across:e} against {want_across:e}"
     );
-    // the assumption of the budget is stated
+    // the Type B inputs are in the budget, each named with its share of every term's u:
+    // five radii, fifteen fixture angles, g, the rate scale and the probe's scale
+    let inputs: Vec<&str> = m.type_b.iter().map(|l| l.input.as_str()).collect();
+    assert_eq!(inputs.len(), 5 + 15 + 3, "{inputs:?}");
+    for want in [
+        "radius of IA in",
+        "local g",
+        "rate scale",
+        "probe's compensation scale",
+    ] {
+        assert!(
+            inputs.iter().any(|i| i.starts_with(want)),
+            "{want}: {inputs:?}"
+        );
+    }
+    for line in &m.type_b {
+        assert_eq!(line.contributions.len(), m.terms.len());
+        assert!(
+            line.u > 0.0
+                && line
+                    .contributions
+                    .iter()
+                    .all(|c| c.is_finite() && *c >= 0.0)
+        );
+    }
+    // each term's u holds them: u² ≥ Σ contributions²
+    for (j, t) in m.terms.iter().enumerate() {
+        let type_b: f64 = m.type_b.iter().map(|l| l.contributions[j].powi(2)).sum();
+        assert!(t.u * t.u >= type_b * (1.0 - 1e-12), "{}", t.name);
+    }
     assert!(
-        r.warnings
+        m.uncertainty_scope.contains("Type B"),
+        "{}",
+        m.uncertainty_scope
+    );
+    assert!(
+        !r.warnings
             .iter()
-            .any(|w| w.code == WarningCode::MountingsAssumed && w.message.contains("Type B")),
+            .any(|w| w.code == WarningCode::MountingsAssumed && w.location == "uncertainty"),
         "{:?}",
         r.warnings
     );
+    // without an `uncertainty` section, the study says the radii, g and rate scale are taken
+    // as exact and not to certify from it
+    let start = text.find("    uncertainty: (").unwrap();
+    let end = start + text[start..].find("    ),\n").unwrap() + "    ),\n".len();
+    let without = format!("{}{}", &text[..start], &text[end..]);
+    let r = run(&without, &path);
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.code == WarningCode::MountingsAssumed
+                && w.message.contains("no `uncertainty` section")),
+        "{:?}",
+        r.warnings
+    );
+    let only_angles = &r.mountings.as_ref().unwrap().type_b;
+    assert_eq!(only_angles.len(), 15, "the fixtures' angles alone");
     // the specific-force range of the IA-in mounting: R·ω²/g at 35 and 200 deg/s
     let ia_in = &m.mountings[0];
     let force = |deg: f64| 2.5 * deg.to_radians().powi(2) / 9.8;

@@ -117,10 +117,16 @@ pub(crate) fn run(
         .phase
         .map_or(f64::INFINITY, |(p, _)| phases[p].fit.dof as f64);
     let fit_dof = fit.weighting.group_dof;
+    // the radii, g, the rate scale and the fixtures' angles (Type B, ν = ∞)
+    let type_b = ::calibration::type_b_contributions(&spec, &data, &s.type_b.unwrap_or_default())
+        .map_err(fail)?;
+    let from_type_b: Vec<f64> = (0..fit.terms.len())
+        .map(|j| type_b.iter().map(|c| c.contributions[j].powi(2)).sum())
+        .collect();
     let mut terms = Vec::with_capacity(fit.terms.len());
     let mut k_lowest = f64::INFINITY;
-    for (t, &probe_var) in fit.terms.iter().zip(&from_probe) {
-        let u = t.u.hypot(probe_var.sqrt());
+    for ((t, &probe_var), &type_b_var) in fit.terms.iter().zip(&from_probe).zip(&from_type_b) {
+        let u = (t.u * t.u + probe_var + type_b_var).sqrt();
         let fit_share = match fit_dof {
             Dof::Finite(nu) => t.u.powi(4) / nu,
             Dof::Infinite => 0.0,
@@ -238,23 +244,72 @@ pub(crate) fn run(
         birge_ratio: fit.weighting.birge_ratio,
         condition_number: fit.fit.condition_number,
         separability: s.separability.to_string(),
-        uncertainty_scope: if probe_dof.is_finite() {
-            format!(
-                "U95 = k·u, u from the joint fit's covariance ({fit_dof} degrees of freedom) and the \
-             probe phase's C_r and drift across the arm ({probe_dof} degrees of freedom), k the \
-             Student t at each term's effective degrees of freedom (Welch–Satterthwaite; from \
-             {k_lowest:.2}); the other Type B inputs (the radii, g, the fixtures' angles) are \
-             not yet in it"
-            )
-        } else {
-            format!(
-                "U95 = k·u, u from the joint fit's covariance ({fit_dof} degrees of freedom), k \
-                 the Student t ({k_lowest:.2}); the Type B inputs (the radii, g, the fixtures' \
-                 angles) are not yet in it"
-            )
-        },
+        uncertainty_scope: scope(s, fit_dof, probe_dof, k_lowest),
+        type_b: type_b.iter().map(|c| type_b_line(s, c)).collect(),
     };
     Ok((results, warnings))
+}
+
+/// What the expanded uncertainties hold, in words.
+fn scope(s: &MountingsInputs, fit_dof: Dof, probe_dof: f64, k_lowest: f64) -> String {
+    let probe = if probe_dof.is_finite() {
+        format!(", the probe phase's C_r and drift across the arm ({probe_dof} degrees of freedom)")
+    } else {
+        String::new()
+    };
+    let angles = s.sets.iter().any(|m| m.mounting.angle_u_deg > 0.0);
+    let type_b = match (s.type_b, angles) {
+        (Some(_), true) => "; Type B (infinite degrees of freedom): each mounting's radius, g, \
+                            the rate scale and the probe's gain and lever (the `uncertainty` \
+                            section, the radii independent) and each fixture's angles about IA, PA and OA (`angle_u_deg`), \
+                            propagated through refits of the joint fit"
+            .to_owned(),
+        (Some(_), false) => "; Type B (infinite degrees of freedom): each mounting's radius, g, \
+                             the rate scale and the probe's gain and lever (the `uncertainty` \
+                             section, the radii independent), propagated through refits of the joint fit; no \
+                             fixture angle uncertainty stated"
+            .to_owned(),
+        (None, true) => "; Type B: each fixture's angles about IA, PA and OA (`angle_u_deg`); \
+                         the radii, g and the rate scale are not in it (no `uncertainty` \
+                         section)"
+            .to_owned(),
+        (None, false) => "; no Type B input is in it (no `uncertainty` section, no fixture \
+                          angle uncertainty)"
+            .to_owned(),
+    };
+    format!(
+        "U95 = k·u, u from the joint fit's covariance ({fit_dof} degrees of freedom){probe}{type_b}; \
+         k the Student t at each term's effective degrees of freedom (Welch–Satterthwaite; from \
+         {k_lowest:.2})"
+    )
+}
+
+/// A Type B input's line, in words.
+fn type_b_line(
+    s: &MountingsInputs,
+    c: &::calibration::TypeBContribution,
+) -> crate::results::MountingsTypeBLine {
+    use ::calibration::TypeBInput;
+    let label = |i: usize| s.sets.get(i).map_or("", |m| m.mounting.label.as_str());
+    let (input, unit) = match c.input {
+        TypeBInput::Radius(i) => (format!("radius of {}", label(i)), "m"),
+        TypeBInput::Gravity => ("local g".to_owned(), "m/s²"),
+        TypeBInput::RateScale => ("rate scale".to_owned(), "relative"),
+        TypeBInput::ProbeScale => (
+            "probe's compensation scale (gain and lever heights)".to_owned(),
+            "relative",
+        ),
+        TypeBInput::Angle(i, axis) => (
+            format!("fixture angle of {} about {}", label(i), axis.words()),
+            "rad",
+        ),
+    };
+    crate::results::MountingsTypeBLine {
+        input,
+        u: c.u,
+        unit: unit.to_owned(),
+        contributions: c.contributions.clone(),
+    }
 }
 
 /// The drift across the arm at the accelerometer from the phase's first-harmonic sine
@@ -447,12 +502,15 @@ fn warnings(s: &MountingsInputs, fit: &::calibration::MountingsFit, probe: bool)
             "mountings.list",
         ));
     }
-    w.push(Warning::mountings_assumed(
-        "the expanded uncertainties of the terms hold the joint fit and the probe phase's C_r \
-         and drift across the arm; the other Type B inputs (the radii, g, the fixtures' \
-         angles) are not yet propagated: do not certify these terms from this section alone"
-            .to_owned(),
-        "mountings",
-    ));
+    if s.type_b.is_none() {
+        w.push(Warning::mountings_assumed(
+            "no `uncertainty` section: the radii, g and the rate scale are taken as exact, and \
+             the expanded uncertainties of the terms hold the joint fit, the probe phase and the \
+             fixtures' angles only; state `uncertainty` (docs/CONFIGURATION.md) before \
+             certifying these terms"
+                .to_owned(),
+            "uncertainty",
+        ));
+    }
     w
 }

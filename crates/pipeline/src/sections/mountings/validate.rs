@@ -41,6 +41,8 @@ pub(crate) struct MountingsInputs {
     pub(crate) sets: Vec<MountingSet>,
     /// The separability of the chosen terms by these mountings (full rank here).
     pub(crate) separability: ::calibration::Separability,
+    /// The `uncertainty` section's radius, g and rate-scale inputs (`None`: no section).
+    pub(crate) type_b: Option<::calibration::MountingsTypeB>,
 }
 
 impl MountingsInputs {
@@ -137,6 +139,7 @@ pub(crate) fn validate(
     base: &Path,
     load: &dyn DataSource,
     g_m_s2: f64,
+    lever: &harmonics::LeverGeometry,
 ) -> Result<MountingsInputs> {
     let mut errors = Vec::new();
     // the terms: k0 and k1 always, each tag known
@@ -208,6 +211,25 @@ pub(crate) fn validate(
             sets.push(set);
         }
     }
+    let type_b = match resolved.type_b_of_section(check) {
+        Ok(t) => t.map(|t| {
+            let v = t.values;
+            // the lever ratio ρ = (h₁ + h₂)/h₁ of eq. 22: u(ρ)/ρ = √((h₂·u₁/h₁)² + u₂²)/(h₁ + h₂)
+            let (h1, h2) = (lever.pivot_to_probe_mm, lever.probe_to_piga_mm);
+            let lever_u_relative =
+                (h2 * v.pivot_to_probe_u_mm / h1).hypot(v.probe_to_piga_u_mm) / (h1 + h2);
+            ::calibration::MountingsTypeB {
+                radius_u_m: v.radius_u_m,
+                g_u_m_s2: v.g_u_m_s2,
+                rate_u_relative: v.rate_u_relative,
+                probe_scale_u_relative: lever_u_relative.hypot(v.probe_gain_u_relative),
+            }
+        }),
+        Err(e) => {
+            errors.push(e);
+            None
+        }
+    };
     PipelineError::from_list(errors)?;
     let arm_stretch = match config.arm_stretch {
         ArmStretchName::Auto => ArmStretch::Auto,
@@ -231,6 +253,7 @@ pub(crate) fn validate(
             poorly: Vec::new(),
             inflation: Vec::new(),
         },
+        type_b,
     };
     // before anything runs: can these mountings separate the chosen terms?
     let rates = inputs.rates_rad_s();
