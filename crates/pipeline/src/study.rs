@@ -238,18 +238,7 @@ impl Inputs {
         let mountings = config
             .mountings
             .as_ref()
-            .map(|s| {
-                mountings::validate(
-                    &check,
-                    s,
-                    &resolved,
-                    &names,
-                    core.base(),
-                    load,
-                    core.g_m_s2,
-                    &core.lever,
-                )
-            })
+            .map(|s| mountings::validate(&check, s, &resolved, &names, &core, load))
             .transpose()?;
         let base = core.base().to_owned();
         let phases = match shared {

@@ -10,7 +10,7 @@ use accel_model::{AccelKind, Mounting, MountingPreset, Term};
 
 use crate::config::{ArmStretchName, MountingConfig, MountingsConfig};
 use crate::error::{InvalidReason, PipelineError, Result};
-use crate::inputs::{Check, DataSource, InputFile, PhaseNames};
+use crate::inputs::{Check, Core, DataSource, InputFile, PhaseNames};
 use crate::piga_data::{self, PigaTableRows};
 use crate::resolved::Resolved;
 
@@ -130,17 +130,17 @@ fn preset(tag: &str) -> std::result::Result<MountingPreset, String> {
 /// Validates the section and reads its tables; every problem at once, in the file's
 /// order, then the separability of the chosen terms by the mountings (refused when rank
 /// deficient, naming the mounting that separates them). Without `compensate_with`, a
-/// compensated fit uses the study's compensating phase (`resolved`).
+/// compensated fit uses the study's compensating phase (`resolved`); data paths are relative
+/// to the configuration's folder, and g and the lever are the study's (`core`).
 pub(crate) fn validate(
     check: &Check<'_>,
     config: &MountingsConfig,
     resolved: &Resolved<'_>,
     names: &PhaseNames<'_>,
-    base: &Path,
+    core: &Core,
     load: &dyn DataSource,
-    g_m_s2: f64,
-    lever: &harmonics::LeverGeometry,
 ) -> Result<MountingsInputs> {
+    let (base, g_m_s2, lever) = (core.base(), core.g_m_s2, &core.lever);
     let mut errors = Vec::new();
     // the terms: k0 and k1 always, each tag known
     let mut terms = vec![Term::K0, Term::K1];
