@@ -30,6 +30,11 @@ The fit, as docs/MODEL.md states it:
 5. δ = (k1·δ)/k1 with its u by the gradient.
 
 Exit status 1 when a term or its u disagrees with the Rust fit beyond 1e-9 relative.
+
+    target/venv/bin/python bench/model_numpy.py --time 20 target/model-numpy/campaign_piga.json
+
+times one fit and the 46 refits of the GUM budget (`cargo bench -p calibration --bench
+mountings`, `gum_budget`), best of 20.
 """
 import json
 import sys
@@ -144,8 +149,39 @@ def check(path):
     return ok
 
 
+def time_budget(path, repeat):
+    """The NumPy side of `cargo bench -p calibration --bench mountings`: one fit and the 46
+    refits of the Rust GUM budget (23 Type B inputs, each moved by ± its u: here each mounting's
+    radius in turn, the cost of a refit being the same whichever input moved), best of
+    `repeat`."""
+    import time
+
+    with open(path, encoding="utf-8") as f:
+        c = json.load(f)
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.perf_counter()
+        x, y = design(c)
+        fit(x, y)
+        for j in range(46):
+            moved = json.loads(json.dumps(c))
+            m = moved["mountings"][j % len(moved["mountings"])]
+            m["radius_m"] += 5e-6 if j % 2 == 0 else -5e-6
+            x, y = design(moved)
+            fit(x, y)
+        best = min(best, time.perf_counter() - start)
+    print(f"{path}: one fit and 46 refits (the GUM budget's count), best of {repeat}: "
+          f"{best * 1e3:.1f} ms")
+
+
 def main():
-    paths = sys.argv[1:]
+    args = sys.argv[1:]
+    if args[:1] == ["--time"]:
+        repeat = int(args[1])
+        for p in args[2:]:
+            time_budget(p, repeat)
+        return 0
+    paths = args
     if not paths:
         print(__doc__)
         return 2
