@@ -7,7 +7,10 @@
    appears as a path (`name::`), in a `use`, or `extern crate`.
 2. Sections stay in their rooms: a module under `crates/pipeline/src/sections/<a>/` imports
    no sibling section (`crate::sections::<b>`, `super::super::<b>`, `super::<b>` from a
-   section's `mod.rs`); what sections share lives in the core modules.
+   section's `mod.rs`); what sections share lives in the core modules. Nor does it name the
+   whole configuration (`StudyConfig`), through which it would read its siblings' parts: it
+   validates its own part with the study's resolved facts (`crate::resolved`); only the study
+   and the core name `StudyConfig`, and only the phases section `PhaseConfig`.
 
 Usage: deps_and_rooms.py [ROOT]   (exit 1 and one line per finding)
 """
@@ -72,6 +75,8 @@ def unused_dependencies(root: Path) -> list[str]:
 
 
 SIBLING = re.compile(r"\b(?:crate::sections::|super::super::)(\w+)")
+WHOLE_CONFIG = re.compile(r"\bStudyConfig\b")
+PHASE_CONFIG = re.compile(r"\bPhaseConfig\b")
 
 
 def sections_in_rooms(root: Path) -> list[str]:
@@ -98,6 +103,18 @@ def sections_in_rooms(root: Path) -> list[str]:
                             f"section {section} imports section {other}: "
                             f"{f.relative_to(root)}:{n} (what sections share belongs in the core)"
                         )
+                if section != "phases" and PHASE_CONFIG.search(line):
+                    findings.append(
+                        f"section {section} reads the phases' configuration (PhaseConfig): "
+                        f"{f.relative_to(root)}:{n} (what a phase was given as is a resolved "
+                        f"fact, crate::resolved)"
+                    )
+                if WHOLE_CONFIG.search(line):
+                    findings.append(
+                        f"section {section} names the whole configuration (StudyConfig): "
+                        f"{f.relative_to(root)}:{n} (a section validates its own part with the "
+                        f"study's resolved facts, crate::resolved)"
+                    )
     return findings
 
 

@@ -71,10 +71,10 @@ pub use quantities::{AxialEarthRate, CrInput, K1Input, Spin, TypeB, measurement_
 pub use two_orientation::{
     B3_TERM, GAMMA_TERM, GAMMA_VIF_LIMIT, K2_INFLATION_LIMIT, K2_TERM, K3_TERM,
     MIN_RATES_PER_ORIENTATION, MountingFit, Orientation, OrientationData, ProbeCr,
-    TWO_ORIENTATION_OUTPUTS, TWO_ORIENTATION_TERM_NAMES, TWO_ORIENTATION_TERMS,
-    TwoOrientationError, TwoOrientationEvaluation, TwoOrientationFit, TwoOrientationModel,
-    TwoOrientationWarning, Z_LIMIT, evaluate_two_orientation, fit_two_orientation,
-    two_orientation_input, two_orientation_inputs, two_orientation_row,
+    TWO_ORIENTATION_OUTPUT_UNITS, TWO_ORIENTATION_OUTPUTS, TWO_ORIENTATION_TERM_NAMES,
+    TWO_ORIENTATION_TERMS, TwoOrientationError, TwoOrientationEvaluation, TwoOrientationFit,
+    TwoOrientationModel, TwoOrientationWarning, Z_LIMIT, evaluate_two_orientation,
+    fit_two_orientation, two_orientation_input, two_orientation_inputs, two_orientation_row,
 };
 pub use two_orientation::{MountingDesign, TwoOrientationSpread, two_orientation_spread};
 pub use vif::{

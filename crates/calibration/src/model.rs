@@ -41,6 +41,18 @@ pub mod input {
         "C_r of the compensating phase",
         "k1 (given)",
     ];
+    /// Units of the inputs before the coefficients, in [`NAMES`]' order, as a budget shows
+    /// them.
+    pub const UNITS: [&str; FIRST_COEFFICIENT] = [
+        "m",
+        "m/s²",
+        "1 (relative)",
+        "mm",
+        "mm",
+        "1 (relative)",
+        "m·s²",
+        "rad/(s·g)",
+    ];
 }
 
 /// The model's outputs, by index.
@@ -59,6 +71,15 @@ pub mod output {
     pub const DELTA_K2: usize = 5;
     /// Names of the outputs, in order.
     pub const NAMES: [&str; 6] = ["k0", "k1", "k2", "k3", "k2_uncompensated", "delta_k2"];
+    /// Units of the outputs, in [`NAMES`]' order.
+    pub const UNITS: [&str; 6] = [
+        "rad/s",
+        "rad/(s·g)",
+        "rad/(s·g²)",
+        "rad/(s·g³)",
+        "rad/(s·g²)",
+        "rad/(s·g²)",
+    ];
 }
 
 /// The nominal values the model scales from.

@@ -15,18 +15,19 @@ use crate::si::{self, CorrelatedList, Uncertainty, unit};
 use crate::text::Text;
 use crate::xml::Xml;
 
-/// The coefficients' names and what they are.
-const NAMES: [&str; 4] = ["k0", "k1", "k2", "k3"];
+// The coefficients' names, their native units as the printed certificate writes them, and
+// the units of the values relative to k1: the study's.
+use pipeline::{
+    COEFFICIENT_NAMES as NAMES, COEFFICIENT_UNITS as NATIVE_UNITS, RELATIVE_UNITS as MICRO_UNITS,
+};
+
+/// What the coefficients are.
 const WHAT: [&str; 4] = [
     "bias",
     "scale factor",
     "second-order coefficient",
     "third-order coefficient",
 ];
-/// Their native units, as the printed certificate writes them.
-const NATIVE_UNITS: [&str; 4] = ["rad/s", "rad/(s·g)", "rad/(s·g²)", "rad/(s·g³)"];
-/// The units of the values relative to k1.
-const MICRO_UNITS: [&str; 4] = ["µg", "", "µg/g²", "µg/g³"];
 /// The paper.
 const LIU: &str = "Liu Y. et al., The mechanism of PIGA's pseudo-second-order term generated \
                    by spindle dynamic imbalance of centrifuge, Navigation Positioning and \

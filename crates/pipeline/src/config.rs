@@ -446,13 +446,23 @@ impl StudyConfig {
             .iter()
             .enumerate()
             .find(|(_, p)| &p.name == name)?;
-        let Points::Recordings(set) = &phase.points else {
+        phase.stated_probe_gain(i)
+    }
+}
+
+impl PhaseConfig {
+    /// The probe gain's relative standard uncertainty this phase's recordings state (a gap in
+    /// volts with its sensitivity's uncertainty), with the field that states it (`index`: the
+    /// phase's place in `phases`); `None` when the phase is not recorded in volts (or its
+    /// sensitivity is invalid: the reader refuses it).
+    pub(crate) fn stated_probe_gain(&self, index: usize) -> Option<(f64, String)> {
+        let Points::Recordings(set) = &self.points else {
             return None;
         };
         let s = set.format.gap.unit.sensitivity().ok()??;
         Some((
             s.relative_u(),
-            format!("phases[{i}].points.format.gap.unit (u_sensitivity)"),
+            format!("phases[{index}].points.format.gap.unit (u_sensitivity)"),
         ))
     }
 }

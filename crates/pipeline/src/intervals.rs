@@ -191,6 +191,7 @@ mod tests {
             quantity: quantity.to_owned(),
             evaluation: "B".to_owned(),
             value: Some(2.5),
+            unit: "m".to_owned(),
             u: 1.0,
             sensitivity: 1.0,
             contribution: 1.0,

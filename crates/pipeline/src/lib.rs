@@ -26,10 +26,13 @@
 //! The configuration's format (`config`, serde DTOs) and the output format (`results`) are
 //! leaves; the core (`inputs`: the data source, the centrifuge's geometry, field checks)
 //! uses only them; `piga_data` (the PIGA's table or raw output recordings, read and reduced
-//! to points) is core shared by the calibration and two-orientation sections; each section (`sections::{phases, mechanism, calibration, balance, two_orientation,
-//! mountings, certificate}`)
-//! validates its part of the configuration, runs on values and fills its results, using
-//! only the core and the formats; `study` orders the sections; `load` is the edge.
+//! to points) is core shared by the calibration and two-orientation sections; `resolved`
+//! (core) holds what several sections depend on, settled once before they validate (the
+//! compensating phase, the probe gain and Type B inputs, which sections are present); each
+//! section (`sections::{phases, mechanism, calibration, balance, two_orientation,
+//! mountings, certificate}`) validates its own part of the configuration with those facts
+//! (never the whole `StudyConfig`), runs on values and fills its results, using only the
+//! core and the formats; `study` orders the sections; `load` is the edge.
 //!
 //! ```
 //! use std::path::Path;
@@ -68,6 +71,7 @@ mod intervals;
 mod load;
 mod piga_data;
 mod profile;
+mod resolved;
 mod results;
 mod sections;
 mod study;
@@ -117,11 +121,12 @@ pub use results::{
     StaticPhasor, StiffnessResult, TwoPlaneCorrectionResult, TwoPlaneResults,
 };
 pub use results::{
-    BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, DegreesOfFreedom,
-    Estimate, FitWeighting, InfiniteDof, LabelSummary, MechanismPhase, MechanismResults, ModelFit,
-    MonteCarlo, MonteCarloOutput, Nuisance, PhaseResults, PigaCoefficients, PigaRecordingResult,
-    PigaResult, PointResult, ProbeTrace, ProfileResults, RadiusModel, StudyInputs, StudyResults,
-    UnitSummary, ValueOrigin, ValueSource, Warning, WarningCode, model_name,
+    BudgetLine, COEFFICIENT_NAMES, COEFFICIENT_UNITS, CalibrationResults, CalibrationRow,
+    Coefficient, Conventional, DegreesOfFreedom, Estimate, FitWeighting, InfiniteDof, LabelSummary,
+    MechanismPhase, MechanismResults, ModelFit, MonteCarlo, MonteCarloOutput, Nuisance,
+    PhaseResults, PigaCoefficients, PigaRecordingResult, PigaResult, PointResult, ProbeTrace,
+    ProfileResults, RELATIVE_UNITS, RadiusModel, StudyInputs, StudyResults, UnitSummary,
+    ValueOrigin, ValueSource, Warning, WarningCode, model_name,
 };
 pub use results::{
     MountingResults, ProbeComparison, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,

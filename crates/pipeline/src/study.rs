@@ -12,6 +12,7 @@ use recording::FileDigest;
 
 use crate::inputs::{Core, DataSource, InputFile};
 use crate::profile::Profile;
+use crate::resolved::Resolved;
 use crate::results::{ProfileResults, StudyInputs, StudyResults, UnitSummary, Warning};
 use crate::sections::balance::counterweight::{self, CounterweightInputs};
 use crate::sections::balance::{self, BalanceInputs};
@@ -189,7 +190,7 @@ impl Inputs {
         };
         let mut core = Core::new(&config, source)?;
         let check = core.check();
-        let checked = phases::check(&check, &config)?;
+        let checked = phases::check(&check, config.radius_model, &config.phases)?;
         let second_probe = balance::second_probe_phases(config.balance.as_ref(), &checked.names);
         let names = checked.names(second_probe);
         let mechanism = config
@@ -198,18 +199,13 @@ impl Inputs {
             .map(|m| mechanism::validate(&check, m, config.k1_rad_s_g, &names))
             .transpose()?;
         PipelineError::from_list(crate::type_b::implausible(&check, &config))?;
-        let type_b = match config.calibration {
-            Some(_) => crate::type_b::type_b(
-                &check,
-                config.uncertainty.as_ref(),
-                config.stated_probe_gain(),
-            )?,
-            None => None,
-        };
+        // What several sections depend on, settled once: each section validates its own part
+        // of the configuration with these beside it.
+        let resolved = Resolved::new(&check, &config, &names)?;
         let calibration_refs = config
             .calibration
             .as_ref()
-            .map(|c| calibration::validate(&check, c, &names))
+            .map(|c| calibration::validate(&check, c, &resolved))
             .transpose()?;
         let balance = config
             .balance
@@ -218,7 +214,7 @@ impl Inputs {
                 balance::validate(
                     &check,
                     b,
-                    &config.phases,
+                    &resolved,
                     &names.names,
                     core.lever.probe_to_piga_mm,
                 )
@@ -227,22 +223,22 @@ impl Inputs {
         let counterweight = config
             .counterweight
             .as_ref()
-            .map(|c| counterweight::validate(&check, c, &config.phases, &names.names))
+            .map(|c| counterweight::validate(&check, c, &resolved, &names.names))
             .transpose()?;
         let certificate = config
             .certificate
             .as_ref()
-            .map(|c| certificate::validate(&check, c, &config))
+            .map(|c| certificate::validate(&check, c, &resolved))
             .transpose()?;
         let two_orientation = config
             .two_orientation
             .as_ref()
-            .map(|s| two_orientation::validate(&check, s, &config, &names, core.base(), load))
+            .map(|s| two_orientation::validate(&check, s, &resolved, &names, core.base(), load))
             .transpose()?;
         let mountings = config
             .mountings
             .as_ref()
-            .map(|s| mountings::validate(&check, s, &config, &names, &core, load))
+            .map(|s| mountings::validate(&check, s, &resolved, &names, &core, load))
             .transpose()?;
         let base = core.base().to_owned();
         let phases = match shared {
@@ -253,7 +249,14 @@ impl Inputs {
         };
         core.angle_zero.measured_angles = phases.measure_angles();
         let calibration = match (config.calibration.as_ref(), calibration_refs) {
-            (Some(c), Some(refs)) => Some(calibration::load(c, refs, type_b, &base, source, load)?),
+            (Some(c), Some(refs)) => Some(calibration::load(
+                c,
+                refs,
+                resolved.type_b(),
+                &base,
+                source,
+                load,
+            )?),
             _ => None,
         };
         Ok(Self {

@@ -3,10 +3,10 @@
 
 use pipeline::{CalibrationResults, Coefficient, HeadlineMethod};
 
-/// The coefficients' names, their units and their units relative to k1.
-pub(crate) const NAMES: [&str; 4] = ["k0", "k1", "k2", "k3"];
-pub(crate) const UNITS: [&str; 4] = ["rad/s", "rad/(s·g)", "rad/(s·g²)", "rad/(s·g³)"];
-pub(crate) const MICRO_UNITS: [&str; 4] = ["µg", "", "µg/g²", "µg/g³"];
+// The coefficients' names, their units and their units relative to k1: the study's.
+pub(crate) use pipeline::{
+    COEFFICIENT_NAMES as NAMES, COEFFICIENT_UNITS as UNITS, RELATIVE_UNITS as MICRO_UNITS,
+};
 
 /// A coefficient's headline: the value and the 95 % interval a certificate states.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -15,19 +15,14 @@ fn with_u95(t: &TermResult) -> String {
     format!("{p} {}", t.unit)
 }
 
-/// The term normalised by k1, `value ± U95 unit` (k0 in µg, the others in µg/gⁿ⁻¹).
+/// The term normalised by k1, `value ± U95 unit` (10⁶·value/k1 in the study's unit: k0 in
+/// µg, k2 in µg/g², k3 in µg/g³).
 fn normalised(t: &TermResult) -> String {
     t.normalised.as_ref().map_or_else(String::new, |n| {
-        // value/k1 in g per gⁿ, times 10⁶: µg per gⁿ (k0: µg; k2: µg/g²; k3: µg/g³)
-        let unit = match n.unit.as_str() {
-            "g" => "µg",
-            "1/g" => "µg/g²",
-            "1/g²" => "µg/g³",
-            _ => "µg/g⁴",
-        };
         format!(
-            "{} {unit}",
-            format::pair(n.value * 1e6, t.k * n.u * 1e6).joined()
+            "{} {}",
+            format::pair(n.value * 1e6, t.k * n.u * 1e6).joined(),
+            n.relative_unit
         )
     })
 }

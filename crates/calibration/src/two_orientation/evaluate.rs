@@ -45,6 +45,19 @@ pub const TWO_ORIENTATION_OUTPUTS: [&str; 9] = [
     "C − C_r",
 ];
 
+/// Units of [`TWO_ORIENTATION_OUTPUTS`], in its order.
+pub const TWO_ORIENTATION_OUTPUT_UNITS: [&str; 9] = [
+    "rad/s",
+    "rad/(s·g)",
+    "rad/s",
+    "rad/(s·g)",
+    "rad/(s·g²)",
+    "rad/(s·g³)",
+    "m·s²",
+    "rad/(s·g²)",
+    "m·s²",
+];
+
 /// The input quantities of [`TwoOrientationModel`], by index: the ten coefficients of eq. 23
 /// (fitted at the declared radii, g and rates), then the quantities they were fitted at, then
 /// with a probe its C_r and the quantities C_r depends on.
@@ -88,6 +101,19 @@ pub mod two_orientation_input {
         "probe-to-PIGA height",
         "probe gain",
         "C_r (probe)",
+    ];
+    /// Units of the inputs after the coefficients, in [`NAMES`]' order, as a budget shows
+    /// them.
+    pub const UNITS: [&str; COUNT_WITH_PROBE - G] = [
+        "m/s²",
+        "1 (relative)",
+        "m",
+        "m",
+        "rad/s",
+        "mm",
+        "mm",
+        "1 (relative)",
+        "m·s²",
     ];
 }
 

@@ -26,8 +26,9 @@ mod terms;
 
 pub use error::TwoOrientationError;
 pub use evaluate::{
-    ProbeCr, TWO_ORIENTATION_OUTPUTS, TwoOrientationEvaluation, TwoOrientationModel,
-    TwoOrientationWarning, evaluate_two_orientation, two_orientation_input, two_orientation_inputs,
+    ProbeCr, TWO_ORIENTATION_OUTPUT_UNITS, TWO_ORIENTATION_OUTPUTS, TwoOrientationEvaluation,
+    TwoOrientationModel, TwoOrientationWarning, evaluate_two_orientation, two_orientation_input,
+    two_orientation_inputs,
 };
 pub use fit::{MountingFit, TwoOrientationFit, fit_two_orientation};
 pub use spread::{MountingDesign, TwoOrientationSpread, two_orientation_spread};

@@ -47,6 +47,14 @@ pub struct Conventional {
     pub k3_ug_per_g3: Estimate,
 }
 
+/// The PIGA coefficients' names, k0 … k3.
+pub const COEFFICIENT_NAMES: [&str; 4] = ["k0", "k1", "k2", "k3"];
+/// The coefficients' native units, k0 … k3.
+pub const COEFFICIENT_UNITS: [&str; 4] = ["rad/s", "rad/(s·g)", "rad/(s·g²)", "rad/(s·g³)"];
+/// The units of k0, k2 and k3 relative to k1, in millionths of g (k1 has none): what
+/// results.json's `relative.unit`, the report and the certificate write.
+pub const RELATIVE_UNITS: [&str; 4] = ["µg", "", "µg/g²", "µg/g³"];
+
 /// One line of an uncertainty budget.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BudgetLine {
@@ -56,6 +64,11 @@ pub struct BudgetLine {
     pub evaluation: String,
     /// Its value (for the fit's coefficients, a correlated group: absent).
     pub value: Option<f64>,
+    /// The unit of its value and standard uncertainty, as a budget shows it (`m`, `m/s²`,
+    /// `1 (relative)`; for the fit's group, the output's unit). Empty in a results.json
+    /// written before it was recorded.
+    #[serde(default)]
+    pub unit: String,
     /// Its standard uncertainty (for the fit's group: the group's contribution itself, with
     /// sensitivity 1, so that `contribution = |sensitivity|·u` holds on every line).
     pub u: f64,
@@ -75,10 +88,11 @@ pub struct BudgetLine {
 }
 
 impl BudgetLine {
-    /// The line of an input quantity `q` in an output's budget, with its contribution `c` to
-    /// the output and what the study says of it (`note`).
+    /// The line of an input quantity `q` (in `unit`) in an output's budget, with its
+    /// contribution `c` to the output and what the study says of it (`note`).
     pub(crate) fn input(
         q: &uncertainty::InputQuantity,
+        unit: &str,
         c: &uncertainty::Contribution,
         note: Option<String>,
     ) -> Self {
@@ -89,6 +103,7 @@ impl BudgetLine {
                 uncertainty::Evaluation::TypeB => "B".to_owned(),
             },
             value: Some(q.value),
+            unit: unit.to_owned(),
             u: q.standard_uncertainty,
             sensitivity: c.sensitivity,
             contribution: c.uncertainty,
@@ -100,10 +115,11 @@ impl BudgetLine {
 
     /// A fit's coefficients as one line of `output`'s budget (`group`, their contributions):
     /// their correlated contribution (the shares of the group, which may be negative one by
-    /// one, sum to the group's share), with sensitivity 1 and the fit's ν; `fit` names the
-    /// fit (`the eq. 18 fit`).
+    /// one, sum to the group's share), with sensitivity 1 and the fit's ν, in the output's
+    /// `unit`; `fit` names the fit (`the eq. 18 fit`).
     pub(crate) fn fit_group(
         output: &uncertainty::GumOutput,
+        unit: &str,
         group: &[uncertainty::Contribution],
         fit: &str,
         dof: uncertainty::Dof,
@@ -114,6 +130,7 @@ impl BudgetLine {
             quantity: ::calibration::noise_budget_line(fit, dof),
             evaluation: "A".to_owned(),
             value: None,
+            unit: unit.to_owned(),
             u: contribution,
             sensitivity: 1.0,
             contribution,
@@ -122,6 +139,16 @@ impl BudgetLine {
             note: None,
         }
     }
+}
+
+/// What the study says beside input `input` of a budget (its index in
+/// `calibration::input`), from `notes` (by that index): the reason for a zero, where its
+/// uncertainty comes from, that it is not stated.
+pub(crate) fn budget_note(notes: &[(usize, String)], input: usize) -> Option<String> {
+    notes
+        .iter()
+        .find(|(index, _)| *index == input)
+        .map(|(_, note)| note.clone())
 }
 
 /// One row of the calibration table with its fitted value.

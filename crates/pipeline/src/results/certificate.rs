@@ -84,6 +84,10 @@ pub struct Condition {
 pub struct Traceability {
     /// The input quantity, as the budget names it.
     pub input: String,
+    /// The unit of its value and uncertainty, as the budget shows it (empty in a
+    /// results.json written before it was recorded).
+    #[serde(default)]
+    pub unit: String,
     /// Its standard uncertainty as the k2 budget uses it (absent when the budget has no
     /// line for it).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -67,3 +67,17 @@ pub struct OutputCovariance {
     /// The matrix, row by row, in the outputs' units.
     pub matrix: Vec<Vec<f64>>,
 }
+
+impl OutputCovariance {
+    /// The covariance of the first `n` outputs of the GUM evaluation `gum`, named as the
+    /// evaluation names them.
+    pub(crate) fn of(gum: &uncertainty::GumResult, n: usize) -> Self {
+        let m = gum.outputs.len();
+        Self {
+            outputs: gum.outputs[..n].iter().map(|o| o.name.clone()).collect(),
+            matrix: (0..n)
+                .map(|i| (0..n).map(|j| gum.covariance[i * m + j]).collect())
+                .collect(),
+        }
+    }
+}

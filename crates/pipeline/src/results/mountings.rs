@@ -38,6 +38,10 @@ pub struct Normalised {
     pub u: f64,
     /// Its unit (`g`, `1/g`, `1/g²`).
     pub unit: String,
+    /// The unit of 10⁶·value/k1, as a person reads it (`µg`, `µg/g²`, `µg/g³`; empty in a
+    /// results.json written before it was recorded).
+    #[serde(default)]
+    pub relative_unit: String,
 }
 
 /// One mounting as fitted.

@@ -1,7 +1,9 @@
 //! The sections of a study. Each owns its part of the configuration's validation (the file's
 //! data-transfer types → a validated type), its run on values and its mapping to results;
-//! they share only the core (`crate::inputs`) and the output format (`crate::results`), and
-//! none imports another. The study (`study.rs`) orders them.
+//! they share only the core (`crate::inputs`, and `crate::resolved`: what the study settles
+//! once and hands each section's validation beside its own part) and the output format
+//! (`crate::results`); none imports another, or reads another's part of the configuration.
+//! The study (`study.rs`) orders them.
 //!
 //! - [`phases`]: the probe phases (eq. 16, 19–22);
 //! - [`mechanism`]: a calibration simulated with each phase's C_r (eq. 17–19);

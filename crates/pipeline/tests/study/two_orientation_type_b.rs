@@ -110,6 +110,44 @@ fn the_budget_carries_every_type_b_input_in_words() {
     assert!(k1.u >= relative * k1.value, "{k1:?}");
 }
 
+/// Every line of the two-orientation budgets carries its unit as data (issue 31): each input
+/// its own, the fit's line (the first) its output's.
+#[test]
+fn every_budget_line_carries_its_unit() {
+    let sim = simulate::simulate(&scenario(21, 0.3 * C_R)).unwrap();
+    let r = study(&sim, CAMPAIGN_UNCERTAINTY).unwrap();
+    let s = r.two_orientation.as_ref().unwrap();
+    let d = s.budget.difference.as_ref().expect("a probe phase");
+    for (lines, output_unit) in [
+        (&s.budget.k2, "rad/(s·g²)"),
+        (&s.budget.c, "m·s²"),
+        (d, "m·s²"),
+    ] {
+        assert!(
+            lines[0].quantity.starts_with("PIGA mean outputs"),
+            "{lines:?}"
+        );
+        assert_eq!(lines[0].unit, output_unit, "{:?}", lines[0]);
+        for l in &lines[1..] {
+            let q = l.quantity.as_str();
+            let want = if q.starts_with("R of the IA-") {
+                "m"
+            } else if q.starts_with("Earth rate about the spindle axis") {
+                "rad/s"
+            } else {
+                match q {
+                    "g (gravity)" => "m/s²",
+                    "rate scale (common to every rate)" | "probe gain" => "1 (relative)",
+                    "pivot-to-probe height" | "probe-to-PIGA height" => "mm",
+                    "C_r (probe)" => "m·s²",
+                    other => panic!("an input this test does not know: {other}"),
+                }
+            };
+            assert_eq!(l.unit, want, "{l:?}");
+        }
+    }
+}
+
 /// The `uncertainty` section is read as the calibration section reads it: an input it does
 /// not state is refused by its field (every one at once), a negative one too; without the
 /// section every input is 0 and the budget says so beside each.

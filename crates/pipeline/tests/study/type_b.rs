@@ -235,3 +235,55 @@ fn the_probe_sign_convention_is_echoed_in_words() {
         assert_eq!(c.c_r_m_s2.value, same.c_r_m_s2.value, "{alias}");
     }
 }
+
+/// The unit a budget states for an input, by the input's name (the budget's words).
+fn unit_of_input(quantity: &str) -> &'static str {
+    match quantity {
+        "R (working radius)" => "m",
+        "g (gravity)" => "m/s²",
+        "rate scale (common to every rate)" | "probe gain" => "1 (relative)",
+        "pivot-to-probe height" | "probe-to-PIGA height" => "mm",
+        "C_r of the compensating phase" => "m·s²",
+        "k1 (given)" => "rad/(s·g)",
+        other => panic!("an input this test does not know: {other}"),
+    }
+}
+
+/// Every line of the calibration's budgets carries its unit as data (issue 31): each input
+/// its own, the eq. 18 fit's line its output's; so does each traceability statement of the
+/// certificate. An older results.json line without a unit still reads (its unit empty).
+#[test]
+fn every_budget_line_carries_its_unit() {
+    let path = root().join("fixtures/studies/campaign.ron");
+    let results = pipeline::run(&inputs(&campaign_text(), &path).unwrap()).unwrap();
+    let c = results.calibration.as_ref().unwrap();
+    let budgets = [
+        (&c.budget.k0, "rad/s"),
+        (&c.budget.k1, "rad/(s·g)"),
+        (&c.budget.k2, "rad/(s·g²)"),
+        (&c.budget.k3, "rad/(s·g³)"),
+    ];
+    for (lines, output_unit) in budgets {
+        for l in lines {
+            let want = if l.quantity.starts_with("PIGA mean outputs") {
+                output_unit
+            } else {
+                unit_of_input(&l.quantity)
+            };
+            assert_eq!(l.unit, want, "{l:?}");
+        }
+    }
+    let certificate = results
+        .certificate
+        .as_ref()
+        .expect("the campaign certifies");
+    assert!(!certificate.traceability.is_empty());
+    for t in &certificate.traceability {
+        assert_eq!(t.unit, unit_of_input(&t.input), "{t:?}");
+    }
+    let mut json = serde_json::to_value(&c.budget.k2[0]).unwrap();
+    json.as_object_mut().unwrap().remove("unit").unwrap();
+    let old: pipeline::BudgetLine = serde_json::from_value(json).unwrap();
+    assert_eq!(old.unit, "");
+    assert_eq!(old.quantity, c.budget.k2[0].quantity);
+}

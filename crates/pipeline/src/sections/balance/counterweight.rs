@@ -6,9 +6,10 @@ use std::collections::HashMap;
 
 use balance::{CalibrationContext, CorrectionPlane};
 
-use crate::config::{CounterweightConfig, PhaseConfig, Points};
+use crate::config::CounterweightConfig;
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, Core, sorted_names};
+use crate::resolved::{PhaseShape, Resolved};
 use crate::results::CounterweightResults;
 
 /// The validated counterweight section.
@@ -116,7 +117,7 @@ fn determine(
 pub(crate) fn validate(
     check: &Check<'_>,
     c: &CounterweightConfig,
-    phases: &[PhaseConfig],
+    resolved: &Resolved<'_>,
     names: &HashMap<&str, usize>,
 ) -> Result<CounterweightInputs> {
     let Some(&i) = names.get(c.phase.as_str()) else {
@@ -127,11 +128,11 @@ pub(crate) fn validate(
             known: sorted_names(names),
         });
     };
-    let Points::RadiusChange {
+    let PhaseShape::RadiusChange {
         from_rate_deg_s,
         to_rate_deg_s,
         change_um,
-    } = phases[i].points
+    } = resolved.phase_shape(i)
     else {
         return Err(PipelineError::Unsupported {
             path: check.path.to_owned(),

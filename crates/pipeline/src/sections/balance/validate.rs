@@ -4,11 +4,10 @@ use std::collections::HashMap;
 
 use balance::{CorrectionPlane, TrialMass};
 
-use crate::config::{
-    BalanceConfig, PhaseConfig, Points, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig,
-};
+use crate::config::{BalanceConfig, SecondProbeConfig, TrialMassConfig, TwoPlaneConfig};
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, probe_direction, sorted_names};
+use crate::resolved::{PhaseShape, Resolved};
 
 /// The validated balance section.
 #[derive(Debug, Clone)]
@@ -76,13 +75,13 @@ pub(crate) fn second_probe_phases(
 pub(crate) fn validate(
     check: &Check<'_>,
     b: &BalanceConfig,
-    phases: &[PhaseConfig],
+    resolved: &Resolved<'_>,
     names: &HashMap<&str, usize>,
     first_probe_to_piga_mm: f64,
 ) -> Result<BalanceInputs> {
     let known = Phases {
         check,
-        phases,
+        resolved,
         names,
     };
     let initial = known.phase("balance.initial", &b.initial)?;
@@ -146,7 +145,7 @@ pub(crate) fn validate(
 /// The study's phases as the balance section names them.
 struct Phases<'a> {
     check: &'a Check<'a>,
-    phases: &'a [PhaseConfig],
+    resolved: &'a Resolved<'a>,
     names: &'a HashMap<&'a str, usize>,
 }
 
@@ -163,10 +162,10 @@ impl Phases<'_> {
                 known: sorted_names(self.names),
             });
         };
-        let count = match &self.phases[i].points {
-            Points::FirstHarmonic(p) => p.len(),
-            Points::Recordings(set) => set.files.len(),
-            Points::RadiusError(_) | Points::RadiusChange { .. } => {
+        let count = match self.resolved.phase_shape(i) {
+            PhaseShape::FirstHarmonic { points } => points,
+            PhaseShape::Recordings { files } => files,
+            PhaseShape::RadiusError | PhaseShape::RadiusChange { .. } => {
                 return Err(PipelineError::Unsupported {
                     path: check.path.to_owned(),
                     field: field.to_owned(),

@@ -8,8 +8,8 @@ use super::validate::{CalibrationInputs, K1Choice};
 use crate::piga_data::{Origin, PigaPoints};
 use crate::results::{
     BudgetLine, CalibrationResults, CalibrationRow, Coefficient, Conventional, Estimate, Headline,
-    LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance, PigaCoefficients, UncertaintyInflation,
-    Warning,
+    LabelSummary, MonteCarlo, MonteCarloOutput, Nuisance, OutputCovariance, PigaCoefficients,
+    UncertaintyInflation, Warning, budget_note,
 };
 
 /// The results of an evaluated calibration.
@@ -36,14 +36,13 @@ pub(crate) fn results(
         k3: Coefficient::of(&out("k3"), out("k3").estimate),
     };
     let se = &fit.std_errors;
-    let m = output::NAMES.len();
-    let cov = |i: usize, j: usize| e.gum.covariance[i * m + j];
     let conventional = conventional(e, setting, &coefficients);
     let residual_sd_rad_s = e.residual_sd_rad_s;
     let labels = label_summaries(points, &unc.residuals_rad_s, residual_sd_rad_s);
-    let budget_of = |name: &str| {
+    let budget_of = |index: usize| {
         budget(
-            &out(name),
+            &out(output::NAMES[index]),
+            output::UNITS[index],
             &e.quantities,
             e.weighting.group_dof,
             inputs.k1,
@@ -51,10 +50,10 @@ pub(crate) fn results(
         )
     };
     let budget = PigaCoefficients {
-        k0: budget_of("k0"),
-        k1: budget_of("k1"),
-        k2: budget_of("k2"),
-        k3: budget_of("k3"),
+        k0: budget_of(output::K0),
+        k1: budget_of(output::K1),
+        k2: budget_of(output::K2),
+        k3: budget_of(output::K3),
     };
     let monte_carlo = monte_carlo(e, inputs.seed);
     let warnings = warnings(inputs, setting, phase_name, e, &monte_carlo);
@@ -107,12 +106,7 @@ pub(crate) fn results(
         residuals: residual_rows(points, e),
         labels,
         correlation: correlation(fit),
-        covariance: crate::results::OutputCovariance {
-            outputs: output::NAMES[..4].iter().map(|n| (*n).to_owned()).collect(),
-            matrix: (0..4)
-                .map(|i| (0..4).map(|j| cov(i, j)).collect())
-                .collect(),
-        },
+        covariance: OutputCovariance::of(&e.gum, 4),
         terms: TERM_NAMES.iter().map(|t| (*t).to_owned()).collect(),
         variance_inflation: e.vif.to_vec(),
         u_inflation: e.inflation.as_ref().map(u_inflation),
@@ -316,6 +310,7 @@ fn c_r_combined(setting: &Setting<'_>) -> Estimate {
 /// One output's budget: the named inputs that apply, and the mean outputs' noise as one line.
 fn budget(
     output: &uncertainty::GumOutput,
+    unit: &str,
     quantities: &[uncertainty::InputQuantity],
     group_dof: uncertainty::Dof,
     k1: K1Choice,
@@ -332,15 +327,17 @@ fn budget(
         if i == input::K1_GIVEN && k1 == K1Choice::Fitted {
             continue;
         }
-        let note = notes
-            .iter()
-            .find(|(index, _)| *index == i)
-            .map(|(_, note)| note.clone());
-        lines.push(BudgetLine::input(q, c, note));
+        lines.push(BudgetLine::input(
+            q,
+            input::UNITS[i],
+            c,
+            budget_note(notes, i),
+        ));
     }
     // The fit's coefficients as one line.
     lines.push(BudgetLine::fit_group(
         output,
+        unit,
         &output.contributions[input::FIRST_COEFFICIENT..],
         "the eq. 18 fit",
         group_dof,

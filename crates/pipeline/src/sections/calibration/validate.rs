@@ -5,8 +5,9 @@ use std::path::Path;
 
 use crate::config::{CalibrationConfig, K1Config, TrialsConfig};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
-use crate::inputs::{Check, DataSource, InputFile, MIN_CALIBRATION_RATES, PhaseNames};
+use crate::inputs::{Check, DataSource, InputFile, MIN_CALIBRATION_RATES};
 use crate::piga_data::{self as data, PigaData};
+use crate::resolved::Resolved;
 pub(crate) use crate::type_b::TypeB;
 
 /// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2: 100/(1 − p)).
@@ -48,20 +49,14 @@ impl CalibrationInputs {
     }
 }
 
-/// The calibration's references and numbers: the phase it compensates with, and k1.
+/// The calibration's references and numbers: the phase it compensates with (its
+/// `compensate_with` as the study resolved it, `resolved`), the Monte Carlo trials and k1.
 pub(crate) fn validate(
     check: &Check<'_>,
     c: &CalibrationConfig,
-    names: &PhaseNames<'_>,
+    resolved: &Resolved<'_>,
 ) -> Result<(usize, K1Choice)> {
-    let phase = names.index(check, "calibration.compensate_with", &c.compensate_with)?;
-    if names.second_probe.contains(&phase) {
-        return Err(PipelineError::Unsupported {
-            path: check.path.to_owned(),
-            field: "calibration.compensate_with".to_owned(),
-            reason: UnsupportedReason::SecondProbeData,
-        });
-    }
+    let phase = resolved.compensation.index;
     if let TrialsConfig::Fixed(n) = c.trials {
         if n < MIN_TRIALS {
             return Err(check.invalid(

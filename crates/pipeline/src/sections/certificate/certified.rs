@@ -7,17 +7,12 @@
 use std::path::Path;
 
 use crate::error::{PipelineError, Result};
+use crate::results::{COEFFICIENT_NAMES as NAMES, COEFFICIENT_UNITS as UNITS, RELATIVE_UNITS};
 use crate::results::{
     CalibrationResults, Certified, CertifiedCoefficient, CertifiedMethod, CertifyPolicy,
     Coefficient, Headline, HeadlineMethod, MethodCheck, OutputCovariance, RelativeValue,
     TwoOrientationResults, ValidityRange,
 };
-
-/// The coefficients' names and native units, k0 … k3.
-const NAMES: [&str; 4] = ["k0", "k1", "k2", "k3"];
-const UNITS: [&str; 4] = ["rad/s", "rad/(s·g)", "rad/(s·g²)", "rad/(s·g³)"];
-/// Units of k0, k2, k3 relative to k1 (k1 has none).
-const RELATIVE_UNITS: [&str; 4] = ["µg", "", "µg/g²", "µg/g³"];
 
 /// A mounting in words, as a customer reads it.
 pub(crate) const fn mounting_words(orientation: &str) -> &'static str {

@@ -33,6 +33,7 @@ pub(crate) fn run(
             let input = ::calibration::input::NAMES[*index];
             Traceability {
                 input: input.to_owned(),
+                unit: ::calibration::input::UNITS[*index].to_owned(),
                 u: c.budget
                     .k2
                     .iter()

@@ -1,12 +1,12 @@
 //! The certificate section's validation: every required field, all missing ones at once.
 
 use crate::config::{
-    CertificateConfig, CertifyName, DecisionRuleName, K1Config, LimitUnitName, StudyConfig,
-    TypeBInputName,
+    CertificateConfig, CertifyName, DecisionRuleName, LimitUnitName, TypeBInputName,
 };
 use crate::date::Date;
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::Check;
+use crate::resolved::Resolved;
 use crate::results::{
     Authorisation, CertifyPolicy, Condition, Dates, DecisionRule, Equipment, Item, Laboratory,
     Party, PreviousCertificate, Warning,
@@ -107,72 +107,17 @@ pub(crate) const fn input_index(name: TypeBInputName) -> usize {
     }
 }
 
-/// The Type B inputs of a study with a non-zero standard uncertainty, each with the field
-/// that gives it.
-fn uncertain_inputs(config: &StudyConfig) -> Vec<(TypeBInputName, String)> {
-    let mut list = Vec::new();
-    if let Some(u) = &config.uncertainty {
-        for (name, field, value) in [
-            (
-                TypeBInputName::Radius,
-                "uncertainty.radius_u_m",
-                u.radius_u_m,
-            ),
-            (TypeBInputName::G, "uncertainty.g_u_m_s2", u.g_u_m_s2),
-            (
-                TypeBInputName::RateScale,
-                "uncertainty.rate_u_relative",
-                u.rate_u_relative,
-            ),
-            (
-                TypeBInputName::PivotToProbe,
-                "uncertainty.pivot_to_probe_u_mm",
-                u.pivot_to_probe_u_mm,
-            ),
-            (
-                TypeBInputName::ProbeToPiga,
-                "uncertainty.probe_to_piga_u_mm",
-                u.probe_to_piga_u_mm,
-            ),
-            (
-                TypeBInputName::ProbeGain,
-                "uncertainty.probe_gain_u_relative",
-                u.probe_gain_u_relative,
-            ),
-        ] {
-            if value.is_some_and(|v| v > 0.0) {
-                list.push((name, format!("`{field}`")));
-            }
-        }
-    }
-    if let Some((gain, _)) = config.stated_probe_gain()
-        && gain > 0.0
-        && !list.iter().any(|(n, _)| *n == TypeBInputName::ProbeGain)
-    {
-        list.push((
-            TypeBInputName::ProbeGain,
-            "the recordings' stated probe sensitivity".to_owned(),
-        ));
-    }
-    if let Some(c) = &config.calibration
-        && let K1Config::Given { u_rad_s_g, .. } = c.k1
-        && u_rad_s_g > 0.0
-    {
-        list.push((TypeBInputName::K1, "`calibration.k1.u_rad_s_g`".to_owned()));
-    }
-    list
-}
-
-/// Validates the certificate section of `config`: it needs a calibration section; every
+/// Validates the certificate section `c` with the study's resolved facts (`resolved`: which
+/// sections it has, its uncertain Type B inputs): it needs a calibration section; every
 /// required text present and not blank, at least one instrument and one condition, a
 /// traceability statement for each Type B input with a non-zero uncertainty, a decision
 /// rule with limits and at least one end per limit. Every problem at once.
 pub(crate) fn validate(
     check: &Check<'_>,
     c: &CertificateConfig,
-    config: &StudyConfig,
+    resolved: &Resolved<'_>,
 ) -> Result<Certificate> {
-    if config.calibration.is_none() {
+    if !resolved.present.calibration {
         return Err(PipelineError::Unsupported {
             path: check.path.to_owned(),
             field: "certificate".to_owned(),
@@ -181,7 +126,7 @@ pub(crate) fn validate(
     }
     let mut n = Need {
         path: check.path,
-        errors: section_problems(check, c, config),
+        errors: section_problems(check, c, resolved),
     };
     let id = n.need("id", &c.id, "the certificate's unique identification");
     let (laboratory, location, customer, item) = n.parties(c);
@@ -198,7 +143,7 @@ pub(crate) fn validate(
         &c.procedure,
         "the procedure's reference and title",
     );
-    let traceability = n.traceability(c, config);
+    let traceability = n.traceability(c, resolved);
     let (limits, rule) = n.limits(c);
     let authorisation = Authorisation {
         name: n.need(
@@ -255,10 +200,10 @@ pub(crate) fn validate(
 fn section_problems(
     check: &Check<'_>,
     c: &CertificateConfig,
-    config: &StudyConfig,
+    resolved: &Resolved<'_>,
 ) -> Vec<PipelineError> {
     let mut errors = Vec::new();
-    if config.uncertainty.is_none() {
+    if !resolved.present.uncertainty {
         errors.push(PipelineError::MissingField {
             path: check.path.to_owned(),
             field: "uncertainty".to_owned(),
@@ -279,7 +224,7 @@ fn section_problems(
             });
         }
     }
-    if c.certify == CertifyName::TwoOrientation && config.two_orientation.is_none() {
+    if c.certify == CertifyName::TwoOrientation && !resolved.present.two_orientation {
         errors.push(PipelineError::MissingField {
             path: check.path.to_owned(),
             field: "two_orientation".to_owned(),
@@ -444,7 +389,7 @@ impl Need<'_> {
     fn traceability(
         &mut self,
         c: &CertificateConfig,
-        config: &StudyConfig,
+        resolved: &Resolved<'_>,
     ) -> Vec<(usize, String)> {
         let mut traceability = Vec::new();
         for (i, t) in c.traceability.iter().enumerate() {
@@ -455,8 +400,8 @@ impl Need<'_> {
             );
             traceability.push((input_index(t.input), t.statement.clone()));
         }
-        for (name, field) in uncertain_inputs(config) {
-            if !c.traceability.iter().any(|t| t.input == name) {
+        for (name, field) in resolved.uncertain_inputs() {
+            if !c.traceability.iter().any(|t| t.input == *name) {
                 let key = name.key();
                 self.need(
                     &format!("traceability (input: {key})"),

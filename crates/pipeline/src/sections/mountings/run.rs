@@ -48,6 +48,15 @@ fn normalised_unit(t: Term) -> String {
     }
 }
 
+/// The unit of a term normalised by k1 in millionths, as a person reads it: 10⁶·value/k1
+/// (k0: µg; k2: µg/g²; k3: µg/g³).
+fn relative_unit(t: Term) -> String {
+    match t.g_power() {
+        0 => "µg".to_owned(),
+        p => format!("µg/g{}", superscript(p)),
+    }
+}
+
 /// Runs the joint fit over the mountings.
 pub(crate) fn run(
     core: &Core,
@@ -152,6 +161,7 @@ pub(crate) fn run(
                 // the probe's share scales with the term as the fit's does
                 u: if t.u > 0.0 { u_n * u / t.u } else { u_n },
                 unit: normalised_unit(t.term),
+                relative_unit: relative_unit(t.term),
             }),
         });
     }

@@ -8,10 +8,11 @@ use std::path::Path;
 use ::calibration::{ArmStretch, JointSpec, MountingData, Nuisances, separability};
 use accel_model::{AccelKind, Mounting, MountingPreset, Term};
 
-use crate::config::{ArmStretchName, MountingConfig, MountingsConfig, StudyConfig};
+use crate::config::{ArmStretchName, MountingConfig, MountingsConfig};
 use crate::error::{InvalidReason, PipelineError, Result};
-use crate::inputs::{Check, DataSource, InputFile, PhaseNames};
+use crate::inputs::{Check, Core, DataSource, InputFile, PhaseNames};
 use crate::piga_data::{self, PigaTableRows};
+use crate::resolved::Resolved;
 
 /// One mounting, validated, with its table read.
 #[derive(Debug, Clone)]
@@ -128,13 +129,15 @@ fn preset(tag: &str) -> std::result::Result<MountingPreset, String> {
 
 /// Validates the section and reads its tables; every problem at once, in the file's
 /// order, then the separability of the chosen terms by the mountings (refused when rank
-/// deficient, naming the mounting that separates them).
+/// deficient, naming the mounting that separates them). Without `compensate_with`, a
+/// compensated fit uses the study's compensating phase (`resolved`); data paths are relative
+/// to the configuration's folder, and g and the lever are the study's (`core`).
 pub(crate) fn validate(
     check: &Check<'_>,
     config: &MountingsConfig,
-    study: &StudyConfig,
+    resolved: &Resolved<'_>,
     names: &PhaseNames<'_>,
-    core: &crate::inputs::Core,
+    core: &Core,
     load: &dyn DataSource,
 ) -> Result<MountingsInputs> {
     let (base, g_m_s2, lever) = (core.base(), core.g_m_s2, &core.lever);
@@ -170,14 +173,11 @@ pub(crate) fn validate(
     }
     // the probe phase
     let phase = if config.compensate {
-        let chosen = match (&config.compensate_with, &study.calibration) {
-            (Some(name), _) => names
+        let chosen = match &config.compensate_with {
+            Some(name) => names
                 .index(check, "mountings.compensate_with", name)
                 .map(|p| (p, "compensate_with")),
-            (None, Some(c)) => names
-                .index(check, "calibration.compensate_with", &c.compensate_with)
-                .map(|p| (p, "calibration.compensate_with")),
-            (None, None) => Ok((0, "first phase")),
+            None => Ok((resolved.compensation.index, resolved.compensation.chosen_by)),
         };
         match chosen {
             Ok(p) => Some(p),
@@ -211,7 +211,7 @@ pub(crate) fn validate(
             sets.push(set);
         }
     }
-    let type_b = match crate::type_b::type_b(check, study.uncertainty.as_ref(), None) {
+    let type_b = match resolved.type_b_of_section(check) {
         Ok(t) => t.map(|t| {
             let v = t.values;
             // the lever ratio ρ = (h₁ + h₂)/h₁ of eq. 22: u(ρ)/ρ = √((h₂·u₁/h₁)² + u₂²)/(h₁ + h₂)

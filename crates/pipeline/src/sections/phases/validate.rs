@@ -10,8 +10,7 @@ use rayon::prelude::*;
 use recording::{FileDigest, Recording};
 
 use crate::config::{
-    FitSettings, HarmonicPoint, PhaseConfig, Points, RadiusModelName, RadiusPoint, StudyConfig,
-    Weighting,
+    FitSettings, HarmonicPoint, PhaseConfig, Points, RadiusModelName, RadiusPoint, Weighting,
 };
 use crate::error::{PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource, InputFile, InputRole, PhaseNames, rates_of};
@@ -75,19 +74,24 @@ pub(crate) struct Checked<'a> {
     phases: Vec<(FitWeighting, CheckedData)>,
 }
 
-/// Checks every phase in the file's order: a valid and unique name, valid numbers, enough
+/// Checks every phase of the `phases` section (`configs`, fitted by the study's
+/// `radius_model`) in the file's order: a valid and unique name, valid numbers, enough
 /// points for the model.
-pub(crate) fn check<'a>(check: &Check<'_>, config: &'a StudyConfig) -> Result<Checked<'a>> {
-    let model = radius_model(config.radius_model);
-    if config.phases.is_empty() {
+pub(crate) fn check<'a>(
+    check: &Check<'_>,
+    model: RadiusModelName,
+    configs: &'a [PhaseConfig],
+) -> Result<Checked<'a>> {
+    let model = radius_model(model);
+    if configs.is_empty() {
         return Err(PipelineError::EmptyList {
             path: check.path.to_owned(),
             field: "phases".to_owned(),
         });
     }
-    let mut names: HashMap<&str, usize> = HashMap::with_capacity(config.phases.len());
-    let mut phases = Vec::with_capacity(config.phases.len());
-    for (i, phase) in config.phases.iter().enumerate() {
+    let mut names: HashMap<&str, usize> = HashMap::with_capacity(configs.len());
+    let mut phases = Vec::with_capacity(configs.len());
+    for (i, phase) in configs.iter().enumerate() {
         let key = format!("phases[{i}]");
         phase_name(check, &key, &phase.name)?;
         if let Some(j) = names.insert(&phase.name, i) {

@@ -14,9 +14,10 @@ use crate::error::{PipelineError, Result};
 use crate::inputs::Core;
 use crate::piga_data::{self, PigaPoints};
 use crate::results::{
-    BudgetLine, Coefficient, Estimate, Headline, MonteCarloOutput, MountingResults, PhaseResults,
-    ProbeComparison, ProbeDeclared, RateSpread, TwoOrientationBudgets, TwoOrientationHeadline,
-    TwoOrientationMonteCarlo, TwoOrientationResults, Warning,
+    BudgetLine, Coefficient, Estimate, Headline, MonteCarloOutput, MountingResults,
+    OutputCovariance, PhaseResults, ProbeComparison, ProbeDeclared, RateSpread,
+    TwoOrientationBudgets, TwoOrientationHeadline, TwoOrientationMonteCarlo, TwoOrientationResults,
+    Warning, budget_note,
 };
 
 /// Runs the section against the study's phase results (the probe phase's C_r).
@@ -140,7 +141,7 @@ pub(crate) fn run(
         },
         monte_carlo,
         headline,
-        covariance: output_covariance(&e.gum, 6),
+        covariance: OutputCovariance::of(&e.gum, 6),
         probe: Some(comparison),
         earth_rate: s.earth_rate.clone(),
     };
@@ -383,17 +384,6 @@ fn probe_k2(
     ))
 }
 
-/// The GUM covariance of the first `n` outputs (k0 and k1 of each mounting, k2, k3).
-fn output_covariance(gum: &uncertainty::GumResult, n: usize) -> crate::results::OutputCovariance {
-    let m = gum.outputs.len();
-    crate::results::OutputCovariance {
-        outputs: gum.outputs[..n].iter().map(|o| o.name.clone()).collect(),
-        matrix: (0..n)
-            .map(|i| (0..n).map(|j| gum.covariance[i * m + j]).collect())
-            .collect(),
-    }
-}
-
 /// One output's budget: the fit's ten coefficients as one line (their correlated
 /// contribution), then every other input that enters the output (g, the rate scale, each
 /// mounting's radius; with the probe its lever heights, gain and C_r), each with what the
@@ -406,11 +396,18 @@ fn budget(
     earth_rate_words: &str,
 ) -> Vec<BudgetLine> {
     use ::calibration::{input, two_orientation_input as si};
-    let output = e.gum.output(name).expect("the model names its outputs");
+    let (index, output) = e
+        .gum
+        .outputs
+        .iter()
+        .enumerate()
+        .find(|(_, o)| o.name == name)
+        .expect("the model names its outputs");
     let quantities = e.inputs.quantities();
     let terms = ::calibration::TWO_ORIENTATION_TERMS;
     let mut lines = vec![BudgetLine::fit_group(
         output,
+        ::calibration::TWO_ORIENTATION_OUTPUT_UNITS[index],
         &output.contributions[..terms],
         "the two-orientation fit",
         quantities[0].dof,
@@ -440,17 +437,12 @@ fn budget(
         let note = if k == si::EARTH_RATE {
             Some(earth_rate_words.to_owned())
         } else {
-            study_input.and_then(|i| {
-                notes
-                    .iter()
-                    .find(|(index, _)| *index == i)
-                    .map(|(_, n)| n.clone())
-            })
+            study_input.and_then(|i| budget_note(notes, i))
         };
         lines.push(BudgetLine {
             // (+ 0.0: an input stated exactly contributes −0 % otherwise)
             percent: c.variance_percent + 0.0,
-            ..BudgetLine::input(q, c, note)
+            ..BudgetLine::input(q, si::UNITS[k - si::G], c, note)
         });
     }
     lines

@@ -7,10 +7,11 @@ use std::path::Path;
 
 use ::calibration::{MIN_RATES_PER_ORIENTATION, Orientation, TwoOrientationError};
 
-use crate::config::{OrientationName, StudyConfig, TrialsConfig, TwoOrientationConfig};
+use crate::config::{OrientationName, TrialsConfig, TwoOrientationConfig};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource, InputFile, PhaseNames};
 use crate::piga_data::{self, PigaData};
+use crate::resolved::Resolved;
 
 /// Least number of Monte Carlo trials for a 95 % coverage interval (JCGM 101 §7.2).
 const MIN_TRIALS: u64 = 2000;
@@ -70,11 +71,12 @@ fn two_orientation_error(check: &Check<'_>, source: TwoOrientationError) -> Pipe
 /// Validates the section and reads its tables. Every problem that can be found is reported
 /// at once, in the configuration's order: a missing orientation or radius, both data sets
 /// with the same orientation, one orientation only, a table that cannot be read, fewer
-/// distinct rates than the joint model needs.
+/// distinct rates than the joint model needs. Without `compare_with`, the probe phase is the
+/// study's compensating phase (`resolved`).
 pub(crate) fn validate(
     check: &Check<'_>,
     config: &TwoOrientationConfig,
-    study: &StudyConfig,
+    resolved: &Resolved<'_>,
     names: &PhaseNames<'_>,
     base: &Path,
     load: &dyn DataSource,
@@ -153,16 +155,15 @@ pub(crate) fn validate(
         ));
     }
     // the probe phase and the Monte Carlo settings
-    let (phase, chosen_by) = match (&config.compare_with, &study.calibration) {
-        (Some(name), _) => (
+    let (phase, chosen_by) = match &config.compare_with {
+        Some(name) => (
             names.index(check, "two_orientation.compare_with", name),
             "compare_with",
         ),
-        (None, Some(c)) => (
-            names.index(check, "calibration.compensate_with", &c.compensate_with),
-            "calibration.compensate_with",
+        None => (
+            Ok(resolved.compensation.index),
+            resolved.compensation.chosen_by,
         ),
-        (None, None) => (Ok(0), "first phase"),
     };
     let phase = match phase {
         Ok(p) if names.second_probe.contains(&p) => {
@@ -202,7 +203,7 @@ pub(crate) fn validate(
             Some(n)
         }
     };
-    let (mut type_b, type_b_notes) = type_b(check, study, phase, &mut errors);
+    let (mut type_b, type_b_notes) = type_b(check, resolved, phase, &mut errors);
     let earth_rate = earth_rate(check, config, &mut errors);
     type_b.axial_earth_rate = ::calibration::AxialEarthRate {
         value_rad_s: earth_rate.value_rad_s,
@@ -244,7 +245,7 @@ pub(crate) fn validate(
     PipelineError::from_list(errors)?;
     Ok(TwoOrientationInputs {
         sets,
-        gap_unit: gap_unit(study, phase),
+        gap_unit: resolved.gap_unit(phase),
         phase,
         chosen_by,
         seed: config.seed,
@@ -318,62 +319,19 @@ fn earth_rate(
     }
 }
 
-/// The field that states the gap unit of phase `phase`, and what it states: a recordings
-/// phase's `format.gap.unit`, or the µm of given coefficients.
-fn gap_unit(study: &StudyConfig, phase: usize) -> (String, String) {
-    use crate::config::Points;
-    use recording::GapUnit;
-    let key = format!("phases[{phase}].points");
-    match study.phases.get(phase).map(|p| &p.points) {
-        Some(Points::Recordings(set)) => (
-            format!("{key}.format.gap.unit"),
-            match set.format.gap.unit {
-                GapUnit::Nm => "nm",
-                GapUnit::Um => "um",
-                GapUnit::Mm => "mm",
-                GapUnit::M => "m",
-                GapUnit::Volts { .. } => "volts, converted to µm by the probe's sensitivity",
-            }
-            .to_owned(),
-        ),
-        Some(Points::FirstHarmonic(_)) => (
-            format!("{key} (dc1_um, ds1_um)"),
-            "coefficients given in µm".to_owned(),
-        ),
-        Some(Points::RadiusError(_)) => (
-            format!("{key} (radius_error_um)"),
-            "radius errors given in µm".to_owned(),
-        ),
-        _ => (
-            format!("{key} (change_um)"),
-            "a change given in µm".to_owned(),
-        ),
-    }
-}
-
 /// The Type B inputs of the two-orientation budget: the `uncertainty` section read as the
-/// calibration section reads it (`crate::type_b`: every input stated, or 0 with its reason;
+/// calibration section reads it (`Resolved::type_b_at`: every input stated, or 0 with its reason;
 /// each finite and ≥ 0), with the probe gain stated by the compared phase's recordings in
 /// volts instead when they state it (stating it in both places is refused). Without an
 /// `uncertainty` section every input is 0 and the budget says so beside each. Problems go to
 /// `errors`.
 fn type_b(
     check: &Check<'_>,
-    study: &StudyConfig,
+    resolved: &Resolved<'_>,
     phase: usize,
     errors: &mut Vec<PipelineError>,
 ) -> (::calibration::TypeB, Vec<(usize, String)>) {
     use ::calibration::input;
-    let stated_gain = study.phases.get(phase).and_then(|p| {
-        let crate::config::Points::Recordings(set) = &p.points else {
-            return None;
-        };
-        let sensitivity = set.format.gap.unit.sensitivity().ok()??;
-        Some((
-            sensitivity.relative_u(),
-            format!("phases[{phase}].points.format.gap.unit (u_sensitivity)"),
-        ))
-    });
     let unstated = |notes: &mut Vec<(usize, String)>| {
         for index in [
             input::RADIUS,
@@ -391,7 +349,7 @@ fn type_b(
             }
         }
     };
-    match crate::type_b::type_b(check, study.uncertainty.as_ref(), stated_gain) {
+    match resolved.type_b_at(check, phase) {
         Ok(Some(t)) => {
             let mut notes = t.notes;
             if !t.from_section {

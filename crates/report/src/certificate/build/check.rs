@@ -9,7 +9,7 @@ use super::text::{
     interval_from, interval_row, interval_table, mounting_label, rich, signed, value_u_expanded,
 };
 use crate::format;
-use crate::headline::headlines;
+use crate::headline::{MICRO_UNITS, UNITS, headlines};
 
 pub(super) fn check(s: &TwoOrientationResults, cert: &Certified, c: &CalibrationResults) -> Check {
     let micro = 1e6 / c.coefficients.k1.value;
@@ -98,7 +98,7 @@ fn k2_rows(
         headline_cells(&probe.stated, probe.gum.u, 1.0),
         k.clone(),
         dof.clone(),
-        "rad/(s·g²)",
+        UNITS[2],
         from,
     );
     row(
@@ -106,7 +106,7 @@ fn k2_rows(
         headline_cells(&probe.stated, probe.gum.u, micro),
         k,
         dof,
-        "µg/g²",
+        MICRO_UNITS[2],
         from,
     );
     let (k, dof) = k_dof(&s.headline.k2, &s.k2);
@@ -116,7 +116,7 @@ fn k2_rows(
         headline_cells(&s.headline.k2, s.k2.u, 1.0),
         k.clone(),
         dof.clone(),
-        "rad/(s·g²)",
+        UNITS[2],
         from,
     );
     row(
@@ -124,7 +124,7 @@ fn k2_rows(
         headline_cells(&s.headline.k2, s.k2.u, micro),
         k,
         dof,
-        "µg/g²",
+        MICRO_UNITS[2],
         from,
     );
     let (k, dof) = k_dof(&s.headline.c, &s.c_m_s2);

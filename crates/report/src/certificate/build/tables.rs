@@ -280,7 +280,7 @@ pub(super) fn traceability(info: &CertificateResults) -> Table {
                 vec![
                     rich(&x.input),
                     t(x.u.map_or_else(|| "—".to_owned(), |u| format::significant(u, 2))),
-                    t(input_unit(&x.input).unwrap_or("—")),
+                    t(unit_or_dash(&x.unit)),
                     t(&x.statement),
                 ]
             })
@@ -288,23 +288,9 @@ pub(super) fn traceability(info: &CertificateResults) -> Table {
     )
 }
 
-/// The unit of a budget's input quantity, by the name the budget gives it (`None` for a name
-/// this table does not know: a test checks that every input of the fixtures has one).
-fn input_unit(quantity: &str) -> Option<&'static str> {
-    Some(match quantity {
-        "R (working radius)" => "m",
-        "g (gravity)" => "m/s²",
-        "rate scale (common to every rate)" | "probe gain" => "1 (relative)",
-        "pivot-to-probe height" | "probe-to-PIGA height" => "mm",
-        q if q.starts_with("R of the IA-") => "m",
-        "C_r of the compensating phase" => "m·s²",
-        "k1 (given)" => "rad/(s·g)",
-        // Ω·sin L, the Earth rate's component along the spindle axis (two orientations)
-        q if q.starts_with("Earth rate about the spindle axis") => "rad/s",
-        // the fit's coefficients as one correlated group: its contribution, sensitivity 1
-        q if q.starts_with("PIGA mean outputs") => "rad/(s·g²)",
-        _ => return None,
-    })
+/// A unit as results.json records it, or a dash for one written before units were recorded.
+fn unit_or_dash(unit: &str) -> &str {
+    if unit.is_empty() { "—" } else { unit }
 }
 
 pub(super) fn budget(
@@ -327,7 +313,7 @@ pub(super) fn budget(
                 t(&l.evaluation),
                 t(l.value.map_or_else(|| "—".to_owned(), nominal)),
                 t(format::significant(l.u, 2)),
-                t(input_unit(&l.quantity).unwrap_or("—")),
+                t(unit_or_dash(&l.unit)),
                 t(format::significant(l.sensitivity, 3)),
                 t(format::significant(l.contribution, 2)),
                 t(format!("{} %", format::percent(l.percent))),
