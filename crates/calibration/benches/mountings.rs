@@ -14,13 +14,13 @@
 
 use std::hint::black_box;
 
-use accel_model::{AccelKind, ModelCoefficients, MountedSpindle, Mounting, MountingPreset, Term};
+use accel_model::{AccelKind, ModelCoefficients, Mounting, MountingPreset, Term};
 use calibration::{
     ArmStretch, JointSpec, MountingData, MountingsTypeB, Nuisances, ProbeCompensation,
     fit_mountings, type_b_contributions,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
-use kinematics::{Centrifuge, EARTH_RATE_RAD_S, ErrorMotion, Site};
+use kinematics::EARTH_RATE_RAD_S;
 use simulate::{CampaignMounting, MountingCampaign, campaign_points, noisy_outputs};
 
 const PRESETS: [(MountingPreset, f64); 5] = [
@@ -40,7 +40,7 @@ const TRUTH: [(Term, f64); 8] = [
     (Term::DeltaO, 1e-4),
     (Term::DeltaP, -5e-5),
 ];
-const LATITUDE_DEG: f64 = 39.9;
+const LATITUDE_DEG: f64 = simulate::FIXTURE_LATITUDE_DEG;
 const PROBE: ProbeCompensation = ProbeCompensation {
     static_m: 5.6e-6,
     c_r_m_s2: 1.6e-6,
@@ -50,24 +50,7 @@ const PROBE: ProbeCompensation = ProbeCompensation {
 };
 
 fn bench(c: &mut Criterion) {
-    let spindle = MountedSpindle {
-        centrifuge: Centrifuge {
-            radius_m: 2.5,
-            site: Site {
-                latitude_deg: LATITUDE_DEG,
-                earth_rate_rad_s: EARTH_RATE_RAD_S,
-                gravity_m_s2: 9.8,
-            },
-            error_motion: ErrorMotion {
-                dr_xs_m: 5.6e-6,
-                dr_ys_m: -1.97e-6,
-                c_r_m_s2: 1.6e-6,
-                c_r_y_m_s2: 0.4e-6,
-                ..ErrorMotion::ZERO
-            },
-        },
-        arm_stretch_m_s2: 0.48e-6,
-    };
+    let spindle = simulate::fixture_spindle();
     let mut coefficients = ModelCoefficients::zero(AccelKind::Piga);
     for (t, v) in TRUTH {
         coefficients.set(t, v);

@@ -14,8 +14,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use accel_model::{AccelKind, ModelCoefficients, MountedSpindle, MountingPreset, OutputUnit, Term};
-use kinematics::{Centrifuge, EARTH_RATE_RAD_S, ErrorMotion, Site};
+use accel_model::{AccelKind, ModelCoefficients, MountingPreset, OutputUnit, Term};
 use simulate::{CampaignMounting, MountingCampaign, campaign_points, noisy_outputs};
 
 /// The mountings: preset, radius (m) and bias shift on remounting (rad/s).
@@ -68,7 +67,7 @@ struct Kind {
 }
 
 const SEED: u64 = 29;
-const LATITUDE_DEG: f64 = 39.9;
+const LATITUDE_DEG: f64 = simulate::FIXTURE_LATITUDE_DEG;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let usage = "usage: mountings_fixture OUT_DIR [piga|pendulous]";
@@ -98,24 +97,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(_) => return Err(usage.into()),
     };
     std::fs::create_dir_all(&out)?;
-    let spindle = MountedSpindle {
-        centrifuge: Centrifuge {
-            radius_m: 2.5,
-            site: Site {
-                latitude_deg: LATITUDE_DEG,
-                earth_rate_rad_s: EARTH_RATE_RAD_S,
-                gravity_m_s2: 9.8,
-            },
-            error_motion: ErrorMotion {
-                dr_xs_m: 5.6e-6,
-                dr_ys_m: -1.97e-6,
-                c_r_m_s2: 1.6e-6,
-                c_r_y_m_s2: 0.4e-6,
-                ..ErrorMotion::ZERO
-            },
-        },
-        arm_stretch_m_s2: 0.48e-6,
-    };
+    let spindle = simulate::fixture_spindle();
     let mut coefficients = ModelCoefficients::zero(kind.kind);
     for &(t, v) in kind.truth {
         coefficients.set(t, v);

@@ -52,7 +52,10 @@ mod mounting;
 mod scenario;
 mod write;
 
-pub use campaign::{CampaignMounting, MountingCampaign, campaign_points, noisy_outputs};
+pub use campaign::{
+    CampaignMounting, FIXTURE_LATITUDE_DEG, MountingCampaign, campaign_points, fixture_spindle,
+    noisy_outputs,
+};
 pub use error::{Result, SimulateError};
 pub use generate::{
     MountingRateTruth, MountingTruth, OutputNoise, PigaRow, ProbeTruth, RadiusGrowthTruth,

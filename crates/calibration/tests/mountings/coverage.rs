@@ -10,7 +10,7 @@ use accel_model::{
 use calibration::{
     ArmStretch, JointSpec, MountingData, Nuisances, ProbeCompensation, fit_mountings, separability,
 };
-use kinematics::{Centrifuge, EARTH_RATE_RAD_S, ErrorMotion, Site};
+use kinematics::EARTH_RATE_RAD_S;
 use simulate::{CampaignMounting, MountingCampaign, campaign_points, noisy_outputs};
 use uncertainty::{Dof, coverage_factor};
 
@@ -25,27 +25,10 @@ const PRESETS: [(MountingPreset, f64); 5] = [
     (MountingPreset::IaAxial, 2.46),
 ];
 
-const LATITUDE_DEG: f64 = 39.9;
+const LATITUDE_DEG: f64 = simulate::FIXTURE_LATITUDE_DEG;
 
 pub(crate) fn spindle() -> MountedSpindle {
-    MountedSpindle {
-        centrifuge: Centrifuge {
-            radius_m: 2.5,
-            site: Site {
-                latitude_deg: LATITUDE_DEG,
-                earth_rate_rad_s: EARTH_RATE_RAD_S,
-                gravity_m_s2: 9.8,
-            },
-            error_motion: ErrorMotion {
-                dr_xs_m: 5.6e-6,
-                dr_ys_m: -1.97e-6,
-                c_r_m_s2: 1.6e-6,
-                c_r_y_m_s2: 0.4e-6,
-                ..ErrorMotion::ZERO
-            },
-        },
-        arm_stretch_m_s2: 0.48e-6,
-    }
+    simulate::fixture_spindle()
 }
 
 /// The probe's reading of the same spindle (exact here: the test is of the fit).
