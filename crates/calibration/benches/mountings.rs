@@ -23,23 +23,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use kinematics::EARTH_RATE_RAD_S;
 use simulate::{CampaignMounting, MountingCampaign, campaign_points, noisy_outputs};
 
-const PRESETS: [(MountingPreset, f64); 5] = [
-    (MountingPreset::IaIn, 2.5),
-    (MountingPreset::IaOut, 2.54),
-    (MountingPreset::Ia45, 2.48),
-    (MountingPreset::IaTangential, 2.52),
-    (MountingPreset::IaAxial, 2.46),
-];
-const TRUTH: [(Term, f64); 8] = [
-    (Term::K0, 1e-5),
-    (Term::K1, 0.56),
-    (Term::K2, 5e-7),
-    (Term::K3, 2e-8),
-    (Term::Koq, 3e-7),
-    (Term::Kio, 1e-6),
-    (Term::DeltaO, 1e-4),
-    (Term::DeltaP, -5e-5),
-];
+const PRESETS: [(MountingPreset, f64); 5] = simulate::FIXTURE_MOUNTINGS;
+const TRUTH: [(Term, f64); 8] = simulate::FIXTURE_PIGA_TRUTH;
 const LATITUDE_DEG: f64 = simulate::FIXTURE_LATITUDE_DEG;
 const PROBE: ProbeCompensation = ProbeCompensation {
     static_m: 5.6e-6,

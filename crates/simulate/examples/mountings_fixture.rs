@@ -26,32 +26,6 @@ const MOUNTINGS: [(MountingPreset, f64, f64); 5] = [
     (MountingPreset::IaAxial, 2.46, 1e-6),
 ];
 
-/// The PIGA's true coefficients (rad/s per gⁿ; misalignments in rad).
-const PIGA_TRUTH: [(Term, f64); 8] = [
-    (Term::K0, 1e-5),
-    (Term::K1, 0.56),
-    (Term::K2, 5e-7),
-    (Term::K3, 2e-8),
-    (Term::Koq, 3e-7),
-    (Term::Kio, 1e-6),
-    (Term::DeltaO, 1e-4),
-    (Term::DeltaP, -5e-5),
-];
-
-/// The pendulous accelerometer's true coefficients (mA per gⁿ; misalignments in rad): k2 of
-/// 20 µg/g², a cross-axis k_pp and k_io.
-const PENDULOUS_TRUTH: [(Term, f64); 9] = [
-    (Term::K0, 0.02),
-    (Term::K1, 1.3),
-    (Term::K2, 2.6e-5),
-    (Term::K3, 1.3e-6),
-    (Term::K4, 4e-8),
-    (Term::Kpp, 1.5e-5),
-    (Term::Kio, 8e-6),
-    (Term::DeltaO, 2e-4),
-    (Term::DeltaP, 1e-4),
-];
-
 /// What differs between the two kinds: the model, its truth, the noise, the tables' names.
 struct Kind {
     kind: AccelKind,
@@ -75,7 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let kind = match std::env::args().nth(2).as_deref() {
         None | Some("piga") => Kind {
             kind: AccelKind::Piga,
-            truth: &PIGA_TRUTH,
+            truth: &simulate::FIXTURE_PIGA_TRUTH,
             noise: 1e-9,
             prefix: "piga",
             column: "output_rad_s",
@@ -86,7 +60,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             kind: AccelKind::Pendulous {
                 unit: OutputUnit::MilliAmpere,
             },
-            truth: &PENDULOUS_TRUTH,
+            truth: &simulate::FIXTURE_PENDULOUS_TRUTH,
             noise: 2e-6,
             prefix: "accel",
             column: "output_ma",

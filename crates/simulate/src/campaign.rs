@@ -6,7 +6,9 @@
 //! of the exact chain (`accel_model::mounted_point`), and white noise on them, one
 //! independent stream per (seed, campaign, mounting).
 
-use accel_model::{CaseAxes, ModelCoefficients, MountedPoint, MountedSpindle, mounted_point};
+use accel_model::{
+    CaseAxes, ModelCoefficients, MountedPoint, MountedSpindle, MountingPreset, Term, mounted_point,
+};
 use rand::SeedableRng;
 use rand::rngs::StdRng;
 use rand_distr::{Distribution, Normal};
@@ -70,6 +72,41 @@ pub fn fixture_spindle() -> MountedSpindle {
         arm_stretch_m_s2: 0.48e-6,
     }
 }
+
+/// The mountings of the fixtures' five-mounting campaigns: preset and static radius, m.
+pub const FIXTURE_MOUNTINGS: [(MountingPreset, f64); 5] = [
+    (MountingPreset::IaIn, 2.5),
+    (MountingPreset::IaOut, 2.54),
+    (MountingPreset::Ia45, 2.48),
+    (MountingPreset::IaTangential, 2.52),
+    (MountingPreset::IaAxial, 2.46),
+];
+
+/// The fixtures' PIGA: true coefficients (rad/s per gⁿ; misalignments in rad).
+pub const FIXTURE_PIGA_TRUTH: [(Term, f64); 8] = [
+    (Term::K0, 1e-5),
+    (Term::K1, 0.56),
+    (Term::K2, 5e-7),
+    (Term::K3, 2e-8),
+    (Term::Koq, 3e-7),
+    (Term::Kio, 1e-6),
+    (Term::DeltaO, 1e-4),
+    (Term::DeltaP, -5e-5),
+];
+
+/// The fixtures' pendulous accelerometer: true coefficients (mA per gⁿ; misalignments in
+/// rad): k2 of 20 µg/g², a cross-axis k_pp and k_io (docs/MODEL.md's worked example).
+pub const FIXTURE_PENDULOUS_TRUTH: [(Term, f64); 9] = [
+    (Term::K0, 0.02),
+    (Term::K1, 1.3),
+    (Term::K2, 2.6e-5),
+    (Term::K3, 1.3e-6),
+    (Term::K4, 4e-8),
+    (Term::Kpp, 1.5e-5),
+    (Term::Kio, 8e-6),
+    (Term::DeltaO, 2e-4),
+    (Term::DeltaP, 1e-4),
+];
 
 /// The noise-free points of every mounting (mounting by mounting, rate by rate): the mean
 /// output over whole revolutions of the exact chain and the mean inputs.

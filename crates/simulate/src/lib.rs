@@ -53,8 +53,8 @@ mod scenario;
 mod write;
 
 pub use campaign::{
-    CampaignMounting, FIXTURE_LATITUDE_DEG, MountingCampaign, campaign_points, fixture_spindle,
-    noisy_outputs,
+    CampaignMounting, FIXTURE_LATITUDE_DEG, FIXTURE_MOUNTINGS, FIXTURE_PENDULOUS_TRUTH,
+    FIXTURE_PIGA_TRUTH, MountingCampaign, campaign_points, fixture_spindle, noisy_outputs,
 };
 pub use error::{Result, SimulateError};
 pub use generate::{

@@ -17,13 +17,7 @@ use uncertainty::{Dof, coverage_factor};
 /// Campaigns per kind.
 pub(crate) const CAMPAIGNS: u64 = 1000;
 
-const PRESETS: [(MountingPreset, f64); 5] = [
-    (MountingPreset::IaIn, 2.5),
-    (MountingPreset::IaOut, 2.54),
-    (MountingPreset::Ia45, 2.48),
-    (MountingPreset::IaTangential, 2.52),
-    (MountingPreset::IaAxial, 2.46),
-];
+const PRESETS: [(MountingPreset, f64); 5] = simulate::FIXTURE_MOUNTINGS;
 
 const LATITUDE_DEG: f64 = simulate::FIXTURE_LATITUDE_DEG;
 
@@ -50,33 +44,8 @@ pub(crate) fn rates() -> Vec<f64> {
 pub(crate) fn truth(kind: AccelKind) -> (ModelCoefficients, Vec<Term>, f64) {
     let mut c = ModelCoefficients::zero(kind);
     let (values, sigma): (&[(Term, f64)], f64) = match kind {
-        AccelKind::Piga => (
-            &[
-                (Term::K0, 1e-5),
-                (Term::K1, 0.56),
-                (Term::K2, 5e-7),
-                (Term::K3, 2e-8),
-                (Term::Koq, 3e-7),
-                (Term::Kio, 1e-6),
-                (Term::DeltaO, 1e-4),
-                (Term::DeltaP, -5e-5),
-            ],
-            1e-9,
-        ),
-        AccelKind::Pendulous { .. } => (
-            &[
-                (Term::K0, 0.02),
-                (Term::K1, 1.3),
-                (Term::K2, 2.6e-5),
-                (Term::K3, 1.3e-6),
-                (Term::K4, 4e-8),
-                (Term::Kpp, 1.5e-5),
-                (Term::Kio, 8e-6),
-                (Term::DeltaO, 2e-4),
-                (Term::DeltaP, 1e-4),
-            ],
-            2e-6,
-        ),
+        AccelKind::Piga => (&simulate::FIXTURE_PIGA_TRUTH, 1e-9),
+        AccelKind::Pendulous { .. } => (&simulate::FIXTURE_PENDULOUS_TRUTH, 2e-6),
     };
     for &(t, v) in values {
         c.set(t, v);
