@@ -16,7 +16,7 @@ fn root() -> PathBuf {
 
 /// Runs `centrifuge-cal ARGS` in the workspace root; its standard output with the machine's
 /// paths replaced, and whether it succeeded.
-fn run(args: &[&str], scratch: &Path) -> (String, bool) {
+pub(crate) fn run(args: &[&str], scratch: &Path) -> (String, bool) {
     let out = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
         .args(args)
         .current_dir(root())
@@ -80,7 +80,7 @@ pub(crate) fn rust_identifiers(text: &str) -> Vec<String> {
 }
 
 #[track_caller]
-fn assert_words(name: &str, text: &str) {
+pub(crate) fn assert_words(name: &str, text: &str) {
     let found = rust_identifiers(text);
     assert!(
         found.is_empty(),

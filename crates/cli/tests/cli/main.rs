@@ -1,5 +1,6 @@
 //! Command-line behaviour of the `centrifuge-cal` subcommands (one binary, a module per subcommand).
 
+mod check;
 mod harmonics;
 mod hostile;
 mod hostile_text;
