@@ -6,7 +6,12 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
-use serde_json::Value;
+use pipeline::{
+    CalibrationConfig, K1Config, MountingsConfig, OrientationConfig, OrientationName,
+    PigaRecordingSet, PigaTableConfig, Points, StudyConfig, TwoOrientationConfig,
+    UncertaintyConfig,
+};
+use recording::{AngleSource, AngleUnit, DecimalMark, Delimiter, GapUnit, RecordingFormat};
 
 use crate::console::Console;
 use crate::init::PLACEHOLDER;
@@ -165,70 +170,129 @@ impl Check {
     }
 }
 
-/// The number of data files a configuration names.
-fn count_files(config: &pipeline::StudyConfig) -> usize {
-    let value = serde_json::to_value(config).unwrap_or(Value::Null);
-    let mut n = 0;
-    count(&value, &mut n);
-    n
+/// The number of data files a configuration names: every table and recording of every
+/// section (each section named, so that a new one is counted or said not to hold files).
+fn count_files(config: &StudyConfig) -> usize {
+    let StudyConfig {
+        name: _,
+        profile: _,
+        centrifuge: _,
+        probe: _,
+        radius_m: _,
+        g_m_s2: _,
+        k1_rad_s_g: _,
+        lever: _,
+        radius_model: _,
+        phases,
+        mechanism: _,
+        calibration,
+        uncertainty: _,
+        balance: _,
+        counterweight: _,
+        certificate: _,
+        two_orientation,
+        mountings,
+        symmetric_deprecated,
+        units,
+    } = config;
+    let phases: usize = phases
+        .iter()
+        .map(|p| match &p.points {
+            Points::Recordings(set) => set.files.len(),
+            Points::FirstHarmonic(_) | Points::RadiusError(_) | Points::RadiusChange { .. } => 0,
+        })
+        .sum();
+    let mountings: usize = mountings
+        .iter()
+        .flat_map(|m| &m.list)
+        .map(|o| usize::from(o.table.is_some()))
+        .sum();
+    let units: usize = units
+        .iter()
+        .flatten()
+        .map(|u| {
+            let pipeline::UnitConfig {
+                label: _,
+                k1_rad_s_g: _,
+                radius_m: _,
+                calibration,
+                two_orientation,
+                certificate: _,
+            } = u;
+            calibration_files(calibration) + two_orientation.as_ref().map_or(0, orientation_files)
+        })
+        .sum();
+    phases
+        + calibration.as_ref().map_or(0, calibration_files)
+        + two_orientation.as_ref().map_or(0, orientation_files)
+        + symmetric_deprecated.as_ref().map_or(0, orientation_files)
+        + mountings
+        + units
 }
 
-fn count(v: &Value, n: &mut usize) {
-    match v {
-        Value::Object(map) => {
-            if map.contains_key("file") {
-                *n += 1;
-            }
-            map.values().for_each(|v| count(v, n));
-        }
-        Value::Array(items) => items.iter().for_each(|v| count(v, n)),
-        _ => {}
-    }
+/// The files of a PIGA data set: its table, its recordings.
+fn data_files(table: Option<&PigaTableConfig>, recordings: Option<&PigaRecordingSet>) -> usize {
+    usize::from(table.is_some()) + recordings.map_or(0, |r| r.files.len())
+}
+
+fn calibration_files(cal: &CalibrationConfig) -> usize {
+    data_files(cal.table.as_ref(), cal.recordings.as_ref())
+}
+
+fn orientation_files(sym: &TwoOrientationConfig) -> usize {
+    sym.orientations
+        .iter()
+        .map(|o| data_files(o.table.as_ref(), o.recordings.as_ref()))
+        .sum()
 }
 
 /// Most rates of a phase `check` lists one by one.
 const CHECK_RATES_SHOWN: usize = 40;
 
+/// A number as the configuration's JSON form held it: a value that is not finite is none.
+fn finite(v: Option<f64>) -> Option<f64> {
+    v.filter(|x| x.is_finite())
+}
+
 /// A number as written, or `—`.
-fn num(v: Option<&Value>) -> String {
+fn num(v: Option<f64>) -> String {
     // Short in every range: `1e300`, not 301 digits (docs/RELIABILITY.md).
-    v.and_then(Value::as_f64)
-        .map_or_else(|| "—".to_owned(), |x| units::Compact(x).to_string())
+    finite(v).map_or_else(|| "—".to_owned(), |x| units::Compact(x).to_string())
 }
 
 /// What the study will do, in words, from the configuration's own field names (with what
 /// its lab profile gives filled in, `used` saying which; `direction_unfilled`: the probe
 /// direction is still a placeholder).
 fn describe(
-    config: &pipeline::StudyConfig,
+    config: &StudyConfig,
     path: &Path,
     used: Option<&pipeline::ProfileResults>,
     direction_unfilled: bool,
 ) -> String {
-    let v = serde_json::to_value(config).unwrap_or(Value::Null);
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "study {:?} ({})",
-        v["name"].as_str().unwrap_or(""),
-        path.display()
-    );
+    let _ = writeln!(s, "study {:?} ({})", config.name, path.display());
     if let Some(used) = used {
         profile(&mut s, used);
     }
-    centrifuge_and_probe(&mut s, config, &v, used, direction_unfilled);
-    phases(&mut s, &v);
-    calibration(&mut s, &v);
-    two_orientation(&mut s, &v);
-    units(&mut s, &v);
-    mountings(&mut s, &v);
-    type_b(&mut s, &v);
-    for (key, words) in [
-        ("mechanism", "the mechanism simulated with each phase's C_r"),
-        ("balance", "the balance advisor"),
-        ("counterweight", "the counterweight of the published change"),
+    centrifuge_and_probe(&mut s, config, used, direction_unfilled);
+    phases(&mut s, &config.phases);
+    calibration(&mut s, config.calibration.as_ref());
+    two_orientation(&mut s, config.two_orientation.as_ref());
+    units(&mut s, config);
+    mountings(&mut s, config.mountings.as_ref());
+    type_b(&mut s, config.uncertainty.as_ref());
+    for (given, words) in [
+        (
+            config.mechanism.is_some(),
+            "the mechanism simulated with each phase's C_r",
+        ),
+        (config.balance.is_some(), "the balance advisor"),
+        (
+            config.counterweight.is_some(),
+            "the counterweight of the published change",
+        ),
     ] {
-        if v.get(key).is_some_and(|x| !x.is_null()) {
+        if given {
             let _ = writeln!(s, "also: {words}");
         }
     }
@@ -268,12 +332,11 @@ fn profile(s: &mut String, used: &pipeline::ProfileResults) {
 /// profile declared).
 fn centrifuge_and_probe(
     s: &mut String,
-    config: &pipeline::StudyConfig,
-    v: &Value,
+    config: &StudyConfig,
     used: Option<&pipeline::ProfileResults>,
     direction_unfilled: bool,
 ) {
-    let k1_words = if v.get("units").is_some_and(Value::is_array) {
+    let k1_words = if config.units.is_some() {
         "the study's k1 (the top summary's Δk2; each unit states its own below)"
     } else {
         "PIGA k1"
@@ -281,16 +344,16 @@ fn centrifuge_and_probe(
     let _ = writeln!(
         s,
         "centrifuge: R = {} m, g = {} m/s², {k1_words} = {} rad/(s·g)",
-        num(v.get("radius_m")),
-        num(v.get("g_m_s2")),
-        num(v.get("k1_rad_s_g"))
+        num(config.radius_m),
+        num(config.g_m_s2),
+        num(Some(config.k1_rad_s_g))
     );
-    let lever = &v["lever"];
+    let lever = &config.lever;
     let _ = writeln!(
         s,
         "probe: {} mm above the tilt pivot, {} mm below the PIGA's plane",
-        num(lever.get("pivot_to_probe_mm")),
-        num(lever.get("probe_to_piga_mm"))
+        num(lever.pivot_to_probe_mm),
+        num(lever.probe_to_piga_mm)
     );
     let direction = if direction_unfilled {
         format!(
@@ -299,7 +362,7 @@ fn centrifuge_and_probe(
             pipeline::ProbeDirectionName::AlongO1X1.words()
         )
     } else {
-        match config.lever.probe_direction {
+        match lever.probe_direction {
             Some(d) => d.words().to_owned(),
             None => format!(
                 "not stated, so the paper's set-up is taken: {}",
@@ -325,15 +388,18 @@ fn centrifuge_and_probe(
         from_profile("lever.probe_direction")
     );
     let angle_zero = pipeline::AngleZero {
-        angle_zero_deg: config.lever.angle_zero_deg.unwrap_or(0.0),
-        stated: config.lever.angle_zero_deg.is_some(),
+        angle_zero_deg: lever.angle_zero_deg.unwrap_or(0.0),
+        stated: lever.angle_zero_deg.is_some(),
         // a recordings phase whose format names an encoder or an index pulse (the default
         // format's encoder column counts: most files have it)
         measured_angles: config.phases.iter().any(|p| match &p.points {
-            pipeline::Points::Recordings(set) => {
-                !matches!(set.format.angle, recording::AngleSource::Rate { .. })
+            Points::Recordings(set) => match set.format.angle {
+                AngleSource::Encoder { .. } | AngleSource::IndexPulse { .. } => true,
+                AngleSource::Rate { .. } => false,
+            },
+            Points::FirstHarmonic(_) | Points::RadiusError(_) | Points::RadiusChange { .. } => {
+                false
             }
-            _ => false,
         }),
     };
     let _ = writeln!(
@@ -345,198 +411,163 @@ fn centrifuge_and_probe(
 }
 
 /// Each probe phase: its data and how it is fitted.
-fn phases(s: &mut String, v: &Value) {
-    for phase in v["phases"].as_array().into_iter().flatten() {
-        let name = phase["name"].as_str().unwrap_or("");
-        let points = &phase["points"];
-        let (kind, body) = match points.as_object().and_then(|m| m.iter().next()) {
-            Some((k, b)) => (k.as_str(), b),
-            None => ("", &Value::Null),
-        };
-        let line = match kind {
-            "recordings" => {
-                let files = body["files"].as_array().map_or(0, Vec::len);
-                let rates: Vec<f64> = body["files"]
-                    .as_array()
-                    .into_iter()
-                    .flatten()
-                    .map(|f| {
-                        f.get("rate_deg_s")
-                            .and_then(Value::as_f64)
-                            .unwrap_or(f64::NAN)
-                    })
-                    .collect();
-                // Every rate of a phase a lab measures (a few dozen at most); a longer list
-                // (issue 32: 10⁵ rates made one 257 kB line) summarised as the first few, the
-                // last and the count.
-                let rates = if rates.len() <= CHECK_RATES_SHOWN {
-                    rates
-                        .iter()
-                        .map(|r| units::Compact(*r).to_string())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                } else {
-                    let series = units::CompactSeries(&rates).to_string();
-                    series
-                        .strip_prefix('[')
-                        .unwrap_or(&series)
-                        .replacen(']', "", 1)
-                };
-                format!(
-                    "{files} probe recordings at {} deg/s, read as {}; fitted per revolution \
-                     (order {}, drift {})",
-                    rates,
-                    format_words(&body["format"]),
-                    num(body["fit"].get("order")),
-                    if body["fit"]["drift"].as_bool().unwrap_or(true) {
-                        "fitted"
-                    } else {
-                        "not fitted"
-                    }
-                )
-            }
-            "first_harmonic" => format!(
+fn phases(s: &mut String, phases: &[pipeline::PhaseConfig]) {
+    for phase in phases {
+        let line = match &phase.points {
+            Points::Recordings(set) => recordings_words(set),
+            Points::FirstHarmonic(points) => format!(
                 "{} first-harmonic coefficients given (taken as fitted against the angle zero: \
                  `lever.angle_zero_deg` moves recorded angles only)",
-                body.as_array().map_or(0, Vec::len)
+                points.len()
             ),
-            "radius_error" => format!(
-                "{} radius errors given",
-                body.as_array().map_or(0, Vec::len)
-            ),
-            "radius_change" => "one published change of radius error".to_owned(),
-            other => other.replace('_', " "),
+            Points::RadiusError(points) => format!("{} radius errors given", points.len()),
+            Points::RadiusChange { .. } => "one published change of radius error".to_owned(),
         };
         let _ = writeln!(
             s,
-            "phase {name}: {line}; C_r and Δk2 from the radius-error fit"
+            "phase {}: {line}; C_r and Δk2 from the radius-error fit",
+            phase.name
         );
     }
 }
 
+/// A phase's probe recordings: their rates, format and per-revolution fit.
+fn recordings_words(set: &pipeline::RecordingSet) -> String {
+    let rates: Vec<f64> = set
+        .files
+        .iter()
+        .map(|f| finite(Some(f.rate_deg_s)).unwrap_or(f64::NAN))
+        .collect();
+    // Every rate of a phase a lab measures (a few dozen at most); a longer list (issue 32:
+    // 10⁵ rates made one 257 kB line) summarised as the first few, the last and the count.
+    let rates = if rates.len() <= CHECK_RATES_SHOWN {
+        rates
+            .iter()
+            .map(|r| units::Compact(*r).to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    } else {
+        let series = units::CompactSeries(&rates).to_string();
+        series
+            .strip_prefix('[')
+            .unwrap_or(&series)
+            .replacen(']', "", 1)
+    };
+    format!(
+        "{} probe recordings at {rates} deg/s, read as {}; fitted per revolution (order {}, \
+         drift {})",
+        set.files.len(),
+        format_words(&set.format),
+        num(Some(set.fit.order as f64)),
+        if set.fit.drift {
+            "fitted"
+        } else {
+            "not fitted"
+        }
+    )
+}
+
 /// The calibration: its data, the compensation and k1.
-fn calibration(s: &mut String, v: &Value) {
-    if let Some(cal) = v.get("calibration").filter(|c| !c.is_null()) {
+fn calibration(s: &mut String, cal: Option<&CalibrationConfig>) {
+    if let Some(cal) = cal {
         let _ = writeln!(s, "calibration: {}", calibration_words(cal));
     }
 }
 
 /// The two orientations: each data set and what C is compared with.
-fn two_orientation(s: &mut String, v: &Value) {
-    if let Some(sym) = v.get("two_orientation").filter(|c| !c.is_null()) {
+fn two_orientation(s: &mut String, sym: Option<&TwoOrientationConfig>) {
+    if let Some(sym) = sym {
         let _ = writeln!(s, "two orientations: {}", two_orientation_words(sym));
     }
 }
 
 /// The units calibrated from the study's probe phases, each with its k1, radius, calibration
 /// and certificate.
-fn units(s: &mut String, v: &Value) {
-    if let Some(units) = v.get("units").and_then(Value::as_array) {
+fn units(s: &mut String, config: &StudyConfig) {
+    let Some(units) = &config.units else {
+        return;
+    };
+    let _ = writeln!(
+        s,
+        "{} unit{} calibrated from these probe phases, measured once; each unit's results, \
+         report and certificate in units/LABEL/ of the output folder, their summary in it:",
+        units.len(),
+        if units.len() == 1 { "" } else { "s" }
+    );
+    for u in units {
+        let radius = match finite(u.radius_m) {
+            Some(r) => format!("R = {} m (its own)", num(Some(r))),
+            None => format!("R = {} m (the study's)", num(config.radius_m)),
+        };
         let _ = writeln!(
             s,
-            "{} unit{} calibrated from these probe phases, measured once; each unit's results, \
-             report and certificate in units/LABEL/ of the output folder, their summary in it:",
-            units.len(),
-            if units.len() == 1 { "" } else { "s" }
+            "  unit {}: k1 = {} rad/(s·g), {radius}, so its own Δk2 = k1·C_r·g/R²",
+            u.label,
+            num(Some(u.k1_rad_s_g))
         );
-        for u in units {
-            let radius = match u.get("radius_m").filter(|r| !r.is_null()) {
-                Some(r) => format!("R = {} m (its own)", num(Some(r))),
-                None => format!("R = {} m (the study's)", num(v.get("radius_m"))),
-            };
-            let _ = writeln!(
-                s,
-                "  unit {}: k1 = {} rad/(s·g), {radius}, so its own Δk2 = k1·C_r·g/R²",
-                u["label"].as_str().unwrap_or(""),
-                num(u.get("k1_rad_s_g"))
-            );
-            if let Some(cal) = u.get("calibration").filter(|c| !c.is_null()) {
-                let _ = writeln!(s, "    calibration: {}", calibration_words(cal));
+        let _ = writeln!(s, "    calibration: {}", calibration_words(&u.calibration));
+        if let Some(sym) = &u.two_orientation {
+            let _ = writeln!(s, "    two orientations: {}", two_orientation_words(sym));
+        }
+        match &u.certificate {
+            Some(c) => {
+                let _ = writeln!(
+                    s,
+                    "    certificate {} for {} {} (serial {}), customer {}",
+                    edge_io::visible(&c.id),
+                    edge_io::visible(&c.item.manufacturer),
+                    edge_io::visible(&c.item.model),
+                    edge_io::visible(&c.item.serial),
+                    edge_io::visible(&c.customer.name)
+                );
             }
-            if let Some(sym) = u.get("two_orientation").filter(|c| !c.is_null()) {
-                let _ = writeln!(s, "    two orientations: {}", two_orientation_words(sym));
-            }
-            match u.get("certificate").filter(|c| !c.is_null()) {
-                Some(c) => {
-                    let item = &c["item"];
-                    let _ = writeln!(
-                        s,
-                        "    certificate {} for {} {} (serial {}), customer {}",
-                        edge_io::visible(c["id"].as_str().unwrap_or("")),
-                        edge_io::visible(item["manufacturer"].as_str().unwrap_or("")),
-                        edge_io::visible(item["model"].as_str().unwrap_or("")),
-                        edge_io::visible(item["serial"].as_str().unwrap_or("")),
-                        edge_io::visible(c["customer"]["name"].as_str().unwrap_or(""))
-                    );
-                }
-                None => {
-                    let _ = writeln!(s, "    no certificate (no `certificate` section)");
-                }
+            None => {
+                let _ = writeln!(s, "    no certificate (no `certificate` section)");
             }
         }
     }
 }
 
-/// A calibration section in words (`check`).
-fn calibration_words(cal: &Value) -> String {
-    let data = if cal["table"].is_object() {
-        format!(
-            "the PIGA table {}",
-            cal["table"]["file"].as_str().unwrap_or("")
-        )
-    } else {
-        format!(
-            "{} raw PIGA output recordings",
-            cal["recordings"]["files"].as_array().map_or(0, Vec::len)
-        )
-    };
-    let k1 = match &cal["k1"] {
-        Value::String(s) if s == "fitted" => "k1 fitted from the ω² coefficient".to_owned(),
-        Value::Object(m) if m.contains_key("given") => {
-            format!("k1 given: {} rad/(s·g)", num(m["given"].get("k1_rad_s_g")))
+/// A PIGA data set in words: its table, or how many raw output recordings (`absent`: the
+/// words for neither).
+fn data_words(
+    table: Option<&PigaTableConfig>,
+    recordings: Option<&PigaRecordingSet>,
+    absent: &str,
+) -> String {
+    match (table, recordings) {
+        (Some(table), _) => format!("the PIGA table {}", table.file.display()),
+        (None, Some(recordings)) => {
+            format!("{} raw PIGA output recordings", recordings.files.len())
         }
-        other => format!("k1 {other}"),
+        (None, None) => absent.to_owned(),
+    }
+}
+
+/// A calibration section in words (`check`).
+fn calibration_words(cal: &CalibrationConfig) -> String {
+    let data = data_words(
+        cal.table.as_ref(),
+        cal.recordings.as_ref(),
+        "0 raw PIGA output recordings",
+    );
+    let k1 = match cal.k1 {
+        K1Config::Fitted => "k1 fitted from the ω² coefficient".to_owned(),
+        K1Config::Given { k1_rad_s_g, .. } => {
+            format!("k1 given: {} rad/(s·g)", num(Some(k1_rad_s_g)))
+        }
     };
     format!(
         "eq. 18 fitted to {data}, compensated with phase {}'s C_r; {k1}; GUM and Monte Carlo \
          uncertainty",
-        cal["compensate_with"].as_str().unwrap_or("")
+        cal.compensate_with
     )
 }
 
 /// A two-orientation section in words (`check`).
-fn two_orientation_words(sym: &Value) -> String {
-    let sets: Vec<String> = sym["orientations"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .map(|o| {
-            let which = match o["orientation"].as_str() {
-                Some("ia_in") => "IA in",
-                Some("ia_out") => "IA out",
-                _ => "orientation not declared",
-            };
-            let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
-                || "radius not declared".to_owned(),
-                |r| format!("R = {} m", num(Some(r))),
-            );
-            let data = if o["table"].is_object() {
-                format!(
-                    "the PIGA table {}",
-                    o["table"]["file"].as_str().unwrap_or("")
-                )
-            } else if o["recordings"].is_object() {
-                format!(
-                    "{} raw PIGA output recordings",
-                    o["recordings"]["files"].as_array().map_or(0, Vec::len)
-                )
-            } else {
-                "no data".to_owned()
-            };
-            format!("{which} at {radius} from {data}")
-        })
-        .collect();
-    let compare = match sym["compare_with"].as_str() {
+fn two_orientation_words(sym: &TwoOrientationConfig) -> String {
+    let sets: Vec<String> = sym.orientations.iter().map(orientation_words).collect();
+    let compare = match &sym.compare_with {
         Some(phase) => format!("phase {phase}'s C_r"),
         None => "the compensating (or first) phase's C_r".to_owned(),
     };
@@ -547,72 +578,80 @@ fn two_orientation_words(sym: &Value) -> String {
     )
 }
 
+/// One orientation's data set in words.
+fn orientation_words(o: &OrientationConfig) -> String {
+    let which = o
+        .orientation
+        .map_or("orientation not declared", |n: OrientationName| {
+            n.orientation().label()
+        });
+    let data = data_words(o.table.as_ref(), o.recordings.as_ref(), "no data");
+    format!("{which} at {} from {data}", radius_words(o.radius_m))
+}
+
+/// A data set's radius, or that it is not declared.
+fn radius_words(radius_m: Option<f64>) -> String {
+    finite(radius_m).map_or_else(
+        || "radius not declared".to_owned(),
+        |r| format!("R = {} m", num(Some(r))),
+    )
+}
+
 /// The IEEE 836 model's mountings, terms and compensation.
-fn mountings(s: &mut String, v: &Value) {
-    if let Some(m) = v.get("mountings").filter(|c| !c.is_null()) {
-        let list: Vec<String> = m["list"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .map(|o| {
-                let which = o["label"]
-                    .as_str()
-                    .or_else(|| o["preset"].as_str())
-                    .map_or_else(|| "mounting by angles".to_owned(), ToOwned::to_owned);
-                let radius = o.get("radius_m").filter(|r| !r.is_null()).map_or_else(
-                    || "radius not declared".to_owned(),
-                    |r| format!("R = {} m", num(Some(r))),
-                );
-                format!(
-                    "{which} at {radius} from {}",
-                    o["table"]["file"].as_str().unwrap_or("no table")
-                )
-            })
-            .collect();
-        let terms: Vec<&str> = m["terms"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .filter_map(Value::as_str)
-            .collect();
-        let compensation = if m["compensate"].as_bool() == Some(false) {
-            "the probe's C_r not compensated".to_owned()
-        } else {
-            match m["compensate_with"].as_str() {
-                Some(phase) => {
-                    format!("phase {phase}'s C_r compensated along each mounting's axes")
-                }
-                None => {
-                    "the compensating (or first) phase's C_r compensated along each mounting's axes"
-                        .to_owned()
-                }
-            }
-        };
-        let _ = writeln!(
-            s,
-            "mountings: the IEEE 836 model (k0, k1, {}) fitted jointly to {}; {compensation}; \
-             the mountings separate every chosen term (checked before the run)",
-            terms.join(", "),
-            list.join("; ")
-        );
-    }
+fn mountings(s: &mut String, m: Option<&MountingsConfig>) {
+    let Some(m) = m else {
+        return;
+    };
+    let list: Vec<String> = m
+        .list
+        .iter()
+        .map(|o| {
+            let which = o
+                .label
+                .as_deref()
+                .or(o.preset.as_deref())
+                .unwrap_or("mounting by angles");
+            let table = o
+                .table
+                .as_ref()
+                .map_or_else(|| "no table".to_owned(), |t| t.file.display().to_string());
+            format!("{which} at {} from {table}", radius_words(o.radius_m))
+        })
+        .collect();
+    let compensation = match (m.compensate, &m.compensate_with) {
+        (false, _) => "the probe's C_r not compensated".to_owned(),
+        (true, Some(phase)) => {
+            format!("phase {phase}'s C_r compensated along each mounting's axes")
+        }
+        (true, None) => {
+            "the compensating (or first) phase's C_r compensated along each mounting's axes"
+                .to_owned()
+        }
+    };
+    let _ = writeln!(
+        s,
+        "mountings: the IEEE 836 model (k0, k1, {}) fitted jointly to {}; {compensation}; the \
+         mountings separate every chosen term (checked before the run)",
+        m.terms.join(", "),
+        list.join("; ")
+    );
 }
 
 /// The Type B inputs, or that there are none.
-fn type_b(s: &mut String, v: &Value) {
-    match v.get("uncertainty").filter(|u| !u.is_null()) {
+fn type_b(s: &mut String, u: Option<&UncertaintyConfig>) {
+    match u {
         Some(u) => {
             let _ = writeln!(
                 s,
                 "Type B inputs: u(R) {} m, u(g) {} m/s² ({}), rate {} (relative), pivot-to-probe \
                  {} mm, probe-to-PIGA {} mm, probe gain {} (relative)",
-                num(u.get("radius_u_m")),
-                num(u.get("g_u_m_s2")),
-                u["g_source"].as_str().unwrap_or(""),
-                num(u.get("rate_u_relative")),
-                num(u.get("pivot_to_probe_u_mm")),
-                num(u.get("probe_to_piga_u_mm")),
-                num(u.get("probe_gain_u_relative"))
+                num(u.radius_u_m),
+                num(u.g_u_m_s2),
+                u.g_source,
+                num(u.rate_u_relative),
+                num(u.pivot_to_probe_u_mm),
+                num(u.probe_to_piga_u_mm),
+                num(u.probe_gain_u_relative)
             );
         }
         None => {
@@ -625,65 +664,57 @@ fn type_b(s: &mut String, v: &Value) {
 }
 
 /// A recording format in words.
-fn format_words(f: &Value) -> String {
-    let mut parts = Vec::new();
-    match &f["delimiter"] {
-        Value::String(d) if d == "\t" => parts.push("tab-separated".to_owned()),
-        Value::String(d) => parts.push(format!("`{d}`-separated")),
-        Value::Null => {}
-        other => parts.push(format!("{} separated", other.as_str().unwrap_or("blank"))),
+fn format_words(f: &RecordingFormat) -> String {
+    let mut parts = vec![match f.delimiter {
+        Delimiter::Char('\t') => "tab-separated".to_owned(),
+        Delimiter::Char(d) => format!("`{d}`-separated"),
+        Delimiter::Whitespace => "`whitespace`-separated".to_owned(),
+    }];
+    match f.decimal {
+        DecimalMark::Comma => parts.push("decimal comma".to_owned()),
+        DecimalMark::Point => {}
     }
-    if f["decimal"].as_str() == Some("comma") {
-        parts.push("decimal comma".to_owned());
+    if f.skip_lines > 0 {
+        parts.push(format!("{} lines skipped", f.skip_lines));
     }
-    if let Some(n) = f["skip_lines"].as_u64().filter(|n| *n > 0) {
-        parts.push(format!("{n} lines skipped"));
-    }
-    for key in ["time", "gap"] {
-        if let Some(c) = f.get(key).filter(|c| c.is_object()) {
-            parts.push(format!(
-                "{key} `{}` in {}",
-                c["column"].as_str().unwrap_or(""),
-                c["unit"].as_str().unwrap_or("?")
-            ));
-        }
-    }
-    let angle = &f["angle"];
-    if let Some((kind, body)) = angle.as_object().and_then(|m| m.iter().next()) {
-        parts.push(match kind.as_str() {
-            "encoder" => format!(
-                "angle from the encoder `{}` in {}{}",
-                body["column"].as_str().unwrap_or(""),
-                match &body["unit"] {
-                    Value::String(u) => u.clone(),
-                    Value::Object(m) => m.get("counts").map_or_else(String::new, |c| format!(
-                        "counts, {} per revolution",
-                        num(c.get("per_rev"))
-                    )),
-                    _ => String::new(),
-                },
-                if body["optional"].as_bool() == Some(true) {
-                    " when the file has it (else the declared rate, the first sample taken at 0° \
-                     from the angle zero)"
-                } else {
-                    ""
-                }
-            ),
-            "index_pulse" => format!(
-                "angle from the index pulse `{}`",
-                body["column"].as_str().unwrap_or("")
-            ),
-            "rate" => format!(
-                "angle from the declared rate, the first sample taken at {}° from the angle \
-                 zero (nothing measures it; `lever.angle_zero_deg` does not move it)",
-                num(body.get("start_angle_deg"))
-            ),
-            other => other.to_owned(),
-        });
-    }
-    if parts.is_empty() {
-        "the documented time_s,gap_um[,angle_deg]".to_owned()
-    } else {
-        parts.join(", ")
-    }
+    parts.push(format!(
+        "time `{}` in {}",
+        f.time.column,
+        f.time.unit.symbol()
+    ));
+    let gap_unit = match f.gap.unit {
+        GapUnit::Nm | GapUnit::Um | GapUnit::Mm | GapUnit::M => f.gap.unit.length_unit().symbol(),
+        GapUnit::Volts { .. } => "?",
+    };
+    parts.push(format!("gap `{}` in {gap_unit}", f.gap.column));
+    parts.push(match &f.angle {
+        AngleSource::Encoder {
+            column,
+            unit,
+            optional,
+        } => format!(
+            "angle from the encoder `{column}` in {}{}",
+            match unit {
+                AngleUnit::Deg | AngleUnit::Rad => unit.symbol().to_owned(),
+                AngleUnit::Counts { per_rev } => format!(
+                    "{}, {} per revolution",
+                    unit.symbol(),
+                    num(Some(*per_rev as f64))
+                ),
+            },
+            if *optional {
+                " when the file has it (else the declared rate, the first sample taken at 0° \
+                 from the angle zero)"
+            } else {
+                ""
+            }
+        ),
+        AngleSource::IndexPulse { column } => format!("angle from the index pulse `{column}`"),
+        AngleSource::Rate { start_angle_deg } => format!(
+            "angle from the declared rate, the first sample taken at {}° from the angle zero \
+             (nothing measures it; `lever.angle_zero_deg` does not move it)",
+            num(Some(*start_angle_deg))
+        ),
+    });
+    parts.join(", ")
 }

@@ -104,3 +104,15 @@ pub enum OrientationName {
     /// The input axis away from the spindle axis.
     IaOut,
 }
+
+impl OrientationName {
+    /// The orientation as the calibration takes it ([`::calibration::Orientation::label`]
+    /// is its words).
+    #[must_use]
+    pub const fn orientation(self) -> ::calibration::Orientation {
+        match self {
+            Self::IaIn => ::calibration::Orientation::IaIn,
+            Self::IaOut => ::calibration::Orientation::IaOut,
+        }
+    }
+}

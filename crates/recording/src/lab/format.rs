@@ -36,6 +36,16 @@ impl TimeUnit {
             Self::Ns => 1e-9,
         }
     }
+
+    /// The unit as a configuration writes it (`s`, `ms`, `us`, `ns`).
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::S => "s",
+            Self::Ms => "ms",
+            Self::Us => "us",
+            Self::Ns => "ns",
+        }
+    }
 }
 
 /// Angle unit of an encoder column.
@@ -62,6 +72,16 @@ impl AngleUnit {
             Self::Deg => std::f64::consts::PI / 180.0,
             Self::Rad => 1.0,
             Self::Counts { per_rev } => std::f64::consts::TAU / per_rev as f64,
+        }
+    }
+
+    /// The unit as a configuration writes it (`deg`, `rad`, `counts`; the counts per
+    /// revolution are the caller's to say).
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Deg => "deg",
+            Self::Rad => "rad",
+            Self::Counts { .. } => "counts",
         }
     }
 }

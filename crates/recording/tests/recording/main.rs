@@ -8,5 +8,6 @@ mod piga_recording;
 mod piga_table;
 mod probe;
 mod stream;
+mod symbols;
 mod table;
 mod volts;

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use ::calibration::{MIN_RATES_PER_ORIENTATION, Orientation, TwoOrientationError};
 
-use crate::config::{OrientationName, TrialsConfig, TwoOrientationConfig};
+use crate::config::{TrialsConfig, TwoOrientationConfig};
 use crate::error::{InvalidReason, PipelineError, Result, UnsupportedReason};
 use crate::inputs::{Check, DataSource, InputFile, PhaseNames};
 use crate::piga_data::{self, PigaData};
@@ -113,7 +113,7 @@ pub(crate) fn validate(
         .orientations
         .iter()
         .enumerate()
-        .filter_map(|(i, o)| o.orientation.map(|n| (i, orientation(n))))
+        .filter_map(|(i, o)| o.orientation.map(|n| (i, n.orientation())))
         .collect();
     let mut same = false;
     for (k, &(i, o)) in declared.iter().enumerate() {
@@ -139,7 +139,7 @@ pub(crate) fn validate(
             .iter()
             .map(|o| {
                 o.orientation
-                    .map_or("undeclared", |n| orientation(n).label())
+                    .map_or("undeclared", |n| n.orientation().label())
             })
             .collect();
         errors.push(two_orientation_error(
@@ -217,7 +217,7 @@ pub(crate) fn validate(
                 let distinct = distinct(&data.declared_rates_deg_s());
                 let o_label = o
                     .orientation
-                    .map_or("undeclared", |n| orientation(n).label());
+                    .map_or("undeclared", |n| n.orientation().label());
                 if distinct < MIN_RATES_PER_ORIENTATION {
                     let (named, file) = data.named();
                     errors.push(two_orientation_error(
@@ -233,7 +233,7 @@ pub(crate) fn validate(
                 if let (Some(n), Some(r)) = (o.orientation, o.radius_m) {
                     sets.push(OrientationSet {
                         field: field(i),
-                        orientation: orientation(n),
+                        orientation: n.orientation(),
                         radius_m: r,
                         data,
                     });
@@ -366,13 +366,6 @@ fn type_b(
             errors.push(e);
             (::calibration::TypeB::default(), Vec::new())
         }
-    }
-}
-
-const fn orientation(n: OrientationName) -> Orientation {
-    match n {
-        OrientationName::IaIn => Orientation::IaIn,
-        OrientationName::IaOut => Orientation::IaOut,
     }
 }
 
