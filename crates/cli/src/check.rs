@@ -5,7 +5,9 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use accel_model::{AccelKind, MountingPreset, Term};
 use anyhow::bail;
+use edge_io::visible;
 use pipeline::{
     CalibrationConfig, K1Config, MountingsConfig, OrientationConfig, OrientationName,
     PigaRecordingSet, PigaTableConfig, Points, StudyConfig, TwoOrientationConfig,
@@ -108,6 +110,9 @@ impl Check {
                     }
                 };
                 let mut shown = config.clone();
+                // a section under its former name is described as the study runs it (both
+                // names at once are a problem the reading below lists)
+                let _ = shown.take_deprecated_keys(path);
                 let used = profile
                     .as_ref()
                     .and_then(|p| p.apply_partly(&mut shown, path));
@@ -249,15 +254,24 @@ fn orientation_files(sym: &TwoOrientationConfig) -> usize {
 /// Most rates of a phase `check` lists one by one.
 const CHECK_RATES_SHOWN: usize = 40;
 
-/// A number as the configuration's JSON form held it: a value that is not finite is none.
-fn finite(v: Option<f64>) -> Option<f64> {
-    v.filter(|x| x.is_finite())
-}
-
-/// A number as written, or `—`.
+/// A number as written (one that is not finite as it is: `inf`, `NaN`), or `—` when absent.
 fn num(v: Option<f64>) -> String {
     // Short in every range: `1e300`, not 301 digits (docs/RELIABILITY.md).
-    finite(v).map_or_else(|| "—".to_owned(), |x| units::Compact(x).to_string())
+    v.map_or_else(|| "—".to_owned(), |x| units::Compact(x).to_string())
+}
+
+/// `n` things: `1 line`, `3 lines` (`one`: the singular, its plural with an `s`).
+fn count(n: usize, one: &str) -> String {
+    if n == 1 {
+        format!("1 {one}")
+    } else {
+        format!("{n} {one}s")
+    }
+}
+
+/// A path from the configuration, for the terminal.
+fn file(path: &Path) -> String {
+    visible(&path.display().to_string()).into_owned()
 }
 
 /// What the study will do, in words, from the configuration's own field names (with what
@@ -311,11 +325,11 @@ fn profile(s: &mut String, used: &pipeline::ProfileResults) {
     let _ = writeln!(
         s,
         "lab profile: {}, centrifuge {}{}; from the profile: {}",
-        used.file,
-        used.centrifuge,
+        visible(&used.file),
+        visible(&used.centrifuge),
         used.probe
             .as_ref()
-            .map_or_else(String::new, |p| format!(", probe {p}")),
+            .map_or_else(String::new, |p| format!(", probe {}", visible(p))),
         from(pipeline::ValueSource::Profile).join(", ")
     );
     let own = from(pipeline::ValueSource::Study);
@@ -379,7 +393,7 @@ fn centrifuge_and_probe(
                     .profile_field
                     .rsplit_once(": ")
                     .map_or(o.profile_field.as_str(), |(_, at)| at);
-                format!("; stated by the lab profile (`{at}`)")
+                format!("; stated by the lab profile (`{}`)", visible(at))
             })
     };
     let _ = writeln!(
@@ -416,28 +430,26 @@ fn phases(s: &mut String, phases: &[pipeline::PhaseConfig]) {
         let line = match &phase.points {
             Points::Recordings(set) => recordings_words(set),
             Points::FirstHarmonic(points) => format!(
-                "{} first-harmonic coefficients given (taken as fitted against the angle zero: \
-                 `lever.angle_zero_deg` moves recorded angles only)",
-                points.len()
+                "{} given (taken as fitted against the angle zero: `lever.angle_zero_deg` moves \
+                 recorded angles only)",
+                count(points.len(), "first-harmonic coefficient")
             ),
-            Points::RadiusError(points) => format!("{} radius errors given", points.len()),
+            Points::RadiusError(points) => {
+                format!("{} given", count(points.len(), "radius error"))
+            }
             Points::RadiusChange { .. } => "one published change of radius error".to_owned(),
         };
         let _ = writeln!(
             s,
             "phase {}: {line}; C_r and Δk2 from the radius-error fit",
-            phase.name
+            visible(&phase.name)
         );
     }
 }
 
 /// A phase's probe recordings: their rates, format and per-revolution fit.
 fn recordings_words(set: &pipeline::RecordingSet) -> String {
-    let rates: Vec<f64> = set
-        .files
-        .iter()
-        .map(|f| finite(Some(f.rate_deg_s)).unwrap_or(f64::NAN))
-        .collect();
+    let rates: Vec<f64> = set.files.iter().map(|f| f.rate_deg_s).collect();
     // Every rate of a phase a lab measures (a few dozen at most); a longer list (issue 32:
     // 10⁵ rates made one 257 kB line) summarised as the first few, the last and the count.
     let rates = if rates.len() <= CHECK_RATES_SHOWN {
@@ -453,10 +465,16 @@ fn recordings_words(set: &pipeline::RecordingSet) -> String {
             .unwrap_or(&series)
             .replacen(']', "", 1)
     };
+    let recordings = if rates.is_empty() {
+        "no probe recordings".to_owned()
+    } else {
+        format!(
+            "{} at {rates} deg/s",
+            count(set.files.len(), "probe recording")
+        )
+    };
     format!(
-        "{} probe recordings at {rates} deg/s, read as {}; fitted per revolution (order {}, \
-         drift {})",
-        set.files.len(),
+        "{recordings}, read as {}; fitted per revolution (order {}, drift {})",
         format_words(&set.format),
         num(Some(set.fit.order as f64)),
         if set.fit.drift {
@@ -495,14 +513,14 @@ fn units(s: &mut String, config: &StudyConfig) {
         if units.len() == 1 { "" } else { "s" }
     );
     for u in units {
-        let radius = match finite(u.radius_m) {
+        let radius = match u.radius_m {
             Some(r) => format!("R = {} m (its own)", num(Some(r))),
             None => format!("R = {} m (the study's)", num(config.radius_m)),
         };
         let _ = writeln!(
             s,
             "  unit {}: k1 = {} rad/(s·g), {radius}, so its own Δk2 = k1·C_r·g/R²",
-            u.label,
+            visible(&u.label),
             num(Some(u.k1_rad_s_g))
         );
         let _ = writeln!(s, "    calibration: {}", calibration_words(&u.calibration));
@@ -514,11 +532,11 @@ fn units(s: &mut String, config: &StudyConfig) {
                 let _ = writeln!(
                     s,
                     "    certificate {} for {} {} (serial {}), customer {}",
-                    edge_io::visible(&c.id),
-                    edge_io::visible(&c.item.manufacturer),
-                    edge_io::visible(&c.item.model),
-                    edge_io::visible(&c.item.serial),
-                    edge_io::visible(&c.customer.name)
+                    visible(&c.id),
+                    visible(&c.item.manufacturer),
+                    visible(&c.item.model),
+                    visible(&c.item.serial),
+                    visible(&c.customer.name)
                 );
             }
             None => {
@@ -536,10 +554,8 @@ fn data_words(
     absent: &str,
 ) -> String {
     match (table, recordings) {
-        (Some(table), _) => format!("the PIGA table {}", table.file.display()),
-        (None, Some(recordings)) => {
-            format!("{} raw PIGA output recordings", recordings.files.len())
-        }
+        (Some(table), _) => format!("the PIGA table {}", file(&table.file)),
+        (None, Some(recordings)) => count(recordings.files.len(), "raw PIGA output recording"),
         (None, None) => absent.to_owned(),
     }
 }
@@ -549,7 +565,7 @@ fn calibration_words(cal: &CalibrationConfig) -> String {
     let data = data_words(
         cal.table.as_ref(),
         cal.recordings.as_ref(),
-        "0 raw PIGA output recordings",
+        "no PIGA data (neither `table` nor `recordings`)",
     );
     let k1 = match cal.k1 {
         K1Config::Fitted => "k1 fitted from the ω² coefficient".to_owned(),
@@ -560,7 +576,7 @@ fn calibration_words(cal: &CalibrationConfig) -> String {
     format!(
         "eq. 18 fitted to {data}, compensated with phase {}'s C_r; {k1}; GUM and Monte Carlo \
          uncertainty",
-        cal.compensate_with
+        visible(&cal.compensate_with)
     )
 }
 
@@ -568,7 +584,7 @@ fn calibration_words(cal: &CalibrationConfig) -> String {
 fn two_orientation_words(sym: &TwoOrientationConfig) -> String {
     let sets: Vec<String> = sym.orientations.iter().map(orientation_words).collect();
     let compare = match &sym.compare_with {
-        Some(phase) => format!("phase {phase}'s C_r"),
+        Some(phase) => format!("phase {}'s C_r", visible(phase)),
         None => "the compensating (or first) phase's C_r".to_owned(),
     };
     format!(
@@ -591,7 +607,7 @@ fn orientation_words(o: &OrientationConfig) -> String {
 
 /// A data set's radius, or that it is not declared.
 fn radius_words(radius_m: Option<f64>) -> String {
-    finite(radius_m).map_or_else(
+    radius_m.map_or_else(
         || "radius not declared".to_owned(),
         |r| format!("R = {} m", num(Some(r))),
     )
@@ -606,33 +622,52 @@ fn mountings(s: &mut String, m: Option<&MountingsConfig>) {
         .list
         .iter()
         .map(|o| {
-            let which = o
-                .label
-                .as_deref()
-                .or(o.preset.as_deref())
-                .unwrap_or("mounting by angles");
+            // the lab's label, else the preset's words (as the results name the mounting)
+            let which = match (&o.label, &o.preset) {
+                (Some(label), _) => visible(label).into_owned(),
+                (None, Some(tag)) => MountingPreset::from_tag(tag.trim()).map_or_else(
+                    || format!("the preset “{}”", visible(tag)),
+                    |p| p.label().to_owned(),
+                ),
+                (None, None) => "mounting by angles".to_owned(),
+            };
             let table = o
                 .table
                 .as_ref()
-                .map_or_else(|| "no table".to_owned(), |t| t.file.display().to_string());
+                .map_or_else(|| "no table".to_owned(), |t| file(&t.file));
             format!("{which} at {} from {table}", radius_words(o.radius_m))
         })
         .collect();
     let compensation = match (m.compensate, &m.compensate_with) {
         (false, _) => "the probe's C_r not compensated".to_owned(),
-        (true, Some(phase)) => {
-            format!("phase {phase}'s C_r compensated along each mounting's axes")
-        }
+        (true, Some(phase)) => format!(
+            "phase {}'s C_r compensated along each mounting's axes",
+            visible(phase)
+        ),
         (true, None) => {
             "the compensating (or first) phase's C_r compensated along each mounting's axes"
                 .to_owned()
         }
     };
+    // k0 and k1 always, then the chosen terms by their symbols (a tag no term has as written)
+    let terms: Vec<String> = [Term::K0.symbol().to_owned(), Term::K1.symbol().to_owned()]
+        .into_iter()
+        .chain(m.terms.iter().map(|tag| {
+            Term::from_tag(tag.trim())
+                .map_or_else(|| visible(tag).into_owned(), |t| t.symbol().to_owned())
+        }))
+        .collect();
+    let kind = match m.kind {
+        AccelKind::Piga => m.kind.words().to_owned(),
+        AccelKind::Pendulous { unit } => {
+            format!("{} with its output in {}", m.kind.words(), unit.symbol())
+        }
+    };
     let _ = writeln!(
         s,
-        "mountings: the IEEE 836 model (k0, k1, {}) fitted jointly to {}; {compensation}; the \
-         mountings separate every chosen term (checked before the run)",
-        m.terms.join(", "),
+        "mountings: the IEEE 836 model ({}) of a {kind}, fitted jointly to {}; {compensation}; \
+         the mountings separate every chosen term (checked before the run)",
+        terms.join(", "),
         list.join("; ")
     );
 }
@@ -647,7 +682,7 @@ fn type_b(s: &mut String, u: Option<&UncertaintyConfig>) {
                  {} mm, probe-to-PIGA {} mm, probe gain {} (relative)",
                 num(u.radius_u_m),
                 num(u.g_u_m_s2),
-                u.g_source,
+                visible(&u.g_source),
                 num(u.rate_u_relative),
                 num(u.pivot_to_probe_u_mm),
                 num(u.probe_to_piga_u_mm),
@@ -667,33 +702,46 @@ fn type_b(s: &mut String, u: Option<&UncertaintyConfig>) {
 fn format_words(f: &RecordingFormat) -> String {
     let mut parts = vec![match f.delimiter {
         Delimiter::Char('\t') => "tab-separated".to_owned(),
-        Delimiter::Char(d) => format!("`{d}`-separated"),
-        Delimiter::Whitespace => "`whitespace`-separated".to_owned(),
+        Delimiter::Char(d) => format!("`{}`-separated", visible(&d.to_string())),
+        Delimiter::Whitespace => "blank-separated (runs of spaces and tabs)".to_owned(),
     }];
     match f.decimal {
         DecimalMark::Comma => parts.push("decimal comma".to_owned()),
         DecimalMark::Point => {}
     }
     if f.skip_lines > 0 {
-        parts.push(format!("{} lines skipped", f.skip_lines));
+        parts.push(format!("{} skipped", count(f.skip_lines, "line")));
     }
     parts.push(format!(
         "time `{}` in {}",
-        f.time.column,
+        visible(&f.time.column),
         f.time.unit.symbol()
     ));
     let gap_unit = match f.gap.unit {
-        GapUnit::Nm | GapUnit::Um | GapUnit::Mm | GapUnit::M => f.gap.unit.length_unit().symbol(),
-        GapUnit::Volts { .. } => "?",
+        GapUnit::Nm | GapUnit::Um | GapUnit::Mm | GapUnit::M => {
+            f.gap.unit.length_unit().symbol().to_owned()
+        }
+        GapUnit::Volts {
+            sensitivity,
+            sensitivity_unit,
+            u_sensitivity,
+        } => format!(
+            "{}, converted with the probe's sensitivity {} {} ± {} (k = 1)",
+            f.gap.unit,
+            units::Compact(sensitivity),
+            sensitivity_unit.symbol(),
+            units::Compact(u_sensitivity)
+        ),
     };
-    parts.push(format!("gap `{}` in {gap_unit}", f.gap.column));
+    parts.push(format!("gap `{}` in {gap_unit}", visible(&f.gap.column)));
     parts.push(match &f.angle {
         AngleSource::Encoder {
             column,
             unit,
             optional,
         } => format!(
-            "angle from the encoder `{column}` in {}{}",
+            "angle from the encoder `{}` in {}{}",
+            visible(column),
             match unit {
                 AngleUnit::Deg | AngleUnit::Rad => unit.symbol().to_owned(),
                 AngleUnit::Counts { per_rev } => format!(
@@ -709,7 +757,9 @@ fn format_words(f: &RecordingFormat) -> String {
                 ""
             }
         ),
-        AngleSource::IndexPulse { column } => format!("angle from the index pulse `{column}`"),
+        AngleSource::IndexPulse { column } => {
+            format!("angle from the index pulse `{}`", visible(column))
+        }
         AngleSource::Rate { start_angle_deg } => format!(
             "angle from the declared rate, the first sample taken at {}° from the angle zero \
              (nothing measures it; `lever.angle_zero_deg` does not move it)",

@@ -235,6 +235,12 @@ impl MountingPreset {
         CaseAxes { ia, pa, oa }
     }
 
+    /// The preset of a tag (`ia_in`, `ia_45`), `None` for another word.
+    #[must_use]
+    pub fn from_tag(tag: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.tag() == tag)
+    }
+
     /// The tag of configuration files: `ia_in`, `pa_radial`, `ia_45`.
     #[must_use]
     pub const fn tag(self) -> &'static str {

@@ -134,8 +134,8 @@ const ONE_UNIT: &str = r#"(
                     correction_radius_m: 2.5),
 )"#;
 
-/// Several units, the two-orientation section under its name, mountings compensated with a
-/// named phase.
+/// Several units (one with a radius that is not finite, shown as it is), the two-orientation
+/// section under its name, mountings compensated with a named phase.
 const SEVERAL_UNITS: &str = r#"(
     name: "several",
     k1_rad_s_g: 0.56,
@@ -169,6 +169,7 @@ const SEVERAL_UNITS: &str = r#"(
         (
             label: "B",
             k1_rad_s_g: 0.57,
+            radius_m: inf,
             calibration: (compensate_with: "spindle"),
         ),
     ],
@@ -181,4 +182,110 @@ fn check_describes_every_kind_of_section() {
         let text = describe(&format!("cli-check-{name}"), study);
         insta::assert_snapshot!(format!("check_kinds_{name}"), text);
     }
+}
+
+/// Text a terminal would obey: a colour change and a right-to-left override.
+const EVIL: &str = "x\u{1b}[31my\u{202e}z";
+
+/// Whether `text` holds a character of [`EVIL`] as it is (not written visibly).
+fn raw(text: &str) -> bool {
+    text.contains('\u{1b}') || text.contains('\u{202e}')
+}
+
+/// Every free text of a study that `check` prints — names, labels, paths, the delimiter,
+/// column names, `g_source`, presets and terms, the certificate's fields — is written visibly
+/// (`edge_io::visible`): an escape sequence or a bidirectional override in the study file
+/// cannot recolour or reorder the terminal.
+#[test]
+fn check_writes_every_text_of_the_study_visibly() {
+    let study = format!(
+        r#"(
+    name: "{EVIL}",
+    k1_rad_s_g: 0.56,
+    phases: [
+        (name: "p{EVIL}", points: recordings((
+            format: (delimiter: '{esc}', time: (column: "t{EVIL}", unit: s),
+                     gap: (column: "g{EVIL}", unit: um), angle: encoder(column: "a{EVIL}")),
+            files: [(rate_deg_s: 10.0, file: "f{EVIL}.csv")],
+        ))),
+        (name: "q", points: recordings((
+            format: (angle: index_pulse(column: "i{EVIL}")),
+            files: [(rate_deg_s: 10.0, file: "f.csv")],
+        ))),
+    ],
+    calibration: (table: (file: "c{EVIL}.csv"), compensate_with: "p{EVIL}"),
+    uncertainty: (g_source: "{EVIL}"),
+    two_orientation: (
+        orientations: [(orientation: ia_in, table: (file: "o{EVIL}.csv"))],
+        compare_with: "p{EVIL}",
+    ),
+    mountings: (
+        kind: piga,
+        terms: ["{EVIL}"],
+        compensate_with: "p{EVIL}",
+        list: [(label: "l{EVIL}", table: (file: "m{EVIL}.csv")), (preset: "{EVIL}")],
+    ),
+)"#,
+        esc = '\u{1b}'
+    );
+    let text = describe("cli-check-hostile", &study);
+    assert!(!raw(&text), "{text:?}");
+    assert!(text.contains(r"x\u{1b}[31my<U+202E>z"), "{text}");
+    // every field above is printed, each escaped
+    assert!(text.contains("`\\u{1b}`-separated"), "{text}");
+    assert_eq!(text.matches("<U+202E>").count(), 15, "{text}");
+    insta::assert_snapshot!("check_hostile_single", text);
+
+    // a unit's label and certificate
+    let units = std::fs::read_to_string(root().join("fixtures/studies/units.ron"))
+        .unwrap()
+        .replace(r#"label: "A""#, &format!(r#"label: "A{EVIL}""#))
+        .replace("CC-2026-0051", &format!("CC{EVIL}"))
+        .replace("Example Instruments", &format!("Example{EVIL}"))
+        .replace("PIGA-16", &format!("PIGA{EVIL}"))
+        .replace("SN 1604-0201", &format!("SN{EVIL}"))
+        .replace("Example Guidance Systems Ltd", &format!("Guidance{EVIL}"));
+    let text = describe("cli-check-hostile-units", &units);
+    assert!(!raw(&text), "{text:?}");
+    assert!(text.contains(r"unit Ax\u{1b}[31my<U+202E>z:"), "{text}");
+    assert!(
+        text.contains(r"customer Guidancex\u{1b}[31my<U+202E>z"),
+        "{text}"
+    );
+}
+
+/// The lab profile's file, as `check` names it (the profile's own names are refused with a
+/// hidden character when the profile is read, and written visibly all the same).
+#[test]
+fn check_writes_the_lab_profiles_file_visibly() {
+    let tmp = Scratch::new("cli-check-hostile-profile");
+    let profile = format!("lab{EVIL}.ron");
+    std::fs::copy(
+        root().join("fixtures/lab-folder/lab.ron"),
+        tmp.0.join(&profile),
+    )
+    .unwrap();
+    let study = format!(
+        r#"(
+    name: "profiled",
+    profile: "{profile}",
+    centrifuge: "ZF-2",
+    k1_rad_s_g: 0.56,
+    phases: [(name: "p", points: first_harmonic([(rate_deg_s: 10.0, dc1_um: 1.0, ds1_um: 0.5)]))],
+)"#
+    );
+    let path = tmp.0.join("study.ron");
+    std::fs::write(&path, study).unwrap();
+    let (text, _) = run(&["check", path.to_str().unwrap()], &tmp.0);
+    assert!(!raw(&text), "{text:?}");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("lab profile: "))
+        .unwrap_or_else(|| panic!("no lab profile line: {text}"));
+    assert!(
+        line.starts_with(
+            r"lab profile: <tmp>/labx\u{1b}[31my<U+202E>z.ron, centrifuge ZF-2, probe CP-7731;"
+        ),
+        "{line}"
+    );
 }

@@ -114,17 +114,14 @@ fn problem(check: &Check<'_>, field: String, problem: String) -> PipelineError {
 
 /// The preset of a tag, or an error listing the tags.
 fn preset(tag: &str) -> std::result::Result<MountingPreset, String> {
-    MountingPreset::ALL
-        .into_iter()
-        .find(|p| p.tag() == tag)
-        .ok_or_else(|| {
-            let known: Vec<&str> = MountingPreset::ALL.iter().map(|p| p.tag()).collect();
-            format!(
-                "no mounting is called “{}”: the presets are {}",
-                edge_io::visible(tag),
-                known.join(", ")
-            )
-        })
+    MountingPreset::from_tag(tag).ok_or_else(|| {
+        let known: Vec<&str> = MountingPreset::ALL.iter().map(|p| p.tag()).collect();
+        format!(
+            "no mounting is called “{}”: the presets are {}",
+            edge_io::visible(tag),
+            known.join(", ")
+        )
+    })
 }
 
 /// Validates the section and reads its tables; every problem at once, in the file's
