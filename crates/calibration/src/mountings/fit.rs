@@ -203,6 +203,18 @@ fn fit_mountings_with(
     let (solved, weighting) = weigh(
         sigma.as_deref(),
         |s| solve(&design, s, options),
+        // the τ search reads the Birge ratio alone: its trial fits skip the covariance's
+        // refinement (the same residuals to the last bit)
+        |s| {
+            solve(
+                &design,
+                s,
+                &LstsqOptions {
+                    refine_covariance: false,
+                    ..*options
+                },
+            )
+        },
         |s| s.birge,
         |s| s.residuals.clone(),
         |s| s.fit.dof,
