@@ -478,13 +478,17 @@ pub fn calibrate_compensated(
 /// found, the points' σ kept (the fit's covariance scaled by the Birge ratio); and the
 /// coefficients' degrees of freedom that follow ([`Weighting::group_dof`]). The eq. 18
 /// calibration and the joint fit over several mountings (`crate::fit_mountings`) both use
-/// it, so the same points get the same weights and ν everywhere.
+/// it, so the same points get the same weights and ν everywhere. The search for τ reads only
+/// each trial fit's Birge ratio: it fits with `search_with`, which may skip what the ratio
+/// does not need (the joint fit's covariance refinement) but must give the same residuals as
+/// `fit_with`.
 ///
 /// # Errors
 /// The fit's own.
 pub(crate) fn weigh<T, E>(
     sigma_rad_s: Option<&[f64]>,
     fit_with: impl Fn(Option<&[f64]>) -> Result<T, E>,
+    search_with: impl Fn(Option<&[f64]>) -> Result<T, E>,
     birge: impl Fn(&T) -> Option<f64>,
     residuals: impl Fn(&T) -> Vec<f64>,
     dof: impl Fn(&T) -> usize,
@@ -499,7 +503,11 @@ pub(crate) fn weigh<T, E>(
     {
         let combined =
             |tau: f64| -> Vec<f64> { sigma.iter().map(|s| s.hypot(tau)).collect::<Vec<_>>() };
-        let birge_at = |tau: f64| fit_with(Some(&combined(tau))).ok().and_then(|c| birge(&c));
+        let birge_at = |tau: f64| {
+            search_with(Some(&combined(tau)))
+                .ok()
+                .and_then(|c| birge(&c))
+        };
         // χ²/ν falls towards 0 as τ grows: double τ from the largest residual until it is
         // below 1 (with few degrees of freedom the largest residual may not be enough).
         let mut low = 0.0;
@@ -568,7 +576,8 @@ fn calibrate_with<C: AsMeasured>(
     check_points(points)?;
     let (cal, weighting) = weigh(
         points.sigma_rad_s,
-        fit_with,
+        &fit_with,
+        &fit_with,
         |c| c.as_measured().birge_ratio,
         |c| c.as_measured().residuals_rad_s.clone(),
         |c| c.as_measured().fit.dof,

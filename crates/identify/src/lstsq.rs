@@ -55,6 +55,12 @@ pub struct LstsqOptions {
     pub refine: bool,
     /// Upper bound on refinement iterations per right-hand side (default 30).
     pub max_refinement_iterations: usize,
+    /// Refine the covariance too (default `true`). `false` for a refit whose values alone are
+    /// used (a Type B input moved by ± its u): the solution and residuals are refined exactly
+    /// as with `true`, so the coefficients are the same to the last bit, and the covariance is
+    /// the double-precision QR's, without the `n` refinements of its columns that take most of
+    /// the time.
+    pub refine_covariance: bool,
 }
 
 impl Default for LstsqOptions {
@@ -63,6 +69,7 @@ impl Default for LstsqOptions {
             rank_tolerance: None,
             refine: true,
             max_refinement_iterations: 30,
+            refine_covariance: true,
         }
     }
 }
@@ -241,10 +248,15 @@ pub(crate) fn lstsq_design_unchecked(
     let mut converged = solution.converged;
     let mut worst_correction = solution.last_correction;
     let zeros = vec![0.0; m];
+    let covariance_iterations = if options.refine_covariance {
+        max_iterations
+    } else {
+        0
+    };
     for k in 0..n {
         let mut c = vec![0.0; n];
         c[k] = -1.0;
-        let col = qr.refine(&zeros, &c, max_iterations);
+        let col = qr.refine(&zeros, &c, covariance_iterations);
         iterations = iterations.max(col.iterations);
         converged &= col.converged;
         worst_correction = worst_correction.max(col.last_correction);

@@ -12,7 +12,7 @@
 use accel_model::CaseAxes;
 
 use super::error::MountingsError;
-use super::fit::fit_mountings;
+use super::fit::refit_values;
 use super::spec::{JointSpec, MountingData};
 
 /// The Type B standard uncertainties the lab states for a multi-mounting study (the fixtures'
@@ -164,7 +164,7 @@ fn moved_terms(
             }
         }
     }
-    Ok(fit_mountings(&spec, &data)?
+    Ok(refit_values(&spec, &data)?
         .terms
         .iter()
         .map(|t| t.value)

@@ -182,3 +182,38 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn an_unrefined_covariance_leaves_the_values_bit_for_bit_and_the_covariance_close() {
+    // a cubic in x ∈ [1, 3] with wide column scales (as the centrifuge's powers of ω are):
+    // condition about 1e4 after scaling
+    let m = 40;
+    let x: Vec<f64> = (0..m)
+        .map(|i| 1.0 + 2.0 * i as f64 / (m - 1) as f64)
+        .collect();
+    let d = DMatrix::from_fn(m, 4, |i, j| x[i].powi(j as i32) * 10f64.powi(3 * j as i32));
+    let y: Vec<f64> = x
+        .iter()
+        .enumerate()
+        .map(|(i, x)| {
+            0.3 + 1.7 * x - 0.2 * x * x + 0.01 * x.powi(3) + 1e-3 * ((i * 7 % 11) as f64 - 5.0)
+        })
+        .collect();
+    let full = lstsq_with(&d, &y, &LstsqOptions::default()).unwrap();
+    let values = lstsq_with(
+        &d,
+        &y,
+        &LstsqOptions {
+            refine_covariance: false,
+            ..LstsqOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(values.coefficients, full.coefficients);
+    assert_eq!(values.residuals, full.residuals);
+    assert_eq!(values.path, SolverPath::RefinedScaledColPivQr);
+    assert!(values.warnings.is_empty(), "{:?}", values.warnings);
+    for (a, b) in values.covariance.iter().zip(full.covariance.iter()) {
+        assert_relative_eq!(*a, *b, max_relative = 1e-9, epsilon = 1e-300);
+    }
+}
