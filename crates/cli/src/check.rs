@@ -284,7 +284,13 @@ fn describe(
     direction_unfilled: bool,
 ) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "study {:?} ({})", config.name, path.display());
+    // the name in quotes, written visibly (not Rust's `{:?}` escapes); the path as well
+    let _ = writeln!(
+        s,
+        "study \"{}\" ({})",
+        edge_io::visible(&config.name),
+        edge_io::visible(&path.display().to_string())
+    );
     if let Some(used) = used {
         profile(&mut s, used);
     }

@@ -231,9 +231,9 @@ fn check_writes_every_text_of_the_study_visibly() {
     let text = describe("cli-check-hostile", &study);
     assert!(!raw(&text), "{text:?}");
     assert!(text.contains(r"x\u{1b}[31my<U+202E>z"), "{text}");
-    // every field above is printed, each escaped
+    // every field above is printed, each escaped (the study name among them)
     assert!(text.contains("`\\u{1b}`-separated"), "{text}");
-    assert_eq!(text.matches("<U+202E>").count(), 15, "{text}");
+    assert_eq!(text.matches("<U+202E>").count(), 16, "{text}");
     insta::assert_snapshot!("check_hostile_single", text);
 
     // a unit's label and certificate
