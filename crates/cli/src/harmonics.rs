@@ -270,7 +270,7 @@ impl Harmonics {
         Ok(json!({
             "file": recording.path.display().to_string(),
             "samples": recording.samples,
-            "gap_unit": recording.gap_unit.symbol(),
+            "gap_unit": recording.gap_unit.key(),
             "angle_source": result.angle_source.name(),
             "rate_deg_s": self.rate_deg_s,
             "measured_rate_deg_s": result.measured_rate_rad_s.map(f64::to_degrees),

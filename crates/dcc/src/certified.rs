@@ -45,8 +45,8 @@ pub(crate) struct CertifiedCoefficient {
     /// Relative to k1 (k0 in µg, k2 in µg/g², k3 in µg/g³; none for k1).
     pub(crate) relative: Option<Stated>,
     pub(crate) interval: Interval,
-    /// Effective degrees of freedom (`None`: infinitely many).
-    pub(crate) dof: Option<f64>,
+    /// Effective degrees of freedom.
+    pub(crate) dof: DegreesOfFreedom,
 }
 
 /// What the certificate certifies.
@@ -118,10 +118,7 @@ pub(crate) fn certified(results: &StudyResults) -> Result<Certified<'_>> {
                         expanded: r.expanded,
                     }),
                     interval,
-                    dof: match k.dof {
-                        DegreesOfFreedom::Finite(n) => Some(n),
-                        DegreesOfFreedom::Infinite(_) => None,
-                    },
+                    dof: k.dof,
                 })
             })
             .collect::<Result<Vec<_>>>()?;

@@ -5,7 +5,9 @@
 //! the other method, each mounting's range of validity, the statements of conformity and
 //! the files the results were computed from, with their SHA-256.
 
-use pipeline::{CertificateResults, CertifiedMethod, DecisionRule, ValidityRange, Verdict};
+use pipeline::{
+    CertificateResults, CertifiedMethod, DecisionRule, DegreesOfFreedom, ValidityRange, Verdict,
+};
 
 use crate::certified::{Certified, CertifiedCoefficient, Interval, Stated};
 use crate::error::Result;
@@ -273,11 +275,13 @@ fn conditions(x: &mut Xml, cert: &CertificateResults) -> Result<()> {
     })
 }
 
-/// Effective degrees of freedom in words: `ν_eff > 1000` above a thousand, else rounded.
-fn dof_words(dof: Option<f64>) -> String {
+/// Effective degrees of freedom in words, by the one formatter (`DegreesOfFreedom`'s display,
+/// as the certificate's page and the terminal write them): `ν_eff = 12`, `ν_eff = 3.4`,
+/// `ν_eff > 1000`, `ν_eff = ∞`.
+fn dof_words(dof: DegreesOfFreedom) -> String {
     match dof {
-        Some(n) if n <= 1000.0 => format!("ν_eff = {}", n.round()),
-        _ => "ν_eff > 1000".to_owned(),
+        DegreesOfFreedom::Finite(n) if n > 1000.0 => format!("ν_eff {dof}"),
+        _ => format!("ν_eff = {dof}"),
     }
 }
 

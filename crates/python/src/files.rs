@@ -74,7 +74,7 @@ impl NativeRecording {
             "angle_rad",
             r.angle_rad.as_ref().map(|a| a.clone().into_pyarray(py)),
         )?;
-        d.set_item("declared_gap_unit", r.gap_unit.symbol())?;
+        d.set_item("declared_gap_unit", r.gap_unit.key())?;
         d.set_item("um_per_declared_unit", um)?;
         d.set_item("volts", r.sensitivity.is_some())?;
         d.set_item("angle_source", r.angle_source.name())?;
@@ -109,7 +109,7 @@ impl NativeRecording {
             ProbeDirection::AgainstO1X1
         };
         let d = fit::analysis(py, &result.analysis, direction, r.gap_unit.um_per_unit())?;
-        d.set_item("declared_gap_unit", r.gap_unit.symbol())?;
+        d.set_item("declared_gap_unit", r.gap_unit.key())?;
         d.set_item("samples", r.len())?;
         d.set_item("angle_source", result.angle_source.name())?;
         d.set_item("rate_deg_s", rate_rad_s.to_degrees())?;

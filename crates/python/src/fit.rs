@@ -396,6 +396,6 @@ pub(crate) fn fit_harmonics<'py>(
     d.set_item("dropped_revolutions", 0)?;
     d.set_item("warnings", warnings(py, &fit.diagnostics)?)?;
     d.set_item("rust_seconds", fit.seconds)?;
-    d.set_item("declared_gap_unit", unit.symbol())?;
+    d.set_item("declared_gap_unit", unit.key())?;
     Ok(d)
 }

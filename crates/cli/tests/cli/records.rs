@@ -292,24 +292,7 @@ fn a_killed_recording_leaves_the_database_as_it_was() {
     let dirs = many_results(scratch.path(), 2);
     let db = scratch.path().join("lab.sqlite");
     ok(&cli(&["record", s(&dirs[0]), "--records", s(&db)]));
-    let marker = scratch.path().join("paused");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
-        .args(["record", s(&dirs[1]), "--records", s(&db)])
-        .env("CENTRIFUGE_CAL_TEST_PAUSE_BEFORE_COMMIT", &marker)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let start = std::time::Instant::now();
-    while !marker.exists() {
-        assert!(
-            start.elapsed().as_secs() < 60,
-            "the recording reached its commit"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    child.kill().unwrap(); // SIGKILL: no clean-up runs
-    let _ = child.wait();
+    record_killed_before_commit(&dirs[1], &db, &scratch.path().join("paused"));
     // everything but the commit was written; none of it is in the database
     assert_eq!(count(&db, "campaigns"), 1);
     let unit = json(&cli(&[
@@ -543,10 +526,21 @@ fn a_two_unit_study_gives_two_certificates_and_two_records_from_one_probe_phase(
 
     // killed before the commit: neither unit is in the database
     let fresh = scratch.path().join("fresh.sqlite");
-    let marker = scratch.path().join("paused");
+    record_killed_before_commit(&out, &fresh, &scratch.path().join("paused"));
+    for serial in ["SN 1604-0201", "SN 2210-0033"] {
+        let missing = cli(&["history", serial, "--records", s(&fresh)]);
+        assert!(!missing.status.success(), "{serial} is not recorded");
+    }
+    let text = ok(&cli(&["record", s(&out), "--records", s(&fresh)]));
+    assert_eq!(text.matches("recorded ").count(), 2, "{text}");
+}
+
+/// `record RESULTS --records DB`, killed (SIGKILL: no clean-up runs) once it has written
+/// everything but its commit, which it marks by creating `marker` when the test asks it to pause.
+fn record_killed_before_commit(results: &Path, db: &Path, marker: &Path) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_centrifuge-cal"))
-        .args(["record", s(&out), "--records", s(&fresh)])
-        .env("CENTRIFUGE_CAL_TEST_PAUSE_BEFORE_COMMIT", &marker)
+        .args(["record", s(results), "--records", s(db)])
+        .env("CENTRIFUGE_CAL_TEST_PAUSE_BEFORE_COMMIT", marker)
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()
@@ -559,12 +553,6 @@ fn a_two_unit_study_gives_two_certificates_and_two_records_from_one_probe_phase(
         );
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    child.kill().unwrap(); // SIGKILL: no clean-up runs
+    child.kill().unwrap();
     let _ = child.wait();
-    for serial in ["SN 1604-0201", "SN 2210-0033"] {
-        let missing = cli(&["history", serial, "--records", s(&fresh)]);
-        assert!(!missing.status.success(), "{serial} is not recorded");
-    }
-    let text = ok(&cli(&["record", s(&out), "--records", s(&fresh)]));
-    assert_eq!(text.matches("recorded ").count(), 2, "{text}");
 }

@@ -267,11 +267,11 @@ impl fmt::Display for Diagnostic {
                 first_harmonic_um,
                 noise_um,
             } => {
-                let symbol = unit.symbol();
+                let key = unit.key();
                 write!(
                     f,
                     "the probe signal is implausible for the gap column's declared unit \
-                     `{symbol}`: "
+                     `{key}`: "
                 )?;
                 let low_gap = mean_gap_um.abs() < MIN_PLAUSIBLE_GAP_UM;
                 if low_gap {
@@ -295,7 +295,7 @@ impl fmt::Display for Diagnostic {
                 write!(
                     f,
                     "; if the column is in another unit (mm, or volts), C_r is wrong by that \
-                     factor: check `gap: (column: ..., unit: {symbol})` (a conditioner whose \
+                     factor: check `gap: (column: ..., unit: {key})` (a conditioner whose \
                      output is centred on zero also has a mean gap near 0)"
                 )
             }

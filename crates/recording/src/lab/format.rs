@@ -38,12 +38,20 @@ impl TimeUnit {
     }
 
     /// The unit as a configuration writes it (`s`, `ms`, `us`, `ns`).
-    pub const fn symbol(self) -> &'static str {
+    pub const fn key(self) -> &'static str {
         match self {
             Self::S => "s",
             Self::Ms => "ms",
             Self::Us => "us",
             Self::Ns => "ns",
+        }
+    }
+
+    /// The unit as a person reads it (`s`, `ms`, `µs`, `ns`).
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Us => "µs",
+            other => other.key(),
         }
     }
 }
@@ -75,9 +83,14 @@ impl AngleUnit {
         }
     }
 
+    /// The unit as a person reads it: the configuration's own words (`deg`, `rad`, `counts`).
+    pub const fn symbol(self) -> &'static str {
+        self.key()
+    }
+
     /// The unit as a configuration writes it (`deg`, `rad`, `counts`; the counts per
     /// revolution are the caller's to say).
-    pub const fn symbol(self) -> &'static str {
+    pub const fn key(self) -> &'static str {
         match self {
             Self::Deg => "deg",
             Self::Rad => "rad",

@@ -35,13 +35,22 @@ impl LengthUnit {
         }
     }
 
-    /// The unit's symbol (`nm`, `um`, `mm`, `m`).
-    pub const fn symbol(self) -> &'static str {
+    /// The unit as a configuration writes it (`nm`, `um`, `mm`, `m`).
+    pub const fn key(self) -> &'static str {
         match self {
             Self::Nm => "nm",
             Self::Um => "um",
             Self::Mm => "mm",
             Self::M => "m",
+        }
+    }
+
+    /// The unit as a person reads it (`nm`, `µm`, `mm`, `m`), as [`GapUnit`]'s display writes
+    /// it.
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Um => "µm",
+            other => other.key(),
         }
     }
 }
@@ -151,11 +160,8 @@ impl GapUnit {
 impl fmt::Display for GapUnit {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Nm => f.write_str("nm"),
-            Self::Um => f.write_str("µm"),
-            Self::Mm => f.write_str("mm"),
-            Self::M => f.write_str("m"),
             Self::Volts { .. } => f.write_str("V"),
+            length => f.write_str(length.length_unit().symbol()),
         }
     }
 }
