@@ -21,7 +21,6 @@ mod identify;
 mod init;
 mod paths;
 mod plan;
-mod plan_campaign;
 mod plan_two_orientation;
 mod problems;
 mod progress;

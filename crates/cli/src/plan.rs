@@ -246,7 +246,7 @@ fn simulate_check(
     campaigns: usize,
     seed: u64,
 ) -> anyhow::Result<SimulationCheck> {
-    let (centrifuge, piga) = crate::plan_campaign::simulated(inputs, LATITUDE_DEG);
+    let (centrifuge, piga) = inputs.simulated(LATITUDE_DEG);
     let rates: Vec<f64> = plan.points.iter().map(|q| q.rate_deg_s).collect();
     let table = simulate::piga_table(
         &centrifuge,

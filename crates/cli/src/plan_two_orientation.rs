@@ -19,7 +19,7 @@ fn exact_outputs(
         .two_orientation
         .as_ref()
         .context("the plan file has no two_orientation section")?;
-    let (centrifuge, piga) = crate::plan_campaign::simulated(inputs, latitude_deg);
+    let (centrifuge, piga) = inputs.simulated(latitude_deg);
     let mut out: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
     for (k, m) in plan.mountings.iter().enumerate() {
         let shift = [spec.ia_in, spec.ia_out][k].bias_shift_rad_s;

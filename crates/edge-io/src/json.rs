@@ -32,6 +32,28 @@ pub enum JsonError {
     Serialize(#[source] serde_json::Error),
 }
 
+impl JsonError {
+    /// The error a caller reports for this one: `non_finite(path, value)` for a number that
+    /// is not finite (its path in the value tree and the value), `other(message)` for
+    /// serde_json's refusal, with its message.
+    ///
+    /// ```
+    /// let e = edge_io::to_json_pretty(&[1.0, f64::INFINITY]).unwrap_err();
+    /// let said = e.into_error(|path, value| format!("{path}: {value}"), |m| m);
+    /// assert_eq!(said, "[1]: inf");
+    /// ```
+    pub fn into_error<E>(
+        self,
+        non_finite: impl FnOnce(String, f64) -> E,
+        other: impl FnOnce(String) -> E,
+    ) -> E {
+        match self {
+            Self::NonFinite(NonFiniteValue { path, value }) => non_finite(path, value),
+            other_error @ Self::Serialize(_) => other(other_error.to_string()),
+        }
+    }
+}
+
 /// `Ok` when every floating-point number in `value` is finite; otherwise the path of the first
 /// that is not. `None` (JSON `null` for "not applicable") is not a number and passes.
 ///
@@ -163,6 +185,12 @@ impl<'a> Compound<'a> {
         }
     }
 
+    /// A variant's compound: its fields under the step of its name, which its `end` leaves.
+    fn variant(walker: Walker<'a>, variant: &'static str) -> Self {
+        walker.path.push(Step::Field(variant.to_string()));
+        Self::new(walker)
+    }
+
     fn element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Found> {
         let step = Step::Index(self.index);
         self.index += 1;
@@ -257,8 +285,7 @@ impl<'a> ser::Serializer for Walker<'a> {
         variant: &'static str,
         _: usize,
     ) -> Result<Compound<'a>, Found> {
-        self.path.push(Step::Field(variant.to_string()));
-        Ok(Compound::new(self))
+        Ok(Compound::variant(self, variant))
     }
     fn serialize_map(self, _: Option<usize>) -> Result<Compound<'a>, Found> {
         Ok(Compound::new(self))
@@ -273,54 +300,35 @@ impl<'a> ser::Serializer for Walker<'a> {
         variant: &'static str,
         _: usize,
     ) -> Result<Compound<'a>, Found> {
-        self.path.push(Step::Field(variant.to_string()));
-        Ok(Compound::new(self))
+        Ok(Compound::variant(self, variant))
     }
 }
 
-impl ser::SerializeSeq for Compound<'_> {
-    type Ok = ();
-    type Error = Found;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Found> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), Found> {
-        Ok(())
-    }
+/// The four sequence-like compounds: each element walked under its index; `pop` for a
+/// variant, whose end leaves the step of its name that `serialize_tuple_variant` entered.
+macro_rules! elements {
+    ($($compound:ident::$method:ident, pop: $pop:literal;)*) => {$(
+        impl ser::$compound for Compound<'_> {
+            type Ok = ();
+            type Error = Found;
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Found> {
+                self.element(value)
+            }
+            fn end(self) -> Result<(), Found> {
+                if $pop {
+                    self.walker.path.pop();
+                }
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTuple for Compound<'_> {
-    type Ok = ();
-    type Error = Found;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Found> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), Found> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleStruct for Compound<'_> {
-    type Ok = ();
-    type Error = Found;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Found> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), Found> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleVariant for Compound<'_> {
-    type Ok = ();
-    type Error = Found;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Found> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), Found> {
-        self.walker.path.pop();
-        Ok(())
-    }
+elements! {
+    SerializeSeq::serialize_element, pop: false;
+    SerializeTuple::serialize_element, pop: false;
+    SerializeTupleStruct::serialize_field, pop: false;
+    SerializeTupleVariant::serialize_field, pop: true;
 }
 
 impl ser::SerializeMap for Compound<'_> {

@@ -107,8 +107,8 @@ pub use noise::{
 pub use outliers::{
     ALTERNATING_EXCESS_LIMIT, AlternatingResiduals, MIN_REVOLUTIONS_FOR_OUTLIERS,
     OUTLIER_RMS_RATIO, ResidualOutlier, ResidualOutliers, RevolutionSource, SampleWindow,
-    alternating_residuals, alternating_residuals_in, residual_outliers, residual_outliers_in,
-    without_revolutions,
+    alternating_residuals, alternating_residuals_in, in_memory, residual_outliers,
+    residual_outliers_in, without_revolutions,
 };
 pub use pieces::{DropBadSamples, PooledAnalysis, analyze_around_bad_samples};
 pub use rate::{DeclaredRate, ENCODER_RATE_TOLERANCE, check_encoder_rate, check_measured_rate};

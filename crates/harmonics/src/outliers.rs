@@ -111,11 +111,7 @@ pub fn residual_outliers(
     signal: &ProbeSignal<'_>,
     analysis: &HarmonicAnalysis,
 ) -> Option<ResidualOutliers> {
-    let mut source = *signal;
-    match residual_outliers_in(&mut source, analysis) {
-        Ok(found) => found,
-        Err(never) => match never {},
-    }
+    in_memory(signal, |source| residual_outliers_in(source, analysis))
 }
 
 /// [`residual_outliers`] with the outlying revolutions' samples read from `source` (a
@@ -219,11 +215,7 @@ pub fn alternating_residuals(
     signal: &ProbeSignal<'_>,
     analysis: &HarmonicAnalysis,
 ) -> Option<AlternatingResiduals> {
-    let mut source = *signal;
-    match alternating_residuals_in(&mut source, analysis) {
-        Ok(found) => found,
-        Err(never) => match never {},
-    }
+    in_memory(signal, |source| alternating_residuals_in(source, analysis))
 }
 
 /// [`alternating_residuals`] with the examined revolutions' samples read from `source`.
@@ -373,6 +365,20 @@ pub trait RevolutionSource {
     /// # Errors
     /// When the samples cannot be read.
     fn samples(&mut self, range: Range<usize>) -> Result<SampleWindow<'_>, Self::Error>;
+}
+
+/// What `read` gives from `signal` as its own [`RevolutionSource`]: the recording held in
+/// memory, which cannot fail to give its samples. The one bridge from a check that reads a
+/// source (`residual_outliers_in`) to its form on a signal in memory (`residual_outliers`).
+pub fn in_memory<'a, T>(
+    signal: &ProbeSignal<'a>,
+    read: impl FnOnce(&mut ProbeSignal<'a>) -> Result<T, std::convert::Infallible>,
+) -> T {
+    let mut source = *signal;
+    match read(&mut source) {
+        Ok(found) => found,
+        Err(never) => match never {},
+    }
 }
 
 impl RevolutionSource for ProbeSignal<'_> {

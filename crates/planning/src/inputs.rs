@@ -33,6 +33,39 @@ pub struct PlanInputs {
     pub two_orientation: Option<crate::TwoOrientationPlanInputs>,
 }
 
+impl PlanInputs {
+    /// The plan's centrifuge at `latitude_deg` (its radius, g and the expected C_r as the
+    /// spindle's dynamic drift) and its PIGA's nominal coefficients, as `simulate` takes
+    /// them: what a plan's simulation check (`plan --simulate`, one mounting or two)
+    /// simulates.
+    #[must_use]
+    pub fn simulated(
+        &self,
+        latitude_deg: f64,
+    ) -> (kinematics::Centrifuge, accel_model::PigaCoefficients) {
+        let centrifuge = kinematics::Centrifuge {
+            radius_m: self.centrifuge.radius_m,
+            site: kinematics::Site {
+                latitude_deg,
+                earth_rate_rad_s: kinematics::EARTH_RATE_RAD_S,
+                gravity_m_s2: self.centrifuge.g_m_s2,
+            },
+            error_motion: kinematics::ErrorMotion {
+                c_r_m_s2: self.c_r.expected_m_s2,
+                ..kinematics::ErrorMotion::ZERO
+            },
+        };
+        let p = &self.piga;
+        let piga = accel_model::PigaCoefficients {
+            k0_rad_s: p.k0_rad_s,
+            k1_rad_s_g: p.k1_rad_s_g,
+            k2_rad_s_g2: p.k2_rad_s_g2,
+            k3_rad_s_g3: p.k3_rad_s_g3,
+        };
+        (centrifuge, piga)
+    }
+}
+
 /// The centrifuge.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

@@ -360,48 +360,28 @@ impl<'py, 'a> ser::Serializer for Serializer<'py, 'a> {
     }
 }
 
-impl<'py> ser::SerializeSeq for Seq<'py, '_> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = ToPythonError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<()> {
-        self.push(value)
-    }
-    fn end(self) -> Result<Self::Ok> {
-        self.done()
-    }
+/// The four sequence-like compounds: each element pushed in turn, a list at the end (under
+/// its name for a tuple variant).
+macro_rules! elements {
+    ($($compound:ident::$method:ident;)*) => {$(
+        impl<'py> ser::$compound for Seq<'py, '_> {
+            type Ok = Bound<'py, PyAny>;
+            type Error = ToPythonError;
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<()> {
+                self.push(value)
+            }
+            fn end(self) -> Result<Self::Ok> {
+                self.done()
+            }
+        }
+    )*};
 }
 
-impl<'py> ser::SerializeTuple for Seq<'py, '_> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = ToPythonError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<()> {
-        self.push(value)
-    }
-    fn end(self) -> Result<Self::Ok> {
-        self.done()
-    }
-}
-
-impl<'py> ser::SerializeTupleStruct for Seq<'py, '_> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = ToPythonError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<()> {
-        self.push(value)
-    }
-    fn end(self) -> Result<Self::Ok> {
-        self.done()
-    }
-}
-
-impl<'py> ser::SerializeTupleVariant for Seq<'py, '_> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = ToPythonError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<()> {
-        self.push(value)
-    }
-    fn end(self) -> Result<Self::Ok> {
-        self.done()
-    }
+elements! {
+    SerializeSeq::serialize_element;
+    SerializeTuple::serialize_element;
+    SerializeTupleStruct::serialize_field;
+    SerializeTupleVariant::serialize_field;
 }
 
 impl<'py> ser::SerializeMap for Map<'py, '_> {

@@ -72,25 +72,8 @@ fn main() -> ExitCode {
     }
 }
 
-/// A long recording at 30 deg/s and 1 kHz, integers in thousandths, never held in memory.
+/// A long recording at 30 deg/s and 1 kHz ([`recording::write_long_recording`]).
 fn write_long(path: &Path, rows: usize) -> std::io::Result<()> {
-    use std::io::Write as _;
-    let mut out = std::io::BufWriter::with_capacity(1 << 20, std::fs::File::create(path)?);
-    out.write_all(b"time_s,gap_um,angle_deg\n")?;
-    for i in 0..rows {
-        let milli_deg = (i as u64 * 30) % 360_000;
-        let theta = (milli_deg as f64 / 1000.0).to_radians();
-        let gap = 50_000 + (3_200.0 * theta.cos()) as i64 + ((i * 7919) % 21) as i64 - 10;
-        writeln!(
-            out,
-            "{}.{:03},{}.{:03},{}.{:03}",
-            i / 1000,
-            i % 1000,
-            gap / 1000,
-            gap % 1000,
-            milli_deg / 1000,
-            milli_deg % 1000
-        )?;
-    }
-    out.flush()
+    let file = std::fs::File::create(path)?;
+    recording::write_long_recording(std::io::BufWriter::with_capacity(1 << 20, file), rows)
 }

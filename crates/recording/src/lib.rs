@@ -76,7 +76,8 @@
 //! # Features
 //!
 //! - `synthetic`: `SyntheticSpec`, synthetic recordings with known
-//!   coefficients for fixtures, tests and benchmarks (the `synth_recording` example).
+//!   coefficients for fixtures, tests and benchmarks (the `synth_recording` example), and
+//!   `write_long_recording`, a long one written row by row (the `analyze_file` example).
 //!
 //! # Boundaries
 //!
@@ -139,7 +140,7 @@ pub use stream::{
     analyze_recording_file,
 };
 #[cfg(feature = "synthetic")]
-pub use synth::SyntheticSpec;
+pub use synth::{SyntheticSpec, write_long_recording};
 #[doc(hidden)]
 pub use text::number::{number_paths, parse_number};
 #[doc(hidden)]

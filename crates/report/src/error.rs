@@ -137,19 +137,10 @@ pub enum ReportError {
 impl ReportError {
     /// The error of [`edge_io::to_json_pretty`] for the output `what`.
     pub(crate) fn json(what: &'static str, e: edge_io::JsonError) -> Self {
-        match e {
-            edge_io::JsonError::NonFinite(edge_io::NonFiniteValue { path, value }) => {
-                Self::NonFiniteOutput {
-                    what,
-                    field: path,
-                    value,
-                }
-            }
-            other => Self::Serialize {
-                what,
-                message: other.to_string(),
-            },
-        }
+        e.into_error(
+            |field, value| Self::NonFiniteOutput { what, field, value },
+            |message| Self::Serialize { what, message },
+        )
     }
 }
 

@@ -41,26 +41,7 @@ pub(crate) fn plan() -> &'static TwoOrientationPlan {
 pub(crate) fn centrifuge_and_piga(
     inputs: &PlanInputs,
 ) -> (kinematics::Centrifuge, accel_model::PigaCoefficients) {
-    let centrifuge = kinematics::Centrifuge {
-        radius_m: inputs.centrifuge.radius_m,
-        site: kinematics::Site {
-            latitude_deg: 45.0,
-            earth_rate_rad_s: kinematics::EARTH_RATE_RAD_S,
-            gravity_m_s2: inputs.centrifuge.g_m_s2,
-        },
-        error_motion: kinematics::ErrorMotion {
-            c_r_m_s2: inputs.c_r.expected_m_s2,
-            ..kinematics::ErrorMotion::ZERO
-        },
-    };
-    let p = &inputs.piga;
-    let piga = accel_model::PigaCoefficients {
-        k0_rad_s: p.k0_rad_s,
-        k1_rad_s_g: p.k1_rad_s_g,
-        k2_rad_s_g2: p.k2_rad_s_g2,
-        k3_rad_s_g3: p.k3_rad_s_g3,
-    };
-    (centrifuge, piga)
+    inputs.simulated(45.0)
 }
 
 /// The plan's noise-free mean outputs through the exact chain (`simulate::piga_table_mounted`,

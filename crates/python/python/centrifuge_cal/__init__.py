@@ -340,18 +340,8 @@ def fit_radius_error(
         np.radians(w), r * 1e-6, None if s is None else s * 1e-6, model == "three_term"
     )
     _issue(((x["code"], x["message"]) for x in d["warnings"]), stacklevel=2)
-    return RadiusFit(
-        model=d["model"],
-        c_r_m_s2=d["c_r_m_s2"],
-        c_r_sigma_m_s2=d["c_r_sigma_m_s2"],
-        offset_m=d["offset_m"],
-        linear_m_s=d["linear_m_s"],
-        linear_sigma_m_s=d["linear_sigma_m_s"],
-        residuals_m=d["residuals_m"],
-        weighted=d["weighted"],
-        dof=d["dof"],
-        residual_sd=d["residual_sd"],
-        condition_number=d["condition_number"],
+    return RadiusFit._from(
+        d,
         warnings=tuple(Warning(**x) for x in d["warnings"]),
         rate_deg_s=w.copy(),
         radius_error_um=r.copy(),

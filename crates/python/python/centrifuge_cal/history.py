@@ -54,18 +54,10 @@ class Drift(_Result):
     def _of(d: dict[str, Any] | None) -> Drift | None:
         if d is None:
             return None
-        return Drift(
+        return Drift._from(
+            d,
             origin=_day(d["origin"]),
-            intercept=float(d["intercept"]),
-            rate_per_year=float(d["rate_per_year"]),
-            u_rate_per_year=float(d["u_rate_per_year"]),
             covariance=np.array(d["covariance"], dtype=np.float64),
-            birge_ratio=d["birge_ratio"],
-            scaled_by_scatter=bool(d["scaled_by_scatter"]),
-            k95=float(d["k95"]),
-            expanded_rate_per_year=float(d["expanded_rate_per_year"]),
-            significant=bool(d["significant"]),
-            points=int(d["points"]),
         )
 
 
@@ -85,13 +77,7 @@ class Prediction(_Result):
     def _of(d: dict[str, Any] | None) -> Prediction | None:
         if d is None:
             return None
-        return Prediction(
-            date=_day(d["date"]),
-            value=float(d["value"]),
-            u=float(d["u"]),
-            u_reading=float(d["u_reading"]),
-            k95=float(d["k95"]),
-        )
+        return Prediction._from(d, date=_day(d["date"]))
 
 
 @dataclass(frozen=True)

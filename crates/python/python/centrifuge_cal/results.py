@@ -6,7 +6,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Self
 
 import numpy as np
 import numpy.typing as npt
@@ -35,6 +35,13 @@ class _Result:
         """The result as plain Python values (arrays as lists)."""
         out: dict[str, Any] = _plain(self)
         return out
+
+    @classmethod
+    def _from(cls, d: dict[str, Any], **given: Any) -> Self:
+        """The result (a dataclass) with the fields ``given``, and ``d``'s values of the same
+        names for the others: the one reading of a dictionary of the native module."""
+        names = (f.name for f in dataclasses.fields(cls))  # type: ignore[arg-type]
+        return cls(**{n: given[n] if n in given else d[n] for n in names})
 
 
 @dataclass(frozen=True)
@@ -243,17 +250,9 @@ class BalanceAdvice(_Result):
     @staticmethod
     def _of(d: dict[str, Any]) -> BalanceAdvice:
         c, p = d["correction"], d["predicted"]
-        return BalanceAdvice(
-            correction_method=c["method"],
-            correction_mass_kg=c["mass_kg"],
-            correction_mass_u_kg=c["mass_u_kg"],
-            correction_radius_m=c["radius_m"],
-            correction_azimuth_deg=c["azimuth_deg"],
-            correction_azimuth_u_deg=c["azimuth_u_deg"],
-            predicted_c_r_m_s2=p["c_r_m_s2"],
-            predicted_c_r_u_m_s2=p["c_r_u_m_s2"],
-            predicted_delta_k2_rad_s_g2=p["delta_k2_rad_s_g2"],
-            predicted_delta_k2_u_rad_s_g2=p["delta_k2_u_rad_s_g2"],
+        return BalanceAdvice._from(
+            {f"correction_{k}": v for k, v in c.items()}
+            | {f"predicted_{k}": v for k, v in p.items()},
             assumption=d["assumption"],
             data=d,
         )

@@ -332,7 +332,7 @@ fn finish(
     dropped_revolutions: usize,
     config: &FitConfig,
 ) -> RecordingAnalysis {
-    let mut signal = recording.signal(declared_rate_rad_s);
+    let signal = recording.signal(declared_rate_rad_s);
     let binary = !recording.is_empty() && recording.line_of_sample(0) == 0;
     let place = |sample: usize| {
         if binary {
@@ -349,26 +349,24 @@ fn finish(
         gap_unit: recording.gap_unit,
         on_outlier: recording.on_outlier,
     };
-    let done = finish_with(
-        &facts,
-        &mut signal,
-        place,
-        (
-            |i: usize| recording.angle_at(i, declared_rate_rad_s),
-            |i: usize| time_s[i],
-        ),
-        analysis,
-        (
-            declared_rate_rad_s,
-            measured_rate_rad_s,
-            dropped_revolutions,
-        ),
-        config,
-    );
-    match done {
-        Ok(a) => a,
-        Err(never) => match never {},
-    }
+    harmonics::in_memory(&signal, |source| {
+        finish_with(
+            &facts,
+            source,
+            place,
+            (
+                |i: usize| recording.angle_at(i, declared_rate_rad_s),
+                |i: usize| time_s[i],
+            ),
+            analysis,
+            (
+                declared_rate_rad_s,
+                measured_rate_rad_s,
+                dropped_revolutions,
+            ),
+            config,
+        )
+    })
 }
 
 /// What the diagnostics of an analysis say about the recording it came from.
@@ -453,11 +451,9 @@ pub fn outlier_check(
     unit: LengthUnit,
     place: impl Fn(usize) -> SampleAt,
 ) -> (HarmonicAnalysis, Vec<Diagnostic>) {
-    let mut source = *signal;
-    match outlier_check_in(&mut source, analysis, on_outlier, unit, place) {
-        Ok(done) => done,
-        Err(never) => match never {},
-    }
+    harmonics::in_memory(signal, |source| {
+        outlier_check_in(source, analysis, on_outlier, unit, place)
+    })
 }
 
 /// [`outlier_check`] with the revolutions' samples read from `source`.

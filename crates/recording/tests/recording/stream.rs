@@ -309,30 +309,12 @@ const BIG_ROWS: usize = 8_000_000;
 /// Peak resident memory the streamed analysis of that recording must stay under.
 const BOUND_KIB: u64 = 64 * 1024;
 
-/// Writes a long recording row by row (30 deg/s, 1 kHz, encoder), never held in memory.
+/// Writes a long recording row by row (30 deg/s, 1 kHz, encoder), never held in memory
+/// ([`recording::write_long_recording`]).
 fn write_big(path: &Path, rows: usize) {
-    use std::io::Write as _;
     let file = std::fs::File::create(path).unwrap();
-    let mut out = std::io::BufWriter::with_capacity(1 << 16, file);
-    out.write_all(b"time_s,gap_um,angle_deg\n").unwrap();
-    for i in 0..rows {
-        // Angle in thousandths of a degree, gap in thousandths of a micrometre: integers.
-        let milli_deg = (i as u64 * 30) % 360_000;
-        let theta = (milli_deg as f64 / 1000.0).to_radians();
-        let gap = 50_000 + (3_200.0 * theta.cos()) as i64 + ((i * 7919) % 21) as i64 - 10;
-        writeln!(
-            out,
-            "{}.{:03},{}.{:03},{}.{:03}",
-            i / 1000,
-            i % 1000,
-            gap / 1000,
-            gap % 1000,
-            milli_deg / 1000,
-            milli_deg % 1000
-        )
+    recording::write_long_recording(std::io::BufWriter::with_capacity(1 << 16, file), rows)
         .unwrap();
-    }
-    out.flush().unwrap();
 }
 
 /// The peak resident memory of this process, KiB (`VmHWM` of /proc/self/status).

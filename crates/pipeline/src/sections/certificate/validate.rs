@@ -269,6 +269,32 @@ impl Need<'_> {
         value.to_owned()
     }
 
+    /// [`Self::need`] for the field `name` of item `i` of the list `list`
+    /// (`equipment[0].role`).
+    fn need_in(&mut self, (list, i): (&str, usize), name: &str, value: &str, hint: &str) -> String {
+        self.need(&format!("{list}[{i}].{name}"), value, hint)
+    }
+
+    /// Each of `items` as `each` makes it from its index and itself (checking its fields);
+    /// none at all is the missing field `field` (`hint`).
+    fn need_each<T, U>(
+        &mut self,
+        items: &[T],
+        field: &str,
+        hint: &str,
+        mut each: impl FnMut(&mut Self, usize, &T) -> U,
+    ) -> Vec<U> {
+        let made: Vec<U> = items
+            .iter()
+            .enumerate()
+            .map(|(i, item)| each(self, i, item))
+            .collect();
+        if made.is_empty() {
+            self.need(field, "", hint);
+        }
+        made
+    }
+
     /// The issuing laboratory, where it calibrated, the customer and the item.
     fn parties(&mut self, c: &CertificateConfig) -> (Laboratory, String, Party, Item) {
         let laboratory = Laboratory {
@@ -318,70 +344,46 @@ impl Need<'_> {
 
     /// The instruments used, at least one.
     fn equipment(&mut self, c: &CertificateConfig) -> Vec<Equipment> {
-        let equipment: Vec<Equipment> = c
-            .equipment
-            .iter()
-            .enumerate()
-            .map(|(i, e)| Equipment {
-                role: self.need(
-                    &format!("equipment[{i}].role"),
-                    &e.role,
-                    "the instrument's role",
-                ),
-                description: self.need(
-                    &format!("equipment[{i}].description"),
-                    &e.description,
-                    "make and model",
-                ),
-                identity: self.need(
-                    &format!("equipment[{i}].identity"),
-                    &e.identity,
-                    "serial or asset number",
-                ),
-                calibration_due: self.need(
-                    &format!("equipment[{i}].calibration_due"),
-                    &e.calibration_due,
-                    "when its calibration falls due",
-                ),
-            })
-            .collect();
-        if equipment.is_empty() {
-            self.need(
-                "equipment",
-                "",
-                "the centrifuge, the probe and the data acquisition, each with its identity and calibration due date",
-            );
-        }
-        equipment
+        let none = "the centrifuge, the probe and the data acquisition, each with its identity and calibration due date";
+        self.need_each(&c.equipment, "equipment", none, |v, i, e| Equipment {
+            role: v.need_in(("equipment", i), "role", &e.role, "the instrument's role"),
+            description: v.need_in(
+                ("equipment", i),
+                "description",
+                &e.description,
+                "make and model",
+            ),
+            identity: v.need_in(
+                ("equipment", i),
+                "identity",
+                &e.identity,
+                "serial or asset number",
+            ),
+            calibration_due: v.need_in(
+                ("equipment", i),
+                "calibration_due",
+                &e.calibration_due,
+                "when its calibration falls due",
+            ),
+        })
     }
 
     /// The environmental conditions, at least one.
     fn conditions(&mut self, c: &CertificateConfig) -> Vec<Condition> {
-        let conditions: Vec<Condition> = c
-            .conditions
-            .iter()
-            .enumerate()
-            .map(|(i, cnd)| Condition {
-                quantity: self.need(
-                    &format!("conditions[{i}].quantity"),
-                    &cnd.quantity,
-                    "the quantity",
-                ),
-                value: self.need(
-                    &format!("conditions[{i}].value"),
+        self.need_each(
+            &c.conditions,
+            "conditions",
+            "the environmental conditions during the measurement (temperature, humidity)",
+            |v, i, cnd| Condition {
+                quantity: v.need_in(("conditions", i), "quantity", &cnd.quantity, "the quantity"),
+                value: v.need_in(
+                    ("conditions", i),
+                    "value",
                     &cnd.value,
                     "its value with unit and range",
                 ),
-            })
-            .collect();
-        if conditions.is_empty() {
-            self.need(
-                "conditions",
-                "",
-                "the environmental conditions during the measurement (temperature, humidity)",
-            );
-        }
-        conditions
+            },
+        )
     }
 
     /// The traceability statements, and one for each Type B input with a non-zero
