@@ -737,3 +737,21 @@ fn input_files(x: &mut Xml, files: Option<&[InputFile]>) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use pipeline::InfiniteDof;
+
+    /// The DCC writes ν_eff as the certificate's page does (`DegreesOfFreedom`'s display).
+    #[test]
+    fn dof_words_are_the_pages() {
+        assert_eq!(dof_words(DegreesOfFreedom::Finite(12.0)), "ν_eff = 12");
+        assert_eq!(dof_words(DegreesOfFreedom::Finite(3.4)), "ν_eff = 3.4");
+        assert_eq!(dof_words(DegreesOfFreedom::Finite(5000.0)), "ν_eff > 1000");
+        assert_eq!(
+            dof_words(DegreesOfFreedom::Infinite(InfiniteDof::Infinite)),
+            "ν_eff = ∞"
+        );
+    }
+}
